@@ -1,0 +1,28 @@
+// Capacitor: an electrical capacitor, a mass, or a rotary inertia.
+//
+//   through = capacitance · d(y_a − y_b)/dt
+// electrical: i = C·du/dt [F]; translational: a mass m [kg] is a capacitor from its velocity
+// node to ground, F = m·dv/dt; rotational: an inertia J [kg·m²], M = J·dΩ/dt (DESIGN §1).
+// Through quantity positive from a to b. Stamps C only.
+#pragma once
+
+#include "emnet/network.hpp"
+
+namespace emnet {
+
+class Capacitor : public Element {
+ public:
+  Capacitor(std::string name, NodeId a, NodeId b, double capacitance)
+      : Element(std::move(name)), a_(a), b_(b), capacitance_(capacitance) {}
+  const char* kind() const override { return "capacitor"; }
+  void stamp(Stamper& s) const override;
+  NodeId a() const { return a_; }
+  NodeId b() const { return b_; }
+  double capacitance() const { return capacitance_; }
+
+ private:
+  NodeId a_, b_;
+  double capacitance_;
+};
+
+}  // namespace emnet

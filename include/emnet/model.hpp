@@ -1,0 +1,79 @@
+// From a Scene to a Network: the beam chain, the DEA patches and their drive, loads, probes.
+//
+// The beam (DESIGN §2): N equal massless segments of length l = L/N, each realised exactly as
+//   - a rotational compliance n_R = l/EI between the rotation nodes r_k and r_k+1;
+//   - a translational branch v_k → n_T = l³/(12·EI) → m_k → lever → v_k+1, the lever being an
+//     ideal transformer whose secondary adds (l/2)·(Ω_k + Ω_k+1) and whose primaries feed the
+//     branch force back as torques (l/2)·F into both rotation nodes.
+// Its flexibility equals the cubic Hermite element's, so nodal statics are exact for every N.
+// Mass lumping rule: half of each segment's mass ρA·l to each of its two end nodes (a
+// capacitor from the velocity node to ground); optional rotary inertia ρI·l lumped the same
+// way onto the rotation nodes. Damping: viscous damping to ground c·l (lumped like the mass)
+// and/or Kelvin–Voigt material damping τ, realised as a damper τ/n in parallel with every
+// compliance n, which gives exactly the damping matrix τ·K.
+// Ends: clamped (v = Ω = 0), pinned (v = 0), sliding (Ω = 0), free: tied to ground or left open.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "emnet/network.hpp"
+#include "emnet/scene.hpp"
+
+namespace emnet {
+
+// A linear functional Σ coefficient·y[index] over the unknowns.
+using LinearTerms = std::vector<std::pair<int, double>>;
+
+struct BeamLayout {
+  double length = 0.0;
+  double segment_length = 0.0;
+  std::vector<double> x;                // node positions [m]
+  std::vector<NodeId> velocity;         // translational node per position (ground if held)
+  std::vector<NodeId> angular_velocity;  // rotational node per position (ground if held)
+  // Cubic Hermite interpolation over the segment holding x (DESIGN §5):
+  // w(x) = Σ c·(w, φ at the segment's ends); the same coefficients map v, Ω to v(x).
+  LinearTerms deflection_terms(double x) const;
+  // φ(x) = dw/dx from the derivatives of the same shape functions.
+  LinearTerms slope_terms(double x) const;
+};
+
+// Adds the beam chain to `network`.
+BeamLayout add_beam(Network& network, const BeamSpec& beam, const DampingSpec& damping);
+
+// An output: a linear functional of y. For `integrations` = 1 the quantity is the time
+// integral of the functional (a deflection from velocities: W = V/(jω) in AC).
+struct Probe {
+  std::string name;
+  ProbeQuantity quantity = ProbeQuantity::deflection;
+  std::string unit;
+  LinearTerms terms;
+  int integrations = 0;
+  std::string description;  // "deflection at x = 70.0 mm"
+};
+
+struct DeaLayout {
+  std::string name;
+  NodeId source_node = ground;     // electrical node behind the source
+  NodeId electrode_node = ground;  // capacitor node (after the electrode resistance)
+  double electrode_resistance = 0.0;
+  double capacitance = 0.0;
+  double force_constant = 0.0;  // k_F [N/V²]
+};
+
+struct Model {
+  Scene scene;
+  Network network;
+  BeamLayout beam;
+  std::vector<DeaLayout> deas;
+  std::vector<Probe> probes;  // the scene's probes (a tip deflection probe if it has none)
+  std::vector<std::string> notes;  // what was built and why, for the user
+  Probe make_probe(const ProbeSpec& spec) const;
+  // Parses "deflection@70mm", "velocity@0.1", "dea_current:A" or a probe name of the scene.
+  Probe parse_probe(const std::string& text) const;
+};
+
+Model build_model(const Scene& scene);
+
+}  // namespace emnet

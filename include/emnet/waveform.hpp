@@ -1,0 +1,51 @@
+// Time functions of independent sources, and their small-signal (AC) excitation.
+//
+// A source's value is value(t) in its own unit (A or V in the network; N, N·m, m/s or rad/s
+// by the Firestone analogy). The DC value is value at t = 0 before any edge; the AC phasor
+// is ac_magnitude·exp(j·ac_phase) and is used only by the AC analysis.
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace emnet {
+
+struct Waveform {
+  enum class Shape { dc, pulse, sine, pwl };
+  Shape shape = Shape::dc;
+
+  double dc = 0.0;  // dc: value; pulse: low level (v1); sine: offset
+
+  // pulse (SPICE PULSE semantics): v1 -> v2 after delay, rise, width, fall, period.
+  double pulse_high = 0.0;
+  double delay = 0.0;
+  double rise = 0.0;
+  double fall = 0.0;
+  double width = 0.0;
+  double period = 0.0;  // 0: a single pulse
+
+  // sine: dc + amplitude·sin(2π·frequency·(t − delay) + phase)
+  double amplitude = 0.0;
+  double frequency = 0.0;
+  double phase = 0.0;  // rad
+
+  // pwl: (time, value) pairs, times strictly increasing; constant outside.
+  std::vector<std::pair<double, double>> points;
+
+  // Small-signal excitation of the AC analysis.
+  double ac_magnitude = 0.0;
+  double ac_phase = 0.0;  // rad
+
+  double value(double t) const;
+  double value_at_rest() const { return value(0.0); }
+  std::complex<double> ac_phasor() const { return std::polar(ac_magnitude, ac_phase); }
+  // Instants in (t_begin, t_end] where the value or its slope jumps.
+  void breakpoints(double t_begin, double t_end, std::vector<double>& out) const;
+
+  static Waveform constant(double value);
+  static Waveform square(double low, double high, double frequency, double duty, double delay,
+                         double rise_time);
+};
+
+}  // namespace emnet

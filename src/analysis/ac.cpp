@@ -1,0 +1,99 @@
+// AC analysis: (G + J_g + jω·C)·Y = B_ac at every frequency, one sparse LU pattern reused.
+#include <chrono>
+#include <cmath>
+
+#include "emnet/analysis.hpp"
+
+namespace emnet {
+
+namespace {
+constexpr double two_pi = 6.283185307179586476925286766559;
+}
+
+std::vector<double> frequency_grid(double from, double to, int points, bool log) {
+  std::vector<double> grid;
+  if (points < 1) return grid;
+  if (points == 1) return {from};
+  for (int k = 0; k < points; ++k) {
+    const double t = static_cast<double>(k) / (points - 1);
+    grid.push_back(log ? from * std::pow(to / from, t) : from + (to - from) * t);
+  }
+  return grid;
+}
+
+std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y, double omega) {
+  std::complex<double> sum = 0.0;
+  for (const auto& [index, coefficient] : probe.terms) sum += coefficient * y[index];
+  for (int k = 0; k < probe.integrations; ++k) sum /= std::complex<double>(0.0, omega);
+  return sum;
+}
+
+AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
+                const std::vector<double>& frequencies, const std::vector<Probe>& probes) {
+  const auto start = std::chrono::steady_clock::now();
+  AcResult result;
+  result.frequencies = frequencies;
+  result.values.assign(probes.size(), {});
+  auto finish = [&](Status status) {
+    result.status = std::move(status);
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  };
+  using ComplexMatrix = Eigen::SparseMatrix<std::complex<double>>;
+  const Eigen::SparseMatrix<double> g_matrix = linearised_g(system, operating_point);
+  const Eigen::VectorXcd rhs = system.b_ac();
+  const double rhs_norm = rhs.norm();
+  if (rhs_norm == 0.0)
+    return finish(Status::failure(
+        "the scene has no AC excitation (no drive and no load): every response would be zero"));
+
+  // The pattern of G + C, with explicit zeros where only one of them has an entry.
+  const ComplexMatrix pattern_g = g_matrix.cast<std::complex<double>>();
+  const ComplexMatrix pattern_c = system.C.cast<std::complex<double>>();
+  ComplexMatrix matrix = pattern_g + pattern_c;
+  matrix.makeCompressed();
+  Eigen::SparseLU<ComplexMatrix> lu;
+  lu.analyzePattern(matrix);
+
+  std::unique_ptr<StaticOperator> static_operator;
+  for (double f : frequencies) {
+    const double omega = two_pi * f;
+    Eigen::VectorXcd y;
+    if (omega == 0.0) {
+      // Limit ω → 0: displacements from the static operator, velocities zero.
+      if (!static_operator) static_operator = std::make_unique<StaticOperator>(system, g_matrix);
+      Eigen::VectorXcd z;
+      std::string why;
+      if (static_operator->excites_divided_rows(rhs))
+        return finish(Status::failure("at f = 0: a source drives a constant velocity"));
+      if (!static_operator->solve(rhs, z, why))
+        return finish(Status::failure("at f = 0: " + why));
+      for (size_t p = 0; p < probes.size(); ++p) {
+        std::complex<double> sum = 0.0;
+        for (const auto& [index, coefficient] : probes[p].terms) {
+          const bool mech = static_operator->mechanical()[static_cast<size_t>(index)];
+          if ((mech ? 1 : 0) - probes[p].integrations == 0) sum += coefficient * z[index];
+        }
+        result.values[p].push_back(sum);
+      }
+      continue;
+    }
+    matrix = pattern_g + std::complex<double>(0.0, omega) * pattern_c;
+    lu.factorize(matrix);
+    if (lu.info() != Eigen::Success)
+      return finish(Status::failure("the AC matrix is singular at f = " + std::to_string(f) +
+                                    " Hz (an undamped pole exactly on the grid?)"));
+    y = lu.solve(rhs);
+    if (!y.allFinite())
+      return finish(Status::failure("the AC solve gave non-finite values at f = " +
+                                    std::to_string(f) + " Hz"));
+    const double residual = (matrix * y - rhs).norm() / rhs_norm;
+    result.max_relative_residual = std::max(result.max_relative_residual, residual);
+    for (size_t p = 0; p < probes.size(); ++p)
+      result.values[p].push_back(probe_phasor(probes[p], y, omega));
+  }
+  return finish(Status::success());
+}
+
+}  // namespace emnet

@@ -1,0 +1,157 @@
+// Modal analysis: poles of the pencil (G + J_g, C) by shift-invert; see analysis.hpp.
+#include <Spectra/GenEigsSolver.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "emnet/analysis.hpp"
+
+namespace emnet {
+
+namespace {
+
+constexpr double two_pi = 6.283185307179586476925286766559;
+
+// y ↦ (G + σC)⁻¹·C·y for Spectra.
+class ShiftInvertOperator {
+ public:
+  using Scalar = double;
+  ShiftInvertOperator(const Eigen::SparseLU<Eigen::SparseMatrix<double>>& lu,
+                      const Eigen::SparseMatrix<double>& c)
+      : lu_(lu), c_(c) {}
+  Eigen::Index rows() const { return c_.rows(); }
+  Eigen::Index cols() const { return c_.cols(); }
+  void perform_op(const double* x_in, double* y_out) const {
+    Eigen::Map<const Eigen::VectorXd> x(x_in, c_.cols());
+    Eigen::Map<Eigen::VectorXd> y(y_out, c_.rows());
+    y = lu_.solve(c_ * x);
+  }
+
+ private:
+  const Eigen::SparseLU<Eigen::SparseMatrix<double>>& lu_;
+  const Eigen::SparseMatrix<double>& c_;
+};
+
+double matrix_norm(const Eigen::SparseMatrix<double>& m) {
+  double largest = 0.0;  // max column sum (1-norm)
+  for (int col = 0; col < m.outerSize(); ++col) {
+    double sum = 0.0;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(m, col); it; ++it) sum += std::abs(it.value());
+    largest = std::max(largest, sum);
+  }
+  return largest;
+}
+
+}  // namespace
+
+ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,
+                      const ModalOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  ModalResult result;
+  const int n = system.size();
+  result.unknowns = n;
+  auto finish = [&](Status status) {
+    result.status = std::move(status);
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  };
+  const Eigen::SparseMatrix<double> g_matrix = linearised_g(system, operating_point);
+  const double g_norm = matrix_norm(g_matrix), c_norm = matrix_norm(system.C);
+  if (c_norm == 0.0) return finish(Status::failure("the network stores no energy: no poles"));
+
+  // Shift: σ = 0 unless G is singular there (a free body has a pole at 0).
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  const double scale = g_norm / c_norm;
+  bool factorised = false;
+  for (double sigma : {0.0, -1e-3 * scale, -1e-6 * scale, -1.0}) {
+    Eigen::SparseMatrix<double> shifted = g_matrix + sigma * system.C;
+    shifted.makeCompressed();
+    lu.analyzePattern(shifted);
+    lu.factorize(shifted);
+    if (lu.info() == Eigen::Success) {
+      result.shift = sigma;
+      factorised = true;
+      break;
+    }
+  }
+  if (!factorised) return finish(Status::failure("the pencil (G, C) is singular for every shift"));
+
+  std::vector<std::complex<double>> mus;
+  std::vector<Eigen::VectorXcd> vectors;
+  const bool dense =
+      (options.count == 0 && n <= options.dense_limit) || (options.count >= n - 2);
+  if (dense) {
+    result.method = "dense";
+    const Eigen::MatrixXd identity_c = Eigen::MatrixXd(system.C);
+    const Eigen::MatrixXd a = lu.solve(identity_c);
+    if (!a.allFinite()) return finish(Status::failure("shift-invert operator is not finite"));
+    Eigen::EigenSolver<Eigen::MatrixXd> solver(a, options.keep_vectors);
+    if (solver.info() != Eigen::Success)
+      return finish(Status::failure("dense eigen-decomposition did not converge"));
+    const Eigen::VectorXcd values = solver.eigenvalues();
+    double largest = 0.0;
+    for (Eigen::Index k = 0; k < values.size(); ++k) largest = std::max(largest, std::abs(values[k]));
+    // Infinite poles map to μ = 0, perturbed by rounding (√ε for the index-2 blocks of
+    // massless nodes); finite poles are kept when |μ| clears that level.
+    const double threshold = 1e-7 * largest;
+    for (Eigen::Index k = 0; k < values.size(); ++k)
+      if (std::abs(values[k]) > threshold) {
+        mus.push_back(values[k]);
+        vectors.push_back(options.keep_vectors ? Eigen::VectorXcd(solver.eigenvectors().col(k))
+                                               : Eigen::VectorXcd());
+      }
+    result.complete = true;
+  } else {
+    result.method = "arnoldi";
+    const int wanted = options.count > 0 ? options.count : 20;
+    const int nev = std::min(wanted, n - 3);
+    const int ncv = std::min(n - 1, std::max(2 * nev + 1, nev + 20));
+    ShiftInvertOperator op(lu, system.C);
+    Spectra::GenEigsSolver<ShiftInvertOperator> eigs(op, nev, ncv);
+    eigs.init();
+    eigs.compute(Spectra::SortRule::LargestMagn, 2000, 1e-12);
+    if (eigs.info() != Spectra::CompInfo::Successful)
+      return finish(Status::failure("Arnoldi iteration did not converge for " +
+                                    std::to_string(nev) + " poles; try a smaller --count"));
+    const Eigen::VectorXcd values = eigs.eigenvalues();
+    const Eigen::MatrixXcd eigenvectors = eigs.eigenvectors();
+    for (Eigen::Index k = 0; k < values.size(); ++k) {
+      mus.push_back(values[k]);
+      vectors.push_back(eigenvectors.col(k));
+    }
+  }
+
+  const Eigen::SparseMatrix<std::complex<double>> gc = g_matrix.cast<std::complex<double>>();
+  const Eigen::SparseMatrix<std::complex<double>> cc = system.C.cast<std::complex<double>>();
+  for (size_t k = 0; k < mus.size(); ++k) {
+    const std::complex<double> pole = result.shift - 1.0 / mus[k];
+    if (pole.imag() < -1e-9 * std::abs(pole)) continue;  // keep one of each conjugate pair
+    Mode mode;
+    mode.pole = std::complex<double>(pole.real(), std::abs(pole.imag()));
+    mode.natural_frequency_hz = std::abs(pole) / two_pi;
+    mode.frequency_hz = std::abs(pole.imag()) / two_pi;
+    mode.damping_ratio = std::abs(pole) > 0.0 ? -pole.real() / std::abs(pole) : 0.0;
+    if (vectors[k].size() == n) {
+      Eigen::VectorXcd x = vectors[k];
+      if (pole.imag() < 0.0) x = x.conjugate();
+      const double norm = x.norm();
+      if (norm > 0.0) {
+        mode.relative_residual = (gc * x + mode.pole * (cc * x)).norm() /
+                                 ((g_norm + std::abs(mode.pole) * c_norm) * norm);
+      }
+      if (options.keep_vectors) mode.vector = x / norm;
+    }
+    const bool oscillatory = mode.frequency_hz > 1e-9 * mode.natural_frequency_hz;
+    (oscillatory ? result.modes : result.real_poles).push_back(std::move(mode));
+  }
+  std::sort(result.modes.begin(), result.modes.end(),
+            [](const Mode& a, const Mode& b) { return a.frequency_hz < b.frequency_hz; });
+  std::sort(result.real_poles.begin(), result.real_poles.end(),
+            [](const Mode& a, const Mode& b) { return std::abs(a.pole) < std::abs(b.pole); });
+  return finish(Status::success());
+}
+
+}  // namespace emnet

@@ -1,0 +1,176 @@
+// Static analysis: displacements at rest from the s → 0 expansion of the pencil.
+// See include/emnet/analysis.hpp for the method.
+#include <chrono>
+#include <cmath>
+
+#include "emnet/analysis.hpp"
+
+namespace emnet {
+
+namespace {
+
+std::vector<bool> mechanical_columns(const System& system) {
+  std::vector<bool> mechanical(static_cast<size_t>(system.size()), false);
+  for (int k = 0; k < system.size(); ++k) {
+    const Unknown& u = system.unknowns[static_cast<size_t>(k)];
+    mechanical[static_cast<size_t>(k)] =
+        u.kind == Unknown::Kind::node_across && is_mechanical(u.domain);
+  }
+  return mechanical;
+}
+
+// y at rest from z: mechanical across values (velocities) are zero.
+Eigen::VectorXd rest_state(const Eigen::VectorXd& z, const std::vector<bool>& mechanical) {
+  Eigen::VectorXd y = z;
+  for (Eigen::Index k = 0; k < y.size(); ++k)
+    if (mechanical[static_cast<size_t>(k)]) y[k] = 0.0;
+  return y;
+}
+
+}  // namespace
+
+Eigen::SparseMatrix<double> linearised_g(const System& system, const Eigen::VectorXd& y) {
+  if (!system.is_nonlinear()) return system.G;
+  Eigen::VectorXd g;
+  Eigen::SparseMatrix<double> jacobian;
+  system.nonlinear(y, g, &jacobian);
+  Eigen::SparseMatrix<double> sum = system.G + jacobian;
+  sum.makeCompressed();
+  return sum;
+}
+
+StaticOperator::StaticOperator(const System& system, const Eigen::SparseMatrix<double>& g_matrix)
+    : mechanical_(mechanical_columns(system)) {
+  const int n = system.size();
+  // s⁰ part: G on non-mechanical columns. s¹ part: G on mechanical columns + C on the others.
+  std::vector<bool> has_order_zero(static_cast<size_t>(n), false);
+  for (int col = 0; col < n; ++col) {
+    if (mechanical_[static_cast<size_t>(col)]) continue;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(g_matrix, col); it; ++it)
+      if (it.value() != 0.0) has_order_zero[static_cast<size_t>(it.row())] = true;
+  }
+  divided_.assign(static_cast<size_t>(n), false);
+  for (int row = 0; row < n; ++row) divided_[static_cast<size_t>(row)] = !has_order_zero[row];
+
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int col = 0; col < n; ++col) {
+    const bool mech = mechanical_[static_cast<size_t>(col)];
+    for (Eigen::SparseMatrix<double>::InnerIterator it(g_matrix, col); it; ++it) {
+      const bool divided = divided_[static_cast<size_t>(it.row())];
+      if (mech == divided) entries.emplace_back(it.row(), col, it.value());
+    }
+    if (!mech)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(system.C, col); it; ++it)
+        if (divided_[static_cast<size_t>(it.row())])
+          entries.emplace_back(it.row(), col, it.value());
+  }
+  matrix_.resize(n, n);
+  matrix_.setFromTriplets(entries.begin(), entries.end());
+  matrix_.makeCompressed();
+  lu_.analyzePattern(matrix_);
+  lu_.factorize(matrix_);
+  factorised_ = lu_.info() == Eigen::Success;
+}
+
+bool StaticOperator::excites_divided_rows(const Eigen::VectorXcd& rhs) const {
+  for (Eigen::Index k = 0; k < rhs.size(); ++k)
+    if (divided_[static_cast<size_t>(k)] && rhs[k] != 0.0) return true;
+  return false;
+}
+
+bool StaticOperator::solve(const Eigen::VectorXcd& rhs, Eigen::VectorXcd& z,
+                           std::string& why) const {
+  if (!factorised_) {
+    why = "the network has no unique static state (a free body, a mechanism, or a loop of "
+          "across sources): check the beam's end conditions";
+    return false;
+  }
+  Eigen::VectorXd re = lu_.solve(rhs.real());
+  Eigen::VectorXd im = lu_.solve(rhs.imag());
+  z = re.cast<std::complex<double>>() + std::complex<double>(0.0, 1.0) * im.cast<std::complex<double>>();
+  if (!z.allFinite()) {
+    why = "the static solve produced non-finite values (singular network)";
+    return false;
+  }
+  return true;
+}
+
+StaticResult solve_static(const System& system, const StaticOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  StaticResult result;
+  const int n = system.size();
+  const StaticOperator linear(system, system.G);
+  const Eigen::VectorXd b = system.b_at_rest();
+  auto finish = [&](Status status) {
+    result.status = std::move(status);
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  };
+  if (!linear.factorised())
+    return finish(Status::failure(
+        "the network has no unique static state (a free body, a mechanism, or a loop of across "
+        "sources): check the beam's end conditions"));
+  for (int k = 0; k < n; ++k)
+    if (linear.divided_rows()[static_cast<size_t>(k)] && b[k] != 0.0)
+      return finish(Status::failure(
+          "a source imposes a constant velocity on '" + system.unknowns[static_cast<size_t>(k)].name +
+          "', so there is no static state"));
+
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
+  auto residual = [&](const Eigen::VectorXd& state) {
+    Eigen::VectorXd g;
+    system.nonlinear(rest_state(state, linear.mechanical()), g, nullptr);
+    return Eigen::VectorXd(linear.matrix() * state + g - b);
+  };
+  const double b_norm = b.norm();
+  for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
+    result.newton_iterations = iteration;
+    const Eigen::VectorXd r = residual(z);
+    Eigen::VectorXd step;
+    if (system.is_nonlinear()) {
+      const StaticOperator jacobian(system, linearised_g(system, rest_state(z, linear.mechanical())));
+      if (!jacobian.factorised())
+        return finish(Status::failure("the static Jacobian is singular at Newton iteration " +
+                                      std::to_string(iteration)));
+      Eigen::VectorXcd complex_step;
+      std::string why;
+      if (!jacobian.solve(-r.cast<std::complex<double>>(), complex_step, why))
+        return finish(Status::failure(why));
+      step = complex_step.real();
+    } else {
+      Eigen::VectorXcd complex_step;
+      std::string why;
+      if (!linear.solve(-r.cast<std::complex<double>>(), complex_step, why))
+        return finish(Status::failure(why));
+      step = complex_step.real();
+    }
+    z += step;
+    if (!z.allFinite())
+      return finish(Status::failure("the static solution became non-finite at Newton iteration " +
+                                    std::to_string(iteration)));
+    if (step.norm() <= options.tolerance * z.norm() || step.norm() == 0.0) break;
+    if (iteration == options.max_iterations)
+      return finish(Status::failure("Newton did not converge in " +
+                                    std::to_string(options.max_iterations) + " iterations"));
+  }
+  result.state = z;
+  result.operating_point = rest_state(z, linear.mechanical());
+  const double r_norm = residual(z).norm();
+  result.relative_residual = b_norm > 0.0 ? r_norm / b_norm : r_norm;
+  return finish(Status::success());
+}
+
+double static_probe_value(const System& system, const StaticResult& result, const Probe& probe) {
+  double value = 0.0;
+  for (const auto& [index, coefficient] : probe.terms) {
+    const Unknown& u = system.unknowns[static_cast<size_t>(index)];
+    const bool mech = u.kind == Unknown::Kind::node_across && is_mechanical(u.domain);
+    // z holds displacements on mechanical nodes (y = s·z) and across values elsewhere.
+    const int power_of_s = (mech ? 1 : 0) - probe.integrations;
+    if (power_of_s == 0) value += coefficient * result.state[index];
+  }
+  return value;
+}
+
+}  // namespace emnet

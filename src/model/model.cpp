@@ -1,0 +1,223 @@
+// Scene → Network: beam, DEA patches with their electrical loop and drive, loads, probes.
+//
+// DEA electrical loop, per DEA X:  source s_X —[electrode resistance]— e_X —[C₀ + transducer]— 0
+// Drives (DESIGN §3):
+//   antagonistic       A: 0/V square wave on for the first `duty` of each period, B the rest.
+//                      AC input: the alternating part of the DEA forces, amplitude k_F·V²/2 on
+//                      each DEA, A and B in antiphase (the square wave's ±level; its
+//                      fundamental is 4/π times this). Static / at rest: A on.
+//   bias_differential  V_A = V₀ + v·sin(2πft), V_B = V₀ − v·sin(2πft); AC input: v on A, −v on
+//                      B, the network linearised at V₀ (moment exactly linear in v).
+//   single             V = V₀ + v·sin(2πft) on one DEA; AC input v, linearised at V₀.
+// A DEA not named by the drive has its source node tied to ground through its resistance.
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "emnet/elements/conductance.hpp"
+#include "emnet/elements/current_source.hpp"
+#include "emnet/elements/dea.hpp"
+#include "emnet/elements/voltage_source.hpp"
+#include "emnet/errors.hpp"
+#include "emnet/model.hpp"
+#include "emnet/units.hpp"
+
+namespace emnet {
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+std::string position_text(double x) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "x = %.4g mm", x * 1e3);
+  return buffer;
+}
+
+const DeaLayout* find_dea(const std::vector<DeaLayout>& deas, const std::string& name) {
+  for (const auto& dea : deas)
+    if (dea.name == name) return &dea;
+  return nullptr;
+}
+
+}  // namespace
+
+Model build_model(const Scene& scene) {
+  Model model;
+  model.scene = scene;
+  Network& network = model.network;
+  model.beam = add_beam(network, scene.beam, scene.damping);
+  const BeamLayout& beam = model.beam;
+
+  // Point loads: consistent nodal loads from the Hermite shape functions, exact at the nodes.
+  int load_index = 0;
+  for (const LoadSpec& load : scene.loads) {
+    const LinearTerms terms =
+        load.kind == LoadKind::force ? beam.deflection_terms(load.at) : beam.slope_terms(load.at);
+    for (const auto& [node, coefficient] : terms) {
+      Waveform w = Waveform::constant(load.value * coefficient);
+      w.ac_magnitude = load.value * coefficient;
+      network.add<CurrentSource>("load" + std::to_string(load_index) + "_" + network.node(node).name,
+                                 ground, node, w);
+    }
+    ++load_index;
+  }
+
+  // Which DEA gets which source waveform.
+  const DriveSpec& drive = scene.drive;
+  auto drive_waveform = [&](const std::string& name, double& ac_force_factor) {
+    ac_force_factor = 0.0;
+    Waveform w = Waveform::constant(0.0);
+    const auto& names = drive.deas;
+    const int role = names.empty() ? -1
+                     : name == names[0] ? 0
+                     : (names.size() > 1 && name == names[1]) ? 1
+                                                               : -1;
+    if (role < 0 || drive.kind == DriveKind::none) return w;
+    const double period = 1.0 / drive.frequency;
+    switch (drive.kind) {
+      case DriveKind::antagonistic:
+        w = role == 0 ? Waveform::square(0.0, drive.voltage, drive.frequency, drive.duty, 0.0,
+                                         drive.rise_time)
+                      : Waveform::square(0.0, drive.voltage, drive.frequency, 1.0 - drive.duty,
+                                         drive.duty * period, drive.rise_time);
+        ac_force_factor = role == 0 ? 0.5 : -0.5;  // × k_F·V²
+        break;
+      case DriveKind::bias_differential:
+      case DriveKind::single:
+        w.shape = Waveform::Shape::sine;
+        w.dc = drive.bias;
+        w.amplitude = role == 0 ? drive.amplitude : -drive.amplitude;
+        w.frequency = drive.frequency;
+        w.ac_magnitude = drive.amplitude;
+        w.ac_phase = role == 0 ? 0.0 : pi;
+        break;
+      case DriveKind::none:
+        break;
+    }
+    return w;
+  };
+
+  for (const DeaSpec& spec : scene.deas) {
+    DeaLayout layout;
+    layout.name = spec.name;
+    layout.electrode_resistance = spec.electrode_resistance;
+    layout.capacitance = dea_capacitance(spec.relative_permittivity, spec.dielectric_thickness,
+                                         spec.electrode_width, spec.to - spec.from);
+    layout.force_constant = dea_force_constant(spec.relative_permittivity,
+                                               spec.dielectric_thickness, spec.force_thickness,
+                                               spec.electrode_width);
+    layout.source_node = network.add_node("s_" + spec.name, Domain::electrical,
+                                          "DEA " + spec.name + " source terminal [V]");
+    layout.electrode_node = network.add_node("e_" + spec.name, Domain::electrical,
+                                             "DEA " + spec.name + " capacitor voltage [V]");
+    double ac_force_factor = 0.0;
+    Waveform source = drive_waveform(spec.name, ac_force_factor);
+    network.add<VoltageSource>("V_" + spec.name, layout.source_node, ground, source,
+                               Domain::electrical);
+    network.add<Conductance>("Re_" + spec.name, layout.source_node, layout.electrode_node,
+                             1.0 / spec.electrode_resistance);
+    // Face elongation rate ẋ = s·z·(Ω(x1) − Ω(x0)), s = −1 on the top face, +1 on the bottom.
+    const double sign = spec.face == Face::top ? -1.0 : 1.0;
+    std::vector<Dea::Coupling> coupling;
+    for (const auto& [node, c] : beam.slope_terms(spec.to))
+      coupling.push_back({node, sign * spec.lever_arm * c});
+    for (const auto& [node, c] : beam.slope_terms(spec.from))
+      coupling.push_back({node, -sign * spec.lever_arm * c});
+    const double ac_force = ac_force_factor * layout.force_constant * drive.voltage * drive.voltage;
+    network.add<Dea>("dea_" + spec.name, layout.electrode_node, ground, layout.capacitance,
+                     layout.force_constant, coupling, spec.back_coupling, ac_force);
+    model.deas.push_back(layout);
+  }
+
+  if (drive.kind == DriveKind::single && drive.bias == 0.0)
+    model.notes.push_back(
+        "single DEA at zero bias: the linearised (AC) response is zero; a V² drive acts at 0 "
+        "and 2f");
+
+  for (const ProbeSpec& spec : scene.probes) model.probes.push_back(model.make_probe(spec));
+  if (model.probes.empty()) {
+    ProbeSpec tip;
+    tip.name = "tip";
+    tip.quantity = ProbeQuantity::deflection;
+    tip.at = scene.beam.length;
+    model.probes.push_back(model.make_probe(tip));
+  }
+  return model;
+}
+
+Probe Model::make_probe(const ProbeSpec& spec) const {
+  Probe probe;
+  probe.name = spec.name;
+  probe.quantity = spec.quantity;
+  probe.unit = probe_unit(spec.quantity);
+  const std::string where = position_text(spec.at);
+  switch (spec.quantity) {
+    case ProbeQuantity::deflection:
+    case ProbeQuantity::velocity:
+      probe.terms = beam.deflection_terms(spec.at);
+      probe.integrations = spec.quantity == ProbeQuantity::deflection ? 1 : 0;
+      probe.description = std::string(probe_quantity_name(spec.quantity)) + " at " + where;
+      break;
+    case ProbeQuantity::rotation:
+    case ProbeQuantity::angular_velocity:
+      probe.terms = beam.slope_terms(spec.at);
+      probe.integrations = spec.quantity == ProbeQuantity::rotation ? 1 : 0;
+      probe.description = std::string(probe_quantity_name(spec.quantity)) + " at " + where;
+      break;
+    case ProbeQuantity::dea_voltage:
+    case ProbeQuantity::dea_current: {
+      const DeaLayout* dea = find_dea(deas, spec.dea);
+      if (!dea) throw InputError("probe " + spec.name, "dea", "no DEA named '" + spec.dea + "'");
+      if (spec.quantity == ProbeQuantity::dea_voltage) {
+        probe.terms = {{dea->electrode_node, 1.0}};
+        probe.description = "capacitor voltage of DEA " + spec.dea;
+      } else {
+        const double g = 1.0 / dea->electrode_resistance;
+        probe.terms = {{dea->source_node, g}, {dea->electrode_node, -g}};
+        probe.description = "current into DEA " + spec.dea;
+      }
+      break;
+    }
+  }
+  return probe;
+}
+
+Probe Model::parse_probe(const std::string& text) const {
+  for (const Probe& probe : probes)
+    if (probe.name == text) return probe;
+  ProbeSpec spec;
+  spec.name = text;
+  const auto at_sign = text.find('@');
+  const auto colon = text.find(':');
+  const std::string quantity = text.substr(0, std::min(at_sign, colon));
+  bool known = false;
+  for (ProbeQuantity q : {ProbeQuantity::deflection, ProbeQuantity::velocity,
+                          ProbeQuantity::rotation, ProbeQuantity::angular_velocity,
+                          ProbeQuantity::dea_voltage, ProbeQuantity::dea_current})
+    if (quantity == probe_quantity_name(q)) {
+      spec.quantity = q;
+      known = true;
+    }
+  const bool electrical =
+      spec.quantity == ProbeQuantity::dea_voltage || spec.quantity == ProbeQuantity::dea_current;
+  if (!known || (electrical ? colon == std::string::npos : at_sign == std::string::npos))
+    throw InputError("--probe", text,
+                     "expected a probe name of the scene, QUANTITY@POSITION (e.g. "
+                     "deflection@70mm, velocity@0.1) or dea_voltage:NAME / dea_current:NAME");
+  if (electrical) {
+    spec.dea = text.substr(colon + 1);
+  } else {
+    try {
+      spec.at = parse_quantity(text.substr(at_sign + 1), dim::length);
+    } catch (const std::exception& e) {
+      throw InputError("--probe", text, e.what());
+    }
+    if (!(spec.at >= 0.0 && spec.at <= beam.length))
+      throw InputError("--probe", text, "position outside the beam [0, " +
+                                            std::to_string(beam.length) + " m]");
+  }
+  return make_probe(spec);
+}
+
+}  // namespace emnet

@@ -1,0 +1,146 @@
+// Network bookkeeping and assembly of the MNA system C·y' + G·y + g(y) = b(t).
+#include "emnet/network.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <stdexcept>
+
+namespace emnet {
+
+const char* domain_name(Domain domain) {
+  switch (domain) {
+    case Domain::electrical: return "electrical";
+    case Domain::translational: return "translational";
+    case Domain::rotational: return "rotational";
+  }
+  return "?";
+}
+const char* across_unit(Domain domain) {
+  switch (domain) {
+    case Domain::electrical: return "V";
+    case Domain::translational: return "m/s";
+    case Domain::rotational: return "rad/s";
+  }
+  return "?";
+}
+const char* through_unit(Domain domain) {
+  switch (domain) {
+    case Domain::electrical: return "A";
+    case Domain::translational: return "N";
+    case Domain::rotational: return "N*m";
+  }
+  return "?";
+}
+
+NodeId Network::add_node(std::string name, Domain domain, std::string meaning) {
+  nodes_.push_back({std::move(name), domain, std::move(meaning)});
+  return static_cast<NodeId>(nodes_.size()) - 1;
+}
+
+const Element* Network::find(const std::string& name) const {
+  for (const auto& element : elements_)
+    if (element->name() == name) return element.get();
+  return nullptr;
+}
+
+System Network::assemble() const {
+  System system;
+  for (const auto& node : nodes_)
+    system.unknowns.push_back({node.name, Unknown::Kind::node_across, node.domain});
+  std::vector<int> offsets;
+  for (const auto& element : elements_) {
+    offsets.push_back(system.size());
+    system.branch_offsets.emplace_back(element->name(), system.size());
+    for (auto& unknown : element->branch_unknowns()) system.unknowns.push_back(unknown);
+  }
+  const int n = system.size();
+  system.ac_excitation = Eigen::VectorXcd::Zero(n);
+  std::vector<Eigen::Triplet<double>> g_entries, c_entries;
+  for (size_t k = 0; k < elements_.size(); ++k) {
+    Stamper stamper(system, offsets[k]);
+    elements_[k]->stamp(stamper);
+    g_entries.insert(g_entries.end(), stamper.g_entries.begin(), stamper.g_entries.end());
+    c_entries.insert(c_entries.end(), stamper.c_entries.begin(), stamper.c_entries.end());
+    if (elements_[k]->is_nonlinear()) system.nonlinear_elements.push_back(elements_[k].get());
+  }
+  system.G.resize(n, n);
+  system.C.resize(n, n);
+  system.G.setFromTriplets(g_entries.begin(), g_entries.end());
+  system.C.setFromTriplets(c_entries.begin(), c_entries.end());
+  system.G.prune(0.0);
+  system.C.prune(0.0);
+  system.G.makeCompressed();
+  system.C.makeCompressed();
+  return system;
+}
+
+Eigen::VectorXd System::b(double t) const {
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size());
+  std::vector<double> values(waveforms.size());
+  for (size_t w = 0; w < waveforms.size(); ++w) values[w] = waveforms[w].value(t);
+  for (const auto& term : source_terms) rhs[term.row] += term.coefficient * values[term.waveform];
+  return rhs;
+}
+
+Eigen::VectorXcd System::b_ac() const {
+  Eigen::VectorXcd rhs = ac_excitation;
+  for (const auto& term : source_terms)
+    rhs[term.row] += term.coefficient * waveforms[term.waveform].ac_phasor();
+  return rhs;
+}
+
+void System::nonlinear(const Eigen::VectorXd& y, Eigen::VectorXd& g,
+                       Eigen::SparseMatrix<double>* jacobian) const {
+  g = Eigen::VectorXd::Zero(size());
+  std::vector<Eigen::Triplet<double>> entries;
+  for (const Element* element : nonlinear_elements)
+    element->add_nonlinear(y, g, jacobian ? &entries : nullptr);
+  if (jacobian) {
+    jacobian->resize(size(), size());
+    jacobian->setFromTriplets(entries.begin(), entries.end());
+  }
+}
+
+std::vector<double> System::breakpoints(double t_begin, double t_end) const {
+  std::vector<double> out;
+  for (const auto& waveform : waveforms) waveform.breakpoints(t_begin, t_end, out);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+int System::branch_index(const std::string& element_name, int k) const {
+  for (const auto& [name, offset] : branch_offsets)
+    if (name == element_name) return offset + k;
+  throw std::out_of_range("no element named '" + element_name + "'");
+}
+
+void Stamper::g(int row, int column, double value) {
+  if (row == ground || column == ground || value == 0.0) return;
+  g_entries.emplace_back(row, column, value);
+}
+
+void Stamper::c(int row, int column, double value) {
+  if (row == ground || column == ground || value == 0.0) return;
+  c_entries.emplace_back(row, column, value);
+}
+
+int Stamper::source(int row, double coefficient, const Waveform& waveform) {
+  system_.waveforms.push_back(waveform);
+  const int index = static_cast<int>(system_.waveforms.size()) - 1;
+  source(row, coefficient, index);
+  return index;
+}
+
+void Stamper::source(int row, double coefficient, int waveform_index) {
+  assert(waveform_index >= 0 && waveform_index < static_cast<int>(system_.waveforms.size()));
+  if (row == ground || coefficient == 0.0) return;
+  system_.source_terms.push_back({row, coefficient, waveform_index});
+}
+
+void Stamper::ac(int row, std::complex<double> value) {
+  if (row == ground) return;
+  system_.ac_excitation[row] += value;
+}
+
+}  // namespace emnet
