@@ -31,9 +31,9 @@ struct StaticOptions {
 
 struct StaticResult {
   Status status;
-  Eigen::VectorXd state;              // z, see above
-  Eigen::VectorXd operating_point;    // y at rest: velocities 0, everything else from z
-  double relative_residual = 0.0;     // ‖K·z + g − b‖ / ‖b‖
+  Eigen::VectorXd state;            // z, see above
+  Eigen::VectorXd operating_point;  // y at rest: velocities 0, everything else from z
+  double relative_residual = 0.0;   // ‖K·z + g − b‖ / ‖b‖
   int newton_iterations = 0;
   double seconds = 0.0;
 };
@@ -75,7 +75,7 @@ std::vector<double> frequency_grid(double from, double to, int points, bool log)
 
 struct AcResult {
   Status status;
-  std::vector<double> frequencies;                         // Hz
+  std::vector<double> frequencies;                        // Hz
   std::vector<std::vector<std::complex<double>>> values;  // [probe][frequency]
   double max_relative_residual = 0.0;  // worst ‖A·Y − B‖/‖B‖ over the sweep
   double seconds = 0.0;
@@ -93,29 +93,30 @@ std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y,
 // Large systems: implicitly restarted Arnoldi (Spectra) for the `count` poles nearest σ,
 // one sparse LU.
 struct ModalOptions {
-  int count = 0;               // 0: every pole if the system is small, else 20
-  int dense_limit = 600;       // unknowns up to which the dense method is used
+  int count = 0;          // 0: every pole if the system is small, else the 10 nearest σ
+  int dense_limit = 600;  // unknowns up to which the dense method is used
   bool keep_vectors = true;
 };
 
 struct Mode {
-  std::complex<double> pole;      // s [1/s], Im ≥ 0
-  double frequency_hz = 0.0;      // |Im s| / 2π (damped)
+  std::complex<double> pole;          // s [1/s], Im ≥ 0
+  double frequency_hz = 0.0;          // |Im s| / 2π (damped)
   double natural_frequency_hz = 0.0;  // |s| / 2π
-  double damping_ratio = 0.0;     // −Re s / |s|
+  double damping_ratio = 0.0;         // −Re s / |s|
   double relative_residual = 0.0;  // ‖(G + J + sC)·x‖ / ((‖G + J‖ + |s|·‖C‖)·‖x‖)
-  Eigen::VectorXcd vector;        // y-space eigenvector (across values are velocities)
+  Eigen::VectorXcd vector;         // y-space eigenvector (across values are velocities)
 };
 
 struct ModalResult {
   Status status;
   std::vector<Mode> modes;       // oscillatory poles (Im s > 0), sorted by frequency
   std::vector<Mode> real_poles;  // non-oscillatory poles (RC, overdamped), sorted by |s|
-  std::string method;       // "dense" or "arnoldi"
+  std::string method;            // "dense" or "arnoldi"
   int unknowns = 0;
   double shift = 0.0;
   double seconds = 0.0;
   bool complete = false;  // true when every finite pole was computed
+  std::string note;       // e.g. how many of the requested poles converged
 };
 
 ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,

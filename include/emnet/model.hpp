@@ -29,8 +29,8 @@ using LinearTerms = std::vector<std::pair<int, double>>;
 struct BeamLayout {
   double length = 0.0;
   double segment_length = 0.0;
-  std::vector<double> x;                // node positions [m]
-  std::vector<NodeId> velocity;         // translational node per position (ground if held)
+  std::vector<double> x;                 // node positions [m]
+  std::vector<NodeId> velocity;          // translational node per position (ground if held)
   std::vector<NodeId> angular_velocity;  // rotational node per position (ground if held)
   // Cubic Hermite interpolation over the segment holding x (DESIGN §5):
   // w(x) = Σ c·(w, φ at the segment's ends); the same coefficients map v, Ω to v(x).
@@ -67,7 +67,7 @@ struct Model {
   Network network;
   BeamLayout beam;
   std::vector<DeaLayout> deas;
-  std::vector<Probe> probes;  // the scene's probes (a tip deflection probe if it has none)
+  std::vector<Probe> probes;       // the scene's probes (a tip deflection probe if it has none)
   std::vector<std::string> notes;  // what was built and why, for the user
   Probe make_probe(const ProbeSpec& spec) const;
   // Parses "deflection@70mm", "velocity@0.1", "dea_current:A" or a probe name of the scene.

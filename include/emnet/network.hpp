@@ -25,13 +25,15 @@ enum class Domain { electrical, translational, rotational };
 const char* domain_name(Domain domain);
 const char* across_unit(Domain domain);   // "V", "m/s", "rad/s"
 const char* through_unit(Domain domain);  // "A", "N", "N*m"
-inline bool is_mechanical(Domain domain) { return domain != Domain::electrical; }
+inline bool is_mechanical(Domain domain) {
+  return domain != Domain::electrical;
+}
 
 using NodeId = int;
 constexpr NodeId ground = -1;
 
 struct Node {
-  std::string name;     // short, SPICE-safe: "v3", "r3", "e_A"
+  std::string name;  // short, SPICE-safe: "v3", "r3", "e_A"
   Domain domain;
   std::string meaning;  // "velocity at x = 70.0 mm"
 };

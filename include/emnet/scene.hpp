@@ -16,11 +16,11 @@ enum class EndCondition { clamped, free, pinned, sliding };
 const char* end_condition_name(EndCondition end);
 
 struct BeamSpec {
-  double length = 0.0;                     // beam.length [m]
-  int segments = 0;                        // beam.segments [-]
-  double bending_stiffness = 0.0;          // beam.bending_stiffness EI [N·m²]
-  double mass_per_length = 0.0;            // beam.mass_per_length ρA [kg/m]
-  double rotary_inertia_per_length = 0.0;  // beam.rotary_inertia_per_length ρI [kg·m]
+  double length = 0.0;                        // beam.length [m]
+  int segments = 0;                           // beam.segments [-]
+  double bending_stiffness = 0.0;             // beam.bending_stiffness EI [N·m²]
+  double mass_per_length = 0.0;               // beam.mass_per_length ρA [kg/m]
+  double rotary_inertia_per_length = 0.0;     // beam.rotary_inertia_per_length ρI [kg·m]
   EndCondition left = EndCondition::clamped;  // beam.left  (x = 0)
   EndCondition right = EndCondition::free;    // beam.right (x = length)
 };
@@ -38,17 +38,17 @@ struct DampingSpec {
 enum class Face { top, bottom };  // top = +w side; an energised DEA there bends toward −w
 
 struct DeaSpec {
-  std::string name;                     // dea[].name
-  double from = 0.0;                    // dea[].from x0 [m]
-  double to = 0.0;                      // dea[].to   x1 [m]
-  Face face = Face::top;                // dea[].face
-  double lever_arm = 0.0;               // dea[].lever_arm z [m] from the neutral plane
-  double relative_permittivity = 0.0;   // dea[].relative_permittivity ε_r [-]
-  double dielectric_thickness = 0.0;    // dea[].dielectric_thickness d [m]
-  double force_thickness = 0.0;         // dea[].force_thickness d' [m] (paper Eq. 16)
-  double electrode_width = 0.0;         // dea[].electrode_width [m]
-  double electrode_resistance = 0.0;    // dea[].electrode_resistance [Ω]
-  bool back_coupling = false;           // dea[].back_coupling: i += V·dC/dt
+  std::string name;                    // dea[].name
+  double from = 0.0;                   // dea[].from x0 [m]
+  double to = 0.0;                     // dea[].to   x1 [m]
+  Face face = Face::top;               // dea[].face
+  double lever_arm = 0.0;              // dea[].lever_arm z [m] from the neutral plane
+  double relative_permittivity = 0.0;  // dea[].relative_permittivity ε_r [-]
+  double dielectric_thickness = 0.0;   // dea[].dielectric_thickness d [m]
+  double force_thickness = 0.0;        // dea[].force_thickness d' [m] (paper Eq. 16)
+  double electrode_width = 0.0;        // dea[].electrode_width [m]
+  double electrode_resistance = 0.0;   // dea[].electrode_resistance [Ω]
+  bool back_coupling = false;          // dea[].back_coupling: i += V·dC/dt
 };
 
 enum class DriveKind { none, antagonistic, bias_differential, single };
@@ -57,12 +57,12 @@ const char* drive_kind_name(DriveKind kind);
 struct DriveSpec {
   DriveKind kind = DriveKind::none;  // drive.kind
   std::vector<std::string> deas;     // drive.deas: [A, B] (antagonistic, bias_differential), [A]
-  double voltage = 0.0;    // drive.voltage [V]: switched level (antagonistic, single)
-  double bias = 0.0;       // drive.bias V0 [V] (bias_differential, single)
-  double amplitude = 0.0;  // drive.amplitude v [V] (bias_differential, single)
-  double frequency = 0.0;  // drive.frequency [Hz]: switching / sine frequency
-  double rise_time = 0.0;  // drive.rise_time [s]
-  double duty = 0.5;       // drive.duty [-]: fraction of the period A is on
+  double voltage = 0.0;              // drive.voltage [V]: switched level (antagonistic, single)
+  double bias = 0.0;                 // drive.bias V0 [V] (bias_differential, single)
+  double amplitude = 0.0;            // drive.amplitude v [V] (bias_differential, single)
+  double frequency = 0.0;            // drive.frequency [Hz]: switching / sine frequency
+  double rise_time = 0.0;            // drive.rise_time [s]
+  double duty = 0.5;                 // drive.duty [-]: fraction of the period A is on
 };
 
 enum class LoadKind { force, moment };
@@ -72,23 +72,29 @@ struct LoadSpec {
   double value = 0.0;               // load[].value [N] or [N·m]; also its AC amplitude
 };
 
-enum class ProbeQuantity { deflection, velocity, rotation, angular_velocity, dea_voltage,
-                           dea_current };
+enum class ProbeQuantity {
+  deflection,
+  velocity,
+  rotation,
+  angular_velocity,
+  dea_voltage,
+  dea_current
+};
 const char* probe_quantity_name(ProbeQuantity quantity);
 const char* probe_unit(ProbeQuantity quantity);
 
 struct ProbeSpec {
-  std::string name;                                  // probe[].name
+  std::string name;                                    // probe[].name
   ProbeQuantity quantity = ProbeQuantity::deflection;  // probe[].quantity
-  double at = 0.0;                                   // probe[].at [m] (beam quantities)
-  std::string dea;                                   // probe[].dea (dea_voltage, dea_current)
+  double at = 0.0;                                     // probe[].at [m] (beam quantities)
+  std::string dea;                                     // probe[].dea (dea_voltage, dea_current)
 };
 
 struct AcSpec {
-  double from = 0.1;   // ac.from [Hz]
-  double to = 10.0;    // ac.to [Hz]
-  int points = 200;    // ac.points
-  bool log = false;    // ac.scale = "lin" | "log"
+  double from = 0.1;  // ac.from [Hz]
+  double to = 10.0;   // ac.to [Hz]
+  int points = 200;   // ac.points
+  bool log = false;   // ac.scale = "lin" | "log"
 };
 
 struct Scene {

@@ -1,4 +1,6 @@
-// AC analysis: (G + J_g + jω·C)·Y = B_ac at every frequency, one sparse LU pattern reused.
+// AC analysis: (G + J_g + jω·C)·Y = B_ac at every frequency; KLU (SuiteSparse's LU for
+// circuit matrices) with the symbolic analysis done once for the sweep.
+#include <Eigen/KLUSupport>
 #include <chrono>
 #include <cmath>
 
@@ -53,7 +55,7 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
   const ComplexMatrix pattern_c = system.C.cast<std::complex<double>>();
   ComplexMatrix matrix = pattern_g + pattern_c;
   matrix.makeCompressed();
-  Eigen::SparseLU<ComplexMatrix> lu;
+  Eigen::KLU<ComplexMatrix> lu;
   lu.analyzePattern(matrix);
 
   std::unique_ptr<StaticOperator> static_operator;
@@ -67,8 +69,7 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
       std::string why;
       if (static_operator->excites_divided_rows(rhs))
         return finish(Status::failure("at f = 0: a source drives a constant velocity"));
-      if (!static_operator->solve(rhs, z, why))
-        return finish(Status::failure("at f = 0: " + why));
+      if (!static_operator->solve(rhs, z, why)) return finish(Status::failure("at f = 0: " + why));
       for (size_t p = 0; p < probes.size(); ++p) {
         std::complex<double> sum = 0.0;
         for (const auto& [index, coefficient] : probes[p].terms) {
@@ -86,8 +87,8 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
                                     " Hz (an undamped pole exactly on the grid?)"));
     y = lu.solve(rhs);
     if (!y.allFinite())
-      return finish(Status::failure("the AC solve gave non-finite values at f = " +
-                                    std::to_string(f) + " Hz"));
+      return finish(Status::failure(
+          "the AC solve gave non-finite values at f = " + std::to_string(f) + " Hz"));
     const double residual = (matrix * y - rhs).norm() / rhs_norm;
     result.max_relative_residual = std::max(result.max_relative_residual, residual);
     for (size_t p = 0; p < probes.size(); ++p)

@@ -38,7 +38,8 @@ double matrix_norm(const Eigen::SparseMatrix<double>& m) {
   double largest = 0.0;  // max column sum (1-norm)
   for (int col = 0; col < m.outerSize(); ++col) {
     double sum = 0.0;
-    for (Eigen::SparseMatrix<double>::InnerIterator it(m, col); it; ++it) sum += std::abs(it.value());
+    for (Eigen::SparseMatrix<double>::InnerIterator it(m, col); it; ++it)
+      sum += std::abs(it.value());
     largest = std::max(largest, sum);
   }
   return largest;
@@ -81,8 +82,7 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
 
   std::vector<std::complex<double>> mus;
   std::vector<Eigen::VectorXcd> vectors;
-  const bool dense =
-      (options.count == 0 && n <= options.dense_limit) || (options.count >= n - 2);
+  const bool dense = (options.count == 0 && n <= options.dense_limit) || (options.count >= n - 2);
   if (dense) {
     result.method = "dense";
     const Eigen::MatrixXd identity_c = Eigen::MatrixXd(system.C);
@@ -93,7 +93,8 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
       return finish(Status::failure("dense eigen-decomposition did not converge"));
     const Eigen::VectorXcd values = solver.eigenvalues();
     double largest = 0.0;
-    for (Eigen::Index k = 0; k < values.size(); ++k) largest = std::max(largest, std::abs(values[k]));
+    for (Eigen::Index k = 0; k < values.size(); ++k)
+      largest = std::max(largest, std::abs(values[k]));
     // Infinite poles map to μ = 0, perturbed by rounding (√ε for the index-2 blocks of
     // massless nodes); finite poles are kept when |μ| clears that level.
     const double threshold = 1e-7 * largest;
@@ -106,16 +107,21 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
     result.complete = true;
   } else {
     result.method = "arnoldi";
-    const int wanted = options.count > 0 ? options.count : 20;
+    const int wanted = options.count > 0 ? options.count : 10;
     const int nev = std::min(wanted, n - 3);
-    const int ncv = std::min(n - 1, std::max(2 * nev + 1, nev + 20));
+    const int ncv = std::min(n - 1, std::max(2 * nev + 1, nev + 30));
     ShiftInvertOperator op(lu, system.C);
     Spectra::GenEigsSolver<ShiftInvertOperator> eigs(op, nev, ncv);
     eigs.init();
-    eigs.compute(Spectra::SortRule::LargestMagn, 2000, 1e-12);
-    if (eigs.info() != Spectra::CompInfo::Successful)
-      return finish(Status::failure("Arnoldi iteration did not converge for " +
-                                    std::to_string(nev) + " poles; try a smaller --count"));
+    // Poles clustered away from σ (e.g. the overdamped relaxation poles of Kelvin–Voigt
+    // damping near −1/τ) may not converge; the converged ones are exact eigenpairs (their
+    // residuals are checked below), so they are kept and the shortfall is reported.
+    const Eigen::Index converged = eigs.compute(Spectra::SortRule::LargestMagn, 60, 1e-12);
+    if (converged == 0)
+      return finish(Status::failure("Arnoldi iteration converged to no pole; try --count 5"));
+    if (converged < nev)
+      result.note = std::to_string(converged) + " of the " + std::to_string(nev) +
+                    " poles requested converged";
     const Eigen::VectorXcd values = eigs.eigenvalues();
     const Eigen::MatrixXcd eigenvectors = eigs.eigenvectors();
     for (Eigen::Index k = 0; k < values.size(); ++k) {

@@ -81,13 +81,15 @@ bool StaticOperator::excites_divided_rows(const Eigen::VectorXcd& rhs) const {
 bool StaticOperator::solve(const Eigen::VectorXcd& rhs, Eigen::VectorXcd& z,
                            std::string& why) const {
   if (!factorised_) {
-    why = "the network has no unique static state (a free body, a mechanism, or a loop of "
-          "across sources): check the beam's end conditions";
+    why =
+        "the network has no unique static state (a free body, a mechanism, or a loop of "
+        "across sources): check the beam's end conditions";
     return false;
   }
   Eigen::VectorXd re = lu_.solve(rhs.real());
   Eigen::VectorXd im = lu_.solve(rhs.imag());
-  z = re.cast<std::complex<double>>() + std::complex<double>(0.0, 1.0) * im.cast<std::complex<double>>();
+  z = re.cast<std::complex<double>>() +
+      std::complex<double>(0.0, 1.0) * im.cast<std::complex<double>>();
   if (!z.allFinite()) {
     why = "the static solve produced non-finite values (singular network)";
     return false;
@@ -113,9 +115,9 @@ StaticResult solve_static(const System& system, const StaticOptions& options) {
         "sources): check the beam's end conditions"));
   for (int k = 0; k < n; ++k)
     if (linear.divided_rows()[static_cast<size_t>(k)] && b[k] != 0.0)
-      return finish(Status::failure(
-          "a source imposes a constant velocity on '" + system.unknowns[static_cast<size_t>(k)].name +
-          "', so there is no static state"));
+      return finish(Status::failure("a source imposes a constant velocity on '" +
+                                    system.unknowns[static_cast<size_t>(k)].name +
+                                    "', so there is no static state"));
 
   Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
   auto residual = [&](const Eigen::VectorXd& state) {
@@ -129,7 +131,8 @@ StaticResult solve_static(const System& system, const StaticOptions& options) {
     const Eigen::VectorXd r = residual(z);
     Eigen::VectorXd step;
     if (system.is_nonlinear()) {
-      const StaticOperator jacobian(system, linearised_g(system, rest_state(z, linear.mechanical())));
+      const StaticOperator jacobian(system,
+                                    linearised_g(system, rest_state(z, linear.mechanical())));
       if (!jacobian.factorised())
         return finish(Status::failure("the static Jacobian is singular at Newton iteration " +
                                       std::to_string(iteration)));

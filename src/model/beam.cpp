@@ -78,9 +78,10 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
     const bool hold_v = at_end && (end == EndCondition::clamped || end == EndCondition::pinned);
     const bool hold_r = at_end && (end == EndCondition::clamped || end == EndCondition::sliding);
     const std::string where = millimetres(x);
-    beam.velocity.push_back(hold_v ? ground
-                                   : network.add_node("v" + std::to_string(k), Domain::translational,
-                                                      "velocity at " + where + " [m/s]"));
+    beam.velocity.push_back(hold_v
+                                ? ground
+                                : network.add_node("v" + std::to_string(k), Domain::translational,
+                                                   "velocity at " + where + " [m/s]"));
     beam.angular_velocity.push_back(
         hold_r ? ground
                : network.add_node("r" + std::to_string(k), Domain::rotational,
@@ -109,8 +110,9 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
   for (int k = 0; k < n; ++k) {
     const size_t a = static_cast<size_t>(k), b = a + 1;
     const std::string id = std::to_string(k);
-    const NodeId middle = network.add_node("m" + id, Domain::translational,
-                                           "segment " + id + " branch between spring and lever [m/s]");
+    const NodeId middle =
+        network.add_node("m" + id, Domain::translational,
+                         "segment " + id + " branch between spring and lever [m/s]");
     network.add<Inductor>("nR" + id, beam.angular_velocity[a], beam.angular_velocity[b],
                           rotational_compliance, Domain::rotational);
     network.add<Inductor>("nT" + id, beam.velocity[a], middle, translational_compliance,

@@ -10,6 +10,8 @@
 //                      B, the network linearised at V₀ (moment exactly linear in v).
 //   single             V = V₀ + v·sin(2πft) on one DEA; AC input v, linearised at V₀.
 // A DEA not named by the drive has its source node tied to ground through its resistance.
+#include "emnet/model.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -19,7 +21,6 @@
 #include "emnet/elements/dea.hpp"
 #include "emnet/elements/voltage_source.hpp"
 #include "emnet/errors.hpp"
-#include "emnet/model.hpp"
 #include "emnet/units.hpp"
 
 namespace emnet {
@@ -57,8 +58,8 @@ Model build_model(const Scene& scene) {
     for (const auto& [node, coefficient] : terms) {
       Waveform w = Waveform::constant(load.value * coefficient);
       w.ac_magnitude = load.value * coefficient;
-      network.add<CurrentSource>("load" + std::to_string(load_index) + "_" + network.node(node).name,
-                                 ground, node, w);
+      network.add<CurrentSource>(
+          "load" + std::to_string(load_index) + "_" + network.node(node).name, ground, node, w);
     }
     ++load_index;
   }
@@ -69,10 +70,10 @@ Model build_model(const Scene& scene) {
     ac_force_factor = 0.0;
     Waveform w = Waveform::constant(0.0);
     const auto& names = drive.deas;
-    const int role = names.empty() ? -1
-                     : name == names[0] ? 0
+    const int role = names.empty()                            ? -1
+                     : name == names[0]                       ? 0
                      : (names.size() > 1 && name == names[1]) ? 1
-                                                               : -1;
+                                                              : -1;
     if (role < 0 || drive.kind == DriveKind::none) return w;
     const double period = 1.0 / drive.frequency;
     switch (drive.kind) {
@@ -104,9 +105,9 @@ Model build_model(const Scene& scene) {
     layout.electrode_resistance = spec.electrode_resistance;
     layout.capacitance = dea_capacitance(spec.relative_permittivity, spec.dielectric_thickness,
                                          spec.electrode_width, spec.to - spec.from);
-    layout.force_constant = dea_force_constant(spec.relative_permittivity,
-                                               spec.dielectric_thickness, spec.force_thickness,
-                                               spec.electrode_width);
+    layout.force_constant =
+        dea_force_constant(spec.relative_permittivity, spec.dielectric_thickness,
+                           spec.force_thickness, spec.electrode_width);
     layout.source_node = network.add_node("s_" + spec.name, Domain::electrical,
                                           "DEA " + spec.name + " source terminal [V]");
     layout.electrode_node = network.add_node("e_" + spec.name, Domain::electrical,
@@ -192,9 +193,9 @@ Probe Model::parse_probe(const std::string& text) const {
   const auto colon = text.find(':');
   const std::string quantity = text.substr(0, std::min(at_sign, colon));
   bool known = false;
-  for (ProbeQuantity q : {ProbeQuantity::deflection, ProbeQuantity::velocity,
-                          ProbeQuantity::rotation, ProbeQuantity::angular_velocity,
-                          ProbeQuantity::dea_voltage, ProbeQuantity::dea_current})
+  for (ProbeQuantity q :
+       {ProbeQuantity::deflection, ProbeQuantity::velocity, ProbeQuantity::rotation,
+        ProbeQuantity::angular_velocity, ProbeQuantity::dea_voltage, ProbeQuantity::dea_current})
     if (quantity == probe_quantity_name(q)) {
       spec.quantity = q;
       known = true;
@@ -214,8 +215,8 @@ Probe Model::parse_probe(const std::string& text) const {
       throw InputError("--probe", text, e.what());
     }
     if (!(spec.at >= 0.0 && spec.at <= beam.length))
-      throw InputError("--probe", text, "position outside the beam [0, " +
-                                            std::to_string(beam.length) + " m]");
+      throw InputError("--probe", text,
+                       "position outside the beam [0, " + std::to_string(beam.length) + " m]");
   }
   return make_probe(spec);
 }

@@ -9,25 +9,34 @@ namespace emnet {
 
 const char* domain_name(Domain domain) {
   switch (domain) {
-    case Domain::electrical: return "electrical";
-    case Domain::translational: return "translational";
-    case Domain::rotational: return "rotational";
+    case Domain::electrical:
+      return "electrical";
+    case Domain::translational:
+      return "translational";
+    case Domain::rotational:
+      return "rotational";
   }
   return "?";
 }
 const char* across_unit(Domain domain) {
   switch (domain) {
-    case Domain::electrical: return "V";
-    case Domain::translational: return "m/s";
-    case Domain::rotational: return "rad/s";
+    case Domain::electrical:
+      return "V";
+    case Domain::translational:
+      return "m/s";
+    case Domain::rotational:
+      return "rad/s";
   }
   return "?";
 }
 const char* through_unit(Domain domain) {
   switch (domain) {
-    case Domain::electrical: return "A";
-    case Domain::translational: return "N";
-    case Domain::rotational: return "N*m";
+    case Domain::electrical:
+      return "A";
+    case Domain::translational:
+      return "N";
+    case Domain::rotational:
+      return "N*m";
   }
   return "?";
 }

@@ -33,7 +33,8 @@ double Waveform::value(double t) const {
       if (period > 0.0) local = std::fmod(local, period);
       if (local < rise) return dc + (pulse_high - dc) * local / rise;
       if (local < rise + width) return pulse_high;
-      if (local < rise + width + fall) return pulse_high + (dc - pulse_high) * (local - rise - width) / fall;
+      if (local < rise + width + fall)
+        return pulse_high + (dc - pulse_high) * (local - rise - width) / fall;
       return dc;
     }
   }

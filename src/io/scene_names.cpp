@@ -1,0 +1,78 @@
+// Names of the scene enumerations (as written in scene files) and small Scene helpers.
+#include "emnet/scene.hpp"
+
+namespace emnet {
+
+const char* end_condition_name(EndCondition end) {
+  switch (end) {
+    case EndCondition::clamped:
+      return "clamped";
+    case EndCondition::free:
+      return "free";
+    case EndCondition::pinned:
+      return "pinned";
+    case EndCondition::sliding:
+      return "sliding";
+  }
+  return "?";
+}
+
+const char* drive_kind_name(DriveKind kind) {
+  switch (kind) {
+    case DriveKind::none:
+      return "none";
+    case DriveKind::antagonistic:
+      return "antagonistic";
+    case DriveKind::bias_differential:
+      return "bias_differential";
+    case DriveKind::single:
+      return "single";
+  }
+  return "?";
+}
+
+const char* probe_quantity_name(ProbeQuantity quantity) {
+  switch (quantity) {
+    case ProbeQuantity::deflection:
+      return "deflection";
+    case ProbeQuantity::velocity:
+      return "velocity";
+    case ProbeQuantity::rotation:
+      return "rotation";
+    case ProbeQuantity::angular_velocity:
+      return "angular_velocity";
+    case ProbeQuantity::dea_voltage:
+      return "dea_voltage";
+    case ProbeQuantity::dea_current:
+      return "dea_current";
+  }
+  return "?";
+}
+
+const char* probe_unit(ProbeQuantity quantity) {
+  switch (quantity) {
+    case ProbeQuantity::deflection:
+      return "m";
+    case ProbeQuantity::velocity:
+      return "m/s";
+    case ProbeQuantity::rotation:
+      return "rad";
+    case ProbeQuantity::angular_velocity:
+      return "rad/s";
+    case ProbeQuantity::dea_voltage:
+      return "V";
+    case ProbeQuantity::dea_current:
+      return "A";
+  }
+  return "?";
+}
+
+double DampingSpec::effective_kelvin_voigt_time() const {
+  if (!loss_factor.has_value()) return kelvin_voigt_time;
+  constexpr double two_pi = 6.283185307179586476925286766559;
+  const double frequency = loss_factor_frequency.value_or(0.0);
+  if (!(frequency > 0.0)) return kelvin_voigt_time;  // the reader never lets this happen
+  return *loss_factor / (two_pi * frequency);
+}
+
+}  // namespace emnet

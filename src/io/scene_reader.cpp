@@ -1,0 +1,1013 @@
+// Scene reader: TOML scene text plus `--set key=value` overrides into a validated SI Scene.
+//
+// The file is parsed with toml++ into a document tree; overrides are written into that tree
+// (so a value from an override is checked exactly like one from the file, and is recognised by
+// having no source position: its errors say "--set"); then the tree is walked table by table,
+// rejecting unknown tables and keys, reading each value with its unit and checking its range.
+// The first problem found is thrown as an InputError.
+#include "emnet/scene_reader.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+#include <utility>
+
+#include "emnet/units.hpp"
+
+namespace emnet {
+namespace {
+
+constexpr const char* kOverrideWhere = "--set";
+constexpr long long kMaximumSegments = 100000;
+constexpr long long kMinimumAcPoints = 2;
+constexpr long long kMaximumAcPoints = 1000000;
+// Positions within this fraction of the beam length outside [0, L] are taken as the beam end.
+constexpr double kBeamEndTolerance = 1e-9;
+
+// ---------------------------------------------------------------------------------------------
+// Schema: which tables and keys a scene may contain.
+
+struct TableSchema {
+  std::string name;
+  bool is_array_of_tables;
+  bool is_free_form;  // [provenance]: any dotted key
+  std::vector<std::string> keys;
+};
+
+const std::vector<TableSchema>& scene_schema() {
+  static const std::vector<TableSchema> schema = {
+      {"scene", false, false, {"name", "title", "description"}},
+      {"beam",
+       false,
+       false,
+       {"length", "segments", "bending_stiffness", "mass_per_length", "rotary_inertia_per_length",
+        "left", "right"}},
+      {"damping",
+       false,
+       false,
+       {"viscous_per_length", "kelvin_voigt_time", "loss_factor", "loss_factor_frequency"}},
+      {"dea",
+       true,
+       false,
+       {"name", "from", "to", "face", "lever_arm", "relative_permittivity", "dielectric_thickness",
+        "force_thickness", "electrode_width", "electrode_resistance", "back_coupling"}},
+      {"drive",
+       false,
+       false,
+       {"kind", "deas", "voltage", "bias", "amplitude", "frequency", "rise_time", "duty"}},
+      {"load", true, false, {"kind", "at", "value"}},
+      {"probe", true, false, {"name", "quantity", "at", "dea"}},
+      {"ac", false, false, {"from", "to", "points", "scale"}},
+      {"provenance", false, true, {}},
+  };
+  return schema;
+}
+
+const TableSchema* find_table_schema(const std::string& name) {
+  for (const TableSchema& table : scene_schema()) {
+    if (table.name == name) return &table;
+  }
+  return nullptr;
+}
+
+bool schema_has_key(const TableSchema& table, const std::string& key) {
+  return std::find(table.keys.begin(), table.keys.end(), key) != table.keys.end();
+}
+
+std::vector<std::string> table_names() {
+  std::vector<std::string> names;
+  for (const TableSchema& table : scene_schema()) names.push_back(table.name);
+  return names;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Small text helpers.
+
+std::string trim(const std::string& text) {
+  const char* const spaces = " \t\r\n";
+  const std::size_t begin = text.find_first_not_of(spaces);
+  if (begin == std::string::npos) return "";
+  const std::size_t end = text.find_last_not_of(spaces);
+  return text.substr(begin, end - begin + 1);
+}
+
+// Optimal-string-alignment edit distance (a transposition counts as one edit).
+std::size_t edit_distance(const std::string& first, const std::string& second) {
+  const std::size_t rows = first.size() + 1;
+  const std::size_t columns = second.size() + 1;
+  std::vector<std::size_t> distance(rows * columns, 0);
+  auto at = [columns, &distance](std::size_t row, std::size_t column) -> std::size_t& {
+    return distance[row * columns + column];
+  };
+  for (std::size_t row = 0; row < rows; ++row) at(row, 0) = row;
+  for (std::size_t column = 0; column < columns; ++column) at(0, column) = column;
+  for (std::size_t row = 1; row < rows; ++row) {
+    for (std::size_t column = 1; column < columns; ++column) {
+      const std::size_t substitution = first[row - 1] == second[column - 1] ? 0 : 1;
+      std::size_t best = std::min({at(row - 1, column) + 1, at(row, column - 1) + 1,
+                                   at(row - 1, column - 1) + substitution});
+      if (row > 1 && column > 1 && first[row - 1] == second[column - 2] &&
+          first[row - 2] == second[column - 1]) {
+        best = std::min(best, at(row - 2, column - 2) + 1);
+      }
+      at(row, column) = best;
+    }
+  }
+  return at(rows - 1, columns - 1);
+}
+
+// " (did you mean 'beam.length'?)" for the closest candidate within a few edits, else "".
+std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates) {
+  // Very short words are never "close" to anything: 'C' is one edit from every one-letter name.
+  if (word.size() <= 2) return "";
+  const std::size_t allowed = word.size() <= 4 ? 1 : (word.size() <= 12 ? 2 : 3);
+  std::string best;
+  std::size_t best_distance = allowed + 1;
+  for (const std::string& candidate : candidates) {
+    const std::size_t distance = edit_distance(word, candidate);
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = candidate;
+    }
+  }
+  return best.empty() ? "" : " (did you mean '" + best + "'?)";
+}
+
+std::string quoted_list(const std::vector<std::string>& words) {
+  std::string list;
+  for (const std::string& word : words) {
+    if (!list.empty()) list += ", ";
+    list += "'" + word + "'";
+  }
+  return list;
+}
+
+bool is_identifier(const std::string& name) {
+  if (name.empty()) return false;
+  return std::all_of(name.begin(), name.end(), [](char character) {
+    return (character >= 'A' && character <= 'Z') || (character >= 'a' && character <= 'z') ||
+           (character >= '0' && character <= '9') || character == '_';
+  });
+}
+
+bool is_all_digits(const std::string& text) {
+  return !text.empty() && std::all_of(text.begin(), text.end(), [](char character) {
+    return character >= '0' && character <= '9';
+  });
+}
+
+std::string format_number(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.10g", value);
+  return buffer;
+}
+
+// "a string ('abc')", "an integer (3)", "a table": what a node is, for "got ..." messages.
+std::string describe_node(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::string:
+      return "a string ('" + std::string(node.as_string()->get()) + "')";
+    case toml::node_type::integer:
+      return "an integer (" + std::to_string(node.as_integer()->get()) + ")";
+    case toml::node_type::floating_point:
+      return "a floating-point number (" + format_number(node.as_floating_point()->get()) + ")";
+    case toml::node_type::boolean:
+      return std::string("a boolean (") + (node.as_boolean()->get() ? "true" : "false") + ")";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    case toml::node_type::none:
+      break;
+  }
+  return "nothing";
+}
+
+// ---------------------------------------------------------------------------------------------
+// TOML parsing that works whether toml++ reports errors by exception or by result.
+
+struct TomlParseOutcome {
+  std::optional<toml::table> table;
+  std::string description;
+  std::size_t line = 0;
+};
+
+TomlParseOutcome parse_toml(std::string_view text, std::string_view source_path) {
+  TomlParseOutcome outcome;
+#if TOML_EXCEPTIONS
+  try {
+    outcome.table = toml::parse(text, source_path);
+  } catch (const toml::parse_error& error) {
+    outcome.description = std::string(error.description());
+    outcome.line = static_cast<std::size_t>(error.source().begin.line);
+  }
+#else
+  toml::parse_result result = toml::parse(text, source_path);
+  if (result) {
+    outcome.table = std::move(result).table();
+  } else {
+    outcome.description = std::string(result.error().description());
+    outcome.line = static_cast<std::size_t>(result.error().source().begin.line);
+  }
+#endif
+  return outcome;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Locating errors.
+
+class Locator {
+ public:
+  explicit Locator(std::string display_name) : display_name_(std::move(display_name)) {}
+
+  const std::string& display_name() const { return display_name_; }
+
+  // "file:line" for a node read from the file, "--set" for one written by an override, "file"
+  // when there is no node (a missing key).
+  std::string where(const toml::node* node) const {
+    if (node == nullptr) return display_name_;
+    const toml::source_region& source = node->source();
+    if (source.path && *source.path == display_name_ && source.begin.line > 0) {
+      return display_name_ + ":" + std::to_string(source.begin.line);
+    }
+    return kOverrideWhere;
+  }
+
+  [[noreturn]] void fail(const toml::node* node, const std::string& key,
+                         const std::string& message) const {
+    throw InputError(where(node), key, message);
+  }
+
+ private:
+  std::string display_name_;
+};
+
+enum class Bound { any, non_negative, positive };
+
+// One table of the scene (or one entry of an array of tables), read key by key; keys are named
+// "<prefix>.<key>" in messages.
+class Section {
+ public:
+  Section(const Locator& locator, const toml::table* table, std::string prefix)
+      : locator_(locator), table_(table), prefix_(std::move(prefix)) {}
+
+  std::string key(const std::string& name) const { return prefix_ + "." + name; }
+  const toml::node* find(const std::string& name) const {
+    return table_ == nullptr ? nullptr : table_->get(name);
+  }
+  bool has(const std::string& name) const { return find(name) != nullptr; }
+
+  [[noreturn]] void fail(const std::string& name, const std::string& message) const {
+    locator_.fail(find(name), key(name), message);
+  }
+  [[noreturn]] void fail_missing(const std::string& name) const {
+    locator_.fail(nullptr, key(name), "missing (required)");
+  }
+
+  void reject_unknown_keys(const std::vector<std::string>& allowed) const {
+    if (table_ == nullptr) return;
+    for (auto&& [table_key, node] : *table_) {
+      const std::string name(table_key.str());
+      if (std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
+      std::vector<std::string> candidates;
+      for (const std::string& candidate : allowed) candidates.push_back(key(candidate));
+      locator_.fail(&node, key(name), "unknown key" + did_you_mean(key(name), candidates));
+    }
+  }
+
+  std::optional<double> optional_quantity(const std::string& name, const Dimension& dimension,
+                                          Bound bound) const {
+    const toml::node* node = find(name);
+    if (node == nullptr) return std::nullopt;
+    double value = 0.0;
+    if (const auto* integer = node->as_integer()) {
+      value = static_cast<double>(integer->get());
+    } else if (const auto* floating = node->as_floating_point()) {
+      value = floating->get();
+      if (!std::isfinite(value)) fail(name, "must be finite, got " + format_number(value));
+    } else if (const auto* text = node->as_string()) {
+      try {
+        value = parse_quantity(text->get(), dimension);
+      } catch (const std::invalid_argument& error) {
+        fail(name, error.what());
+      }
+    } else {
+      const std::string example = dimension == dim::none ? "0.5" : "1 " + si_unit_symbol(dimension);
+      fail(name,
+           "must be a number or a string like '" + example + "', got " + describe_node(*node));
+    }
+    if (bound == Bound::positive && !(value > 0.0)) {
+      fail(name, "must be > 0, got " + format_quantity(value, dimension));
+    }
+    if (bound == Bound::non_negative && !(value >= 0.0)) {
+      fail(name, "must be >= 0, got " + format_quantity(value, dimension));
+    }
+    return value;
+  }
+
+  double quantity(const std::string& name, const Dimension& dimension, Bound bound) const {
+    const std::optional<double> value = optional_quantity(name, dimension, bound);
+    if (!value) fail_missing(name);
+    return *value;
+  }
+
+  double quantity_or(const std::string& name, const Dimension& dimension, Bound bound,
+                     double default_value) const {
+    return optional_quantity(name, dimension, bound).value_or(default_value);
+  }
+
+  std::optional<long long> optional_integer(const std::string& name) const {
+    const toml::node* node = find(name);
+    if (node == nullptr) return std::nullopt;
+    const auto* integer = node->as_integer();
+    if (integer == nullptr) fail(name, "must be an integer, got " + describe_node(*node));
+    return static_cast<long long>(integer->get());
+  }
+
+  std::optional<std::string> optional_string(const std::string& name) const {
+    const toml::node* node = find(name);
+    if (node == nullptr) return std::nullopt;
+    const auto* text = node->as_string();
+    if (text == nullptr) fail(name, "must be a string, got " + describe_node(*node));
+    return text->get();
+  }
+
+  std::string string(const std::string& name) const {
+    const std::optional<std::string> text = optional_string(name);
+    if (!text) fail_missing(name);
+    return *text;
+  }
+
+  // A name that reaches SPICE decks: letters, digits and '_'.
+  std::string identifier(const std::string& name) const {
+    const std::string text = string(name);
+    if (!is_identifier(text)) {
+      fail(name,
+           "must be a non-empty name of letters, digits and '_' only (names are used in "
+           "SPICE decks), got '" +
+               text + "'");
+    }
+    return text;
+  }
+
+  std::optional<bool> optional_boolean(const std::string& name) const {
+    const toml::node* node = find(name);
+    if (node == nullptr) return std::nullopt;
+    const auto* boolean = node->as_boolean();
+    if (boolean == nullptr) fail(name, "must be true or false, got " + describe_node(*node));
+    return boolean->get();
+  }
+
+  template <typename Enum>
+  std::optional<Enum> optional_choice(
+      const std::string& name, const std::vector<std::pair<std::string, Enum>>& choices) const {
+    const std::optional<std::string> text = optional_string(name);
+    if (!text) return std::nullopt;
+    std::vector<std::string> names;
+    for (const auto& [choice_name, value] : choices) {
+      if (*text == choice_name) return value;
+      names.push_back(choice_name);
+    }
+    fail(name, "must be one of " + quoted_list(names) + ", got '" + *text + "'" +
+                   did_you_mean(*text, names));
+  }
+
+  template <typename Enum>
+  Enum choice(const std::string& name,
+              const std::vector<std::pair<std::string, Enum>>& choices) const {
+    const std::optional<Enum> value = optional_choice(name, choices);
+    if (!value) fail_missing(name);
+    return *value;
+  }
+
+  // A position along the beam, 0 <= x <= L (values a hair outside are snapped to the end).
+  double position_on_beam(const std::string& name, double beam_length) const {
+    const double position = quantity(name, dim::length, Bound::any);
+    const double tolerance = kBeamEndTolerance * beam_length;
+    if (position < -tolerance || position > beam_length + tolerance) {
+      fail(name, "must lie on the beam [0, " + format_quantity(beam_length, dim::length) +
+                     "], got " + format_quantity(position, dim::length));
+    }
+    return std::clamp(position, 0.0, beam_length);
+  }
+
+ private:
+  const Locator& locator_;
+  const toml::table* table_;
+  std::string prefix_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Reading the document tree into a Scene.
+
+class SceneReader {
+ public:
+  explicit SceneReader(const std::string& display_name) : locator_(display_name) {}
+
+  void apply_override(toml::table& root, const std::string& assignment) const;
+  Scene read(const toml::table& root) const;
+
+ private:
+  // The entries of an array of tables, each with the prefix its keys are named by.
+  struct Entry {
+    const toml::table* table;
+    std::string prefix;  // "dea[A]" or "load[0]"
+  };
+  std::vector<Entry> entries(const toml::table& root, const std::string& table_name) const;
+  Section section(const toml::table& root, const std::string& table_name) const;
+  toml::table& table_for_override(toml::table& root, const std::string& table_name,
+                                  const std::string& key) const;
+
+  void check_top_level(const toml::table& root) const;
+  void read_scene_table(const toml::table& root, Scene& scene) const;
+  void read_beam(const toml::table& root, BeamSpec& beam) const;
+  void read_damping(const toml::table& root, DampingSpec& damping) const;
+  void read_deas(const toml::table& root, Scene& scene) const;
+  void read_drive(const toml::table& root, Scene& scene) const;
+  void read_loads(const toml::table& root, Scene& scene) const;
+  void read_probes(const toml::table& root, Scene& scene) const;
+  void read_ac(const toml::table& root, AcSpec& ac) const;
+  void read_provenance(const toml::table& root, Scene& scene) const;
+  void read_provenance_table(const toml::table& table, const std::string& prefix,
+                             Scene& scene) const;
+
+  Locator locator_;
+};
+
+Section SceneReader::section(const toml::table& root, const std::string& table_name) const {
+  const TableSchema* schema = find_table_schema(table_name);
+  Section result(locator_, root.get_as<toml::table>(table_name), table_name);
+  if (schema != nullptr) result.reject_unknown_keys(schema->keys);
+  return result;
+}
+
+std::vector<SceneReader::Entry> SceneReader::entries(const toml::table& root,
+                                                     const std::string& table_name) const {
+  std::vector<Entry> result;
+  const toml::array* array = root.get_as<toml::array>(table_name);
+  if (array == nullptr) return result;
+  for (std::size_t index = 0; index < array->size(); ++index) {
+    const toml::node& element = (*array)[index];
+    const std::string indexed = table_name + "[" + std::to_string(index) + "]";
+    const toml::table* table = element.as_table();
+    if (table == nullptr) {
+      locator_.fail(&element, indexed, "must be a table, got " + describe_node(element));
+    }
+    std::string prefix = indexed;
+    if (const auto* name = table->get_as<std::string>("name")) {
+      if (is_identifier(name->get())) prefix = table_name + "[" + name->get() + "]";
+    }
+    result.push_back(Entry{table, prefix});
+  }
+  return result;
+}
+
+void SceneReader::check_top_level(const toml::table& root) const {
+  for (auto&& [table_key, node] : root) {
+    const std::string name(table_key.str());
+    const TableSchema* schema = find_table_schema(name);
+    if (schema == nullptr) {
+      locator_.fail(&node, name,
+                    std::string(node.is_table() ? "unknown table" : "unknown key") +
+                        did_you_mean(name, table_names()) + "; a scene has the tables " +
+                        quoted_list(table_names()));
+    }
+    if (schema->is_array_of_tables) {
+      if (!node.is_array()) {
+        locator_.fail(
+            &node, name,
+            "must be an array of tables, written [[" + name + "]], got " + describe_node(node));
+      }
+    } else if (!node.is_table()) {
+      locator_.fail(&node, name,
+                    "must be a table, written [" + name + "], got " + describe_node(node));
+    }
+  }
+  for (const char* required : {"scene", "beam"}) {
+    if (!root.contains(required)) {
+      locator_.fail(nullptr, required, std::string("missing table [") + required + "] (required)");
+    }
+  }
+}
+
+void SceneReader::read_scene_table(const toml::table& root, Scene& scene) const {
+  const Section section_reader = section(root, "scene");
+  scene.name = section_reader.string("name");
+  if (trim(scene.name).empty()) section_reader.fail("name", "must not be empty");
+  scene.title = section_reader.optional_string("title").value_or("");
+  section_reader.optional_string("description");
+}
+
+void SceneReader::read_beam(const toml::table& root, BeamSpec& beam) const {
+  const Section reader = section(root, "beam");
+  beam.length = reader.quantity("length", dim::length, Bound::positive);
+  const std::optional<long long> segments = reader.optional_integer("segments");
+  if (!segments) reader.fail_missing("segments");
+  if (*segments < 1) reader.fail("segments", "must be >= 1, got " + std::to_string(*segments));
+  if (*segments > kMaximumSegments) {
+    reader.fail("segments", std::to_string(*segments) + " segments is absurdly large (at most " +
+                                std::to_string(kMaximumSegments) + ")");
+  }
+  beam.segments = static_cast<int>(*segments);
+  beam.bending_stiffness =
+      reader.quantity("bending_stiffness", dim::bending_stiffness, Bound::positive);
+  beam.mass_per_length = reader.quantity("mass_per_length", dim::mass_per_length, Bound::positive);
+  beam.rotary_inertia_per_length = reader.quantity_or(
+      "rotary_inertia_per_length", dim::rotary_inertia_per_length, Bound::non_negative, 0.0);
+  const std::vector<std::pair<std::string, EndCondition>> ends = {
+      {"clamped", EndCondition::clamped},
+      {"free", EndCondition::free},
+      {"pinned", EndCondition::pinned},
+      {"sliding", EndCondition::sliding}};
+  beam.left = reader.optional_choice("left", ends).value_or(EndCondition::clamped);
+  beam.right = reader.optional_choice("right", ends).value_or(EndCondition::free);
+}
+
+void SceneReader::read_damping(const toml::table& root, DampingSpec& damping) const {
+  const Section reader = section(root, "damping");
+  damping.viscous_per_length =
+      reader.quantity_or("viscous_per_length", dim::damping_per_length, Bound::non_negative, 0.0);
+  damping.kelvin_voigt_time =
+      reader.quantity_or("kelvin_voigt_time", dim::time, Bound::non_negative, 0.0);
+  damping.loss_factor = reader.optional_quantity("loss_factor", dim::none, Bound::non_negative);
+  damping.loss_factor_frequency =
+      reader.optional_quantity("loss_factor_frequency", dim::frequency, Bound::positive);
+  if (damping.loss_factor && reader.has("kelvin_voigt_time")) {
+    reader.fail("kelvin_voigt_time",
+                "give either damping.kelvin_voigt_time or damping.loss_factor (with "
+                "damping.loss_factor_frequency), not both");
+  }
+  if (damping.loss_factor && !damping.loss_factor_frequency) {
+    reader.fail("loss_factor",
+                "needs damping.loss_factor_frequency (Hz), the frequency at which it holds");
+  }
+  if (damping.loss_factor_frequency && !damping.loss_factor) {
+    reader.fail("loss_factor_frequency", "is only used with damping.loss_factor, which is missing");
+  }
+}
+
+void SceneReader::read_deas(const toml::table& root, Scene& scene) const {
+  const TableSchema& schema = *find_table_schema("dea");
+  const double beam_length = scene.beam.length;
+  for (const Entry& entry : entries(root, "dea")) {
+    const Section reader(locator_, entry.table, entry.prefix);
+    reader.reject_unknown_keys(schema.keys);
+    DeaSpec dea;
+    dea.name = reader.identifier("name");
+    for (const DeaSpec& earlier : scene.deas) {
+      if (earlier.name == dea.name) reader.fail("name", "duplicate DEA name '" + dea.name + "'");
+    }
+    dea.from = reader.quantity("from", dim::length, Bound::any);
+    dea.to = reader.quantity("to", dim::length, Bound::any);
+    const double tolerance = kBeamEndTolerance * beam_length;
+    const std::string span = "DEA '" + dea.name + "' spans [" +
+                             format_quantity(dea.from, dim::length) + ", " +
+                             format_quantity(dea.to, dim::length) + "]";
+    const std::string beam_span = "the beam [0, " + format_quantity(beam_length, dim::length) + "]";
+    if (dea.from < -tolerance) reader.fail("from", span + ", outside " + beam_span);
+    if (dea.to > beam_length + tolerance) reader.fail("to", span + ", outside " + beam_span);
+    if (!(dea.from < dea.to)) reader.fail("to", span + ": 'to' must be greater than 'from'");
+    dea.from = std::max(dea.from, 0.0);
+    dea.to = std::min(dea.to, beam_length);
+    dea.face = reader.choice("face", std::vector<std::pair<std::string, Face>>{
+                                         {"top", Face::top}, {"bottom", Face::bottom}});
+    dea.lever_arm = reader.quantity("lever_arm", dim::length, Bound::positive);
+    dea.relative_permittivity =
+        reader.quantity("relative_permittivity", dim::none, Bound::positive);
+    dea.dielectric_thickness =
+        reader.quantity("dielectric_thickness", dim::length, Bound::positive);
+    dea.force_thickness = reader.quantity("force_thickness", dim::length, Bound::positive);
+    dea.electrode_width = reader.quantity("electrode_width", dim::length, Bound::positive);
+    dea.electrode_resistance =
+        reader.quantity("electrode_resistance", dim::resistance, Bound::positive);
+    dea.back_coupling = reader.optional_boolean("back_coupling").value_or(false);
+    scene.deas.push_back(dea);
+  }
+}
+
+void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
+  const Section reader = section(root, "drive");
+  DriveSpec& drive = scene.drive;
+  const std::vector<std::pair<std::string, DriveKind>> kinds = {
+      {"none", DriveKind::none},
+      {"antagonistic", DriveKind::antagonistic},
+      {"bias_differential", DriveKind::bias_differential},
+      {"single", DriveKind::single}};
+  drive.kind = reader.optional_choice("kind", kinds).value_or(DriveKind::none);
+  const std::string kind_name = drive_kind_name(drive.kind);
+
+  // drive.deas: names of existing, distinct DEAs.
+  std::vector<std::string> dea_names;
+  for (const DeaSpec& dea : scene.deas) dea_names.push_back(dea.name);
+  if (const toml::node* deas_node = reader.find("deas")) {
+    const toml::array* array = deas_node->as_array();
+    if (array == nullptr) {
+      reader.fail("deas", "must be an array of DEA names such as [\"A\", \"B\"], got " +
+                              describe_node(*deas_node));
+    }
+    for (const toml::node& element : *array) {
+      const auto* name = element.as_string();
+      if (name == nullptr) {
+        locator_.fail(&element, reader.key("deas"),
+                      "must list DEA names as strings, got " + describe_node(element));
+      }
+      const std::string dea_name = name->get();
+      if (std::find(dea_names.begin(), dea_names.end(), dea_name) == dea_names.end()) {
+        const std::string defined = dea_names.empty()
+                                        ? std::string("the scene defines no DEAs")
+                                        : "the scene defines " + quoted_list(dea_names);
+        locator_.fail(
+            &element, reader.key("deas"),
+            "unknown DEA '" + dea_name + "'" + did_you_mean(dea_name, dea_names) + "; " + defined);
+      }
+      if (std::find(drive.deas.begin(), drive.deas.end(), dea_name) != drive.deas.end()) {
+        locator_.fail(&element, reader.key("deas"), "names DEA '" + dea_name + "' twice");
+      }
+      drive.deas.push_back(dea_name);
+    }
+  }
+  std::size_t needed_deas = 0;
+  if (drive.kind == DriveKind::antagonistic || drive.kind == DriveKind::bias_differential) {
+    needed_deas = 2;
+  } else if (drive.kind == DriveKind::single) {
+    needed_deas = 1;
+  }
+  if (drive.kind != DriveKind::none && drive.deas.size() != needed_deas) {
+    if (!reader.has("deas")) reader.fail_missing("deas");
+    reader.fail("deas", "drive kind '" + kind_name + "' needs exactly " +
+                            std::to_string(needed_deas) + " DEA name" +
+                            (needed_deas == 1 ? "" : "s") + ", got " +
+                            std::to_string(drive.deas.size()));
+  }
+
+  const std::optional<double> voltage =
+      reader.optional_quantity("voltage", dim::voltage, Bound::non_negative);
+  const std::optional<double> bias =
+      reader.optional_quantity("bias", dim::voltage, Bound::non_negative);
+  const std::optional<double> amplitude =
+      reader.optional_quantity("amplitude", dim::voltage, Bound::non_negative);
+  if (drive.kind == DriveKind::antagonistic && !voltage) reader.fail_missing("voltage");
+  if (drive.kind == DriveKind::bias_differential) {
+    if (!bias) reader.fail_missing("bias");
+    if (!amplitude) reader.fail_missing("amplitude");
+  }
+  if (drive.kind == DriveKind::single && !voltage && !bias && !amplitude) {
+    locator_.fail(nullptr, reader.key("voltage"),
+                  "missing: drive kind 'single' needs drive.voltage or drive.bias and "
+                  "drive.amplitude");
+  }
+  drive.voltage = voltage.value_or(0.0);
+  drive.bias = bias.value_or(0.0);
+  drive.amplitude = amplitude.value_or(0.0);
+
+  const std::optional<double> frequency =
+      reader.optional_quantity("frequency", dim::frequency, Bound::positive);
+  if (drive.kind != DriveKind::none && !frequency) reader.fail_missing("frequency");
+  drive.frequency = frequency.value_or(0.0);
+  drive.rise_time = reader.quantity_or("rise_time", dim::time, Bound::non_negative, 0.0);
+  if (frequency && !(drive.rise_time < 0.5 / *frequency)) {
+    reader.fail("rise_time", "must be shorter than half a period (" +
+                                 format_quantity(0.5 / *frequency, dim::time) + " at " +
+                                 format_quantity(*frequency, dim::frequency) + "), got " +
+                                 format_quantity(drive.rise_time, dim::time));
+  }
+  drive.duty = reader.quantity_or("duty", dim::none, Bound::any, 0.5);
+  if (!(drive.duty > 0.0 && drive.duty < 1.0)) {
+    reader.fail("duty", "must be between 0 and 1 (exclusive), got " + format_number(drive.duty));
+  }
+}
+
+void SceneReader::read_loads(const toml::table& root, Scene& scene) const {
+  const TableSchema& schema = *find_table_schema("load");
+  for (const Entry& entry : entries(root, "load")) {
+    const Section reader(locator_, entry.table, entry.prefix);
+    reader.reject_unknown_keys(schema.keys);
+    LoadSpec load;
+    load.kind =
+        reader.choice("kind", std::vector<std::pair<std::string, LoadKind>>{
+                                  {"force", LoadKind::force}, {"moment", LoadKind::moment}});
+    load.at = reader.position_on_beam("at", scene.beam.length);
+    load.value = reader.quantity("value", load.kind == LoadKind::force ? dim::force : dim::moment,
+                                 Bound::any);
+    scene.loads.push_back(load);
+  }
+}
+
+void SceneReader::read_probes(const toml::table& root, Scene& scene) const {
+  const TableSchema& schema = *find_table_schema("probe");
+  std::vector<std::string> dea_names;
+  for (const DeaSpec& dea : scene.deas) dea_names.push_back(dea.name);
+  for (const Entry& entry : entries(root, "probe")) {
+    const Section reader(locator_, entry.table, entry.prefix);
+    reader.reject_unknown_keys(schema.keys);
+    ProbeSpec probe;
+    probe.name = reader.identifier("name");
+    for (const ProbeSpec& earlier : scene.probes) {
+      if (earlier.name == probe.name) {
+        reader.fail("name", "duplicate probe name '" + probe.name + "'");
+      }
+    }
+    probe.quantity =
+        reader.choice("quantity", std::vector<std::pair<std::string, ProbeQuantity>>{
+                                      {"deflection", ProbeQuantity::deflection},
+                                      {"velocity", ProbeQuantity::velocity},
+                                      {"rotation", ProbeQuantity::rotation},
+                                      {"angular_velocity", ProbeQuantity::angular_velocity},
+                                      {"dea_voltage", ProbeQuantity::dea_voltage},
+                                      {"dea_current", ProbeQuantity::dea_current}});
+    const std::string quantity_name = probe_quantity_name(probe.quantity);
+    const bool on_dea = probe.quantity == ProbeQuantity::dea_voltage ||
+                        probe.quantity == ProbeQuantity::dea_current;
+    if (on_dea) {
+      if (reader.has("at")) {
+        reader.fail("at", "is not used by probe quantity '" + quantity_name + "' (it names a DEA)");
+      }
+      probe.dea = reader.string("dea");
+      if (std::find(dea_names.begin(), dea_names.end(), probe.dea) == dea_names.end()) {
+        const std::string defined = dea_names.empty()
+                                        ? std::string("the scene defines no DEAs")
+                                        : "the scene defines " + quoted_list(dea_names);
+        reader.fail("dea", "unknown DEA '" + probe.dea + "'" + did_you_mean(probe.dea, dea_names) +
+                               "; " + defined);
+      }
+    } else {
+      if (reader.has("dea")) {
+        reader.fail("dea",
+                    "is only used by probe quantities 'dea_voltage' and 'dea_current', "
+                    "not '" +
+                        quantity_name + "'");
+      }
+      probe.at = reader.position_on_beam("at", scene.beam.length);
+    }
+    scene.probes.push_back(probe);
+  }
+}
+
+void SceneReader::read_ac(const toml::table& root, AcSpec& ac) const {
+  const Section reader = section(root, "ac");
+  ac.log = reader
+               .optional_choice("scale", std::vector<std::pair<std::string, bool>>{{"lin", false},
+                                                                                   {"log", true}})
+               .value_or(false);
+  ac.from = reader.quantity_or("from", dim::frequency, Bound::any, ac.from);
+  ac.to = reader.quantity_or("to", dim::frequency, Bound::any, ac.to);
+  if (ac.log && !(ac.from > 0.0)) {
+    reader.fail("from",
+                "must be > 0 for a log scale, got " + format_quantity(ac.from, dim::frequency));
+  }
+  if (!(ac.from >= 0.0)) {
+    reader.fail("from", "must be >= 0, got " + format_quantity(ac.from, dim::frequency));
+  }
+  if (!(ac.to > ac.from)) {
+    reader.fail("to", "must be greater than ac.from (" + format_quantity(ac.from, dim::frequency) +
+                          "), got " + format_quantity(ac.to, dim::frequency) +
+                          (reader.has("to") ? "" : " (the default)"));
+  }
+  const long long points = reader.optional_integer("points").value_or(ac.points);
+  if (points < kMinimumAcPoints || points > kMaximumAcPoints) {
+    reader.fail("points", "must be between " + std::to_string(kMinimumAcPoints) + " and " +
+                              std::to_string(kMaximumAcPoints) + ", got " + std::to_string(points));
+  }
+  ac.points = static_cast<int>(points);
+}
+
+void SceneReader::read_provenance_table(const toml::table& table, const std::string& prefix,
+                                        Scene& scene) const {
+  static const std::vector<std::string> sources = {
+      "paper:", "data sheet:", "assumed:", "identified:"};
+  for (auto&& [table_key, node] : table) {
+    const std::string entry =
+        prefix.empty() ? std::string(table_key.str()) : prefix + "." + std::string(table_key.str());
+    const std::string key = "provenance." + entry;
+    if (const toml::table* nested = node.as_table()) {
+      read_provenance_table(*nested, entry, scene);
+      continue;
+    }
+    const std::string first_segment = entry.substr(0, entry.find_first_of(".["));
+    const TableSchema* schema = find_table_schema(first_segment);
+    if (schema == nullptr || schema->is_free_form) {
+      std::vector<std::string> candidates;
+      for (const TableSchema& candidate : scene_schema()) {
+        if (!candidate.is_free_form) candidates.push_back(candidate.name);
+      }
+      locator_.fail(&node, key,
+                    "names no scene key: '" + first_segment + "' is not a scene table" +
+                        did_you_mean(first_segment, candidates));
+    }
+    const auto* text = node.as_string();
+    if (text == nullptr) {
+      locator_.fail(&node, key,
+                    "must be a string such as \"paper: Table 1\", got " + describe_node(node));
+    }
+    const std::string value = text->get();
+    const bool known_source = std::any_of(sources.begin(), sources.end(), [&](const auto& start) {
+      return value.compare(0, start.size(), start) == 0;
+    });
+    if (!known_source) {
+      locator_.fail(&node, key,
+                    "must start with one of " + quoted_list(sources) + ", got '" + value + "'");
+    }
+    scene.provenance[entry] = value;
+  }
+}
+
+void SceneReader::read_provenance(const toml::table& root, Scene& scene) const {
+  if (const toml::table* table = root.get_as<toml::table>("provenance")) {
+    read_provenance_table(*table, "", scene);
+  }
+}
+
+Scene SceneReader::read(const toml::table& root) const {
+  Scene scene;
+  scene.file = locator_.display_name();
+  check_top_level(root);
+  read_scene_table(root, scene);
+  read_beam(root, scene.beam);
+  read_damping(root, scene.damping);
+  read_deas(root, scene);
+  read_drive(root, scene);
+  read_loads(root, scene);
+  read_probes(root, scene);
+  read_ac(root, scene.ac);
+  read_provenance(root, scene);
+  return scene;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Overrides.
+
+toml::table& SceneReader::table_for_override(toml::table& root, const std::string& table_name,
+                                             const std::string& key) const {
+  toml::node* node = root.get(table_name);
+  if (node == nullptr) {
+    root.insert(table_name, toml::table{});
+    node = root.get(table_name);
+  }
+  toml::table* table = node->as_table();
+  if (table == nullptr) {
+    locator_.fail(node, table_name,
+                  "must be a table, written [" + table_name + "] (needed by --set " + key + ")");
+  }
+  return *table;
+}
+
+void SceneReader::apply_override(toml::table& root, const std::string& assignment) const {
+  const std::size_t equals = assignment.find('=');
+  if (equals == std::string::npos) {
+    throw InputError(kOverrideWhere, trim(assignment),
+                     "expected key=value, e.g. beam.length=70mm, got '" + assignment + "'");
+  }
+  const std::string key = trim(assignment.substr(0, equals));
+  const std::string text = trim(assignment.substr(equals + 1));
+  if (key.empty()) {
+    throw InputError(kOverrideWhere, "", "missing key before '=' in '" + assignment + "'");
+  }
+
+  // Candidates for "did you mean": every plain key.
+  std::vector<std::string> candidates;
+  for (const TableSchema& schema : scene_schema()) {
+    for (const std::string& name : schema.keys) {
+      candidates.push_back(schema.is_array_of_tables ? schema.name + ".<name>." + name
+                                                     : schema.name + "." + name);
+    }
+  }
+  auto unknown_key = [&](const std::vector<std::string>& extra_candidates) {
+    std::vector<std::string> all = candidates;
+    all.insert(all.end(), extra_candidates.begin(), extra_candidates.end());
+    return InputError(kOverrideWhere, key, "unknown key" + did_you_mean(key, all));
+  };
+
+  const std::size_t split = key.find_first_of(".[");
+  const std::string table_name = key.substr(0, split);
+  const TableSchema* schema = find_table_schema(table_name);
+  if (schema != nullptr && split == std::string::npos) {
+    throw InputError(kOverrideWhere, key,
+                     "names a table, not a key; override one of its keys, e.g. " +
+                         (schema->keys.empty()         ? key + ".beam.length"
+                          : schema->is_array_of_tables ? key + ".0." + schema->keys.front()
+                                                       : key + "." + schema->keys.front()));
+  }
+  if (schema == nullptr || split == std::string::npos || split + 1 >= key.size()) {
+    throw unknown_key({});
+  }
+
+  toml::table* target = nullptr;
+  std::string target_key;
+  if (schema->is_free_form) {
+    if (key[split] != '.') throw unknown_key({});
+    target = &table_for_override(root, table_name, key);
+    target_key = key.substr(split + 1);
+  } else if (!schema->is_array_of_tables) {
+    target_key = key.substr(split + 1);
+    if (key[split] != '.' || !schema_has_key(*schema, target_key)) throw unknown_key({});
+    target = &table_for_override(root, table_name, key);
+  } else {
+    // dea.A.lever_arm, dea[A].lever_arm, dea.0.lever_arm or dea[0].lever_arm
+    std::string selector;
+    std::size_t after_selector = std::string::npos;
+    if (key[split] == '[') {
+      const std::size_t close = key.find(']', split);
+      if (close != std::string::npos && close + 1 < key.size() && key[close + 1] == '.') {
+        selector = key.substr(split + 1, close - split - 1);
+        after_selector = close + 2;
+      }
+    } else {
+      const std::size_t dot = key.find('.', split + 1);
+      if (dot != std::string::npos) {
+        selector = key.substr(split + 1, dot - split - 1);
+        after_selector = dot + 1;
+      }
+    }
+    if (selector.empty() || after_selector == std::string::npos) {
+      throw InputError(kOverrideWhere, key,
+                       "an entry of [[" + table_name + "]] is addressed as " + table_name +
+                           ".<name or index>.<key>, e.g. " + table_name + ".0." +
+                           schema->keys.front());
+    }
+    target_key = key.substr(after_selector);
+    if (!schema_has_key(*schema, target_key)) {
+      std::vector<std::string> extra;
+      for (const std::string& name : schema->keys) {
+        extra.push_back(key.substr(0, after_selector) + name);
+      }
+      throw unknown_key(extra);
+    }
+    toml::array* array = root.get_as<toml::array>(table_name);
+    std::vector<std::string> names;
+    if (array != nullptr) {
+      for (toml::node& element : *array) {
+        toml::table* entry = element.as_table();
+        if (entry == nullptr) continue;
+        if (const auto* name = entry->get_as<std::string>("name")) {
+          names.push_back(name->get());
+          if (name->get() == selector && target == nullptr) target = entry;
+        }
+      }
+      if (target == nullptr && is_all_digits(selector) && selector.size() < 9) {
+        const std::size_t index = std::stoul(selector);
+        if (index < array->size()) target = (*array)[index].as_table();
+      }
+    }
+    if (target == nullptr) {
+      const std::size_t count = array == nullptr ? 0 : array->size();
+      std::string known = "the scene has " + std::to_string(count) + " [[" + table_name +
+                          "]] entr" + (count == 1 ? "y" : "ies");
+      if (!names.empty()) known += " named " + quoted_list(names);
+      throw InputError(kOverrideWhere, key,
+                       "no [[" + table_name + "]] entry '" + selector + "'; " + known);
+    }
+  }
+
+  // The value: a TOML value if it is one, else the text as a string.
+  const TomlParseOutcome parsed = parse_toml("value = " + text, kOverrideWhere);
+  if (parsed.table && parsed.table->size() == 1 && parsed.table->contains("value")) {
+    parsed.table->get("value")->visit(
+        [&](const auto& value_node) { target->insert_or_assign(target_key, value_node); });
+  } else {
+    target->insert_or_assign(target_key, text);
+  }
+}
+
+}  // namespace
+
+Scene read_scene_text(const std::string& text, const std::string& display_name,
+                      const std::vector<std::string>& overrides) {
+  const std::string name = display_name.empty() ? std::string("<scene>") : display_name;
+  TomlParseOutcome parsed = parse_toml(text, name);
+  if (!parsed.table) {
+    const std::string where = parsed.line > 0 ? name + ":" + std::to_string(parsed.line) : name;
+    throw InputError(where, "", "not a valid TOML file: " + parsed.description);
+  }
+  const SceneReader reader(name);
+  for (const std::string& assignment : overrides) reader.apply_override(*parsed.table, assignment);
+  return reader.read(*parsed.table);
+}
+
+Scene read_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw InputError(path, "", "cannot open file (it is a directory)");
+  }
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) throw InputError(path, "", "cannot open file");
+  std::ostringstream contents;
+  contents << stream.rdbuf();
+  if (stream.bad()) throw InputError(path, "", "cannot read file");
+  return read_scene_text(contents.str(), path, overrides);
+}
+
+}  // namespace emnet

@@ -1,0 +1,226 @@
+// The emnet program end to end: bad input gives one message naming file, line and key and exit
+// status 2; no result is ever printed as NaN; --json output has the documented shape.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <string>
+
+namespace {
+
+struct CliRun {
+  int status = -1;
+  std::string out, err;
+};
+
+CliRun run(const std::string& arguments) {
+  static int counter = 0;
+  const std::string err_path = ::testing::TempDir() + "emnet_cli_err_" + std::to_string(counter++);
+  const std::string command = std::string(EMNET_BINARY) + " " + arguments + " 2>" + err_path;
+  CliRun result;
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 4096> buffer{};
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    result.out.append(buffer.data(), n);
+  const int raw = pclose(pipe);
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream err(err_path);
+  result.err.assign(std::istreambuf_iterator<char>(err), {});
+  return result;
+}
+
+// A valid scene with one DEA; each case below breaks one line of it.
+const char* base_scene = R"([scene]
+name = "probe_scene"
+
+[beam]
+length = "0.5 m"
+segments = 10
+bending_stiffness = "2 N*m^2"
+mass_per_length = "0.3 kg/m"
+
+[[dea]]
+name = "A"
+from = "0 mm"
+to = "100 mm"
+face = "top"
+lever_arm = "1.5 mm"
+relative_permittivity = 2.8
+dielectric_thickness = "51 um"
+force_thickness = "51 um"
+electrode_width = "25 mm"
+electrode_resistance = "1 MOhm"
+
+[drive]
+kind = "single"
+deas = ["A"]
+bias = "3 kV"
+amplitude = "100 V"
+frequency = "5 Hz"
+)";
+
+std::string scene_with(const std::string& from, const std::string& to, const std::string& name) {
+  std::string text = base_scene;
+  if (!from.empty()) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  const std::string path = ::testing::TempDir() + name + ".toml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+// A printed NaN or infinity, as a word of its own ("resonance" is fine).
+bool prints_non_finite(const std::string& text) {
+  static const std::regex pattern("(^|[^A-Za-z])[-+]?(nan|inf)([^A-Za-z]|$)", std::regex::icase);
+  return std::regex_search(text, pattern);
+}
+
+// One message on one line, exit 2, naming the file (and line) and the key.
+void expect_input_error(const CliRun& r, const std::string& where, const std::string& key) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find(where), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(key), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(prints_non_finite(r.out));
+}
+
+TEST(CliInput, ValidSceneRuns) {
+  const auto path = scene_with("", "", "valid");
+  for (const char* command : {"static", "modes", "ac --points 20 --from 1 --to 20"}) {
+    const CliRun r = run(std::string(command) + " " + path);
+    EXPECT_EQ(r.status, 0) << command << ": " << r.err;
+    EXPECT_FALSE(prints_non_finite(r.out)) << command;
+  }
+}
+
+TEST(CliInput, UnknownKey) {
+  const auto path = scene_with("segments = 10", "segments = 10\nsegmnts = 3", "unknown_key");
+  expect_input_error(run("static " + path), path + ":7", "beam.segmnts");
+}
+
+TEST(CliInput, MissingKey) {
+  const auto path = scene_with("mass_per_length = \"0.3 kg/m\"", "", "missing_key");
+  expect_input_error(run("static " + path), path, "beam.mass_per_length");
+}
+
+TEST(CliInput, WrongUnit) {
+  const auto path = scene_with("length = \"0.5 m\"", "length = \"0.5 kV\"", "wrong_unit");
+  expect_input_error(run("static " + path), path + ":5", "beam.length");
+}
+
+TEST(CliInput, MissingUnit) {
+  const auto path = scene_with("length = \"0.5 m\"", "length = \"0.5\"", "missing_unit");
+  expect_input_error(run("static " + path), path + ":5", "beam.length");
+}
+
+TEST(CliInput, ZeroLength) {
+  const auto path = scene_with("length = \"0.5 m\"", "length = \"0 m\"", "zero_length");
+  expect_input_error(run("static " + path), path + ":5", "beam.length");
+}
+
+TEST(CliInput, NegativeLength) {
+  const auto path = scene_with("length = \"0.5 m\"", "length = -0.5", "negative_length");
+  expect_input_error(run("static " + path), path + ":5", "beam.length");
+}
+
+TEST(CliInput, SegmentsBelowOne) {
+  const auto path = scene_with("segments = 10", "segments = 0", "segments_zero");
+  expect_input_error(run("static " + path), path + ":6", "beam.segments");
+}
+
+TEST(CliInput, SegmentsAbsurdlyLarge) {
+  const auto path = scene_with("", "", "segments_large");
+  expect_input_error(run("modes " + path + " --segments 1000000000"), "--set", "beam.segments");
+}
+
+TEST(CliInput, NotANumber) {
+  const auto path = scene_with("bending_stiffness = \"2 N*m^2\"", "bending_stiffness = nan", "nan");
+  expect_input_error(run("static " + path), path + ":7", "beam.bending_stiffness");
+}
+
+TEST(CliInput, Infinity) {
+  const auto path = scene_with("mass_per_length = \"0.3 kg/m\"", "mass_per_length = inf", "inf");
+  expect_input_error(run("static " + path), path + ":8", "beam.mass_per_length");
+}
+
+TEST(CliInput, DeaOutsideTheBeam) {
+  const auto path = scene_with("to = \"100 mm\"", "to = \"600 mm\"", "dea_outside");
+  expect_input_error(run("static " + path), path + ":13", "dea[A].to");
+}
+
+TEST(CliInput, FileNotThere) {
+  const std::string path = ::testing::TempDir() + "no_such_scene.toml";
+  expect_input_error(run("static " + path), path, "");
+}
+
+TEST(CliInput, FileNotParseable) {
+  const auto path = scene_with("[beam]", "[beam", "not_toml");
+  expect_input_error(run("static " + path), path + ":4", "");
+}
+
+TEST(CliInput, OverrideOfUnknownKey) {
+  const auto path = scene_with("", "", "override_unknown");
+  expect_input_error(run("static " + path + " --set beam.lenght=0.2"), "--set", "beam.lenght");
+}
+
+TEST(CliInput, OverrideWithNaN) {
+  const auto path = scene_with("", "", "override_nan");
+  expect_input_error(run("static " + path + " --set beam.length=nan"), "--set", "beam.length");
+}
+
+TEST(CliInput, BadProbe) {
+  const auto path = scene_with("", "", "bad_probe");
+  expect_input_error(run("static " + path + " --probe deflection@2m"), "--probe", "deflection@2m");
+}
+
+TEST(CliInput, UnknownOption) {
+  const auto path = scene_with("", "", "bad_option");
+  const CliRun r = run("static " + path + " --frobnicate");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--frobnicate"), std::string::npos) << r.err;
+}
+
+// Overrides reach the model: doubling the length of a tip-loaded cantilever multiplies the tip
+// deflection by 8 (w = FL³/3EI); reference closed form, 1e-9 relative.
+TEST(CliOverride, BeamKeysOverrideTheScene) {
+  const std::string scene = std::string(EMNET_SOURCE_DIR) + "/netlists/cantilever.toml";
+  const CliRun base = run("static " + scene + " --json");
+  const CliRun longer = run("static " + scene +
+                            " --json --set beam.length=1.0 --set load.0.at=1.0 "
+                            "--set probe.tip.at=1.0");
+  ASSERT_EQ(base.status, 0) << base.err;
+  ASSERT_EQ(longer.status, 0) << longer.err;
+  auto tip = [](const CliRun& r) {
+    const auto json = nlohmann::json::parse(r.out);
+    for (const auto& p : json["probes"])
+      if (p["name"] == "tip") return p["value"].get<double>();
+    return 0.0;
+  };
+  EXPECT_NEAR(tip(longer) / tip(base), 8.0, 8e-9);
+  EXPECT_NEAR(tip(base), 1.0 * 0.125 / (3 * 2.0), 1e-9);
+}
+
+// `modes --json` has {"modes":[{"frequency_hz", "damping_ratio"}, ...]} sorted by frequency.
+TEST(CliOutput, ModesJsonShape) {
+  const CliRun r = run("modes " + std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(json["modes"].is_array());
+  ASSERT_GE(json["modes"].size(), 3u);
+  double previous = 0.0;
+  for (const auto& mode : json["modes"]) {
+    ASSERT_TRUE(mode["frequency_hz"].is_number());
+    ASSERT_TRUE(mode["damping_ratio"].is_number());
+    EXPECT_GE(mode["frequency_hz"].get<double>(), previous);
+    previous = mode["frequency_hz"].get<double>();
+  }
+}
+
+}  // namespace

@@ -1,0 +1,602 @@
+// Tests of the scene reader (emnet/scene_reader.hpp): valid scenes read to the right SI values,
+// `--set` overrides, and one test per kind of bad input, each checking that the InputError names
+// the file, the line (where there is one) and the key, and says what is wrong.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "emnet/errors.hpp"
+#include "emnet/scene.hpp"
+#include "emnet/scene_reader.hpp"
+
+namespace emnet {
+namespace {
+
+const char* const kFileName = "x.toml";
+constexpr double kPi = 3.14159265358979323846;
+
+const std::string kMinimalScene = R"([scene]
+name = "fishfin"
+
+[beam]
+length = "122.5 mm"
+segments = 7
+bending_stiffness = "2.2e-3 N*m^2"
+mass_per_length = "73 g/m"
+)";
+
+const std::string kFullScene = R"([scene]
+name = "fishfin"
+title = "Fish fin"
+description = "two antagonistic DEAs on a cantilever"
+
+[beam]
+length = "122.5 mm"
+segments = 7
+bending_stiffness = "2.2e-3 N·m²"
+mass_per_length = "73 g/m"
+rotary_inertia_per_length = "1e-9 kg*m"
+left = "clamped"
+right = "free"
+
+[damping]
+viscous_per_length = "0.5 N*s/m^2"
+loss_factor = 0.04
+loss_factor_frequency = "5 Hz"
+
+[[dea]]
+name = "A"
+from = "0 mm"
+to = "70 mm"
+face = "top"
+lever_arm = "1.55 mm"
+relative_permittivity = 2.8
+dielectric_thickness = "51 um"
+force_thickness = "51 µm"
+electrode_width = "25 mm"
+electrode_resistance = "1 MOhm"
+
+[[dea]]
+name = "B"
+from = "0 mm"
+to = "70 mm"
+face = "bottom"
+lever_arm = "1.55 mm"
+relative_permittivity = 2.8
+dielectric_thickness = "51 um"
+force_thickness = "51 um"
+electrode_width = "25 mm"
+electrode_resistance = "1 MΩ"
+back_coupling = true
+
+[drive]
+kind = "antagonistic"
+deas = ["A", "B"]
+voltage = "4 kV"
+frequency = "5 Hz"
+rise_time = "1 ms"
+duty = 0.5
+
+[[load]]
+kind = "moment"
+at = "122.5 mm"
+value = "2 mN*m"
+
+[[probe]]
+name = "tip"
+quantity = "deflection"
+at = "122.5 mm"
+
+[[probe]]
+name = "VA"
+quantity = "dea_voltage"
+dea = "A"
+
+[ac]
+from = "0.1 Hz"
+to = "100 Hz"
+points = 50
+scale = "log"
+
+[provenance]
+"beam.length" = "paper: Table 1"
+"dea.A.lever_arm" = "assumed: half the laminate"
+)";
+
+// `text` with the first occurrence of `from` replaced by `to` (which must be there).
+std::string replaced(const std::string& text, const std::string& from, const std::string& to) {
+  const std::size_t position = text.find(from);
+  EXPECT_NE(position, std::string::npos) << "test bug: '" << from << "' not in the scene";
+  if (position == std::string::npos) return text;
+  std::string result = text;
+  result.replace(position, from.size(), to);
+  return result;
+}
+
+// 1-based line of the first occurrence of `needle` in `text`.
+int line_of(const std::string& text, const std::string& needle) {
+  const std::size_t position = text.find(needle);
+  EXPECT_NE(position, std::string::npos) << "test bug: '" << needle << "' not in the scene";
+  int line = 1;
+  for (std::size_t i = 0; i < position && i < text.size(); ++i) {
+    if (text[i] == '\n') ++line;
+  }
+  return line;
+}
+
+std::string at_line(const std::string& text, const std::string& needle) {
+  return std::string(kFileName) + ":" + std::to_string(line_of(text, needle));
+}
+
+// The InputError that reading `text` throws; a failed expectation if it reads fine.
+std::optional<InputError> read_error(const std::string& text,
+                                     const std::vector<std::string>& overrides = {}) {
+  try {
+    read_scene_text(text, kFileName, overrides);
+  } catch (const InputError& error) {
+    return error;
+  }
+  ADD_FAILURE() << "expected an InputError";
+  return std::nullopt;
+}
+
+// Checks where/key and that the message reads "<where>: key '<key>': ...<fragment>...".
+void expect_error(const std::optional<InputError>& error, const std::string& where,
+                  const std::string& key, const std::string& fragment) {
+  ASSERT_TRUE(error.has_value());
+  EXPECT_EQ(error->where(), where) << error->what();
+  EXPECT_EQ(error->key(), key) << error->what();
+  const std::string message = error->what();
+  const std::string start = where + ": " + (key.empty() ? "" : "key '" + key + "': ");
+  EXPECT_EQ(message.rfind(start, 0), 0u) << message;
+  EXPECT_NE(message.find(fragment), std::string::npos) << message;
+}
+
+std::string temporary_path(const std::string& name) {
+  return (std::filesystem::path(testing::TempDir()) / ("emnet_scene_reader_" + name)).string();
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream stream(path, std::ios::binary);
+  stream << text;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Valid scenes.
+
+TEST(SceneReader, ReadsMinimalSceneInSi) {
+  const Scene scene = read_scene_text(kMinimalScene, kFileName);
+  EXPECT_EQ(scene.file, kFileName);
+  EXPECT_EQ(scene.name, "fishfin");
+  EXPECT_EQ(scene.title, "");
+  EXPECT_DOUBLE_EQ(scene.beam.length, 0.1225);
+  EXPECT_EQ(scene.beam.segments, 7);
+  EXPECT_DOUBLE_EQ(scene.beam.bending_stiffness, 2.2e-3);
+  EXPECT_DOUBLE_EQ(scene.beam.mass_per_length, 0.073);
+  EXPECT_DOUBLE_EQ(scene.beam.rotary_inertia_per_length, 0.0);
+  EXPECT_EQ(scene.beam.left, EndCondition::clamped);
+  EXPECT_EQ(scene.beam.right, EndCondition::free);
+  EXPECT_DOUBLE_EQ(scene.damping.viscous_per_length, 0.0);
+  EXPECT_DOUBLE_EQ(scene.damping.kelvin_voigt_time, 0.0);
+  EXPECT_FALSE(scene.damping.loss_factor.has_value());
+  EXPECT_TRUE(scene.deas.empty());
+  EXPECT_EQ(scene.drive.kind, DriveKind::none);
+  EXPECT_TRUE(scene.loads.empty());
+  EXPECT_TRUE(scene.probes.empty());
+  EXPECT_DOUBLE_EQ(scene.ac.from, 0.1);
+  EXPECT_DOUBLE_EQ(scene.ac.to, 10.0);
+  EXPECT_EQ(scene.ac.points, 200);
+  EXPECT_FALSE(scene.ac.log);
+  EXPECT_TRUE(scene.provenance.empty());
+}
+
+TEST(SceneReader, ReadsPlainSiNumbers) {
+  std::string text = replaced(kMinimalScene, "\"122.5 mm\"", "0.1225");
+  text = replaced(text, "\"73 g/m\"", "0.073");
+  const Scene scene = read_scene_text(text, kFileName);
+  EXPECT_DOUBLE_EQ(scene.beam.length, 0.1225);
+  EXPECT_DOUBLE_EQ(scene.beam.mass_per_length, 0.073);
+}
+
+TEST(SceneReader, ReadsFullScene) {
+  const Scene scene = read_scene_text(kFullScene, kFileName);
+  EXPECT_EQ(scene.title, "Fish fin");
+  EXPECT_DOUBLE_EQ(scene.beam.bending_stiffness, 2.2e-3);
+  EXPECT_DOUBLE_EQ(scene.beam.rotary_inertia_per_length, 1e-9);
+  EXPECT_DOUBLE_EQ(scene.damping.viscous_per_length, 0.5);
+  ASSERT_TRUE(scene.damping.loss_factor.has_value());
+  EXPECT_DOUBLE_EQ(*scene.damping.loss_factor, 0.04);
+  EXPECT_DOUBLE_EQ(*scene.damping.loss_factor_frequency, 5.0);
+  EXPECT_DOUBLE_EQ(scene.damping.effective_kelvin_voigt_time(), 0.04 / (2.0 * kPi * 5.0));
+
+  ASSERT_EQ(scene.deas.size(), 2u);
+  const DeaSpec& a = scene.deas[0];
+  EXPECT_EQ(a.name, "A");
+  EXPECT_DOUBLE_EQ(a.from, 0.0);
+  EXPECT_DOUBLE_EQ(a.to, 0.07);
+  EXPECT_EQ(a.face, Face::top);
+  EXPECT_DOUBLE_EQ(a.lever_arm, 1.55e-3);
+  EXPECT_DOUBLE_EQ(a.relative_permittivity, 2.8);
+  EXPECT_DOUBLE_EQ(a.dielectric_thickness, 51e-6);
+  EXPECT_DOUBLE_EQ(a.force_thickness, 51e-6);
+  EXPECT_DOUBLE_EQ(a.electrode_width, 0.025);
+  EXPECT_DOUBLE_EQ(a.electrode_resistance, 1e6);
+  EXPECT_FALSE(a.back_coupling);
+  EXPECT_EQ(scene.deas[1].face, Face::bottom);
+  EXPECT_DOUBLE_EQ(scene.deas[1].electrode_resistance, 1e6);
+  EXPECT_TRUE(scene.deas[1].back_coupling);
+
+  EXPECT_EQ(scene.drive.kind, DriveKind::antagonistic);
+  EXPECT_EQ(scene.drive.deas, (std::vector<std::string>{"A", "B"}));
+  EXPECT_DOUBLE_EQ(scene.drive.voltage, 4000.0);
+  EXPECT_DOUBLE_EQ(scene.drive.frequency, 5.0);
+  EXPECT_DOUBLE_EQ(scene.drive.rise_time, 1e-3);
+  EXPECT_DOUBLE_EQ(scene.drive.duty, 0.5);
+
+  ASSERT_EQ(scene.loads.size(), 1u);
+  EXPECT_EQ(scene.loads[0].kind, LoadKind::moment);
+  EXPECT_DOUBLE_EQ(scene.loads[0].at, 0.1225);
+  EXPECT_DOUBLE_EQ(scene.loads[0].value, 2e-3);
+
+  ASSERT_EQ(scene.probes.size(), 2u);
+  EXPECT_EQ(scene.probes[0].name, "tip");
+  EXPECT_EQ(scene.probes[0].quantity, ProbeQuantity::deflection);
+  EXPECT_DOUBLE_EQ(scene.probes[0].at, 0.1225);
+  EXPECT_EQ(scene.probes[1].quantity, ProbeQuantity::dea_voltage);
+  EXPECT_EQ(scene.probes[1].dea, "A");
+
+  EXPECT_DOUBLE_EQ(scene.ac.from, 0.1);
+  EXPECT_DOUBLE_EQ(scene.ac.to, 100.0);
+  EXPECT_EQ(scene.ac.points, 50);
+  EXPECT_TRUE(scene.ac.log);
+  EXPECT_EQ(scene.provenance.at("beam.length"), "paper: Table 1");
+  EXPECT_EQ(scene.provenance.at("dea.A.lever_arm"), "assumed: half the laminate");
+}
+
+TEST(SceneReader, ReadsSceneFromFile) {
+  const std::string path = temporary_path("valid.toml");
+  write_file(path, kMinimalScene);
+  const Scene scene = read_scene(path);
+  EXPECT_EQ(scene.file, path);
+  EXPECT_DOUBLE_EQ(scene.beam.length, 0.1225);
+  std::filesystem::remove(path);
+}
+
+TEST(SceneReader, EveryShippedNetlistReads) {
+  const std::filesystem::path directory = std::filesystem::path(EMNET_SOURCE_DIR) / "netlists";
+  std::error_code error;
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
+    if (entry.path().extension() != ".toml") continue;
+    ++count;
+    EXPECT_NO_THROW(read_scene(entry.path().string())) << entry.path();
+  }
+  if (count == 0) GTEST_SKIP() << "no netlists/*.toml yet";
+}
+
+TEST(SceneNames, NamesAndUnits) {
+  EXPECT_STREQ(end_condition_name(EndCondition::sliding), "sliding");
+  EXPECT_STREQ(drive_kind_name(DriveKind::bias_differential), "bias_differential");
+  EXPECT_STREQ(probe_quantity_name(ProbeQuantity::angular_velocity), "angular_velocity");
+  EXPECT_STREQ(probe_unit(ProbeQuantity::deflection), "m");
+  EXPECT_STREQ(probe_unit(ProbeQuantity::velocity), "m/s");
+  EXPECT_STREQ(probe_unit(ProbeQuantity::rotation), "rad");
+  EXPECT_STREQ(probe_unit(ProbeQuantity::angular_velocity), "rad/s");
+  EXPECT_STREQ(probe_unit(ProbeQuantity::dea_voltage), "V");
+  EXPECT_STREQ(probe_unit(ProbeQuantity::dea_current), "A");
+}
+
+TEST(SceneNames, EffectiveKelvinVoigtTime) {
+  DampingSpec damping;
+  damping.kelvin_voigt_time = 2e-3;
+  EXPECT_DOUBLE_EQ(damping.effective_kelvin_voigt_time(), 2e-3);
+  damping.kelvin_voigt_time = 0.0;
+  damping.loss_factor = 0.1;
+  damping.loss_factor_frequency = 10.0;
+  EXPECT_DOUBLE_EQ(damping.effective_kelvin_voigt_time(), 0.1 / (2.0 * kPi * 10.0));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Overrides.
+
+TEST(SceneReaderOverride, PlainNumber) {
+  const Scene scene = read_scene_text(kMinimalScene, kFileName, {"beam.length=0.2"});
+  EXPECT_DOUBLE_EQ(scene.beam.length, 0.2);
+}
+
+TEST(SceneReaderOverride, UnitStringInAnyQuoting) {
+  for (const char* assignment :
+       {"beam.length=70mm", "beam.length=70 mm", "beam.length = \"70 mm\""}) {
+    const Scene scene = read_scene_text(kMinimalScene, kFileName, {assignment});
+    EXPECT_DOUBLE_EQ(scene.beam.length, 0.07) << assignment;
+  }
+}
+
+TEST(SceneReaderOverride, AddsKeyTheFileLacks) {
+  const Scene scene =
+      read_scene_text(kMinimalScene, kFileName, {"damping.kelvin_voigt_time=2ms", "ac.scale=log"});
+  EXPECT_DOUBLE_EQ(scene.damping.kelvin_voigt_time, 2e-3);
+  EXPECT_TRUE(scene.ac.log);
+}
+
+TEST(SceneReaderOverride, OtherValueTypes) {
+  const Scene scene =
+      read_scene_text(kFullScene, kFileName,
+                      {"ac.points=17", "drive.deas=[\"B\", \"A\"]", "dea.A.back_coupling=true",
+                       "drive.voltage=3kV", "provenance.beam.segments=assumed: converged"});
+  EXPECT_EQ(scene.ac.points, 17);
+  EXPECT_EQ(scene.drive.deas, (std::vector<std::string>{"B", "A"}));
+  EXPECT_TRUE(scene.deas[0].back_coupling);
+  EXPECT_DOUBLE_EQ(scene.drive.voltage, 3000.0);
+  EXPECT_EQ(scene.provenance.at("beam.segments"), "assumed: converged");
+}
+
+TEST(SceneReaderOverride, ArrayEntriesByNameOrIndex) {
+  const Scene scene = read_scene_text(
+      kFullScene, kFileName,
+      {"dea.A.lever_arm=2mm", "dea[B].lever_arm=3 mm", "load.0.value=0.5", "probe[1].dea=B"});
+  EXPECT_DOUBLE_EQ(scene.deas[0].lever_arm, 2e-3);
+  EXPECT_DOUBLE_EQ(scene.deas[1].lever_arm, 3e-3);
+  EXPECT_DOUBLE_EQ(scene.loads[0].value, 0.5);
+  EXPECT_EQ(scene.probes[1].dea, "B");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Errors: one test per case.
+
+TEST(SceneReaderError, UnknownKeySuggestsTheClosest) {
+  const std::string text = replaced(kMinimalScene, "length =", "lenght =");
+  expect_error(read_error(text), at_line(text, "lenght"), "beam.lenght",
+               "unknown key (did you mean 'beam.length'?)");
+}
+
+TEST(SceneReaderError, UnknownTable) {
+  const std::string text = kMinimalScene + "\n[beem]\nx = 1\n";
+  expect_error(read_error(text), at_line(text, "[beem]"), "beem",
+               "unknown table (did you mean 'beam'?)");
+}
+
+TEST(SceneReaderError, MissingRequiredKey) {
+  const std::string text = replaced(kMinimalScene, "mass_per_length = \"73 g/m\"\n", "");
+  const auto error = read_error(text);
+  expect_error(error, kFileName, "beam.mass_per_length", "missing (required)");
+  EXPECT_STREQ(error->what(), "x.toml: key 'beam.mass_per_length': missing (required)");
+}
+
+TEST(SceneReaderError, MissingRequiredTable) {
+  const std::string text = replaced(kMinimalScene, "[scene]\nname = \"fishfin\"\n", "");
+  expect_error(read_error(text), kFileName, "scene", "missing table [scene]");
+}
+
+TEST(SceneReaderError, WrongUnit) {
+  const std::string text = replaced(kMinimalScene, "\"122.5 mm\"", "\"4 kV\"");
+  const auto error = read_error(text);
+  expect_error(error, "x.toml:5", "beam.length", "unit 'kV' is a voltage, expected a length (m)");
+  EXPECT_STREQ(error->what(),
+               "x.toml:5: key 'beam.length': unit 'kV' is a voltage, expected a length (m)");
+}
+
+TEST(SceneReaderError, MissingUnit) {
+  const std::string text = replaced(kMinimalScene, "\"122.5 mm\"", "\"122.5\"");
+  expect_error(read_error(text), at_line(text, "length ="), "beam.length",
+               "missing unit, expected a length (m)");
+}
+
+TEST(SceneReaderError, UnknownUnit) {
+  const std::string text = replaced(kMinimalScene, "\"122.5 mm\"", "\"122.5 mmm\"");
+  expect_error(read_error(text), at_line(text, "length ="), "beam.length", "unknown unit 'mmm'");
+}
+
+TEST(SceneReaderError, ZeroLength) {
+  const std::string text = replaced(kMinimalScene, "\"122.5 mm\"", "0");
+  expect_error(read_error(text), at_line(text, "length ="), "beam.length", "must be > 0, got 0 m");
+}
+
+TEST(SceneReaderError, NegativeLength) {
+  const std::string text = replaced(kMinimalScene, "\"122.5 mm\"", "-0.1");
+  const auto error = read_error(text);
+  expect_error(error, at_line(text, "length ="), "beam.length", "must be > 0, got -0.1 m");
+  EXPECT_STREQ(error->what(), "x.toml:5: key 'beam.length': must be > 0, got -0.1 m");
+}
+
+TEST(SceneReaderError, ZeroSegments) {
+  const std::string text = replaced(kMinimalScene, "segments = 7", "segments = 0");
+  expect_error(read_error(text), at_line(text, "segments"), "beam.segments", "must be >= 1, got 0");
+}
+
+TEST(SceneReaderError, AbsurdlyManySegments) {
+  const std::string text = replaced(kMinimalScene, "segments = 7", "segments = 1000000000");
+  expect_error(read_error(text), at_line(text, "segments"), "beam.segments", "absurdly large");
+}
+
+TEST(SceneReaderError, SegmentsNotAnInteger) {
+  const std::string text = replaced(kMinimalScene, "segments = 7", "segments = 7.5");
+  expect_error(read_error(text), at_line(text, "segments"), "beam.segments",
+               "must be an integer, got a floating-point number (7.5)");
+}
+
+TEST(SceneReaderError, NanNumber) {
+  const std::string text = replaced(kMinimalScene, "\"122.5 mm\"", "nan");
+  expect_error(read_error(text), at_line(text, "length ="), "beam.length", "must be finite");
+}
+
+TEST(SceneReaderError, InfiniteNumber) {
+  const std::string text = replaced(kMinimalScene, "\"122.5 mm\"", "inf");
+  expect_error(read_error(text), at_line(text, "length ="), "beam.length", "must be finite");
+}
+
+TEST(SceneReaderError, NanInUnitString) {
+  const std::string text = replaced(kMinimalScene, "\"122.5 mm\"", "\"nan m\"");
+  expect_error(read_error(text), at_line(text, "length ="), "beam.length", "not a finite number");
+}
+
+TEST(SceneReaderError, WrongValueType) {
+  const std::string text = replaced(kMinimalScene, "\"122.5 mm\"", "true");
+  expect_error(read_error(text), at_line(text, "length ="), "beam.length",
+               "must be a number or a string like '1 m', got a boolean (true)");
+}
+
+TEST(SceneReaderError, UnknownChoiceSuggestsTheClosest) {
+  const std::string text = kMinimalScene + "left = \"clampd\"\n";
+  expect_error(read_error(text), at_line(text, "clampd"), "beam.left",
+               "must be one of 'clamped', 'free', 'pinned', 'sliding', got 'clampd' (did you mean "
+               "'clamped'?)");
+}
+
+TEST(SceneReaderError, DeaEndsPastTheBeam) {
+  const std::string text = replaced(kFullScene, "to = \"70 mm\"", "to = \"200 mm\"");
+  expect_error(read_error(text), at_line(text, "200 mm"), "dea[A].to",
+               "DEA 'A' spans [0 m, 0.2 m], outside the beam [0, 0.1225 m]");
+}
+
+TEST(SceneReaderError, DeaStartsBeforeTheBeam) {
+  const std::string text = replaced(kFullScene, "from = \"0 mm\"", "from = \"-1 mm\"");
+  expect_error(read_error(text), at_line(text, "-1 mm"), "dea[A].from",
+               "outside the beam [0, 0.1225 m]");
+}
+
+TEST(SceneReaderError, DeaFromNotBeforeTo) {
+  const std::string text = replaced(kFullScene, "from = \"0 mm\"", "from = \"70 mm\"");
+  expect_error(read_error(text), at_line(text, "to = \"70 mm\""), "dea[A].to",
+               "DEA 'A' spans [0.07 m, 0.07 m]: 'to' must be greater than 'from'");
+}
+
+TEST(SceneReaderError, DuplicateDeaName) {
+  const std::string text = replaced(kFullScene, "name = \"B\"", "name = \"A\"");
+  expect_error(read_error(text),
+               at_line(text,
+                       "name = \"A\"\nfrom = \"0 mm\"\nto = \"70 mm\"\n"
+                       "face = \"bottom\""),
+               "dea[A].name", "duplicate DEA name 'A'");
+}
+
+TEST(SceneReaderError, DeaNameNotFitForSpice) {
+  const std::string text = replaced(kFullScene, "name = \"B\"", "name = \"B-1\"");
+  expect_error(read_error(text), at_line(text, "B-1"), "dea[1].name",
+               "letters, digits and '_' only");
+}
+
+TEST(SceneReaderError, UnknownDeaInDrive) {
+  const std::string text = replaced(kFullScene, "deas = [\"A\", \"B\"]", "deas = [\"A\", \"C\"]");
+  const auto error = read_error(text);
+  expect_error(error, at_line(text, "deas ="), "drive.deas",
+               "unknown DEA 'C'; the scene defines 'A', 'B'");
+}
+
+TEST(SceneReaderError, WrongNumberOfDriveDeas) {
+  const std::string text = replaced(kFullScene, "deas = [\"A\", \"B\"]", "deas = [\"A\"]");
+  expect_error(read_error(text), at_line(text, "deas ="), "drive.deas",
+               "drive kind 'antagonistic' needs exactly 2 DEA names, got 1");
+}
+
+TEST(SceneReaderError, RiseTimeLongerThanHalfAPeriod) {
+  const std::string text = replaced(kFullScene, "rise_time = \"1 ms\"", "rise_time = \"0.2 s\"");
+  expect_error(read_error(text), at_line(text, "rise_time"), "drive.rise_time",
+               "must be shorter than half a period (0.1 s at 5 Hz), got 0.2 s");
+}
+
+TEST(SceneReaderError, DutyOutOfRange) {
+  const std::string text = replaced(kFullScene, "duty = 0.5", "duty = 1");
+  expect_error(read_error(text), at_line(text, "duty"), "drive.duty",
+               "must be between 0 and 1 (exclusive), got 1");
+}
+
+TEST(SceneReaderError, DampingGivenTwoWays) {
+  const std::string text = replaced(kFullScene, "loss_factor = 0.04",
+                                    "loss_factor = 0.04\nkelvin_voigt_time = \"1 ms\"");
+  expect_error(read_error(text), at_line(text, "kelvin_voigt_time"), "damping.kelvin_voigt_time",
+               "not both");
+}
+
+TEST(SceneReaderError, LossFactorWithoutFrequency) {
+  const std::string text = replaced(kFullScene, "loss_factor_frequency = \"5 Hz\"\n", "");
+  expect_error(read_error(text), at_line(text, "loss_factor ="), "damping.loss_factor",
+               "needs damping.loss_factor_frequency");
+}
+
+TEST(SceneReaderError, LoadOffTheBeam) {
+  const std::string text = replaced(kFullScene, "at = \"122.5 mm\"\nvalue", "at = \"1 m\"\nvalue");
+  expect_error(read_error(text), at_line(text, "at = \"1 m\""), "load[0].at",
+               "must lie on the beam [0, 0.1225 m], got 1 m");
+}
+
+TEST(SceneReaderError, ProbeOnUnknownDea) {
+  const std::string text = replaced(kFullScene, "dea = \"A\"", "dea = \"Z\"");
+  expect_error(read_error(text), at_line(text, "dea = \"Z\""), "probe[VA].dea", "unknown DEA 'Z'");
+}
+
+TEST(SceneReaderError, LogSweepFromZero) {
+  const std::string text = replaced(kFullScene, "from = \"0.1 Hz\"", "from = 0");
+  expect_error(read_error(text), at_line(text, "from = 0\n"), "ac.from",
+               "must be > 0 for a log scale, got 0 Hz");
+}
+
+TEST(SceneReaderError, ProvenanceOfUnknownKind) {
+  const std::string text = replaced(kFullScene, "paper: Table 1", "guess");
+  expect_error(read_error(text), at_line(text, "guess"), "provenance.beam.length",
+               "must start with one of 'paper:', 'data sheet:', 'assumed:', 'identified:'");
+}
+
+TEST(SceneReaderError, ArrayOfTablesWrittenAsTable) {
+  const std::string text = kMinimalScene + "\n[dea]\nname = \"A\"\n";
+  expect_error(read_error(text), at_line(text, "[dea]"), "dea",
+               "must be an array of tables, written [[dea]]");
+}
+
+TEST(SceneReaderError, FileThatIsNotThere) {
+  const std::string path = temporary_path("does_not_exist.toml");
+  std::filesystem::remove(path);
+  try {
+    read_scene(path);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.where(), path);
+    EXPECT_EQ(std::string(error.what()), path + ": cannot open file");
+  }
+}
+
+TEST(SceneReaderError, FileThatIsNotToml) {
+  const std::string path = temporary_path("broken.toml");
+  write_file(path, "[scene]\nname = \"x\"\nlength = = 3\n");
+  try {
+    read_scene(path);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.where(), path + ":3");
+    const std::string message = error.what();
+    EXPECT_EQ(message.rfind(path + ":3: not a valid TOML file: ", 0), 0u) << message;
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(SceneReaderError, OverrideOfUnknownKey) {
+  const auto error = read_error(kMinimalScene, {"beam.lenght=0.2"});
+  expect_error(error, "--set", "beam.lenght", "unknown key (did you mean 'beam.length'?)");
+}
+
+TEST(SceneReaderError, OverrideWithBadValue) {
+  const auto error = read_error(kMinimalScene, {"beam.length=abc"});
+  expect_error(error, "--set", "beam.length", "not a number: 'abc'");
+}
+
+TEST(SceneReaderError, OverrideWithWrongUnit) {
+  const auto error = read_error(kMinimalScene, {"beam.length=4kV"});
+  expect_error(error, "--set", "beam.length", "unit 'kV' is a voltage, expected a length (m)");
+}
+
+TEST(SceneReaderError, OverrideWithoutEqualsSign) {
+  const auto error = read_error(kMinimalScene, {"beam.length"});
+  expect_error(error, "--set", "beam.length", "expected key=value");
+}
+
+TEST(SceneReaderError, OverrideOfMissingArrayEntry) {
+  const auto error = read_error(kFullScene, {"dea.C.lever_arm=2mm"});
+  expect_error(error, "--set", "dea.C.lever_arm", "no [[dea]] entry 'C'");
+}
+
+}  // namespace
+}  // namespace emnet

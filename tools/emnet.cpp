@@ -1,0 +1,681 @@
+// emnet command-line program: static, ac, modes and identify over one scene.
+//
+// Exit status: 0 success; 2 bad input (scene file, override, option), with one message naming
+// the file, line and key; 3 numerical failure, with the reason; 1 anything else.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "emnet/analysis.hpp"
+#include "emnet/errors.hpp"
+#include "emnet/model.hpp"
+#include "emnet/plot.hpp"
+#include "emnet/scene_reader.hpp"
+
+namespace {
+
+using emnet::InputError;
+using Json = nlohmann::ordered_json;
+constexpr double pi = 3.14159265358979323846;
+
+// Raised for numerical failure: exit status 3.
+struct NumericalFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct CommonOptions {
+  std::string scene_path;
+  int segments = 0;
+  std::vector<std::string> overrides;
+  std::vector<std::string> probes;
+  bool json = false;
+  std::string csv;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string format(const char* pattern, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, pattern, value);
+  return buffer;
+}
+
+std::string si(double value, const std::string& unit) {
+  return format("%.6g", value) + (unit.empty() ? "" : " " + unit);
+}
+
+std::string milliseconds(double seconds) {
+  return seconds < 1.0 ? format("%.3g ms", seconds * 1e3) : format("%.3g s", seconds);
+}
+
+// Every printed result must be finite: a NaN is a numerical failure, never an output.
+double finite(double value, const std::string& what) {
+  if (!std::isfinite(value)) throw NumericalFailure("non-finite result for " + what);
+  return value;
+}
+
+emnet::Scene load_scene(const CommonOptions& options) {
+  std::vector<std::string> overrides = options.overrides;
+  if (options.segments != 0)
+    overrides.push_back("beam.segments=" + std::to_string(options.segments));
+  return emnet::read_scene(options.scene_path, overrides);
+}
+
+std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const CommonOptions& options) {
+  if (options.probes.empty()) return model.probes;
+  std::vector<emnet::Probe> probes;
+  for (const auto& text : options.probes) probes.push_back(model.parse_probe(text));
+  return probes;
+}
+
+std::string drive_summary(const emnet::Scene& scene) {
+  const auto& drive = scene.drive;
+  std::ostringstream out;
+  out << "drive " << emnet::drive_kind_name(drive.kind);
+  switch (drive.kind) {
+    case emnet::DriveKind::antagonistic:
+      out << " 0/" << si(drive.voltage, "V") << " square wave at " << si(drive.frequency, "Hz");
+      break;
+    case emnet::DriveKind::bias_differential:
+      out << " V0 = " << si(drive.bias, "V") << ", v = " << si(drive.amplitude, "V");
+      break;
+    case emnet::DriveKind::single:
+      out << " V0 = " << si(drive.bias, "V") << ", v = " << si(drive.amplitude, "V");
+      break;
+    case emnet::DriveKind::none:
+      break;
+  }
+  return out.str();
+}
+
+// What the AC input is, in words: printed with every AC result.
+std::string ac_input_description(const emnet::Scene& scene) {
+  std::ostringstream out;
+  const auto& drive = scene.drive;
+  switch (drive.kind) {
+    case emnet::DriveKind::antagonistic:
+      out << "AC input: the alternating part of the antagonistic square-wave drive: each DEA's "
+             "force k_F*V^2/2 (V = "
+          << si(drive.voltage, "V") << ") as a sinusoid, DEA " << drive.deas[0] << " and DEA "
+          << drive.deas[1]
+          << " in antiphase (the square wave's +/- level; its fundamental is 4/pi times this). "
+             "Electrical dynamics of the DEAs do not enter this input.";
+      break;
+    case emnet::DriveKind::bias_differential:
+      out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << drive.deas[0]
+          << " and -v on DEA " << drive.deas[1] << " about the bias V0 = " << si(drive.bias, "V")
+          << "; the network linearised at V0 (the moment is exactly linear in v).";
+      break;
+    case emnet::DriveKind::single:
+      out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << drive.deas[0]
+          << ", linearised about the bias V0 = " << si(drive.bias, "V") << ".";
+      break;
+    case emnet::DriveKind::none:
+      out << "AC input: the scene's loads, each with its value as amplitude.";
+      break;
+  }
+  if (drive.kind != emnet::DriveKind::none && !scene.loads.empty())
+    out << " Plus the scene's loads, each with its value as amplitude.";
+  return out.str();
+}
+
+void print_header(const emnet::Model& model, const emnet::System& system) {
+  const auto& scene = model.scene;
+  std::cout << "scene " << scene.name << " (" << scene.file << "): " << scene.beam.segments
+            << " segments, L = " << si(scene.beam.length, "m")
+            << ", EI = " << si(scene.beam.bending_stiffness, "N*m^2")
+            << ", rhoA = " << si(scene.beam.mass_per_length, "kg/m") << ", " << scene.deas.size()
+            << " DEA(s), " << drive_summary(scene) << "\n"
+            << "network: " << model.network.nodes().size() << " nodes, "
+            << model.network.elements().size() << " elements, " << system.size() << " unknowns\n";
+  for (const auto& note : model.notes) std::cout << "note: " << note << "\n";
+}
+
+void write_csv(const std::string& path, const std::vector<std::string>& header,
+               const std::vector<std::vector<double>>& rows) {
+  std::ofstream out(path);
+  if (!out) throw InputError("--csv", path, "cannot write file");
+  for (size_t k = 0; k < header.size(); ++k) out << (k ? "," : "") << header[k];
+  out << "\n";
+  out.precision(12);
+  for (const auto& row : rows) {
+    for (size_t k = 0; k < row.size(); ++k) out << (k ? "," : "") << row[k];
+    out << "\n";
+  }
+}
+
+struct Prepared {
+  emnet::Model model;
+  emnet::System system;
+  emnet::StaticResult rest;
+};
+
+Prepared prepare(const CommonOptions& options) {
+  Prepared p{emnet::build_model(load_scene(options)), {}, {}};
+  p.system = p.model.network.assemble();
+  p.rest = emnet::solve_static(p.system);
+  if (!p.rest.status.ok) throw NumericalFailure("static operating point: " + p.rest.status.message);
+  return p;
+}
+
+// ---- static ---------------------------------------------------------------------------
+
+int run_static(const CommonOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  Prepared p = prepare(options);
+  const auto probes = selected_probes(p.model, options);
+  const auto& beam = p.model.beam;
+  std::vector<std::vector<double>> rows;
+  for (size_t k = 0; k < beam.x.size(); ++k) {
+    emnet::ProbeSpec w{"w", emnet::ProbeQuantity::deflection, beam.x[k], ""};
+    emnet::ProbeSpec phi{"phi", emnet::ProbeQuantity::rotation, beam.x[k], ""};
+    rows.push_back(
+        {beam.x[k],
+         finite(emnet::static_probe_value(p.system, p.rest, p.model.make_probe(w)), "deflection"),
+         finite(emnet::static_probe_value(p.system, p.rest, p.model.make_probe(phi)), "rotation")});
+  }
+  std::vector<double> probe_values;
+  for (const auto& probe : probes)
+    probe_values.push_back(
+        finite(emnet::static_probe_value(p.system, p.rest, probe), "probe " + probe.name));
+  const double total = seconds_since(start);
+  if (!options.csv.empty()) write_csv(options.csv, {"x_m", "deflection_m", "rotation_rad"}, rows);
+  if (options.json) {
+    Json out;
+    out["scene"] = p.model.scene.name;
+    out["segments"] = p.model.scene.beam.segments;
+    out["nodes"] = Json::array();
+    for (const auto& row : rows)
+      out["nodes"].push_back({{"x_m", row[0]}, {"deflection_m", row[1]}, {"rotation_rad", row[2]}});
+    out["probes"] = Json::array();
+    for (size_t k = 0; k < probes.size(); ++k)
+      out["probes"].push_back({{"name", probes[k].name},
+                               {"description", probes[k].description},
+                               {"unit", probes[k].unit},
+                               {"value", probe_values[k]}});
+    out["accuracy"] = {{"relative_residual", p.rest.relative_residual},
+                       {"newton_iterations", p.rest.newton_iterations},
+                       {"discretisation", "exact at the nodes for any N (Hermite statics)"}};
+    out["cost"] = {{"solve_seconds", p.rest.seconds}, {"total_seconds", total}};
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  print_header(p.model, p.system);
+  std::cout << "static state at rest (" << drive_summary(p.model.scene) << ", first half-period)\n"
+            << "accuracy: Newton " << p.rest.newton_iterations
+            << " iteration(s), relative residual " << format("%.2g", p.rest.relative_residual)
+            << "; nodal values exact for any N (Hermite statics), cubic Hermite between nodes\n"
+            << "cost: solve " << milliseconds(p.rest.seconds) << ", total " << milliseconds(total)
+            << "\n\n";
+  std::printf("%8s %12s %16s %16s\n", "node", "x [mm]", "deflection [m]", "rotation [rad]");
+  for (size_t k = 0; k < rows.size(); ++k)
+    std::printf("%8zu %12.4f %16.6e %16.6e\n", k, rows[k][0] * 1e3, rows[k][1], rows[k][2]);
+  if (!probes.empty()) std::cout << "\nprobes:\n";
+  for (size_t k = 0; k < probes.size(); ++k)
+    std::printf("  %-10s %-40s %14.6e %s\n", probes[k].name.c_str(), probes[k].description.c_str(),
+                probe_values[k], probes[k].unit.c_str());
+  return 0;
+}
+
+// ---- modes ----------------------------------------------------------------------------
+
+struct ModesOptions {
+  int count = 0;
+  bool shapes = false;
+  bool error_estimate = true;
+};
+
+// Richardson estimate of the discretisation error of each mode from N and 2N segments
+// (lumped-mass convergence is O(N⁻²): f∞ ≈ f2N + (f2N − fN)/3).
+std::vector<double> discretisation_errors(const CommonOptions& options, const emnet::Scene& scene,
+                                          const std::vector<emnet::Mode>& modes, int count,
+                                          double& seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  CommonOptions doubled = options;
+  doubled.segments = 2 * scene.beam.segments;
+  Prepared fine = prepare(doubled);
+  emnet::ModalOptions modal_options;
+  modal_options.count = count;
+  modal_options.keep_vectors = false;
+  const auto fine_modes = emnet::run_modes(fine.system, fine.rest.operating_point, modal_options);
+  std::vector<double> errors;
+  if (fine_modes.status.ok)
+    for (size_t k = 0; k < modes.size() && k < fine_modes.modes.size(); ++k) {
+      const double coarse = modes[k].frequency_hz, refined = fine_modes.modes[k].frequency_hz;
+      const double extrapolated = refined + (refined - coarse) / 3.0;
+      errors.push_back(std::abs(coarse - extrapolated) / extrapolated);
+    }
+  seconds = seconds_since(start);
+  return errors;
+}
+
+// Deflection mode shape at the beam nodes, scaled to a largest value of 1.
+std::vector<std::complex<double>> mode_shape(const emnet::Model& model, const emnet::Mode& mode) {
+  std::vector<std::complex<double>> shape;
+  for (double x : model.beam.x) {
+    std::complex<double> value = 0.0;
+    for (const auto& [index, c] : model.beam.deflection_terms(x)) value += c * mode.vector[index];
+    shape.push_back(value / mode.pole);  // w = v/s
+  }
+  std::complex<double> largest = 0.0;
+  for (auto v : shape)
+    if (std::abs(v) > std::abs(largest)) largest = v;
+  if (std::abs(largest) > 0.0)
+    for (auto& v : shape) v /= largest;
+  return shape;
+}
+
+int run_modes_command(const CommonOptions& options, const ModesOptions& modes_options) {
+  const auto start = std::chrono::steady_clock::now();
+  Prepared p = prepare(options);
+  emnet::ModalOptions modal_options;
+  modal_options.count = modes_options.count;
+  modal_options.keep_vectors = true;
+  const emnet::ModalResult result =
+      emnet::run_modes(p.system, p.rest.operating_point, modal_options);
+  if (!result.status.ok) throw NumericalFailure("modes: " + result.status.message);
+  std::vector<emnet::Mode> modes = result.modes;
+  if (modes_options.count > 0 && static_cast<int>(modes.size()) > modes_options.count)
+    modes.resize(static_cast<size_t>(modes_options.count));
+  for (const auto& mode : modes) {
+    finite(mode.frequency_hz, "a modal frequency");
+    finite(mode.damping_ratio, "a damping ratio");
+  }
+  double estimate_seconds = 0.0;
+  std::vector<double> errors;
+  const bool estimate = modes_options.error_estimate && p.model.scene.beam.segments <= 1000;
+  if (estimate)
+    errors = discretisation_errors(options, p.model.scene, modes,
+                                   std::max<int>(static_cast<int>(modes.size()) + 2, 6),
+                                   estimate_seconds);
+  const double total = seconds_since(start);
+
+  if (!options.csv.empty()) {
+    std::vector<std::vector<double>> rows;
+    for (size_t k = 0; k < modes.size(); ++k)
+      rows.push_back({static_cast<double>(k + 1), modes[k].frequency_hz, modes[k].damping_ratio,
+                      modes[k].natural_frequency_hz, modes[k].pole.real(), modes[k].pole.imag()});
+    write_csv(
+        options.csv,
+        {"mode", "frequency_hz", "damping_ratio", "natural_frequency_hz", "pole_real", "pole_imag"},
+        rows);
+  }
+  if (options.json) {
+    Json out;
+    out["scene"] = p.model.scene.name;
+    out["segments"] = p.model.scene.beam.segments;
+    out["modes"] = Json::array();
+    for (size_t k = 0; k < modes.size(); ++k) {
+      Json mode = {{"frequency_hz", modes[k].frequency_hz},
+                   {"damping_ratio", modes[k].damping_ratio},
+                   {"natural_frequency_hz", modes[k].natural_frequency_hz},
+                   {"pole", {modes[k].pole.real(), modes[k].pole.imag()}},
+                   {"relative_residual", modes[k].relative_residual}};
+      if (k < errors.size()) mode["discretisation_error_estimate"] = errors[k];
+      if (modes_options.shapes) {
+        const auto shape = mode_shape(p.model, modes[k]);
+        Json nodes = Json::array();
+        for (size_t i = 0; i < shape.size(); ++i)
+          nodes.push_back({{"x_m", p.model.beam.x[i]},
+                           {"deflection", shape[i].real()},
+                           {"deflection_imag", shape[i].imag()}});
+        mode["shape"] = nodes;
+      }
+      out["modes"].push_back(mode);
+    }
+    out["real_poles"] = Json::array();
+    for (const auto& pole : result.real_poles)
+      out["real_poles"].push_back(
+          {{"pole", pole.pole.real()}, {"time_constant_s", -1.0 / pole.pole.real()}});
+    out["method"] = result.method;
+    out["complete"] = result.complete;
+    out["cost"] = {{"modal_seconds", result.seconds},
+                   {"error_estimate_seconds", estimate_seconds},
+                   {"total_seconds", total}};
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  print_header(p.model, p.system);
+  std::cout << "modes: " << result.method
+            << (result.complete ? " (every finite pole of the pencil)"
+                                : " shift-invert Arnoldi (the poles nearest 0)")
+            << ", " << modes.size() << " oscillatory shown, " << result.real_poles.size()
+            << " real pole(s)\n"
+            << "accuracy: residual per mode below; discretisation error vs the continuum beam "
+            << (estimate ? "estimated from N and 2N segments (Richardson, O(N^-2))"
+                         : "not estimated (N > 1000)")
+            << "\ncost: modes " << milliseconds(result.seconds) << ", error estimate "
+            << milliseconds(estimate_seconds) << ", total " << milliseconds(total) << "\n\n";
+  std::printf("%5s %14s %14s %16s %12s %14s\n", "mode", "freq [Hz]", "damping ratio",
+              "natural f [Hz]", "residual", "discr. error");
+  for (size_t k = 0; k < modes.size(); ++k) {
+    const std::string err = k < errors.size() ? format("%.2g", errors[k]) : "-";
+    std::printf("%5zu %14.6f %14.6g %16.6f %12.2g %14s\n", k + 1, modes[k].frequency_hz,
+                modes[k].damping_ratio, modes[k].natural_frequency_hz, modes[k].relative_residual,
+                err.c_str());
+  }
+  if (!result.real_poles.empty()) {
+    std::cout << "\nreal poles (non-oscillatory):\n";
+    for (const auto& pole : result.real_poles)
+      std::printf("  s = %.6g 1/s (time constant %.6g s)\n", pole.pole.real(),
+                  -1.0 / pole.pole.real());
+  }
+  if (modes_options.shapes)
+    for (size_t k = 0; k < modes.size(); ++k) {
+      std::cout << "\nmode " << k + 1 << " shape (deflection, largest = 1):\n";
+      const auto shape = mode_shape(p.model, modes[k]);
+      for (size_t i = 0; i < shape.size(); ++i)
+        std::printf("  x = %10.4f mm  %+.6f\n", p.model.beam.x[i] * 1e3, shape[i].real());
+    }
+  return 0;
+}
+
+// ---- ac -------------------------------------------------------------------------------
+
+struct AcOptions {
+  std::optional<double> from, to;
+  std::optional<int> points;
+  std::string scale;
+  std::string plot;
+};
+
+double parse_frequency(const std::string& text, const std::string& option) {
+  try {
+    size_t used = 0;
+    const double value = std::stod(text, &used);
+    std::string rest = text.substr(used);
+    rest.erase(0, rest.find_first_not_of(' '));
+    double factor = 1.0;
+    if (rest == "kHz")
+      factor = 1e3;
+    else if (rest == "mHz")
+      factor = 1e-3;
+    else if (!rest.empty() && rest != "Hz")
+      throw std::invalid_argument("unit");
+    if (!std::isfinite(value)) throw std::invalid_argument("finite");
+    return value * factor;
+  } catch (const std::exception&) {
+    throw InputError(option, option, "expected a frequency in Hz, got '" + text + "'");
+  }
+}
+
+int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
+                   const std::string& from_text, const std::string& to_text) {
+  const auto start = std::chrono::steady_clock::now();
+  Prepared p = prepare(options);
+  emnet::AcSpec spec = p.model.scene.ac;
+  if (!from_text.empty()) spec.from = parse_frequency(from_text, "--from");
+  if (!to_text.empty()) spec.to = parse_frequency(to_text, "--to");
+  if (ac_options.points) spec.points = *ac_options.points;
+  if (!ac_options.scale.empty()) spec.log = ac_options.scale == "log";
+  if (spec.from < 0.0) throw InputError("--from", "--from", "must be >= 0 Hz");
+  if (!(spec.to > spec.from)) throw InputError("--to", "--to", "must be greater than --from");
+  if (spec.log && spec.from <= 0.0)
+    throw InputError("--from", "--from", "a log sweep needs --from > 0");
+  if (spec.points < 2 || spec.points > 1000000)
+    throw InputError("--points", "--points", "must be between 2 and 1000000");
+  const auto probes = selected_probes(p.model, options);
+  const auto grid = emnet::frequency_grid(spec.from, spec.to, spec.points, spec.log);
+  const emnet::AcResult result = emnet::run_ac(p.system, p.rest.operating_point, grid, probes);
+  if (!result.status.ok) throw NumericalFailure("ac: " + result.status.message);
+  for (const auto& series : result.values)
+    for (const auto& v : series) finite(std::abs(v), "an AC response");
+
+  // Resonances in the band, to mark them and to report them.
+  emnet::ModalOptions modal_options;
+  modal_options.keep_vectors = false;
+  if (p.system.size() > modal_options.dense_limit) modal_options.count = 10;
+  const auto modes = emnet::run_modes(p.system, p.rest.operating_point, modal_options);
+  std::vector<emnet::PlotMarker> markers;
+  if (modes.status.ok)
+    for (const auto& mode : modes.modes)
+      if (mode.frequency_hz >= spec.from && mode.frequency_hz <= spec.to)
+        markers.push_back({mode.frequency_hz, "f = " + format("%.4f", mode.frequency_hz) + " Hz"});
+  const double total = seconds_since(start);
+  const std::string input = ac_input_description(p.model.scene);
+
+  if (!options.csv.empty()) {
+    std::vector<std::string> header{"frequency_hz"};
+    for (const auto& probe : probes) {
+      header.push_back(probe.name + "_magnitude_" + probe.unit);
+      header.push_back(probe.name + "_phase_deg");
+    }
+    std::vector<std::vector<double>> rows;
+    for (size_t f = 0; f < grid.size(); ++f) {
+      std::vector<double> row{grid[f]};
+      for (size_t k = 0; k < probes.size(); ++k) {
+        row.push_back(std::abs(result.values[k][f]));
+        row.push_back(std::arg(result.values[k][f]) * 180.0 / pi);
+      }
+      rows.push_back(row);
+    }
+    write_csv(options.csv, header, rows);
+  }
+  if (!ac_options.plot.empty()) {
+    std::vector<emnet::BodeSeries> series;
+    for (size_t k = 0; k < probes.size(); ++k)
+      series.push_back(
+          {probes[k].name + ": " + probes[k].description, probes[k].unit, result.values[k]});
+    const auto status =
+        emnet::write_bode_plot(ac_options.plot, p.model.scene.name + ": small-signal response",
+                               grid, series, markers, spec.log);
+    if (!status.ok) throw NumericalFailure("plot: " + status.message);
+  }
+  if (options.json) {
+    Json out;
+    out["scene"] = p.model.scene.name;
+    out["segments"] = p.model.scene.beam.segments;
+    out["input"] = input;
+    out["frequencies_hz"] = grid;
+    out["probes"] = Json::array();
+    for (size_t k = 0; k < probes.size(); ++k) {
+      std::vector<double> magnitude, phase;
+      for (const auto& v : result.values[k]) {
+        magnitude.push_back(std::abs(v));
+        phase.push_back(std::arg(v) * 180.0 / pi);
+      }
+      out["probes"].push_back({{"name", probes[k].name},
+                               {"description", probes[k].description},
+                               {"unit", probes[k].unit},
+                               {"magnitude", magnitude},
+                               {"phase_deg", phase}});
+    }
+    out["resonances_hz"] = Json::array();
+    for (const auto& m : markers) out["resonances_hz"].push_back(m.frequency_hz);
+    out["accuracy"] = {{"max_relative_residual", result.max_relative_residual}};
+    out["cost"] = {{"ac_seconds", result.seconds}, {"total_seconds", total}};
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  print_header(p.model, p.system);
+  std::cout << input << "\n"
+            << "sweep: " << grid.size() << " points, " << si(spec.from, "Hz") << " to "
+            << si(spec.to, "Hz") << (spec.log ? " (log)" : " (lin)") << "\n"
+            << "accuracy: worst relative residual of the complex solves "
+            << format("%.2g", result.max_relative_residual) << "\n"
+            << "cost: sweep " << milliseconds(result.seconds) << ", total " << milliseconds(total)
+            << "\n";
+  for (const auto& m : markers) std::cout << "resonance in band: " << m.label << "\n";
+  std::cout << "\n";
+  std::printf("%14s", "f [Hz]");
+  for (const auto& probe : probes)
+    std::printf(" %16s %11s", ("|" + probe.name + "| [" + probe.unit + "]").c_str(),
+                (probe.name + " [deg]").c_str());
+  std::printf("\n");
+  for (size_t f = 0; f < grid.size(); ++f) {
+    std::printf("%14.6g", grid[f]);
+    for (size_t k = 0; k < probes.size(); ++k)
+      std::printf(" %16.6e %11.3f", std::abs(result.values[k][f]),
+                  std::arg(result.values[k][f]) * 180.0 / pi);
+    std::printf("\n");
+  }
+  for (size_t k = 0; k < probes.size(); ++k) {
+    size_t best = 0;
+    for (size_t f = 0; f < grid.size(); ++f)
+      if (std::abs(result.values[k][f]) > std::abs(result.values[k][best])) best = f;
+    std::printf("peak of %s: %.6e %s at %.6g Hz (grid spacing limits this to +/- half a step)\n",
+                probes[k].name.c_str(), std::abs(result.values[k][best]), probes[k].unit.c_str(),
+                grid[best]);
+  }
+  if (!ac_options.plot.empty()) std::cout << "Bode plot written to " << ac_options.plot << "\n";
+  return 0;
+}
+
+// ---- identify -------------------------------------------------------------------------
+
+int run_identify(const CommonOptions& options, double target_hz, int mode_number) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!(target_hz > 0.0) || !std::isfinite(target_hz))
+    throw InputError("--resonance", "--resonance", "must be a positive frequency in Hz");
+  if (mode_number < 1) throw InputError("--mode", "--mode", "must be >= 1");
+  CommonOptions trial = options;
+  double stiffness = load_scene(options).beam.bending_stiffness;
+  double frequency = 0.0;
+  int iterations = 0;
+  // Undamped frequencies scale as √EI exactly; damping and the electrical poles make the
+  // update a fixed-point iteration, which converges in a few steps.
+  for (iterations = 1; iterations <= 30; ++iterations) {
+    trial.overrides = options.overrides;
+    char value[64];
+    std::snprintf(value, sizeof value, "%.17g", stiffness);
+    trial.overrides.push_back(std::string("beam.bending_stiffness=") + value);
+    Prepared p = prepare(trial);
+    emnet::ModalOptions modal_options;
+    modal_options.keep_vectors = false;
+    if (p.system.size() > modal_options.dense_limit) modal_options.count = mode_number + 5;
+    const auto modes = emnet::run_modes(p.system, p.rest.operating_point, modal_options);
+    if (!modes.status.ok || static_cast<int>(modes.modes.size()) < mode_number)
+      throw NumericalFailure("identify: mode " + std::to_string(mode_number) + " not found");
+    frequency = modes.modes[static_cast<size_t>(mode_number - 1)].frequency_hz;
+    if (std::abs(frequency - target_hz) <= 1e-10 * target_hz) break;
+    stiffness *= (target_hz / frequency) * (target_hz / frequency);
+  }
+  const double total = seconds_since(start);
+  if (options.json) {
+    Json out = {{"parameter", "beam.bending_stiffness"},
+                {"value", stiffness},
+                {"unit", "N*m^2"},
+                {"mode", mode_number},
+                {"target_hz", target_hz},
+                {"achieved_hz", frequency},
+                {"iterations", iterations},
+                {"total_seconds", total}};
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::printf(
+      "identified beam.bending_stiffness = %.6e N*m^2: mode %d at %.9f Hz (target %.6g Hz), "
+      "%d iteration(s), %s\n",
+      stiffness, mode_number, frequency, target_hz, iterations, milliseconds(total).c_str());
+  std::printf("scene line:\n  bending_stiffness = \"%.6e N*m^2\"\n", stiffness);
+  return 0;
+}
+
+void add_common(CLI::App* command, CommonOptions& options) {
+  command->add_option("scene", options.scene_path, "scene file (TOML), e.g. netlists/fishfin.toml")
+      ->required();
+  command->add_option("--segments", options.segments,
+                      "number of beam segments (same as --set beam.segments=N)");
+  command
+      ->add_option("--set", options.overrides,
+                   "override a scene key: --set beam.length=0.2 or --set \"drive.voltage=3 kV\"")
+      ->allow_extra_args(false);
+  command
+      ->add_option("--probe", options.probes,
+                   "output: a probe name of the scene, QUANTITY@POSITION "
+                   "(deflection, velocity, rotation, angular_velocity; e.g. deflection@70mm) or "
+                   "dea_voltage:NAME / dea_current:NAME")
+      ->allow_extra_args(false);
+  command->add_flag("--json", options.json, "print machine-readable JSON instead of tables");
+  command->add_option("--csv", options.csv, "also write the result table to this CSV file");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "emnet: lumped electromechanical network simulator.\n"
+      "Euler-Bernoulli beams cut into N segments, driven by dielectric elastomer actuators, as\n"
+      "Firestone (mobility) networks: force = current, velocity = voltage."};
+  app.require_subcommand(1);
+  CommonOptions options;
+
+  auto* static_command = app.add_subcommand(
+      "static", "deflection and rotation at every node at rest, and at the probes");
+  add_common(static_command, options);
+
+  ModesOptions modes_options;
+  auto* modes_command = app.add_subcommand(
+      "modes", "poles of the network: frequency, damping ratio, mode shape along the beam");
+  add_common(modes_command, options);
+  modes_command->add_option("--count", modes_options.count,
+                            "number of modes to show (default: every pole for small networks, "
+                            "the 20 lowest for large ones)");
+  modes_command->add_flag("--shapes", modes_options.shapes, "print the mode shapes");
+  modes_command->add_flag("!--no-error-estimate", modes_options.error_estimate,
+                          "skip the N/2N discretisation error estimate");
+
+  AcOptions ac_options;
+  std::string from_text, to_text;
+  int points = -1;
+  auto* ac_command = app.add_subcommand(
+      "ac",
+      "small-signal frequency response of the probes: magnitude and phase.\n"
+      "The AC input depends on the scene's drive: antagonistic = the alternating part of the\n"
+      "DEA forces (k_F*V^2/2 per DEA, in antiphase; x 4/pi for the square wave's fundamental);\n"
+      "bias_differential = +v / -v about V0 on the two DEAs (linearised at V0);\n"
+      "single = v about V0 on one DEA; none = the scene's loads with their values as amplitudes.");
+  add_common(ac_command, options);
+  ac_command->add_option("--from", from_text, "start frequency [Hz] (default: scene ac.from)");
+  ac_command->add_option("--to", to_text, "stop frequency [Hz] (default: scene ac.to)");
+  ac_command->add_option("--points", points, "number of frequencies (default: scene ac.points)");
+  ac_command->add_option("--scale", ac_options.scale, "lin or log")
+      ->check(CLI::IsMember({"lin", "log"}));
+  ac_command->add_option("--plot", ac_options.plot,
+                         "write a Bode plot (PNG or SVG, by extension), resonances marked");
+
+  double target_hz = 0.0;
+  int mode_number = 1;
+  auto* identify_command = app.add_subcommand(
+      "identify", "fit beam.bending_stiffness so that a mode sits at a target frequency");
+  add_common(identify_command, options);
+  identify_command->add_option("--resonance", target_hz, "target frequency [Hz]")->required();
+  identify_command->add_option("--mode", mode_number, "which oscillatory mode (default 1)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "emnet: error: " << e.what() << " (see emnet --help)\n";
+    return 2;
+  }
+
+  try {
+    if (points != -1) ac_options.points = points;
+    if (*static_command) return run_static(options);
+    if (*modes_command) return run_modes_command(options, modes_options);
+    if (*ac_command) return run_ac_command(options, ac_options, from_text, to_text);
+    if (*identify_command) return run_identify(options, target_hz, mode_number);
+  } catch (const InputError& e) {
+    std::cerr << "emnet: error: " << e.what() << "\n";
+    return 2;
+  } catch (const NumericalFailure& e) {
+    std::cerr << "emnet: numerical failure: " << e.what() << "\n";
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "emnet: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 1;
+}
