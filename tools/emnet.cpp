@@ -158,11 +158,20 @@ struct Prepared {
   emnet::StaticResult rest;
 };
 
-Prepared prepare(const CommonOptions& options) {
+// Builds the model and its operating point. A linear network without a static state (a free
+// body) can still be analysed dynamically: its operating point is then zero, as said in a note;
+// `static` itself requires the static state.
+Prepared prepare(const CommonOptions& options, bool require_static = false) {
   Prepared p{emnet::build_model(load_scene(options)), {}, {}};
   p.system = p.model.network.assemble();
   p.rest = emnet::solve_static(p.system);
-  if (!p.rest.status.ok) throw NumericalFailure("static operating point: " + p.rest.status.message);
+  if (!p.rest.status.ok) {
+    if (require_static || p.system.is_nonlinear())
+      throw NumericalFailure("static operating point: " + p.rest.status.message);
+    p.model.notes.push_back("no static state (" + p.rest.status.message +
+                            "); the linear network is analysed about zero");
+    p.rest.operating_point = Eigen::VectorXd::Zero(p.system.size());
+  }
   return p;
 }
 
@@ -170,7 +179,7 @@ Prepared prepare(const CommonOptions& options) {
 
 int run_static(const CommonOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  Prepared p = prepare(options);
+  Prepared p = prepare(options, true);
   const auto probes = selected_probes(p.model, options);
   const auto& beam = p.model.beam;
   std::vector<std::vector<double>> rows;
@@ -363,10 +372,14 @@ int run_modes_command(const CommonOptions& options, const ModesOptions& modes_op
                 err.c_str());
   }
   if (!result.real_poles.empty()) {
-    std::cout << "\nreal poles (non-oscillatory):\n";
-    for (const auto& pole : result.real_poles)
-      std::printf("  s = %.6g 1/s (time constant %.6g s)\n", pole.pole.real(),
-                  -1.0 / pole.pole.real());
+    // Real poles: the DEAs' RC loops and overdamped (Kelvin–Voigt) relaxations; listed in
+    // full by --json, summarised here.
+    const auto& first = result.real_poles.front();
+    const auto& last = result.real_poles.back();
+    std::printf(
+        "\n%zu real (non-oscillatory) pole(s): time constants %.4g s to %.4g s "
+        "(all in --json)\n",
+        result.real_poles.size(), -1.0 / first.pole.real(), -1.0 / last.pole.real());
   }
   if (modes_options.shapes)
     for (size_t k = 0; k < modes.size(); ++k) {

@@ -93,7 +93,7 @@ std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y,
 // Large systems: implicitly restarted Arnoldi (Spectra) for the `count` poles nearest σ,
 // one sparse LU.
 struct ModalOptions {
-  int count = 0;          // 0: every pole if the system is small, else the 10 nearest σ
+  int count = 0;          // large systems: oscillatory poles wanted (0: the 10 poles nearest σ)
   int dense_limit = 600;  // unknowns up to which the dense method is used
   bool keep_vectors = true;
 };

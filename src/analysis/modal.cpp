@@ -82,7 +82,7 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
 
   std::vector<std::complex<double>> mus;
   std::vector<Eigen::VectorXcd> vectors;
-  const bool dense = (options.count == 0 && n <= options.dense_limit) || (options.count >= n - 2);
+  const bool dense = n <= options.dense_limit || options.count >= n - 2;
   if (dense) {
     result.method = "dense";
     const Eigen::MatrixXd identity_c = Eigen::MatrixXd(system.C);
@@ -107,7 +107,8 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
     result.complete = true;
   } else {
     result.method = "arnoldi";
-    const int wanted = options.count > 0 ? options.count : 10;
+    // Real poles (RC, overdamped) compete with the oscillatory ones: ask for spare.
+    const int wanted = options.count > 0 ? 2 * options.count + 4 : 10;
     const int nev = std::min(wanted, n - 3);
     const int ncv = std::min(n - 1, std::max(2 * nev + 1, nev + 30));
     ShiftInvertOperator op(lu, system.C);

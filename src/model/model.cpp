@@ -210,7 +210,18 @@ Probe Model::parse_probe(const std::string& text) const {
     spec.dea = text.substr(colon + 1);
   } else {
     try {
-      spec.at = parse_quantity(text.substr(at_sign + 1), dim::length);
+      const std::string position = text.substr(at_sign + 1);
+      size_t used = 0;
+      double plain = 0.0;
+      try {
+        plain = std::stod(position, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      // A plain number is SI (metres); anything else must carry a length unit.
+      spec.at = used == position.size() && std::isfinite(plain)
+                    ? plain
+                    : parse_quantity(position, dim::length);
     } catch (const std::exception& e) {
       throw InputError("--probe", text, e.what());
     }

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "fixtures.hpp"
 
@@ -81,6 +82,69 @@ TEST_P(CantileverStatics, PartialMomentPairMatchesClosedForm) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Segments, CantileverStatics, ::testing::Values(1, 2, 7, 50));
+
+}  // namespace
+}  // namespace emnet
+
+namespace emnet {
+namespace {
+
+// Statically indeterminate and other supports, central force F at L/2 (closed forms, x ≤ L/2,
+// symmetric beyond):
+//   clamped–clamped: w = F·x²·(3L − 4x)/(48EI)      pinned–pinned: w = F·x·(3L² − 4x²)/(48EI)
+// Exact at the nodes for every N (Hermite statics, consistent load when L/2 is inside a
+// segment), so 1e-10 relative to the central deflection. N = 7 puts L/2 inside a segment.
+class SupportedBeamStatics : public ::testing::TestWithParam<int> {};
+
+void expect_central_load_matches(EndCondition end, int segments,
+                                 const std::function<double(double)>& exact) {
+  Scene scene = testing::cantilever_scene(segments);
+  scene.beam.left = scene.beam.right = end;
+  const double length = scene.beam.length;
+  scene.loads = {testing::load(LoadKind::force, length / 2, 1.3)};
+  for (int k = 0; k <= segments; ++k)
+    scene.probes.push_back(testing::beam_probe("w" + std::to_string(k), ProbeQuantity::deflection,
+                                               length * k / segments));
+  const Model model = build_model(scene);
+  const System system = model.network.assemble();
+  const StaticResult result = solve_static(system);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  const double scale = std::abs(exact(length / 2));
+  for (int k = 0; k <= segments; ++k) {
+    double x = length * k / segments;
+    const double reference = exact(x <= length / 2 ? x : length - x);
+    EXPECT_NEAR(static_probe_value(system, result, model.probes[static_cast<size_t>(k)]), reference,
+                1e-10 * scale)
+        << "N=" << segments << " x=" << x;
+  }
+}
+
+TEST_P(SupportedBeamStatics, ClampedClampedCentralForce) {
+  const double force = 1.3, length = 0.5, ei = 2.0;
+  expect_central_load_matches(EndCondition::clamped, GetParam(), [&](double x) {
+    return force * x * x * (3 * length - 4 * x) / (48 * ei);
+  });
+}
+
+TEST_P(SupportedBeamStatics, PinnedPinnedCentralForce) {
+  const double force = 1.3, length = 0.5, ei = 2.0;
+  expect_central_load_matches(EndCondition::pinned, GetParam(), [&](double x) {
+    return force * x * (3 * length * length - 4 * x * x) / (48 * ei);
+  });
+}
+
+INSTANTIATE_TEST_SUITE_P(Segments, SupportedBeamStatics, ::testing::Values(2, 7, 50));
+
+// A free–free beam has no static state: the analysis says so instead of returning garbage.
+TEST(BeamStatics, FreeBodyIsReportedNotSolved) {
+  Scene scene = testing::cantilever_scene(5);
+  scene.beam.left = scene.beam.right = EndCondition::free;
+  scene.loads = {testing::load(LoadKind::force, 0.5, 1.0)};
+  const System system = build_model(scene).network.assemble();
+  const StaticResult result = solve_static(system);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("no unique static state"), std::string::npos);
+}
 
 }  // namespace
 }  // namespace emnet
