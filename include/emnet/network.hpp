@@ -134,6 +134,9 @@ class Stamper {
   Stamper(System& system, int branch_offset) : system_(system), branch_offset_(branch_offset) {}
   void g(int row, int column, double value);
   void c(int row, int column, double value);
+  // A two-terminal admittance between nodes a and b: +value on the diagonal, −value off it.
+  void g_between(NodeId a, NodeId b, double value);
+  void c_between(NodeId a, NodeId b, double value);
   // Adds coefficient·waveform(t) to b[row]; returns the waveform's index for reuse.
   int source(int row, double coefficient, const Waveform& waveform);
   void source(int row, double coefficient, int waveform_index);

@@ -4,10 +4,7 @@
 namespace emnet {
 
 void Capacitor::stamp(Stamper& s) const {
-  s.c(a_, a_, capacitance_);
-  s.c(b_, b_, capacitance_);
-  s.c(a_, b_, -capacitance_);
-  s.c(b_, a_, -capacitance_);
+  s.c_between(a_, b_, capacitance_);
 }
 
 }  // namespace emnet

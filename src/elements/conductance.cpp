@@ -4,10 +4,7 @@
 namespace emnet {
 
 void Conductance::stamp(Stamper& s) const {
-  s.g(a_, a_, conductance_);
-  s.g(b_, b_, conductance_);
-  s.g(a_, b_, -conductance_);
-  s.g(b_, a_, -conductance_);
+  s.g_between(a_, b_, conductance_);
 }
 
 }  // namespace emnet

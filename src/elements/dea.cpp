@@ -16,10 +16,7 @@ double dea_capacitance(double relative_permittivity, double dielectric_thickness
 }
 
 void Dea::stamp(Stamper& s) const {
-  s.c(electrode_plus_, electrode_plus_, capacitance_);
-  s.c(electrode_minus_, electrode_minus_, capacitance_);
-  s.c(electrode_plus_, electrode_minus_, -capacitance_);
-  s.c(electrode_minus_, electrode_plus_, -capacitance_);
+  s.c_between(electrode_plus_, electrode_minus_, capacitance_);
   if (ac_force_ != 0.0)
     for (const Coupling& c : coupling_) s.ac(c.node, ac_force_ * c.coefficient);
 }

@@ -134,6 +134,20 @@ void Stamper::c(int row, int column, double value) {
   c_entries.emplace_back(row, column, value);
 }
 
+void Stamper::g_between(NodeId a, NodeId b, double value) {
+  g(a, a, value);
+  g(b, b, value);
+  g(a, b, -value);
+  g(b, a, -value);
+}
+
+void Stamper::c_between(NodeId a, NodeId b, double value) {
+  c(a, a, value);
+  c(b, b, value);
+  c(a, b, -value);
+  c(b, a, -value);
+}
+
 int Stamper::source(int row, double coefficient, const Waveform& waveform) {
   system_.waveforms.push_back(waveform);
   const int index = static_cast<int>(system_.waveforms.size()) - 1;
