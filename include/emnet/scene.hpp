@@ -63,6 +63,10 @@ struct DriveSpec {
   double frequency = 0.0;            // drive.frequency [Hz]: switching / sine frequency
   double rise_time = 0.0;            // drive.rise_time [s]
   double duty = 0.5;                 // drive.duty [-]: fraction of the period A is on
+  // drive.electrical_dynamics: true = each DEA is its capacitor behind its electrode
+  // resistance and its force follows the capacitor voltage (nonlinear); false = an ideal
+  // voltage-driven force k_F·V(t)² from the source (a linear network: exact transient).
+  bool electrical_dynamics = true;
 };
 
 enum class LoadKind { force, moment };

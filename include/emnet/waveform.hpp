@@ -43,6 +43,8 @@ struct Waveform {
   // Instants in (t_begin, t_end] where the value or its slope jumps.
   void breakpoints(double t_begin, double t_end, std::vector<double>& out) const;
 
+  // The same time function multiplied by `factor` (levels, amplitude, AC magnitude).
+  Waveform scaled(double factor) const;
   static Waveform constant(double value);
   static Waveform square(double low, double high, double frequency, double duty, double delay,
                          double rise_time);

@@ -62,7 +62,8 @@ const std::vector<TableSchema>& scene_schema() {
       {"drive",
        false,
        false,
-       {"kind", "deas", "voltage", "bias", "amplitude", "frequency", "rise_time", "duty"}},
+       {"kind", "deas", "voltage", "bias", "amplitude", "frequency", "rise_time", "duty",
+        "electrical_dynamics"}},
       {"load", true, false, {"kind", "at", "value"}},
       {"probe", true, false, {"name", "quantity", "at", "dea"}},
       {"ac", false, false, {"from", "to", "points", "scale"}},
@@ -689,6 +690,7 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
   if (!(drive.duty > 0.0 && drive.duty < 1.0)) {
     reader.fail("duty", "must be between 0 and 1 (exclusive), got " + format_number(drive.duty));
   }
+  drive.electrical_dynamics = reader.optional_boolean("electrical_dynamics").value_or(true);
 }
 
 void SceneReader::read_loads(const toml::table& root, Scene& scene) const {

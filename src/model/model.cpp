@@ -41,6 +41,34 @@ const DeaLayout* find_dea(const std::vector<DeaLayout>& deas, const std::string&
   return nullptr;
 }
 
+// F(t) = k_F·V(t)² for a source waveform V, as waveforms: a pulse stays a pulse (0/V → 0/k_F·V²
+// when its low level is 0); V0 + v·sin(ωt) squares to k_F·(V0² + v²/2) + 2k_F·V0·v·sin(ωt)
+// − k_F·(v²/2)·cos(2ωt). The first waveform carries the AC input: `ac_force` for the
+// antagonistic drive, the linearisation 2k_F·V0·v for sine drives.
+std::vector<Waveform> squared_force(const Waveform& voltage, double force_constant,
+                                    double ac_force) {
+  if (voltage.shape == Waveform::Shape::sine) {
+    Waveform fundamental = voltage;
+    fundamental.dc =
+        force_constant * (voltage.dc * voltage.dc + voltage.amplitude * voltage.amplitude / 2);
+    fundamental.amplitude = 2 * force_constant * voltage.dc * voltage.amplitude;
+    fundamental.ac_magnitude = 2 * force_constant * voltage.dc * voltage.ac_magnitude;
+    Waveform harmonic = voltage;
+    harmonic.dc = 0.0;
+    harmonic.frequency = 2 * voltage.frequency;
+    harmonic.amplitude = -force_constant * voltage.amplitude * voltage.amplitude / 2;
+    harmonic.phase = 2 * voltage.phase + pi / 2;
+    harmonic.ac_magnitude = 0.0;
+    return {fundamental, harmonic};
+  }
+  Waveform force = voltage;  // pulse or constant with a zero low level
+  force.dc = force_constant * voltage.dc * voltage.dc;
+  force.pulse_high = force_constant * voltage.pulse_high * voltage.pulse_high;
+  force.ac_magnitude = ac_force;
+  force.ac_phase = 0.0;
+  return {force};
+}
+
 }  // namespace
 
 Model build_model(const Scene& scene) {
@@ -108,16 +136,6 @@ Model build_model(const Scene& scene) {
     layout.force_constant =
         dea_force_constant(spec.relative_permittivity, spec.dielectric_thickness,
                            spec.force_thickness, spec.electrode_width);
-    layout.source_node = network.add_node("s_" + spec.name, Domain::electrical,
-                                          "DEA " + spec.name + " source terminal [V]");
-    layout.electrode_node = network.add_node("e_" + spec.name, Domain::electrical,
-                                             "DEA " + spec.name + " capacitor voltage [V]");
-    double ac_force_factor = 0.0;
-    Waveform source = drive_waveform(spec.name, ac_force_factor);
-    network.add<VoltageSource>("V_" + spec.name, layout.source_node, ground, source,
-                               Domain::electrical);
-    network.add<Conductance>("Re_" + spec.name, layout.source_node, layout.electrode_node,
-                             1.0 / spec.electrode_resistance);
     // Face elongation rate ẋ = s·z·(Ω(x1) − Ω(x0)), s = −1 on the top face, +1 on the bottom.
     const double sign = spec.face == Face::top ? -1.0 : 1.0;
     std::vector<Dea::Coupling> coupling;
@@ -125,11 +143,36 @@ Model build_model(const Scene& scene) {
       coupling.push_back({node, sign * spec.lever_arm * c});
     for (const auto& [node, c] : beam.slope_terms(spec.from))
       coupling.push_back({node, -sign * spec.lever_arm * c});
+    double ac_force_factor = 0.0;
+    const Waveform source = drive_waveform(spec.name, ac_force_factor);
     const double ac_force = ac_force_factor * layout.force_constant * drive.voltage * drive.voltage;
+
+    if (!drive.electrical_dynamics) {
+      // Ideal voltage-driven force F(t) = k_F·V(t)², entered as through sources along the
+      // coupling: a linear network.
+      for (const Waveform& force : squared_force(source, layout.force_constant, ac_force))
+        for (const auto& c : coupling)
+          network.add<CurrentSource>("F_" + spec.name + "_" + network.node(c.node).name, ground,
+                                     c.node, force.scaled(c.coefficient));
+      model.deas.push_back(layout);
+      continue;
+    }
+    layout.source_node = network.add_node("s_" + spec.name, Domain::electrical,
+                                          "DEA " + spec.name + " source terminal [V]");
+    layout.electrode_node = network.add_node("e_" + spec.name, Domain::electrical,
+                                             "DEA " + spec.name + " capacitor voltage [V]");
+    network.add<VoltageSource>("V_" + spec.name, layout.source_node, ground, source,
+                               Domain::electrical);
+    network.add<Conductance>("Re_" + spec.name, layout.source_node, layout.electrode_node,
+                             1.0 / spec.electrode_resistance);
     network.add<Dea>("dea_" + spec.name, layout.electrode_node, ground, layout.capacitance,
                      layout.force_constant, coupling, spec.back_coupling, ac_force);
     model.deas.push_back(layout);
   }
+  if (!drive.electrical_dynamics)
+    model.notes.push_back(
+        "DEA electrical dynamics left out (drive.electrical_dynamics = false): each DEA is an "
+        "ideal force k_F*V(t)^2 of its source voltage");
 
   if (drive.kind == DriveKind::single && drive.bias == 0.0)
     model.notes.push_back(
@@ -170,6 +213,10 @@ Probe Model::make_probe(const ProbeSpec& spec) const {
     case ProbeQuantity::dea_current: {
       const DeaLayout* dea = find_dea(deas, spec.dea);
       if (!dea) throw InputError("probe " + spec.name, "dea", "no DEA named '" + spec.dea + "'");
+      if (dea->electrode_node == ground)
+        throw InputError(
+            "probe " + spec.name, "dea",
+            "DEA '" + spec.dea + "' has no electrical model (drive.electrical_dynamics = false)");
       if (spec.quantity == ProbeQuantity::dea_voltage) {
         probe.terms = {{dea->electrode_node, 1.0}};
         probe.description = "capacitor voltage of DEA " + spec.dea;

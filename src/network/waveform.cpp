@@ -68,6 +68,16 @@ void Waveform::breakpoints(double t_begin, double t_end, std::vector<double>& ou
   }
 }
 
+Waveform Waveform::scaled(double factor) const {
+  Waveform w = *this;
+  w.dc *= factor;
+  w.pulse_high *= factor;
+  w.amplitude *= factor;
+  for (auto& point : w.points) point.second *= factor;
+  w.ac_magnitude *= factor;
+  return w;
+}
+
 Waveform Waveform::constant(double value) {
   Waveform w;
   w.dc = value;
