@@ -3,6 +3,7 @@
 // Exit status: 0 success; 2 bad input (scene file, override, option), with one message naming
 // the file, line and key; 3 numerical failure, with the reason; 1 anything else.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include "emnet/model.hpp"
 #include "emnet/plot.hpp"
 #include "emnet/scene_reader.hpp"
+#include "emnet/transient.hpp"
 
 namespace {
 
@@ -542,6 +544,179 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
   return 0;
 }
 
+// ---- tran -----------------------------------------------------------------------------
+
+struct TranOptions {
+  double switching = 0.0;  // Hz; 0: the scene's drive.frequency
+  double periods = 10.0;
+  double rtol = 1e-6;
+  double atol = 0.0;
+  std::string method = "ida";
+  std::string start = "rest";
+  int points_per_period = 100;
+  std::string plot;
+};
+
+// Outputs of a transient: the scene's probes, dx_k = P_k − P1 when a probe P1 exists (paper
+// Eqs. 20–22), and each DEA's capacitor voltage and current when it has an electrical model.
+std::vector<emnet::Probe> transient_probes(const emnet::Model& model) {
+  std::vector<emnet::Probe> probes;
+  const emnet::Probe* reference = nullptr;
+  for (const auto& probe : model.probes)
+    if (probe.name == "P1") reference = &probe;
+  for (const auto& probe : model.probes) {
+    if (reference && probe.name.size() >= 2 && probe.name[0] == 'P' && &probe != reference &&
+        probe.quantity == reference->quantity) {
+      emnet::Probe difference = probe;
+      difference.name = "dx" + probe.name.substr(1);
+      difference.description = probe.name + " - P1";
+      for (const auto& [index, c] : reference->terms) difference.terms.emplace_back(index, -c);
+      probes.push_back(difference);
+    } else {
+      probes.push_back(probe);
+    }
+  }
+  for (const auto& dea : model.deas)
+    if (dea.electrode_node != emnet::ground) {
+      probes.push_back(model.parse_probe("dea_voltage:" + dea.name));
+      probes.push_back(model.parse_probe("dea_current:" + dea.name));
+      probes[probes.size() - 2].name = "u_" + dea.name;
+      probes.back().name = "i_" + dea.name;
+    }
+  return probes;
+}
+
+int run_tran_command(CommonOptions options, const TranOptions& tran) {
+  const auto start = std::chrono::steady_clock::now();
+  if (tran.switching != 0.0) {
+    if (!(tran.switching > 0.0) || !std::isfinite(tran.switching))
+      throw InputError("--switching", "--switching", "must be a positive frequency in Hz");
+    options.overrides.push_back("drive.frequency=" + format("%.17g", tran.switching));
+  }
+  if (!(tran.periods > 0.0) || tran.periods > 1e6)
+    throw InputError("--periods", "--periods", "must be > 0 and at most 1e6");
+  if (!(tran.rtol > 0.0 && tran.rtol < 1.0))
+    throw InputError("--rtol", "--rtol", "must be between 0 and 1");
+  if (!(tran.atol >= 0.0) || !std::isfinite(tran.atol))
+    throw InputError("--atol", "--atol", "must be >= 0");
+  if (tran.points_per_period < 2 || tran.points_per_period > 100000)
+    throw InputError("--points-per-period", "--points-per-period", "must be between 2 and 100000");
+  const emnet::Model model = emnet::build_model(load_scene(options));
+  const emnet::System system = model.network.assemble();
+  const double frequency = model.scene.drive.frequency;
+  if (!(frequency > 0.0))
+    throw InputError(model.scene.file, "drive.frequency",
+                     "a transient needs a drive with a frequency (or --switching)");
+  const double period = 1.0 / frequency;
+  emnet::TransientOptions transient;
+  transient.end_time = tran.periods * period;
+  transient.relative_tolerance = tran.rtol;
+  transient.absolute_tolerance = tran.atol;
+  transient.start = tran.start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
+  const long count = std::lround(tran.periods * tran.points_per_period);
+  for (long k = 0; k <= count; ++k)
+    transient.output_times.push_back(transient.end_time * static_cast<double>(k) / count);
+  const auto probes = transient_probes(model);
+  const emnet::TransientResult result = tran.method == "exact"
+                                            ? emnet::run_transient_exact(system, probes, transient)
+                                            : emnet::run_transient_ida(system, probes, transient);
+  if (!result.status.ok) throw NumericalFailure("tran: " + result.status.message);
+  const double total = seconds_since(start);
+  const std::string start_text =
+      tran.start == "static"
+          ? "the static state under the drive's first half-period"
+          : "at rest (every unknown zero before t = 0; the drive switches on at t = 0)";
+
+  if (!options.csv.empty()) {
+    std::vector<std::string> header{"time_s"};
+    for (const auto& probe : probes) header.push_back(probe.name + "_" + probe.unit);
+    std::vector<std::vector<double>> rows;
+    for (size_t i = 0; i < result.times.size(); ++i) {
+      std::vector<double> row{result.times[i]};
+      for (const auto& series : result.values) row.push_back(series[i]);
+      rows.push_back(row);
+    }
+    write_csv(options.csv, header, rows);
+  }
+  if (!tran.plot.empty()) {
+    std::vector<emnet::LineSeries> series;
+    for (size_t k = 0; k < probes.size(); ++k) {
+      if (probes[k].unit != "m") continue;
+      emnet::LineSeries line{
+          probes[k].name + " (" + probes[k].description + ") [mm]", result.times, {}};
+      for (double v : result.values[k]) line.y.push_back(v * 1e3);
+      series.push_back(line);
+    }
+    const auto status = emnet::write_line_plot(
+        tran.plot, model.scene.name + ": " + drive_summary(model.scene) + ", " + result.method,
+        "time [s]", "deflection [mm]", series);
+    if (!status.ok) throw NumericalFailure("plot: " + status.message);
+  }
+  const auto& st = result.statistics;
+  if (options.json) {
+    Json out;
+    out["scene"] = model.scene.name;
+    out["method"] = result.method;
+    out["start_state"] = start_text;
+    out["switching_frequency_hz"] = frequency;
+    out["periods"] = tran.periods;
+    out["rtol"] = tran.rtol;
+    out["times_s"] = result.times;
+    out["outputs"] = Json::array();
+    for (size_t k = 0; k < probes.size(); ++k)
+      out["outputs"].push_back({{"name", probes[k].name},
+                                {"description", probes[k].description},
+                                {"unit", probes[k].unit},
+                                {"values", result.values[k]}});
+    out["statistics"] = {{"steps", st.steps},
+                         {"residual_evaluations", st.residual_evaluations},
+                         {"jacobian_evaluations", st.jacobian_evaluations},
+                         {"newton_iterations", st.newton_iterations},
+                         {"error_test_failures", st.error_test_failures},
+                         {"convergence_failures", st.convergence_failures},
+                         {"restarts", st.restarts}};
+    out["cost"] = {{"integration_seconds", result.seconds}, {"total_seconds", total}};
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  print_header(model, system);
+  std::cout << "transient: " << result.method << ", " << tran.periods << " periods of "
+            << si(frequency, "Hz") << " (" << si(transient.end_time, "s") << "), start "
+            << start_text << "\n";
+  if (result.method == "ida")
+    std::cout << "accuracy: IDA (BDF) rtol " << format("%.1e", tran.rtol)
+              << (tran.atol > 0 ? ", atol " + format("%.1e", tran.atol)
+                                : ", atol scaled per unknown")
+              << "; exact stop and restart at " << st.restarts << " switching edges\n"
+              << "statistics: " << st.steps << " steps, " << st.residual_evaluations
+              << " residual and " << st.jacobian_evaluations << " Jacobian evaluations, "
+              << st.newton_iterations << " Newton iterations, " << st.error_test_failures
+              << " error-test and " << st.convergence_failures << " convergence failures\n";
+  else
+    std::cout << "accuracy: exact (matrix exponential per constant interval; rounding only), "
+              << st.steps << " distinct exponentials\n";
+  std::cout << "cost: integration " << milliseconds(result.seconds) << ", total "
+            << milliseconds(total) << "\n\n";
+  std::printf("%12s", "t [s]");
+  for (const auto& probe : probes)
+    std::printf(" %14s", (probe.name + " [" + probe.unit + "]").c_str());
+  std::printf("\n");
+  const size_t stride = std::max<size_t>(1, result.times.size() / 200);
+  for (size_t i = 0; i < result.times.size(); i += stride) {
+    std::printf("%12.6f", result.times[i]);
+    for (const auto& series : result.values) std::printf(" %14.6e", series[i]);
+    std::printf("\n");
+  }
+  if (stride > 1) std::printf("(every %zu-th output shown; --csv writes all)\n", stride);
+  for (size_t k = 0; k < probes.size(); ++k) {
+    const auto [low, high] = std::minmax_element(result.values[k].begin(), result.values[k].end());
+    std::printf("range of %-6s %14.6e .. %14.6e %s\n", probes[k].name.c_str(), *low, *high,
+                probes[k].unit.c_str());
+  }
+  if (!tran.plot.empty()) std::cout << "plot written to " << tran.plot << "\n";
+  return 0;
+}
+
 // ---- identify -------------------------------------------------------------------------
 
 int run_identify(const CommonOptions& options, double target_hz, int mode_number) {
@@ -655,6 +830,31 @@ int main(int argc, char** argv) {
   ac_command->add_option("--plot", ac_options.plot,
                          "write a Bode plot (PNG or SVG, by extension), resonances marked");
 
+  TranOptions tran_options;
+  auto* tran_command = app.add_subcommand(
+      "tran",
+      "time response to the scene's drive (square-wave DEA switching) with SUNDIALS IDA, or\n"
+      "exactly (--method exact) for linear networks under piecewise-constant sources");
+  add_common(tran_command, options);
+  tran_command->add_option("--switching", tran_options.switching,
+                           "switching frequency [Hz] (default: the scene's drive.frequency)");
+  tran_command->add_option("--periods", tran_options.periods, "number of periods (default 10)");
+  tran_command->add_option("--rtol", tran_options.rtol, "IDA relative tolerance (default 1e-6)");
+  tran_command->add_option("--atol", tran_options.atol,
+                           "IDA absolute tolerance for every unknown (default: rtol times a "
+                           "scale per kind of unknown from the static state)");
+  tran_command->add_option("--method", tran_options.method, "ida or exact")
+      ->check(CLI::IsMember({"ida", "exact"}));
+  tran_command
+      ->add_option("--start", tran_options.start,
+                   "rest (default) or static (the static state under the first "
+                   "half-period's drive)")
+      ->check(CLI::IsMember({"rest", "static"}));
+  tran_command->add_option("--points-per-period", tran_options.points_per_period,
+                           "output points per period (default 100)");
+  tran_command->add_option("--plot", tran_options.plot,
+                           "write a plot of the deflections (PNG/SVG)");
+
   double target_hz = 0.0;
   int mode_number = 1;
   auto* identify_command = app.add_subcommand(
@@ -680,6 +880,7 @@ int main(int argc, char** argv) {
     if (*modes_command) return run_modes_command(options, modes_options);
     if (*ac_command) return run_ac_command(options, ac_options, from_text, to_text);
     if (*identify_command) return run_identify(options, target_hz, mode_number);
+    if (*tran_command) return run_tran_command(options, tran_options);
   } catch (const InputError& e) {
     std::cerr << "emnet: error: " << e.what() << "\n";
     return 2;

@@ -42,6 +42,14 @@ StaticResult solve_static(const System& system, const StaticOptions& options = {
 // Value of a probe at rest (deflections and rotations; velocities are zero).
 double static_probe_value(const System& system, const StaticResult& result, const Probe& probe);
 
+// Which unknowns are mechanical across values (velocities), and which rows have no s⁰ part
+// once those are written as s·(displacement) (compliance and lever rows): `divided`.
+struct RowClassification {
+  std::vector<bool> mechanical;
+  std::vector<bool> divided;
+};
+RowClassification classify_rows(const System& system, const Eigen::SparseMatrix<double>& g_matrix);
+
 // The static operator of the linearised system, for reuse (AC at f = 0).
 class StaticOperator {
  public:

@@ -39,19 +39,29 @@ Eigen::SparseMatrix<double> linearised_g(const System& system, const Eigen::Vect
   return sum;
 }
 
-StaticOperator::StaticOperator(const System& system, const Eigen::SparseMatrix<double>& g_matrix)
-    : mechanical_(mechanical_columns(system)) {
+RowClassification classify_rows(const System& system, const Eigen::SparseMatrix<double>& g_matrix) {
+  RowClassification rows;
+  rows.mechanical = mechanical_columns(system);
   const int n = system.size();
-  // s⁰ part: G on non-mechanical columns. s¹ part: G on mechanical columns + C on the others.
+  // A row keeps an s⁰ part when G has an entry in a non-mechanical column.
   std::vector<bool> has_order_zero(static_cast<size_t>(n), false);
   for (int col = 0; col < n; ++col) {
-    if (mechanical_[static_cast<size_t>(col)]) continue;
+    if (rows.mechanical[static_cast<size_t>(col)]) continue;
     for (Eigen::SparseMatrix<double>::InnerIterator it(g_matrix, col); it; ++it)
       if (it.value() != 0.0) has_order_zero[static_cast<size_t>(it.row())] = true;
   }
-  divided_.assign(static_cast<size_t>(n), false);
-  for (int row = 0; row < n; ++row) divided_[static_cast<size_t>(row)] = !has_order_zero[row];
+  rows.divided.assign(static_cast<size_t>(n), false);
+  for (int row = 0; row < n; ++row)
+    rows.divided[static_cast<size_t>(row)] = !has_order_zero[static_cast<size_t>(row)];
+  return rows;
+}
 
+StaticOperator::StaticOperator(const System& system, const Eigen::SparseMatrix<double>& g_matrix) {
+  const RowClassification rows = classify_rows(system, g_matrix);
+  mechanical_ = rows.mechanical;
+  divided_ = rows.divided;
+  const int n = system.size();
+  // s⁰ part: G on non-mechanical columns. s¹ part: G on mechanical columns + C on the others.
   std::vector<Eigen::Triplet<double>> entries;
   for (int col = 0; col < n; ++col) {
     const bool mech = mechanical_[static_cast<size_t>(col)];

@@ -114,7 +114,12 @@ std::vector<double> System::breakpoints(double t_begin, double t_end) const {
   std::vector<double> out;
   for (const auto& waveform : waveforms) waveform.breakpoints(t_begin, t_end, out);
   std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  // Edges of different sources meant to coincide (A off, B on) may differ by rounding:
+  // they are one breakpoint, not an interval of a few ulps.
+  const double merge = 1e-12 * std::max({1e-300, std::abs(t_begin), std::abs(t_end)});
+  out.erase(
+      std::unique(out.begin(), out.end(), [merge](double a, double b) { return b - a <= merge; }),
+      out.end());
   return out;
 }
 

@@ -1,0 +1,171 @@
+// Displacement form of the network DAE: see displacement_form.hpp.
+#include "displacement_form.hpp"
+
+#include <stdexcept>
+
+#include "emnet/analysis.hpp"
+
+namespace emnet {
+
+DisplacementForm::DisplacementForm(const System& system) : system_(system) {
+  const int n = system.size();
+  const RowClassification rows = classify_rows(system, system.G);
+  mechanical_ = rows.mechanical;
+  divided_ = rows.divided;
+
+  // Velocity unknowns: mechanical columns that carry a capacitance (mass, inertia).
+  velocity_of_.assign(static_cast<size_t>(n), -1);
+  size_ = n;
+  for (int col = 0; col < n; ++col)
+    if (mechanical_[static_cast<size_t>(col)] && system.C.col(col).nonZeros() > 0)
+      velocity_of_[static_cast<size_t>(col)] = size_++;
+
+  std::vector<Eigen::Triplet<double>> e_entries, a_entries;
+  auto add_g = [&](int row, int col, double value) {
+    if (!mechanical_[static_cast<size_t>(col)]) {
+      a_entries.emplace_back(row, col, value);
+    } else if (divided_[static_cast<size_t>(row)]) {
+      a_entries.emplace_back(row, col, value);  // integrated row: displacement
+    } else if (velocity_of(col) >= 0) {
+      a_entries.emplace_back(row, velocity_of(col), value);  // v
+    } else {
+      e_entries.emplace_back(row, col, value);  // z'
+    }
+  };
+  for (int col = 0; col < n; ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(system.G, col); it; ++it)
+      add_g(static_cast<int>(it.row()), col, it.value());
+  for (int col = 0; col < n; ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(system.C, col); it; ++it) {
+      const int row = static_cast<int>(it.row());
+      if (divided_[static_cast<size_t>(row)]) {
+        if (mechanical_[static_cast<size_t>(col)])
+          throw std::runtime_error("a capacitance in a compliance row of '" +
+                                   system.unknowns[static_cast<size_t>(row)].name + "'");
+        a_entries.emplace_back(row, col, it.value());  // integrated: L·i
+      } else if (mechanical_[static_cast<size_t>(col)]) {
+        e_entries.emplace_back(row, velocity_of(col), it.value());  // m·v'
+      } else {
+        e_entries.emplace_back(row, col, it.value());
+      }
+    }
+  for (int col = 0; col < n; ++col)
+    if (velocity_of(col) >= 0) {  // v − z' = 0
+      a_entries.emplace_back(velocity_of(col), velocity_of(col), 1.0);
+      e_entries.emplace_back(velocity_of(col), col, -1.0);
+    }
+  for (const auto& term : system.source_terms)
+    if (divided_[static_cast<size_t>(term.row)])
+      throw std::runtime_error("an across source drives the mechanical unknown '" +
+                               system.unknowns[static_cast<size_t>(term.row)].name +
+                               "' (only zero across sources, i.e. supports, are supported here)");
+  e_.resize(size_, size_);
+  a_.resize(size_, size_);
+  e_.setFromTriplets(e_entries.begin(), e_entries.end());
+  a_.setFromTriplets(a_entries.begin(), a_entries.end());
+  e_.prune(0.0);
+  a_.prune(0.0);
+  differential_.assign(static_cast<size_t>(size_), false);
+  for (int col = 0; col < size_; ++col)
+    differential_[static_cast<size_t>(col)] = e_.col(col).nonZeros() > 0;
+
+  // Hidden constraints: an integrated row all of whose unknowns are differential (a lever
+  // between nodes that all carry mass or Kelvin–Voigt damping) would make the DAE index 2.
+  // It is replaced by its time derivative; the start states (rest, static) satisfy the
+  // row itself, so the solution is the same.
+  Eigen::SparseMatrix<double, Eigen::RowMajor> a_rows = a_, e_rows = e_;
+  std::vector<Eigen::Triplet<double>> moved_e, kept_a;
+  bool any = false;
+  for (int row = 0; row < size_; ++row) {
+    bool hidden = divided_[static_cast<size_t>(row)] && e_rows.row(row).nonZeros() == 0 &&
+                  a_rows.row(row).nonZeros() > 0;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a_rows, row); it && hidden;
+         ++it)
+      if (!differential_[static_cast<size_t>(it.col())]) hidden = false;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a_rows, row); it; ++it)
+      (hidden ? moved_e : kept_a).emplace_back(row, it.col(), it.value());
+    any = any || hidden;
+  }
+  if (any) {
+    for (int col = 0; col < size_; ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(e_, col); it; ++it)
+        moved_e.emplace_back(it.row(), col, it.value());
+    e_.setFromTriplets(moved_e.begin(), moved_e.end());
+    a_.setFromTriplets(kept_a.begin(), kept_a.end());
+  }
+}
+
+Eigen::VectorXd DisplacementForm::f(double t) const {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(size_);
+  out.head(system_.size()) = system_.b(t);
+  return out;
+}
+
+Eigen::VectorXd DisplacementForm::velocity_state(const Eigen::VectorXd& u,
+                                                 const Eigen::VectorXd& up) const {
+  const int n = system_.size();
+  Eigen::VectorXd y(n);
+  for (int k = 0; k < n; ++k) {
+    if (!mechanical_[static_cast<size_t>(k)])
+      y[k] = u[k];
+    else
+      y[k] = velocity_of(k) >= 0 ? u[velocity_of(k)] : up[k];
+  }
+  return y;
+}
+
+void DisplacementForm::residual(double source_time, const Eigen::VectorXd& u,
+                                const Eigen::VectorXd& up, Eigen::VectorXd& out) const {
+  out = e_ * up + a_ * u - f(source_time);
+  if (!system_.is_nonlinear()) return;
+  Eigen::VectorXd g;
+  system_.nonlinear(velocity_state(u, up), g, nullptr);
+  out.head(system_.size()) += g;
+}
+
+void DisplacementForm::jacobian(double cj, const Eigen::VectorXd& u, const Eigen::VectorXd& up,
+                                std::vector<Eigen::Triplet<double>>& out) const {
+  out.clear();
+  for (int col = 0; col < size_; ++col) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a_, col); it; ++it)
+      out.emplace_back(it.row(), col, it.value());
+    for (Eigen::SparseMatrix<double>::InnerIterator it(e_, col); it; ++it)
+      out.emplace_back(it.row(), col, cj * it.value());
+  }
+  if (!system_.is_nonlinear()) return;
+  Eigen::VectorXd g;
+  Eigen::SparseMatrix<double> jg;
+  system_.nonlinear(velocity_state(u, up), g, &jg);
+  for (int col = 0; col < jg.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(jg, col); it; ++it) {
+      if (!mechanical_[static_cast<size_t>(col)])
+        out.emplace_back(it.row(), col, it.value());
+      else if (velocity_of(col) >= 0)
+        out.emplace_back(it.row(), velocity_of(col), it.value());
+      else
+        out.emplace_back(it.row(), col, cj * it.value());
+    }
+}
+
+Eigen::VectorXd DisplacementForm::from_static(const Eigen::VectorXd& z) const {
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(size_);
+  u.head(system_.size()) = z;
+  return u;
+}
+
+double DisplacementForm::probe(const Probe& probe, const Eigen::VectorXd& u,
+                               const Eigen::VectorXd& up) const {
+  double value = 0.0;
+  for (const auto& [index, coefficient] : probe.terms) {
+    const int power = (mechanical(index) ? 1 : 0) - probe.integrations;
+    if (power == 0)
+      value += coefficient * u[index];
+    else if (power == 1)
+      value += coefficient * (velocity_of(index) >= 0 ? u[velocity_of(index)] : up[index]);
+    else
+      throw std::runtime_error("probe '" + probe.name + "' integrates an electrical quantity");
+  }
+  return value;
+}
+
+}  // namespace emnet

@@ -1,0 +1,64 @@
+// The displacement form of the network DAE, shared by the transient analyses.
+//
+// Start from C·y' + G·y + g(y) = b(t) (velocity form). Let z be the unknowns of the static
+// analysis (displacements on mechanical nodes, the rest as in y) and give every mechanical node
+// with a mass or inertia a velocity unknown v = z'. With u = [z; v]:
+//   rows with an s⁰ part (KCL, electrical):  C·y' + G·y + g(y) = b     with y built from u, u'
+//   rows without (compliance, lever):         integrated once: G_mech·z + C_other·z = 0
+//   kinematic rows:                           v − z' = 0
+// where a mechanical across value in y is v when the node has one, else z'. Residual:
+//   F(t, u, u') = E·u' + A·u + ĝ(u, u') − f(t).
+// The integration constants are zero for a start at rest or at a static state (both satisfy
+// the integrated rows), so the two forms have the same solutions.
+#pragma once
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <string>
+#include <vector>
+
+#include "emnet/model.hpp"
+#include "emnet/network.hpp"
+
+namespace emnet {
+
+class DisplacementForm {
+ public:
+  // Throws std::runtime_error when the network cannot be written so (a mechanical across
+  // source with a non-zero value, a mass in a compliance row).
+  explicit DisplacementForm(const System& system);
+
+  int size() const { return size_; }
+  const System& system() const { return system_; }
+  const Eigen::SparseMatrix<double>& e() const { return e_; }
+  const Eigen::SparseMatrix<double>& a() const { return a_; }
+  const std::vector<bool>& differential() const { return differential_; }
+  // Index of the velocity unknown of system column c, or −1.
+  int velocity_of(int column) const { return velocity_of_[static_cast<size_t>(column)]; }
+  bool mechanical(int column) const { return mechanical_[static_cast<size_t>(column)]; }
+
+  // f(t): b(t) on the rows that keep it, zero on integrated and kinematic rows.
+  Eigen::VectorXd f(double t) const;
+  // The velocity-form state y from u and u'.
+  Eigen::VectorXd velocity_state(const Eigen::VectorXd& u, const Eigen::VectorXd& up) const;
+  // F(t, u, u') = E·u' + A·u + ĝ − f(t), with f evaluated at `source_time` (a time inside
+  // the current constant interval, so that a jump at its end is not seen early).
+  void residual(double source_time, const Eigen::VectorXd& u, const Eigen::VectorXd& up,
+                Eigen::VectorXd& out) const;
+  // ∂F/∂u + cj·∂F/∂u' as triplets (the nonlinear part at u, u').
+  void jacobian(double cj, const Eigen::VectorXd& u, const Eigen::VectorXd& up,
+                std::vector<Eigen::Triplet<double>>& out) const;
+  // u from a static state z (velocities zero).
+  Eigen::VectorXd from_static(const Eigen::VectorXd& z) const;
+  // Value of a probe: deflections from z, velocities from v or z', voltages from z.
+  double probe(const Probe& probe, const Eigen::VectorXd& u, const Eigen::VectorXd& up) const;
+
+ private:
+  const System& system_;
+  int size_ = 0;
+  std::vector<bool> mechanical_, divided_, differential_;
+  std::vector<int> velocity_of_;
+  Eigen::SparseMatrix<double> e_, a_;
+};
+
+}  // namespace emnet
