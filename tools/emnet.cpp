@@ -565,6 +565,7 @@ std::vector<emnet::Probe> transient_probes(const emnet::Model& model) {
   for (const auto& probe : model.probes)
     if (probe.name == "P1") reference = &probe;
   for (const auto& probe : model.probes) {
+    if (&probe == reference) continue;  // P1 itself: the reference of dx_k
     if (reference && probe.name.size() >= 2 && probe.name[0] == 'P' && &probe != reference &&
         probe.quantity == reference->quantity) {
       emnet::Probe difference = probe;
