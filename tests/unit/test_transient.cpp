@@ -81,6 +81,7 @@ TEST(Transient, IdaMatchesExactOnTheFishFinOverFiftyPeriods) {
   ASSERT_TRUE(ida.status.ok) << ida.status.message;
   ASSERT_EQ(exact.times.size(), ida.times.size());
   for (size_t p = 0; p < model.probes.size(); ++p) {
+    if (model.probes[p].name == "P1") continue;  // at the clamp: zero by construction
     double peak = 0.0, worst = 0.0;
     for (size_t i = 0; i < exact.times.size(); ++i) {
       peak = std::max(peak, std::abs(exact.values[p][i]));
