@@ -2,6 +2,7 @@
 // status 2; no result is ever printed as NaN; --json output has the documented shape.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -19,7 +20,9 @@ struct CliRun {
 
 CliRun run(const std::string& arguments) {
   static int counter = 0;
-  const std::string err_path = ::testing::TempDir() + "emnet_cli_err_" + std::to_string(counter++);
+  // One file per process and call: CTest runs the tests in parallel processes.
+  const std::string err_path = ::testing::TempDir() + "emnet_cli_err_" +
+                               std::to_string(getpid()) + "_" + std::to_string(counter++);
   const std::string command = std::string(EMNET_BINARY) + " " + arguments + " 2>" + err_path;
   CliRun result;
   FILE* pipe = popen(command.c_str(), "r");
@@ -71,7 +74,8 @@ std::string scene_with(const std::string& from, const std::string& to, const std
     EXPECT_NE(at, std::string::npos) << from;
     text.replace(at, from.size(), to);
   }
-  const std::string path = ::testing::TempDir() + name + ".toml";
+  const std::string path =
+      ::testing::TempDir() + name + "_" + std::to_string(getpid()) + ".toml";
   std::ofstream(path) << text;
   return path;
 }
