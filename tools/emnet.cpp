@@ -16,6 +16,7 @@
 #include "emnet/analysis.hpp"
 #include "emnet/errors.hpp"
 #include "emnet/model.hpp"
+#include "emnet/periodic.hpp"
 #include "emnet/plot.hpp"
 #include "emnet/scene_reader.hpp"
 #include "emnet/transient.hpp"
@@ -718,6 +719,183 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   return 0;
 }
 
+// ---- sweep-switching ------------------------------------------------------------------
+
+struct SweepOptions {
+  double from = 1.0, to = 7.0, step = 0.1;
+  std::string method = "exact";
+  int samples = 256;
+  double rtol = 1e-9;
+  std::string plot;
+};
+
+int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!(sweep.from > 0.0) || !(sweep.to >= sweep.from) || !(sweep.step > 0.0) ||
+      !std::isfinite(sweep.to))
+    throw InputError("--from/--to/--step", "--step",
+                     "need 0 < from <= to and step > 0 (frequencies in Hz)");
+  const long count = std::lround(std::floor((sweep.to - sweep.from) / sweep.step + 1e-9)) + 1;
+  if (count > 100000) throw InputError("--step", "--step", "more than 100000 frequencies");
+  if (sweep.samples < 8 || sweep.samples > 1000000)
+    throw InputError("--samples", "--samples", "must be between 8 and 1000000");
+  // The exact method needs a linear network: DEAs as ideal voltage-driven forces.
+  emnet::Model model = emnet::build_model(load_scene(options));
+  std::vector<std::string> notes;
+  if (sweep.method == "exact" && model.network.assemble().is_nonlinear()) {
+    double tau = 0.0;
+    for (const auto& dea : model.deas)
+      tau = std::max(tau, dea.electrode_resistance * dea.capacitance);
+    notes.push_back("exact method: DEAs as ideal voltage-driven forces (their RC time constant " +
+                    si(tau, "s") + " is " + format("%.2g", tau * sweep.to) +
+                    " of the shortest period); --method shooting integrates the full model");
+    options.overrides.push_back("drive.electrical_dynamics=false");
+    model = emnet::build_model(load_scene(options));
+  }
+  std::vector<emnet::Probe> probes;
+  for (const auto& probe : transient_probes(model))
+    if (probe.unit == "m") probes.push_back(probe);
+  std::unique_ptr<emnet::PeriodicSolver> solver;
+  std::vector<double> frequencies;
+  std::vector<emnet::PeriodicResult> results;
+  for (long k = 0; k < count; ++k) {
+    const double f = sweep.from + sweep.step * static_cast<double>(k);
+    CommonOptions at = options;
+    at.overrides.push_back("drive.frequency=" + format("%.17g", f));
+    const emnet::Model m = emnet::build_model(load_scene(at));
+    const emnet::System system = m.network.assemble();
+    emnet::PeriodicResult r;
+    if (sweep.method == "exact") {
+      if (!solver) solver = std::make_unique<emnet::PeriodicSolver>(system);
+      r = solver->solve(system, probes, 1.0 / f, sweep.samples);
+    } else {
+      r = emnet::run_periodic_shooting(system, probes, 1.0 / f, sweep.rtol, sweep.samples);
+    }
+    if (!r.status.ok)
+      throw NumericalFailure("sweep-switching at " + si(f, "Hz") + ": " + r.status.message);
+    for (size_t p = 0; p < probes.size(); ++p) {
+      finite(r.minimum[p], "a peak deflection");
+      finite(r.maximum[p], "a peak deflection");
+    }
+    frequencies.push_back(f);
+    results.push_back(std::move(r));
+  }
+  const double total = seconds_since(start);
+  double solve_seconds = 0.0, worst_periodicity = 0.0;
+  for (const auto& r : results) {
+    solve_seconds += r.seconds;
+    worst_periodicity = std::max(worst_periodicity, r.periodicity_residual);
+  }
+  // The resonance of the sweep: the frequency of the largest peak-to-peak at the last probe
+  // (dx4 or the tip), and the network's first mode.
+  const size_t main_probe = probes.empty() ? 0 : probes.size() - 1;
+  size_t best = 0;
+  for (size_t k = 0; k < results.size(); ++k)
+    if (results[k].maximum[main_probe] - results[k].minimum[main_probe] >
+        results[best].maximum[main_probe] - results[best].minimum[main_probe])
+      best = k;
+  std::vector<emnet::PlotMarker> markers;
+  {
+    const emnet::System system = model.network.assemble();
+    const emnet::StaticResult rest = emnet::solve_static(system);
+    emnet::ModalOptions modal;
+    modal.keep_vectors = false;
+    if (system.size() > modal.dense_limit) modal.count = 3;
+    const auto modes = emnet::run_modes(system, rest.operating_point, modal);
+    if (modes.status.ok && !modes.modes.empty())
+      markers.push_back({modes.modes[0].frequency_hz,
+                         "f1 = " + format("%.4f", modes.modes[0].frequency_hz) + " Hz"});
+  }
+  if (!results.empty())
+    markers.push_back(
+        {frequencies[best], "sweep peak " + format("%.2f", frequencies[best]) + " Hz"});
+
+  if (!options.csv.empty()) {
+    std::vector<std::string> header{"switching_frequency_hz"};
+    for (const auto& probe : probes) {
+      header.push_back(probe.name + "_left_m");
+      header.push_back(probe.name + "_right_m");
+    }
+    std::vector<std::vector<double>> rows;
+    for (size_t k = 0; k < results.size(); ++k) {
+      std::vector<double> row{frequencies[k]};
+      for (size_t p = 0; p < probes.size(); ++p) {
+        row.push_back(results[k].minimum[p]);
+        row.push_back(results[k].maximum[p]);
+      }
+      rows.push_back(row);
+    }
+    write_csv(options.csv, header, rows);
+  }
+  if (!sweep.plot.empty()) {
+    std::vector<emnet::LineSeries> series;
+    for (size_t p = 0; p < probes.size(); ++p) {
+      emnet::LineSeries left{probes[p].name + " left (negative) [mm]", frequencies, {}};
+      emnet::LineSeries right{probes[p].name + " right (positive) [mm]", frequencies, {}};
+      for (const auto& r : results) {
+        left.y.push_back(r.minimum[p] * 1e3);
+        right.y.push_back(r.maximum[p] * 1e3);
+      }
+      series.push_back(left);
+      series.push_back(right);
+    }
+    const auto status = emnet::write_line_plot(
+        sweep.plot,
+        model.scene.name + ": periodic steady-state peak deflection vs switching frequency",
+        "switching frequency [Hz]", "peak deflection [mm]", series, markers);
+    if (!status.ok) throw NumericalFailure("plot: " + status.message);
+  }
+  if (options.json) {
+    Json out;
+    out["scene"] = model.scene.name;
+    out["method"] = sweep.method;
+    out["notes"] = notes;
+    out["frequencies_hz"] = frequencies;
+    out["outputs"] = Json::array();
+    for (size_t p = 0; p < probes.size(); ++p) {
+      std::vector<double> left, right;
+      for (const auto& r : results) left.push_back(r.minimum[p]), right.push_back(r.maximum[p]);
+      out["outputs"].push_back({{"name", probes[p].name},
+                                {"description", probes[p].description},
+                                {"unit", probes[p].unit},
+                                {"left", left},
+                                {"right", right}});
+    }
+    out["sweep_peak_hz"] = results.empty() ? 0.0 : frequencies[best];
+    out["accuracy"] = {{"worst_periodicity_residual", worst_periodicity}};
+    out["cost"] = {{"solve_seconds", solve_seconds}, {"total_seconds", total}};
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  print_header(model, model.network.assemble());
+  for (const auto& note : notes) std::cout << "note: " << note << "\n";
+  std::cout << "periodic steady state, " << sweep.method
+            << (sweep.method == "exact"
+                    ? " (one eigen-decomposition, closed-form periodic state, extremes by Newton)"
+                    : " (Newton shooting on one period of IDA)")
+            << ", " << results.size() << " switching frequencies\n"
+            << "accuracy: worst periodicity residual " << format("%.2g", worst_periodicity)
+            << "\ncost: periodic solves " << milliseconds(solve_seconds) << ", total "
+            << milliseconds(total) << "\n\n";
+  std::printf("%10s", "f [Hz]");
+  for (const auto& probe : probes)
+    std::printf(" %12s %12s", (probe.name + " left").c_str(), (probe.name + " right").c_str());
+  std::printf("   [mm]\n");
+  for (size_t k = 0; k < results.size(); ++k) {
+    std::printf("%10.4f", frequencies[k]);
+    for (size_t p = 0; p < probes.size(); ++p)
+      std::printf(" %12.5f %12.5f", results[k].minimum[p] * 1e3, results[k].maximum[p] * 1e3);
+    std::printf("\n");
+  }
+  if (!results.empty())
+    std::printf("largest swing of %s at %.4g Hz: %.5f mm left, %.5f mm right\n",
+                probes[main_probe].name.c_str(), frequencies[best],
+                results[best].minimum[main_probe] * 1e3, results[best].maximum[main_probe] * 1e3);
+  for (const auto& m : markers) std::cout << "marker: " << m.label << "\n";
+  if (!sweep.plot.empty()) std::cout << "plot written to " << sweep.plot << "\n";
+  return 0;
+}
+
 // ---- identify -------------------------------------------------------------------------
 
 int run_identify(const CommonOptions& options, double target_hz, int mode_number) {
@@ -856,6 +1034,25 @@ int main(int argc, char** argv) {
   tran_command->add_option("--plot", tran_options.plot,
                            "write a plot of the deflections (PNG/SVG)");
 
+  SweepOptions sweep_options;
+  auto* sweep_command = app.add_subcommand(
+      "sweep-switching",
+      "periodic steady-state peak deflection to the left and to the right against the\n"
+      "switching frequency (paper Fig. 14), computed directly: exact for linear networks,\n"
+      "Newton shooting over one period otherwise");
+  add_common(sweep_command, options);
+  sweep_command->add_option("--from", sweep_options.from, "first switching frequency [Hz] (1)");
+  sweep_command->add_option("--to", sweep_options.to, "last switching frequency [Hz] (7)");
+  sweep_command->add_option("--step", sweep_options.step, "frequency step [Hz] (0.1)");
+  sweep_command->add_option("--method", sweep_options.method, "exact (default) or shooting")
+      ->check(CLI::IsMember({"exact", "shooting"}));
+  sweep_command->add_option("--samples", sweep_options.samples,
+                            "samples per period before refining the extremes (256)");
+  sweep_command->add_option("--rtol", sweep_options.rtol,
+                            "shooting: IDA relative tolerance (1e-9)");
+  sweep_command->add_option("--plot", sweep_options.plot,
+                            "write the curve (PNG/SVG), resonance marked");
+
   double target_hz = 0.0;
   int mode_number = 1;
   auto* identify_command = app.add_subcommand(
@@ -882,6 +1079,7 @@ int main(int argc, char** argv) {
     if (*ac_command) return run_ac_command(options, ac_options, from_text, to_text);
     if (*identify_command) return run_identify(options, target_hz, mode_number);
     if (*tran_command) return run_tran_command(options, tran_options);
+    if (*sweep_command) return run_sweep_command(options, sweep_options);
   } catch (const InputError& e) {
     std::cerr << "emnet: error: " << e.what() << "\n";
     return 2;

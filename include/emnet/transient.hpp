@@ -9,6 +9,8 @@
 // states, read without a numerical integrator.
 #pragma once
 
+#include <Eigen/Dense>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +32,9 @@ struct TransientOptions {
   double absolute_tolerance = 0.0;   // IDA; 0: relative_tolerance × a scale per unknown
   double max_step = 0.0;             // IDA; 0: unlimited
   StartState start = StartState::rest;
+  // IDA only: start from this displacement-form state instead (its differential components;
+  // the algebraic ones are made consistent). Used by shooting.
+  std::optional<Eigen::VectorXd> initial_state;
 };
 
 struct IntegratorStatistics {
@@ -48,6 +53,7 @@ struct TransientResult {
   std::vector<double> times;                // output times reached
   std::vector<std::vector<double>> values;  // [probe][time]
   IntegratorStatistics statistics;
+  Eigen::VectorXd final_state;  // IDA: the displacement-form state at end_time
   double seconds = 0.0;
 };
 

@@ -85,6 +85,7 @@ DisplacementForm::DisplacementForm(const System& system) : system_(system) {
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a_rows, row); it; ++it)
       (hidden ? moved_e : kept_a).emplace_back(row, it.col(), it.value());
     any = any || hidden;
+    if (hidden) hidden_constraints_.push_back(row);
   }
   if (any) {
     for (int col = 0; col < size_; ++col)

@@ -36,6 +36,9 @@ class DisplacementForm {
   // Index of the velocity unknown of system column c, or −1.
   int velocity_of(int column) const { return velocity_of_[static_cast<size_t>(column)]; }
   bool mechanical(int column) const { return mechanical_[static_cast<size_t>(column)]; }
+  // Rows replaced by their time derivative (hidden constraints among differential unknowns):
+  // every consistent state also satisfies e().row(r)·u = 0 for each of them.
+  const std::vector<int>& hidden_constraints() const { return hidden_constraints_; }
 
   // f(t): b(t) on the rows that keep it, zero on integrated and kinematic rows.
   Eigen::VectorXd f(double t) const;
@@ -58,6 +61,7 @@ class DisplacementForm {
   int size_ = 0;
   std::vector<bool> mechanical_, divided_, differential_;
   std::vector<int> velocity_of_;
+  std::vector<int> hidden_constraints_;
   Eigen::SparseMatrix<double> e_, a_;
 };
 

@@ -149,7 +149,11 @@ TransientResult run_transient_ida(const System& system, const std::vector<Probe>
     // Start state, and a scale for the tolerances.
     const StaticResult rest = solve_static(system);
     Eigen::VectorXd u0 = Eigen::VectorXd::Zero(n), up0 = Eigen::VectorXd::Zero(n);
-    if (options.start == StartState::static_) {
+    if (options.initial_state) {
+      if (options.initial_state->size() != n)
+        return finish(Status::failure("initial state of the wrong size"));
+      u0 = *options.initial_state;
+    } else if (options.start == StartState::static_) {
       if (!rest.status.ok)
         return finish(Status::failure("static start state: " + rest.status.message));
       u0 = form.from_static(rest.state);
@@ -269,6 +273,7 @@ TransientResult run_transient_ida(const System& system, const std::vector<Probe>
       t = stop;
     }
     accumulate_statistics();
+    result.final_state = Eigen::Map<const Eigen::VectorXd>(yy.data(), n);
     for (const auto& series : result.values)
       for (double v : series)
         if (!std::isfinite(v)) return finish(Status::failure("IDA returned a non-finite output"));

@@ -1,68 +1,302 @@
-// Plot writer: data file + gnuplot script + image; see include/emnet/plot.hpp.
+// Plot writer: writes the plotted numbers (path + ".dat") and a gnuplot script (path + ".gp")
+// beside the image, then runs gnuplot on the script under a time limit; see
+// include/emnet/plot.hpp.
+//
+// gnuplot is started through /bin/sh as
+//   cd 'DIRECTORY' && exec timeout -k 5 60 gnuplot -d 'NAME.gp' </dev/null 2>&1
+// with every argument in shell single quotes, so a path cannot inject a shell command; the
+// script itself names its files relative to its directory, so it can be re-run from there.
+// Every text from the caller goes into the script as a single-quoted gnuplot string (no
+// backslash, backquote or macro expansion happens inside those) with control characters
+// replaced by spaces and quotes doubled, and is drawn with `noenhanced` so '_', '^', '@', '{'
+// are shown literally.
 #include "emnet/plot.hpp"
 
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
-#include <cstdlib>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <limits>
+#include <locale>
 #include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
 
 namespace emnet {
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kGnuplotTimeLimitSeconds = 60;
 
-// A label as a gnuplot string literal: one line, quotes and backslashes escaped.
-std::string quoted(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '\n' || c == '\r') c = ' ';
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '@' || c == '^' || c == '_' || c == '&' || c == '{' || c == '}') out += "\\\\";
-    out += c;
-  }
-  return out + "\"";
+enum class ImageFormat { png, svg };
+
+struct PlotFiles {
+  ImageFormat format = ImageFormat::png;
+  std::filesystem::path directory;  // where gnuplot runs; "." for a bare file name
+  std::string image_name;           // file names relative to `directory`
+  std::string data_name;
+  std::string script_name;
+  std::string data_path;  // full paths, for messages
+  std::string script_path;
+};
+
+std::string lowercase(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
 }
 
-std::string terminal_for(const std::string& path, int width, int height) {
-  const bool svg = path.size() > 4 && path.substr(path.size() - 4) == ".svg";
-  std::ostringstream out;
-  if (svg)
-    out << "set terminal svg size " << width << "," << height << " dynamic font 'Sans,12'\n";
-  else
-    out << "set terminal pngcairo size " << width << "," << height << " font 'Sans,11'\n";
-  out << "set output " << quoted(path) << "\n";
-  return out.str();
-}
-
-Status run_gnuplot(const std::string& script_path, const std::string& image_path) {
-  const std::string command = "timeout 60 gnuplot " + quoted(script_path) + " >/dev/null 2>&1";
-  const int code = std::system(command.c_str());
-  if (code != 0) {
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-      return Status::failure(
-          "gnuplot is not installed (Debian package gnuplot-nox); the data "
-          "and script are in " +
-          script_path);
-    return Status::failure("gnuplot failed on " + script_path + " (exit " + std::to_string(code) +
-                           ")");
+// Splits the image path into directory and file names; fails on an unknown extension.
+Status plot_files_for(const std::string& image_path, PlotFiles& files) {
+  const std::filesystem::path path(image_path);
+  const std::string extension = lowercase(path.extension().string());
+  if (extension == ".png") {
+    files.format = ImageFormat::png;
+  } else if (extension == ".svg") {
+    files.format = ImageFormat::svg;
+  } else {
+    return Status::failure("plot file '" + image_path +
+                           "' must end in .png (PNG image) or .svg (SVG image)");
   }
-  std::ifstream image(image_path);
-  if (!image) return Status::failure("gnuplot did not write " + image_path);
+  if (path.filename().empty())
+    return Status::failure("plot path '" + image_path + "' names no file");
+  files.directory = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  files.image_name = path.filename().string();
+  files.data_name = files.image_name + ".dat";
+  files.script_name = files.image_name + ".gp";
+  files.data_path = image_path + ".dat";
+  files.script_path = image_path + ".gp";
   return Status::success();
 }
 
-std::string marker_lines(const std::vector<PlotMarker>& markers, const char* yfrom) {
+// `text` on one line: each control character (newline, tab, ...) becomes a space.
+std::string one_line(const std::string& text) {
+  std::string line = text;
+  for (char& c : line) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) c = ' ';
+  }
+  return line;
+}
+
+// `text` as a single-quoted gnuplot string: one line, each quote doubled. gnuplot expands
+// neither backslashes, backquotes nor '@' macros inside single quotes.
+std::string gnuplot_string(const std::string& text) {
+  std::string quoted = "'";
+  for (char c : one_line(text)) {
+    if (c == '\'') {
+      quoted += "''";
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "'";
+}
+
+// `text` as a shell single-quoted word.
+std::string shell_word(const std::string& text) {
+  std::string quoted = "'";
+  for (char c : text) {
+    if (c == '\'') {
+      quoted += "'\\''";
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "'";
+}
+
+// A number as gnuplot reads it, independent of the global locale; NaN for a missing point.
+std::string number_text(double value) {
+  if (!std::isfinite(value)) return "NaN";
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  out.precision(12);
+  out << value;
+  return out.str();
+}
+
+// An output stream for a data or script file, in the classic locale.
+Status open_for_writing(const std::string& path, std::ofstream& stream) {
+  stream.open(path, std::ios::out | std::ios::trunc);
+  if (!stream) {
+    std::error_code error(errno, std::generic_category());
+    return Status::failure("cannot write '" + path + "': " + error.message());
+  }
+  stream.imbue(std::locale::classic());
+  return Status::success();
+}
+
+Status close_after_writing(const std::string& path, std::ofstream& stream) {
+  stream.close();
+  if (!stream) return Status::failure("error while writing '" + path + "'");
+  return Status::success();
+}
+
+// Terminal and output lines of a script; `height` in pixels.
+std::string terminal_lines(const PlotFiles& files, int width, int height) {
+  std::ostringstream out;
+  if (files.format == ImageFormat::png) {
+    out << "set terminal pngcairo size " << width << "," << height
+        << " enhanced font 'Sans,11' background rgb 'white'\n";
+  } else {
+    out << "set terminal svg size " << width << "," << height
+        << " dynamic enhanced font 'Sans,11' background rgb 'white'\n";
+  }
+  out << "set output " << gnuplot_string(files.image_name) << "\n";
+  return out.str();
+}
+
+std::string script_header(const PlotFiles& files, const std::string& what,
+                          const std::string& title) {
+  std::ostringstream out;
+  out << "# " << what << ": " << gnuplot_string(title) << "\n"
+      << "# Data: " << files.data_name << " (beside this script). To re-draw " << files.image_name
+      << " after editing,\n"
+      << "# run in this directory: gnuplot " << files.script_name << "\n";
+  return out.str();
+}
+
+// The last lines of gnuplot's output, for an error message.
+std::string last_lines(const std::string& output, size_t count) {
+  std::vector<std::string> lines;
+  std::istringstream in(output);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.find_first_not_of(" \t\r^") != std::string::npos)
+      lines.push_back(line);
+  }
+  if (lines.size() > count) lines.erase(lines.begin(), lines.end() - count);
+  std::string text;
+  for (const auto& line : lines) text += (text.empty() ? "" : "\n  ") + line;
+  return text;
+}
+
+// Runs gnuplot on the script under a time limit and checks that it wrote a non-empty image.
+Status run_gnuplot(const PlotFiles& files, const std::string& image_path) {
+  std::error_code ignored;
+  std::filesystem::remove(image_path, ignored);  // so a stale image is never taken for a new one
+
+  const std::string command = "cd " + shell_word(files.directory.string()) +
+                              " && exec timeout -k 5 " + std::to_string(kGnuplotTimeLimitSeconds) +
+                              " gnuplot -d " + shell_word(files.script_name) + " </dev/null 2>&1";
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) {
+    return Status::failure("cannot start gnuplot (through /bin/sh) for '" + files.script_path +
+                           "'");
+  }
+  std::string output;
+  char buffer[4096];
+  for (size_t read; (read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) {
+    if (output.size() < 1 << 20) output.append(buffer, read);
+  }
+  const int wait_status = ::pclose(pipe);
+
+  const std::string details = last_lines(output, 8);
+  const std::string output_note = details.empty() ? "" : ":\n  " + details;
+  if (wait_status == -1)
+    return Status::failure("lost track of gnuplot for '" + files.script_path + "'");
+  if (WIFSIGNALED(wait_status)) {
+    return Status::failure("gnuplot was killed by signal " + std::to_string(WTERMSIG(wait_status)) +
+                           " on '" + files.script_path + "'" + output_note);
+  }
+  const int exit_code = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
+  if (exit_code == 124 || exit_code == 137) {
+    return Status::failure("gnuplot did not finish within " +
+                           std::to_string(kGnuplotTimeLimitSeconds) + " s on '" +
+                           files.script_path + "'");
+  }
+  if (exit_code == 126 || exit_code == 127) {
+    return Status::failure(
+        "cannot run gnuplot: it is not installed or not on PATH (Debian package gnuplot-nox, "
+        "installed by tools/setup-deps); the data and script are in '" +
+        files.data_path + "' and '" + files.script_path + "'" + output_note);
+  }
+  if (exit_code != 0) {
+    return Status::failure("gnuplot failed (exit code " + std::to_string(exit_code) + ") on '" +
+                           files.script_path + "'" + output_note);
+  }
+  const auto size = std::filesystem::file_size(image_path, ignored);
+  if (ignored || size == 0) {
+    return Status::failure("gnuplot ran but did not write '" + image_path + "'" + output_note);
+  }
+  return Status::success();
+}
+
+// Vertical dashed lines (and, with `with_labels`, labels beside them) for the markers inside
+// [x_min, x_max]. A label reads upwards from the bottom of the panel, left of its line, on an
+// opaque background: a marker usually sits at a resonance, where the curves are high, so the
+// bottom of the panel is where the label is least likely to hide a curve.
+std::string marker_lines(const std::vector<PlotMarker>& markers, double x_min, double x_max,
+                         bool with_labels) {
   std::ostringstream out;
   int index = 1;
-  for (const auto& m : markers) {
-    out << "set arrow " << index << " from " << m.frequency_hz << ", graph 0 to " << m.frequency_hz
-        << ", graph 1 nohead dt 2 lc rgb '#aa0000'\n";
-    out << "set label " << index << " " << quoted(m.label) << " at " << m.frequency_hz << ", "
-        << yfrom << " offset 0.5,0 tc rgb '#aa0000'\n";
+  for (const auto& marker : markers) {
+    const double x = marker.frequency_hz;
+    if (!std::isfinite(x) || x < x_min || x > x_max) continue;
+    out << "set arrow " << index << " from " << number_text(x) << ", graph 0 to " << number_text(x)
+        << ", graph 1 nohead front dt 2 lw 1.5 lc rgb '#b00000'\n";
+    if (with_labels) {
+      out << "set label " << index << " " << gnuplot_string(marker.label) << " at "
+          << number_text(x)
+          << ", graph 0.03 rotate by 90 left front offset -1.3,0 boxed noenhanced"
+             " tc rgb '#b00000'\n";
+    }
     ++index;
   }
   return out.str();
+}
+
+// Text box of the marker labels: opaque, so a label stays legible over a curve. (gnuplot 5.4
+// leaves the box of rotated text unfilled when it has no border, hence the thin border.)
+constexpr const char* kMarkerLabelStyle =
+    "set style textbox opaque fillcolor 'white' border lc rgb '#b00000' lw 0.5 margins 1,1\n";
+
+std::string unset_markers() {
+  return "unset arrow\nunset label\n";
+}
+
+// "[lo:hi]" for a range of finite values, or "[*:*]" when there is nothing finite or one value.
+std::string range_text(double lo, double hi) {
+  if (!(lo < hi)) return "[*:*]";
+  return "[" + number_text(lo) + ":" + number_text(hi) + "]";
+}
+
+// Phase step for the tics of an unwrapped phase axis spanning `span` degrees (0: automatic).
+double phase_tic_step(double span) {
+  if (span <= 360.0) return 45.0;
+  if (span <= 1080.0) return 90.0;
+  if (span <= 2160.0) return 180.0;
+  return 0.0;
+}
+
+// The legend: one row of entries between the page title and the top panel, wrapped into as
+// many rows as the label lengths need. Pixel sizes are for the 11-point Sans font.
+struct LegendLayout {
+  std::string key_line;  // "set key ..." line
+  double panel_top = 0;  // screen fraction where the (top) panel starts, below the legend
+};
+
+LegendLayout legend_layout(const std::vector<std::string>& entries, int width_px, int height_px) {
+  constexpr double kCharacterWidthPx = 7.5, kRowHeightPx = 19.0, kTitleHeightPx = 42.0;
+  size_t longest = 1;
+  for (const auto& entry : entries) longest = std::max(longest, one_line(entry).size());
+  const double column_width_px = (static_cast<double>(longest) + 9.0) * kCharacterWidthPx;
+  const size_t fitting = static_cast<size_t>(0.9 * width_px / column_width_px);
+  const size_t columns = std::max<size_t>(1, std::min(entries.size(), fitting));
+  const size_t rows = (entries.size() + columns - 1) / columns;
+  const double key_top = 1.0 - kTitleHeightPx / height_px;
+  LegendLayout layout;
+  layout.key_line = "set key at screen 0.5, screen " + number_text(key_top) +
+                    " center top horizontal maxcols " + std::to_string(columns) + " maxrows " +
+                    std::to_string(rows) + " samplen 3 noenhanced\n";
+  layout.panel_top = key_top - (static_cast<double>(rows) * kRowHeightPx + 12.0) / height_px;
+  return layout;
 }
 
 }  // namespace
@@ -71,90 +305,226 @@ Status write_bode_plot(const std::string& path, const std::string& title,
                        const std::vector<double>& frequencies_hz,
                        const std::vector<BodeSeries>& series,
                        const std::vector<PlotMarker>& markers, bool log_frequency) {
-  const std::string data_path = path + ".dat", script_path = path + ".gp";
-  {
-    std::ofstream data(data_path);
-    if (!data) return Status::failure("cannot write " + data_path);
-    data.precision(10);
-    std::vector<double> previous_phase(series.size(), 0.0), offset(series.size(), 0.0);
-    data << "# frequency_hz";
-    for (const auto& s : series) data << "  |" << s.label << "| [" << s.unit << "]  phase [deg]";
-    data << "\n";
-    for (size_t f = 0; f < frequencies_hz.size(); ++f) {
-      data << frequencies_hz[f];
-      for (size_t k = 0; k < series.size(); ++k) {
-        const auto v = f < series[k].values.size() ? series[k].values[f] : 0.0;
-        const double magnitude = std::abs(v);
-        double phase = std::arg(v) * 180.0 / pi;
-        if (f > 0) {  // unwrap
-          while (phase + offset[k] - previous_phase[k] > 180.0) offset[k] -= 360.0;
-          while (phase + offset[k] - previous_phase[k] < -180.0) offset[k] += 360.0;
-        }
-        phase += offset[k];
-        previous_phase[k] = phase;
-        // A zero magnitude has no place on a log axis: written as missing ('?').
-        if (magnitude > 0.0 && std::isfinite(magnitude))
-          data << " " << magnitude << " " << phase;
-        else
-          data << " ? ?";
-      }
-      data << "\n";
+  PlotFiles files;
+  if (Status status = plot_files_for(path, files); !status.ok) return status;
+  if (series.empty()) return Status::failure("Bode plot '" + path + "': no series to plot");
+  if (frequencies_hz.empty()) return Status::failure("Bode plot '" + path + "': no frequencies");
+  for (const auto& one : series) {
+    if (one.values.size() != frequencies_hz.size()) {
+      return Status::failure("Bode plot '" + path + "': series '" + one.label + "' has " +
+                             std::to_string(one.values.size()) + " values for " +
+                             std::to_string(frequencies_hz.size()) + " frequencies");
     }
   }
-  {
-    std::ofstream script(script_path);
-    if (!script) return Status::failure("cannot write " + script_path);
-    script << terminal_for(path, 1000, 750) << "set datafile missing '?'\n"
-           << "set multiplot layout 2,1 title " << quoted(title) << "\n"
-           << "set grid\nset key inside left top opaque box\n"
-           << (log_frequency ? "set logscale x\n" : "") << "set lmargin 12\n"
-           << "set logscale y\nset format y '%.0e'\nset ylabel 'magnitude'\n"
-           << "unset xlabel\n"
-           << marker_lines(markers, "graph 0.92");
-    script << "plot ";
-    for (size_t k = 0; k < series.size(); ++k)
-      script << (k ? ", " : "") << quoted(data_path) << " using 1:" << 2 + 2 * k
-             << " with lines lw 2 title " << quoted(series[k].label + " [" + series[k].unit + "]");
-    script << "\nunset logscale y\nset format y '%g'\nset ylabel 'phase [deg]'\n"
-           << "set xlabel 'frequency [Hz]'\n"
-           << marker_lines(markers, "graph 0.92") << "plot ";
-    for (size_t k = 0; k < series.size(); ++k)
-      script << (k ? ", " : "") << quoted(data_path) << " using 1:" << 3 + 2 * k
-             << " with lines lw 2 title " << quoted(series[k].label);
-    script << "\nunset multiplot\n";
+
+  // Rows kept: finite frequencies (positive ones on a log axis).
+  std::vector<size_t> rows;
+  for (size_t f = 0; f < frequencies_hz.size(); ++f) {
+    const double frequency = frequencies_hz[f];
+    if (std::isfinite(frequency) && (!log_frequency || frequency > 0.0)) rows.push_back(f);
   }
-  return run_gnuplot(script_path, path);
+  if (rows.empty()) {
+    return Status::failure("Bode plot '" + path + "': no " +
+                           std::string(log_frequency ? "positive finite" : "finite") +
+                           " frequency to plot");
+  }
+
+  // Magnitude and unwrapped phase; zero or non-finite values are missing (NaN) points.
+  const size_t series_count = series.size();
+  std::vector<std::vector<double>> magnitude(series_count), phase_deg(series_count);
+  double phase_min = std::numeric_limits<double>::infinity(), phase_max = -phase_min;
+  bool any_magnitude = false;
+  for (size_t k = 0; k < series_count; ++k) {
+    bool have_previous = false;
+    double previous_phase = 0.0;
+    for (size_t f : rows) {
+      const std::complex<double> value = series[k].values[f];
+      const double size = std::abs(value);
+      if (!(size > 0.0) || !std::isfinite(size)) {
+        magnitude[k].push_back(std::nan(""));
+        phase_deg[k].push_back(std::nan(""));
+        continue;
+      }
+      double phase = std::arg(value) * 180.0 / kPi;
+      if (have_previous) phase += 360.0 * std::round((previous_phase - phase) / 360.0);
+      previous_phase = phase;
+      have_previous = true;
+      any_magnitude = true;
+      phase_min = std::min(phase_min, phase);
+      phase_max = std::max(phase_max, phase);
+      magnitude[k].push_back(size);
+      phase_deg[k].push_back(phase);
+    }
+  }
+
+  std::ofstream data;
+  if (Status status = open_for_writing(files.data_path, data); !status.ok) return status;
+  data << "# " << one_line(title) << "\n# frequency [Hz]";
+  for (const auto& one : series) {
+    data << " | |" << one_line(one.label) << "| [" << one_line(one.unit) << "] | phase of "
+         << one_line(one.label) << " [deg]";
+  }
+  data << "\n# NaN: zero or non-finite value (no point on the log axis)\n";
+  for (size_t row = 0; row < rows.size(); ++row) {
+    data << number_text(frequencies_hz[rows[row]]);
+    for (size_t k = 0; k < series_count; ++k) {
+      data << ' ' << number_text(magnitude[k][row]) << ' ' << number_text(phase_deg[k][row]);
+    }
+    data << '\n';
+  }
+  if (Status status = close_after_writing(files.data_path, data); !status.ok) return status;
+
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
+  for (size_t f : rows) {
+    x_lo = std::min(x_lo, frequencies_hz[f]);
+    x_hi = std::max(x_hi, frequencies_hz[f]);
+  }
+  std::string common_unit = series.front().unit;
+  for (const auto& one : series) {
+    if (one.unit != common_unit) common_unit.clear();
+  }
+  const std::string magnitude_label =
+      common_unit.empty() ? "magnitude" : "magnitude [" + common_unit + "]";
+
+  std::vector<std::string> legend_entries;
+  for (const auto& one : series) {
+    legend_entries.push_back(one.label + (one.unit.empty() ? "" : " [" + one.unit + "]"));
+  }
+  constexpr int kWidthPx = 1000, kHeightPx = 750;
+  const LegendLayout legend = legend_layout(legend_entries, kWidthPx, kHeightPx);
+  // Panels stacked from legend.panel_top down to kBottom, kGap apart, of equal height.
+  constexpr double kBottom = 0.09, kGap = 0.06;
+  const double panel_height = (legend.panel_top - kBottom - kGap) / 2.0;
+  const double magnitude_bottom = kBottom + panel_height + kGap;
+
+  std::ostringstream script;
+  script.imbue(std::locale::classic());
+  script << script_header(files, "Bode plot", title) << terminal_lines(files, kWidthPx, kHeightPx)
+         << "set datafile missing 'NaN'\n"
+         << "set multiplot title " << gnuplot_string(title) << " font ',13' noenhanced\n"
+         << "set lmargin at screen 0.10\nset rmargin at screen 0.97\n"
+         << "set xrange " << range_text(x_lo, x_hi) << "\n"
+         << (log_frequency ? "set logscale x\n" : "") << "set grid xtics ytics mytics\n"
+         << "set border lw 1\n"
+         << kMarkerLabelStyle;
+
+  // Top panel: magnitude.
+  script << "\n# Magnitude\n"
+         << "set tmargin at screen " << number_text(legend.panel_top) << "\nset bmargin at screen "
+         << number_text(magnitude_bottom) << "\n"
+         << "set format x ''\nunset xlabel\n"
+         << "set logscale y\nset ylabel " << gnuplot_string(magnitude_label) << " noenhanced\n"
+         << (any_magnitude ? ""
+                           : "set yrange [0.1:10]\nset label 99 'no non-zero values to plot' at "
+                             "graph 0.5, graph 0.5 center\n")
+         << "set format y '%h'\n"
+         << legend.key_line << marker_lines(markers, x_lo, x_hi, true) << "plot ";
+  for (size_t k = 0; k < series_count; ++k) {
+    script << (k ? ", \\\n     " : "") << gnuplot_string(files.data_name)
+           << " using 1:" << 2 + 2 * k << " with lines lw 2 lc " << k + 1 << " title "
+           << gnuplot_string(legend_entries[k]);
+  }
+
+  // Bottom panel: unwrapped phase.
+  const double step = any_magnitude ? phase_tic_step(phase_max - phase_min) : 45.0;
+  script << "\n\n# Phase (unwrapped along frequency)\n"
+         << unset_markers() << "set tmargin at screen " << number_text(kBottom + panel_height)
+         << "\nset bmargin at screen " << number_text(kBottom) << "\n"
+         << "set format x '% h'\nset xlabel 'frequency [Hz]'\n"
+         << "unset logscale y\nset format y '% h'\nset yrange [*:*]\n"
+         << "set ylabel 'phase [deg]'\n"
+         << (any_magnitude ? "" : "set yrange [-180:180]\n")
+         << (step > 0.0 ? "set ytics " + number_text(step) + "\n" : "") << "unset key\n"
+         << marker_lines(markers, x_lo, x_hi, false) << "plot ";
+  for (size_t k = 0; k < series_count; ++k) {
+    script << (k ? ", \\\n     " : "") << gnuplot_string(files.data_name)
+           << " using 1:" << 3 + 2 * k << " with lines lw 2 lc " << k + 1 << " notitle";
+  }
+  script << "\n\nunset multiplot\n";
+
+  std::ofstream script_file;
+  if (Status status = open_for_writing(files.script_path, script_file); !status.ok) return status;
+  script_file << script.str();
+  if (Status status = close_after_writing(files.script_path, script_file); !status.ok) {
+    return status;
+  }
+  return run_gnuplot(files, path);
 }
 
 Status write_line_plot(const std::string& path, const std::string& title,
                        const std::string& x_label, const std::string& y_label,
                        const std::vector<LineSeries>& series,
                        const std::vector<PlotMarker>& markers) {
-  const std::string data_path = path + ".dat", script_path = path + ".gp";
-  {
-    std::ofstream data(data_path);
-    if (!data) return Status::failure("cannot write " + data_path);
-    data.precision(10);
-    for (const auto& s : series) {
-      data << "# " << s.label << "\n";
-      for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i)
-        data << s.x[i] << " " << s.y[i] << "\n";
-      data << "\n\n";  // gnuplot data blocks, addressed by index
+  PlotFiles files;
+  if (Status status = plot_files_for(path, files); !status.ok) return status;
+  if (series.empty()) return Status::failure("line plot '" + path + "': no series to plot");
+  for (const auto& one : series) {
+    if (one.x.size() != one.y.size()) {
+      return Status::failure("line plot '" + path + "': series '" + one.label + "' has " +
+                             std::to_string(one.x.size()) + " x values and " +
+                             std::to_string(one.y.size()) + " y values");
     }
   }
-  {
-    std::ofstream script(script_path);
-    if (!script) return Status::failure("cannot write " + script_path);
-    script << terminal_for(path, 1000, 600) << "set title " << quoted(title) << "\n"
-           << "set grid\nset key inside left top opaque box\n"
-           << "set xlabel " << quoted(x_label) << "\nset ylabel " << quoted(y_label) << "\n"
-           << marker_lines(markers, "graph 0.95") << "plot ";
-    for (size_t k = 0; k < series.size(); ++k)
-      script << (k ? ", " : "") << quoted(data_path) << " index " << k << " with lines lw 2 title "
-             << quoted(series[k].label);
-    script << "\n";
+
+  // One data block per series (gnuplot `index k`), separated by two blank lines.
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
+  bool any_point = false;
+  std::ofstream data;
+  if (Status status = open_for_writing(files.data_path, data); !status.ok) return status;
+  data << "# " << one_line(title) << "\n# columns: " << one_line(x_label) << " | "
+       << one_line(y_label)
+       << "; one block per series (gnuplot index 0, 1, ...); NaN: missing point\n";
+  for (size_t k = 0; k < series.size(); ++k) {
+    const auto& one = series[k];
+    data << (k ? "\n\n" : "") << "# index " << k << ": " << one_line(one.label) << "\n";
+    for (size_t i = 0; i < one.x.size(); ++i) {
+      const bool finite = std::isfinite(one.x[i]) && std::isfinite(one.y[i]);
+      data << number_text(finite ? one.x[i] : std::nan("")) << ' '
+           << number_text(finite ? one.y[i] : std::nan("")) << '\n';
+      if (finite) {
+        any_point = true;
+        x_lo = std::min(x_lo, one.x[i]);
+        x_hi = std::max(x_hi, one.x[i]);
+      }
+    }
+    if (one.x.empty()) data << "NaN NaN\n";  // keeps the block, so the indices stay in step
   }
-  return run_gnuplot(script_path, path);
+  if (Status status = close_after_writing(files.data_path, data); !status.ok) return status;
+
+  std::vector<std::string> legend_entries;
+  for (const auto& one : series) legend_entries.push_back(one.label);
+  constexpr int kWidthPx = 1000, kHeightPx = 650;
+  const LegendLayout legend = legend_layout(legend_entries, kWidthPx, kHeightPx);
+
+  std::ostringstream script;
+  script.imbue(std::locale::classic());
+  script << script_header(files, "Line plot", title) << terminal_lines(files, kWidthPx, kHeightPx)
+         << "set datafile missing 'NaN'\n"
+         << "set multiplot title " << gnuplot_string(title) << " font ',13' noenhanced\n"
+         << "set lmargin at screen 0.09\nset rmargin at screen 0.97\n"
+         << "set tmargin at screen " << number_text(legend.panel_top)
+         << "\nset bmargin at screen 0.11\n"
+         << "set xlabel " << gnuplot_string(x_label) << " noenhanced\n"
+         << "set ylabel " << gnuplot_string(y_label) << " noenhanced\n"
+         << "set grid xtics ytics\nset border lw 1\n"
+         << kMarkerLabelStyle
+         << (any_point ? "set xrange " + range_text(x_lo, x_hi) + "\n"
+                       : "set xrange [0:1]\nset yrange [0:1]\n")
+         << legend.key_line << marker_lines(markers, x_lo, x_hi, true) << "plot ";
+  for (size_t k = 0; k < series.size(); ++k) {
+    script << (k ? ", \\\n     " : "") << gnuplot_string(files.data_name) << " index " << k
+           << " using 1:2 with lines lw 2 lc " << k + 1 << " title "
+           << gnuplot_string(series[k].label);
+  }
+  script << "\n\nunset multiplot\n";
+
+  std::ofstream script_file;
+  if (Status status = open_for_writing(files.script_path, script_file); !status.ok) return status;
+  script_file << script.str();
+  if (Status status = close_after_writing(files.script_path, script_file); !status.ok) {
+    return status;
+  }
+  return run_gnuplot(files, path);
 }
 
 }  // namespace emnet

@@ -1,0 +1,328 @@
+// Periodic steady state: exact (eigen-decomposed state equation) and shooting (IDA + Newton).
+// See include/emnet/periodic.hpp for the method.
+#include "emnet/periodic.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "displacement_form.hpp"
+#include "emnet/transient.hpp"
+#include "state_space.hpp"
+
+namespace emnet {
+
+Status require_piecewise_constant(const System& system);  // transient_exact.cpp
+
+namespace {
+
+using Complex = std::complex<double>;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Extremes of every probe over one period from samples (times, values), with the sampled
+// extreme refined by `refine(probe, sample index, is_maximum)` → (time, value).
+template <class Refine>
+void fill_extremes(PeriodicResult& result, const Refine& refine) {
+  const size_t probes = result.values.size();
+  result.minimum.assign(probes, 0.0);
+  result.maximum.assign(probes, 0.0);
+  result.minimum_time.assign(probes, 0.0);
+  result.maximum_time.assign(probes, 0.0);
+  for (size_t p = 0; p < probes; ++p) {
+    const auto& v = result.values[p];
+    if (v.empty()) continue;
+    const size_t low = static_cast<size_t>(std::min_element(v.begin(), v.end()) - v.begin());
+    const size_t high = static_cast<size_t>(std::max_element(v.begin(), v.end()) - v.begin());
+    std::tie(result.minimum_time[p], result.minimum[p]) = refine(p, low, false);
+    std::tie(result.maximum_time[p], result.maximum[p]) = refine(p, high, true);
+  }
+}
+
+}  // namespace
+
+struct PeriodicSolver::Impl {
+  explicit Impl(const System& reference) : system(reference), form(system), space(form) {
+    Eigen::EigenSolver<Eigen::MatrixXd> solver(space.m());
+    if (solver.info() != Eigen::Success) throw std::runtime_error("eigen-decomposition failed");
+    lambda = solver.eigenvalues();
+    vectors = solver.eigenvectors();
+    vectors_lu.compute(vectors);
+    const double condition =
+        vectors.cwiseAbs().colwise().sum().maxCoeff() *
+        Eigen::MatrixXcd(vectors_lu.inverse()).cwiseAbs().colwise().sum().maxCoeff();
+    if (!(condition < 1e12))
+      throw std::runtime_error(
+          "the state matrix is too close to defective for the exact "
+          "periodic method (condition " +
+          std::to_string(condition) + "); use --method shooting");
+    // Poles at s = 0: the invariants of differentiated constraints (zero for every consistent
+    // state), or a free body. Which one is decided by the forcing in solve().
+    invariant.assign(static_cast<size_t>(lambda.size()), false);
+    for (Eigen::Index k = 0; k < lambda.size(); ++k)
+      invariant[static_cast<size_t>(k)] = std::abs(lambda[k]) < 1e-9 * lambda.cwiseAbs().maxCoeff();
+  }
+  std::vector<bool> invariant;
+  System system;
+  DisplacementForm form;
+  LinearStateSpace space;
+  Eigen::VectorXcd lambda;
+  Eigen::MatrixXcd vectors;
+  Eigen::PartialPivLU<Eigen::MatrixXcd> vectors_lu;
+};
+
+PeriodicSolver::PeriodicSolver(const System& system) {
+  try {
+    impl_ = std::make_unique<Impl>(system);
+  } catch (const std::exception& e) {
+    status_ = Status::failure(e.what());
+  }
+}
+
+PeriodicSolver::~PeriodicSolver() = default;
+
+PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Probe>& probes,
+                                     double period, int samples) const {
+  const auto start = std::chrono::steady_clock::now();
+  PeriodicResult result;
+  result.method = "exact";
+  result.period = period;
+  auto finish = [&](Status status) {
+    result.status = std::move(status);
+    result.seconds = seconds_since(start);
+    return result;
+  };
+  if (!impl_) return finish(status_);
+  if (Status pieces = require_piecewise_constant(system); !pieces.ok) return finish(pieces);
+  if (system.size() != impl_->system.size() || system.is_nonlinear())
+    return finish(Status::failure("the network differs from the one the solver decomposed"));
+  const DisplacementForm form(system);  // the drive's sources; E and A as in impl_
+  const LinearStateSpace& space = impl_->space;
+  const Eigen::VectorXcd& lambda = impl_->lambda;
+  const Eigen::Index nd = space.state_size();
+
+  // Constant intervals over one period, and the particular state ξ_p = −Λ⁻¹V⁻¹N·f of each.
+  std::vector<double> edges{0.0};
+  for (double t : system.breakpoints(0.0, period))
+    if (t < period * (1 - 1e-12)) edges.push_back(t);
+  edges.push_back(period);
+  const size_t intervals = edges.size() - 1;
+  std::vector<Eigen::VectorXd> f(intervals);
+  std::vector<Eigen::VectorXcd> particular(intervals);
+  for (size_t i = 0; i < intervals; ++i) {
+    f[i] = form.f(0.5 * (edges[i] + edges[i + 1]));
+    const Eigen::VectorXcd modal_forcing =
+        impl_->vectors_lu.solve(space.forcing(f[i]).cast<Complex>());
+    particular[i] = Eigen::VectorXcd::Zero(nd);
+    const double forcing_scale = modal_forcing.cwiseAbs().maxCoeff();
+    for (Eigen::Index k = 0; k < nd; ++k) {
+      if (!impl_->invariant[static_cast<size_t>(k)]) {
+        particular[i][k] = -modal_forcing[k] / lambda[k];
+      } else if (std::abs(modal_forcing[k]) > 1e-9 * forcing_scale) {
+        return finish(
+            Status::failure("the network has a pole at s = 0 that the drive excites "
+                            "(a free body): no periodic state"));
+      }
+    }
+  }
+  // One period from ξ = 0 gives c; the periodic start is ξ₀ = c / (1 − e^{ΛT}).
+  Eigen::VectorXcd xi = Eigen::VectorXcd::Zero(nd);
+  for (size_t i = 0; i < intervals; ++i) {
+    const double h = edges[i + 1] - edges[i];
+    xi = particular[i] + ((lambda * h).array().exp() * (xi - particular[i]).array()).matrix();
+  }
+  for (Eigen::Index k = 0; k < nd; ++k) {
+    if (impl_->invariant[static_cast<size_t>(k)]) {
+      xi[k] = 0.0;  // a constraint's invariant: zero in every consistent state
+      continue;
+    }
+    const Complex growth = 1.0 - std::exp(lambda[k] * period);
+    if (std::abs(growth) < 1e-14)
+      return finish(
+          Status::failure("an undamped mode is in exact resonance with the drive: "
+                          "no periodic state"));
+    xi[k] /= growth;
+  }
+  std::vector<Eigen::VectorXcd> start_of(intervals);
+  for (size_t i = 0; i < intervals; ++i) {
+    start_of[i] = xi;
+    const double h = edges[i + 1] - edges[i];
+    xi = particular[i] + ((lambda * h).array().exp() * (xi - particular[i]).array()).matrix();
+  }
+  result.periodicity_residual = (xi - start_of[0]).norm() / std::max(start_of[0].norm(), 1e-300);
+
+  // Each probe is linear in (x, f): p = gᵀx + p(0, f). In modal coordinates, inside interval i,
+  // p(h) = p_i + Re Σ_k a_ik·e^{λ_k h} with a_ik = (gᵀV)_k·(ξ_i − ξ_p,i)_k.
+  Eigen::VectorXd u, up;
+  auto probe_at = [&](const Probe& probe, const Eigen::VectorXd& x, const Eigen::VectorXd& fi) {
+    space.full_state(x, fi, u, up);
+    return form.probe(probe, u, up);
+  };
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nd);
+  const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(form.size());
+  struct Series {
+    std::vector<double> offset;                 // p_i
+    std::vector<Eigen::VectorXcd> coefficient;  // a_i
+  };
+  std::vector<Series> series(probes.size());
+  for (size_t p = 0; p < probes.size(); ++p) {
+    Eigen::VectorXd g(nd);
+    for (Eigen::Index k = 0; k < nd; ++k) {
+      Eigen::VectorXd unit = zero;
+      unit[k] = 1.0;
+      g[k] = probe_at(probes[p], unit, no_force);
+    }
+    const Eigen::RowVectorXcd g_modes = g.transpose().cast<Complex>() * impl_->vectors;
+    for (size_t i = 0; i < intervals; ++i) {
+      const Eigen::VectorXd x_particular = (impl_->vectors * particular[i]).real();
+      series[p].offset.push_back(probe_at(probes[p], x_particular, f[i]));
+      series[p].coefficient.push_back(
+          g_modes.transpose().cwiseProduct(start_of[i] - particular[i]));
+    }
+  }
+  auto locate = [&](double t) {
+    size_t i = 0;
+    while (i + 1 < intervals && t >= edges[i + 1]) ++i;
+    return i;
+  };
+  // Value and two derivatives of probe p at offset h into interval i.
+  auto evaluate = [&](size_t p, size_t i, double h, double* d1, double* d2) {
+    const Eigen::VectorXcd e = (lambda * h).array().exp();
+    const Eigen::VectorXcd terms = series[p].coefficient[i].cwiseProduct(e);
+    if (d1) *d1 = terms.cwiseProduct(lambda).sum().real();
+    if (d2) *d2 = terms.cwiseProduct(lambda).cwiseProduct(lambda).sum().real();
+    return series[p].offset[i] + terms.sum().real();
+  };
+
+  result.values.assign(probes.size(), {});
+  for (int s = 0; s < samples; ++s) {
+    const double t = period * s / samples;
+    const size_t i = locate(t);
+    result.times.push_back(t);
+    for (size_t p = 0; p < probes.size(); ++p)
+      result.values[p].push_back(evaluate(p, i, t - edges[i], nullptr, nullptr));
+  }
+  // Refine a sampled extreme: Newton on p'(t) = 0 inside its interval, kept if better.
+  fill_extremes(result, [&](size_t p, size_t sample, bool maximum) {
+    double best_t = result.times[sample], best = result.values[p][sample];
+    const size_t i = locate(best_t);
+    double h = best_t - edges[i];
+    const double length = edges[i + 1] - edges[i];
+    for (int iteration = 0; iteration < 30; ++iteration) {
+      double d1 = 0.0, d2 = 0.0;
+      evaluate(p, i, h, &d1, &d2);
+      if (d2 == 0.0) break;
+      const double next = std::clamp(h - d1 / d2, 0.0, length);
+      if (std::abs(next - h) <= 1e-15 * length) break;
+      h = next;
+    }
+    const double refined = evaluate(p, i, h, nullptr, nullptr);
+    if (maximum ? refined > best : refined < best) best = refined, best_t = edges[i] + h;
+    return std::pair<double, double>(best_t, best);
+  });
+  return finish(Status::success());
+}
+
+PeriodicResult run_periodic_shooting(const System& system, const std::vector<Probe>& probes,
+                                     double period, double rtol, int samples) {
+  const auto start = std::chrono::steady_clock::now();
+  PeriodicResult result;
+  result.method = "shooting";
+  result.period = period;
+  auto finish = [&](Status status) {
+    result.status = std::move(status);
+    result.seconds = seconds_since(start);
+    return result;
+  };
+  try {
+    const DisplacementForm form(system);
+    std::vector<int> state;  // the differential unknowns
+    for (int k = 0; k < form.size(); ++k)
+      if (form.differential()[static_cast<size_t>(k)]) state.push_back(k);
+    const Eigen::Index nd = static_cast<Eigen::Index>(state.size());
+    // Consistent states satisfy the hidden constraints (rows the form differentiated); the
+    // shooting variables ξ parametrise that subspace: x = P·ξ, P an orthonormal null-space basis.
+    Eigen::MatrixXd constraints(static_cast<Eigen::Index>(form.hidden_constraints().size()), nd);
+    {
+      const Eigen::MatrixXd e = Eigen::MatrixXd(form.e());
+      for (size_t r = 0; r < form.hidden_constraints().size(); ++r)
+        for (Eigen::Index k = 0; k < nd; ++k)
+          constraints(static_cast<Eigen::Index>(r), k) =
+              e(form.hidden_constraints()[r], state[static_cast<size_t>(k)]);
+    }
+    Eigen::MatrixXd basis = Eigen::MatrixXd::Identity(nd, nd);
+    if (constraints.rows() > 0) {
+      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(constraints, Eigen::ComputeFullV);
+      Eigen::Index rank = 0;
+      const auto& sv = svd.singularValues();
+      while (rank < sv.size() && sv[rank] > 1e-12 * sv[0]) ++rank;
+      basis = svd.matrixV().rightCols(nd - rank);
+    }
+    const Eigen::Index nv = basis.cols();
+    TransientOptions options;
+    options.end_time = period;
+    options.relative_tolerance = rtol;
+    auto one_period = [&](const Eigen::VectorXd& x0, Eigen::VectorXd& x_end) {
+      options.initial_state = Eigen::VectorXd::Zero(form.size());
+      for (Eigen::Index k = 0; k < nd; ++k)
+        (*options.initial_state)[state[static_cast<size_t>(k)]] = x0[k];
+      const TransientResult run = run_transient_ida(system, {}, options);
+      if (!run.status.ok) throw std::runtime_error(run.status.message);
+      x_end.resize(nd);
+      for (Eigen::Index k = 0; k < nd; ++k)
+        x_end[k] = run.final_state[state[static_cast<size_t>(k)]];
+    };
+    Eigen::VectorXd xi = Eigen::VectorXd::Zero(nv), x = Eigen::VectorXd::Zero(nd), x_end;
+    one_period(x, x_end);
+    for (int iteration = 1; iteration <= 10; ++iteration) {
+      result.newton_iterations = iteration;
+      const Eigen::VectorXd residual = basis.transpose() * (x_end - x);
+      // Jacobian of ξ ↦ Pᵀ(x(T) − x) by finite differences of one-period runs; a linear
+      // network converges in one step, up to the integration error.
+      const double scale = std::max(x_end.norm(), 1e-300);
+      Eigen::MatrixXd jacobian(nv, nv);
+      for (Eigen::Index k = 0; k < nv; ++k) {
+        const double step = std::sqrt(rtol) * scale;
+        const Eigen::VectorXd perturbed = x + step * basis.col(k);
+        Eigen::VectorXd perturbed_end;
+        one_period(perturbed, perturbed_end);
+        jacobian.col(k) = (basis.transpose() * (perturbed_end - perturbed) - residual) / step;
+      }
+      const Eigen::VectorXd correction = jacobian.fullPivLu().solve(-residual);
+      xi += correction;
+      x = basis * xi;
+      one_period(x, x_end);
+      result.periodicity_residual = (x_end - x).norm() / std::max(x.norm(), 1e-300);
+      if (correction.norm() <= 10 * rtol * std::max(xi.norm(), 1e-300)) break;
+    }
+    // One more period from the periodic state, sampled.
+    options.initial_state = Eigen::VectorXd::Zero(form.size());
+    for (Eigen::Index k = 0; k < nd; ++k)
+      (*options.initial_state)[state[static_cast<size_t>(k)]] = x[k];
+    for (int s = 0; s < samples; ++s) options.output_times.push_back(period * s / samples);
+    const TransientResult run = run_transient_ida(system, probes, options);
+    if (!run.status.ok) return finish(run.status);
+    result.times = run.times;
+    result.values = run.values;
+    // Sampled extremes refined by a parabola through the neighbouring samples.
+    fill_extremes(result, [&](size_t p, size_t s, bool) {
+      const auto& v = result.values[p];
+      const size_t n = v.size();
+      const double left = v[(s + n - 1) % n], middle = v[s], right = v[(s + 1) % n];
+      const double curvature = left - 2 * middle + right;
+      const double step = period / samples;
+      if (curvature == 0.0) return std::pair<double, double>(result.times[s], middle);
+      const double offset = 0.5 * (left - right) / curvature;
+      return std::pair<double, double>(result.times[s] + offset * step,
+                                       middle - 0.25 * (left - right) * offset);
+    });
+    return finish(Status::success());
+  } catch (const std::exception& e) {
+    return finish(Status::failure(std::string("shooting: ") + e.what()));
+  }
+}
+
+}  // namespace emnet
