@@ -62,6 +62,10 @@ struct TransientResult {
 TransientResult run_transient_ida(const System& system, const std::vector<Probe>& probes,
                                   const TransientOptions& options);
 
+// The ends of the constant (or smooth) intervals of the sources over (0, end_time]: every
+// source breakpoint, the last one being end_time itself.
+std::vector<double> interval_ends(const System& system, double end_time);
+
 // Exact solution for a linear network whose sources are piecewise constant (zero rise time):
 // a matrix exponential per constant interval. Fails (status) for other networks.
 TransientResult run_transient_exact(const System& system, const std::vector<Probe>& probes,

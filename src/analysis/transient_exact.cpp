@@ -23,6 +23,14 @@ Status require_piecewise_constant(const System& system) {
   return Status::success();
 }
 
+std::vector<double> interval_ends(const System& system, double end_time) {
+  std::vector<double> stops = system.breakpoints(0.0, end_time);
+  // A last edge within rounding of the end is the end (not an interval of a few ulps).
+  if (!stops.empty() && end_time - stops.back() <= 1e-12 * end_time) stops.pop_back();
+  stops.push_back(end_time);
+  return stops;
+}
+
 TransientResult run_transient_exact(const System& system, const std::vector<Probe>& probes,
                                     const TransientOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -48,8 +56,7 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
         return finish(Status::failure("static start state: " + rest.status.message));
       x = space.state_of(form.from_static(rest.state));
     }
-    std::vector<double> stops = system.breakpoints(0.0, options.end_time);
-    if (stops.empty() || stops.back() < options.end_time) stops.push_back(options.end_time);
+    const std::vector<double> stops = interval_ends(system, options.end_time);
     std::vector<double> outputs = options.output_times;
     std::sort(outputs.begin(), outputs.end());
     size_t next_output = 0;

@@ -201,8 +201,7 @@ TransientResult run_transient_ida(const System& system, const std::vector<Probe>
     IDASetJacFn(mem, jacobian_callback);
 
     // Intervals between breakpoints; outputs inside each.
-    std::vector<double> stops = system.breakpoints(0.0, options.end_time);
-    if (stops.empty() || stops.back() < options.end_time) stops.push_back(options.end_time);
+    const std::vector<double> stops = interval_ends(system, options.end_time);
     std::vector<double> outputs = options.output_times;
     std::sort(outputs.begin(), outputs.end());
     size_t next_output = 0;

@@ -26,6 +26,10 @@ std::pair<int, double> locate(const BeamLayout& beam, double x) {
   int s = static_cast<int>(std::floor(x / beam.segment_length));
   s = std::clamp(s, 0, segments - 1);
   double xi = (x - beam.x[static_cast<size_t>(s)]) / beam.segment_length;
+  // A position on a node within rounding is that node exactly (no 1e-17 coefficients).
+  if (std::abs(xi - 1.0) < 1e-9 && s + 1 < segments) ++s, xi = 0.0;
+  if (std::abs(xi) < 1e-9) xi = 0.0;
+  if (std::abs(xi - 1.0) < 1e-9) xi = 1.0;
   return {s, std::clamp(xi, 0.0, 1.0)};
 }
 
