@@ -21,8 +21,8 @@ struct CliRun {
 CliRun run(const std::string& arguments) {
   static int counter = 0;
   // One file per process and call: CTest runs the tests in parallel processes.
-  const std::string err_path = ::testing::TempDir() + "emnet_cli_err_" +
-                               std::to_string(getpid()) + "_" + std::to_string(counter++);
+  const std::string err_path = ::testing::TempDir() + "emnet_cli_err_" + std::to_string(getpid()) +
+                               "_" + std::to_string(counter++);
   const std::string command = std::string(EMNET_BINARY) + " " + arguments + " 2>" + err_path;
   CliRun result;
   FILE* pipe = popen(command.c_str(), "r");
@@ -74,8 +74,7 @@ std::string scene_with(const std::string& from, const std::string& to, const std
     EXPECT_NE(at, std::string::npos) << from;
     text.replace(at, from.size(), to);
   }
-  const std::string path =
-      ::testing::TempDir() + name + "_" + std::to_string(getpid()) + ".toml";
+  const std::string path = ::testing::TempDir() + name + "_" + std::to_string(getpid()) + ".toml";
   std::ofstream(path) << text;
   return path;
 }
