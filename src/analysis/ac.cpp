@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "emnet/analysis.hpp"
+#include "timed.hpp"
 
 namespace emnet {
 
@@ -32,16 +33,11 @@ std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y,
 
 AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
                 const std::vector<double>& frequencies, const std::vector<Probe>& probes) {
-  const auto start = std::chrono::steady_clock::now();
-  AcResult result;
+  Timed<AcResult> timed;
+  AcResult& result = timed.result;
   result.frequencies = frequencies;
   result.values.assign(probes.size(), {});
-  auto finish = [&](Status status) {
-    result.status = std::move(status);
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return result;
-  };
+  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   using ComplexMatrix = Eigen::SparseMatrix<std::complex<double>>;
   const Eigen::SparseMatrix<double> g_matrix = linearised_g(system, operating_point);
   const Eigen::VectorXcd rhs = system.b_ac();

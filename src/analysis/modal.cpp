@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "emnet/analysis.hpp"
+#include "timed.hpp"
 
 namespace emnet {
 
@@ -49,16 +50,11 @@ double matrix_norm(const Eigen::SparseMatrix<double>& m) {
 
 ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,
                       const ModalOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  ModalResult result;
+  Timed<ModalResult> timed;
+  ModalResult& result = timed.result;
   const int n = system.size();
   result.unknowns = n;
-  auto finish = [&](Status status) {
-    result.status = std::move(status);
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return result;
-  };
+  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   const Eigen::SparseMatrix<double> g_matrix = linearised_g(system, operating_point);
   const double g_norm = matrix_norm(g_matrix), c_norm = matrix_norm(system.C);
   if (c_norm == 0.0) return finish(Status::failure("the network stores no energy: no poles"));

@@ -10,6 +10,7 @@
 #include "displacement_form.hpp"
 #include "emnet/transient.hpp"
 #include "state_space.hpp"
+#include "timed.hpp"
 
 namespace emnet {
 
@@ -18,10 +19,6 @@ Status require_piecewise_constant(const System& system);  // transient_exact.cpp
 namespace {
 
 using Complex = std::complex<double>;
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Extremes of every probe over one period from samples (times, values), with the sampled
 // extreme refined by `refine(probe, sample index, is_maximum)` → (time, value).
@@ -86,15 +83,11 @@ PeriodicSolver::~PeriodicSolver() = default;
 
 PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Probe>& probes,
                                      double period, int samples) const {
-  const auto start = std::chrono::steady_clock::now();
-  PeriodicResult result;
+  Timed<PeriodicResult> timed;
+  PeriodicResult& result = timed.result;
   result.method = "exact";
   result.period = period;
-  auto finish = [&](Status status) {
-    result.status = std::move(status);
-    result.seconds = seconds_since(start);
-    return result;
-  };
+  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   if (!impl_) return finish(status_);
   if (Status pieces = require_piecewise_constant(system); !pieces.ok) return finish(pieces);
   if (system.size() != impl_->system.size() || system.is_nonlinear())
@@ -228,15 +221,11 @@ PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Pro
 
 PeriodicResult run_periodic_shooting(const System& system, const std::vector<Probe>& probes,
                                      double period, double rtol, int samples) {
-  const auto start = std::chrono::steady_clock::now();
-  PeriodicResult result;
+  Timed<PeriodicResult> timed;
+  PeriodicResult& result = timed.result;
   result.method = "shooting";
   result.period = period;
-  auto finish = [&](Status status) {
-    result.status = std::move(status);
-    result.seconds = seconds_since(start);
-    return result;
-  };
+  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   try {
     const DisplacementForm form(system);
     std::vector<int> state;  // the differential unknowns

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "emnet/analysis.hpp"
+#include "timed.hpp"
 
 namespace emnet {
 
@@ -108,17 +109,12 @@ bool StaticOperator::solve(const Eigen::VectorXcd& rhs, Eigen::VectorXcd& z,
 }
 
 StaticResult solve_static(const System& system, const StaticOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  StaticResult result;
+  Timed<StaticResult> timed;
+  StaticResult& result = timed.result;
   const int n = system.size();
   const StaticOperator linear(system, system.G);
   const Eigen::VectorXd b = system.b_at_rest();
-  auto finish = [&](Status status) {
-    result.status = std::move(status);
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return result;
-  };
+  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   if (!linear.factorised())
     return finish(Status::failure(
         "the network has no unique static state (a free body, a mechanism, or a loop of across "

@@ -8,6 +8,7 @@
 #include "emnet/analysis.hpp"
 #include "emnet/transient.hpp"
 #include "state_space.hpp"
+#include "timed.hpp"
 
 namespace emnet {
 
@@ -33,16 +34,11 @@ std::vector<double> interval_ends(const System& system, double end_time) {
 
 TransientResult run_transient_exact(const System& system, const std::vector<Probe>& probes,
                                     const TransientOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  TransientResult result;
+  Timed<TransientResult> timed;
+  TransientResult& result = timed.result;
   result.method = "exact";
   result.values.assign(probes.size(), {});
-  auto finish = [&](Status status) {
-    result.status = std::move(status);
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return result;
-  };
+  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   if (Status pieces = require_piecewise_constant(system); !pieces.ok) return finish(pieces);
   try {
     const DisplacementForm form(system);

@@ -13,6 +13,7 @@
 #include "emnet/analysis.hpp"
 #include "emnet/transient.hpp"
 #include "sundials_handles.hpp"
+#include "timed.hpp"
 
 namespace emnet {
 
@@ -130,16 +131,11 @@ Eigen::VectorXd absolute_tolerances(const DisplacementForm& form, const StaticRe
 
 TransientResult run_transient_ida(const System& system, const std::vector<Probe>& probes,
                                   const TransientOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  TransientResult result;
+  Timed<TransientResult> timed;
+  TransientResult& result = timed.result;
   result.method = "ida";
   result.values.assign(probes.size(), {});
-  auto finish = [&](Status status) {
-    result.status = std::move(status);
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return result;
-  };
+  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   try {
     const DisplacementForm form(system);
     const int n = form.size();
