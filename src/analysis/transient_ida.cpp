@@ -198,7 +198,7 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
     IDASetUserData(mem, &data);
     IDASetId(mem, id);
     if (suppress_algebraic) IDASetSuppressAlg(mem, SUNTRUE);
-    IDASetMaxNumSteps(mem, 1000000);
+    IDASetMaxNumSteps(mem, 100000);  // per output interval
     if (options.max_step > 0.0) IDASetMaxStep(mem, options.max_step);
     sundials::Matrix jacobian(SUNSparseMatrix(
         n, n, std::max<sunindextype>(pattern_matrix.nonZeros(), 1), CSC_MAT, context));
