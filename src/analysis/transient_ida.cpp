@@ -19,6 +19,12 @@ namespace emnet {
 
 namespace {
 
+std::string format_time(double t) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.9g", t);
+  return buffer;
+}
+
 struct CallbackData {
   const DisplacementForm* form;
   double interval_begin = 0.0, interval_end = 0.0;
@@ -243,7 +249,7 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
       ++result.statistics.restarts;
       const int ic = IDACalcIC(mem, IDA_YA_YDP_INIT, t + 1e-3 * (stop - t));
       if (ic != IDA_SUCCESS)
-        return finish(Status::failure("consistent initial values at t = " + std::to_string(t) +
+        return finish(Status::failure("consistent initial values at t = " + format_time(t) +
                                       " s failed (" + data.last_error +
                                       "); try a nonzero drive.rise_time or --start static"));
       IDAGetConsistentIC(mem, yy, yp);
