@@ -178,6 +178,20 @@ std::string last_lines(const std::string& output, size_t count) {
 }
 
 // Runs gnuplot on the script under a time limit and checks that it wrote a non-empty image.
+Status run_gnuplot(const PlotFiles& files, const std::string& image_path);
+
+// Writes the gnuplot script beside the image and runs it.
+Status write_script_and_run(const PlotFiles& files, const std::string& script,
+                            const std::string& image_path) {
+  std::ofstream script_file;
+  if (Status status = open_for_writing(files.script_path, script_file); !status.ok) return status;
+  script_file << script;
+  if (Status status = close_after_writing(files.script_path, script_file); !status.ok) {
+    return status;
+  }
+  return run_gnuplot(files, image_path);
+}
+
 Status run_gnuplot(const PlotFiles& files, const std::string& image_path) {
   std::error_code ignored;
   std::filesystem::remove(image_path, ignored);  // so a stale image is never taken for a new one
@@ -442,13 +456,7 @@ Status write_bode_plot(const std::string& path, const std::string& title,
   }
   script << "\n\nunset multiplot\n";
 
-  std::ofstream script_file;
-  if (Status status = open_for_writing(files.script_path, script_file); !status.ok) return status;
-  script_file << script.str();
-  if (Status status = close_after_writing(files.script_path, script_file); !status.ok) {
-    return status;
-  }
-  return run_gnuplot(files, path);
+  return write_script_and_run(files, script.str(), path);
 }
 
 Status write_line_plot(const std::string& path, const std::string& title,
@@ -518,13 +526,7 @@ Status write_line_plot(const std::string& path, const std::string& title,
   }
   script << "\n\nunset multiplot\n";
 
-  std::ofstream script_file;
-  if (Status status = open_for_writing(files.script_path, script_file); !status.ok) return status;
-  script_file << script.str();
-  if (Status status = close_after_writing(files.script_path, script_file); !status.ok) {
-    return status;
-  }
-  return run_gnuplot(files, path);
+  return write_script_and_run(files, script.str(), path);
 }
 
 }  // namespace emnet

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.hpp"
 #include "emnet/analysis.hpp"
 #include "emnet/elements/capacitor.hpp"
 #include "emnet/elements/conductance.hpp"
@@ -686,29 +687,10 @@ TEST(HardZero, ZeroDriveStaysExactlyAtRestWithEveryMethodAndModel) {
 
 // ---- failures: a message naming the time, the reason and what to try ----------------------
 
-struct CliRun {
-  int status = -1;
-  std::string out, err;
-};
+using emnet::testing::CliRun;
 
 CliRun run_cli(const std::string& arguments, const std::string& prefix = "") {
-  static int counter = 0;
-  const std::string err_path = ::testing::TempDir() + "emnet_hard_err_" + std::to_string(getpid()) +
-                               "_" + std::to_string(counter++);
-  const std::string command =
-      prefix + std::string(EMNET_BINARY) + " " + arguments + " 2>" + err_path;
-  CliRun result;
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer{};
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    result.out.append(buffer.data(), n);
-  const int raw = pclose(pipe);
-  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  std::ifstream err(err_path);
-  result.err.assign(std::istreambuf_iterator<char>(err), {});
-  std::remove(err_path.c_str());
-  return result;
+  return emnet::testing::run_emnet(arguments, prefix);
 }
 
 // rtol = 1e-15 is below what double precision can deliver: IDA runs into its step limit

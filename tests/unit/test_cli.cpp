@@ -11,30 +11,14 @@
 #include <regex>
 #include <string>
 
+#include "cli_run.hpp"
+
 namespace {
 
-struct CliRun {
-  int status = -1;
-  std::string out, err;
-};
+using emnet::testing::CliRun;
 
 CliRun run(const std::string& arguments) {
-  static int counter = 0;
-  // One file per process and call: CTest runs the tests in parallel processes.
-  const std::string err_path = ::testing::TempDir() + "emnet_cli_err_" + std::to_string(getpid()) +
-                               "_" + std::to_string(counter++);
-  const std::string command = std::string(EMNET_BINARY) + " " + arguments + " 2>" + err_path;
-  CliRun result;
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer{};
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    result.out.append(buffer.data(), n);
-  const int raw = pclose(pipe);
-  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  std::ifstream err(err_path);
-  result.err.assign(std::istreambuf_iterator<char>(err), {});
-  return result;
+  return emnet::testing::run_emnet(arguments);
 }
 
 // A valid scene with one DEA; each case below breaks one line of it.
