@@ -111,8 +111,9 @@ struct Mode {
   double frequency_hz = 0.0;          // |Im s| / 2π (damped)
   double natural_frequency_hz = 0.0;  // |s| / 2π
   double damping_ratio = 0.0;         // −Re s / |s|
-  double relative_residual = 0.0;  // ‖(G + J + sC)·x‖ / ((‖G + J‖ + |s|·‖C‖)·‖x‖)
-  Eigen::VectorXcd vector;         // y-space eigenvector (across values are velocities)
+  // ‖(Ĝ + ŝĈ)·x̂‖ / ((‖Ĝ‖ + |ŝ|·‖Ĉ‖)·‖x̂‖) on the equilibrated pencil (unit-free).
+  double relative_residual = 0.0;
+  Eigen::VectorXcd vector;  // y-space eigenvector (across values are velocities)
 };
 
 struct ModalResult {

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "emnet/analysis.hpp"
+#include "equilibration.hpp"
 #include "timed.hpp"
 
 namespace emnet {
@@ -55,21 +56,29 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
   const int n = system.size();
   result.unknowns = n;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
-  const Eigen::SparseMatrix<double> g_matrix = linearised_g(system, operating_point);
-  const double g_norm = matrix_norm(g_matrix), c_norm = matrix_norm(system.C);
-  if (c_norm == 0.0) return finish(Status::failure("the network stores no energy: no poles"));
+  if (matrix_norm(system.C) == 0.0)
+    return finish(Status::failure("the network stores no energy: no poles"));
+  // Everything below works on the equilibrated pencil (Ĝ, Ĉ) with poles ŝ = s/ω₀, so that
+  // thresholds relative to the largest entry or eigenvalue do not depend on the units
+  // (equilibration.hpp); poles and vectors are mapped back at the end.
+  const Eigen::SparseMatrix<double> unscaled_g = linearised_g(system, operating_point);
+  const DiagonalScaling scaling = equilibrate_pencil(unscaled_g, system.C);
+  const double omega0 = scaling.frequency;
+  const Eigen::SparseMatrix<double> g_matrix = scaled(unscaled_g, scaling);
+  const Eigen::SparseMatrix<double> c_matrix = scaled(system.C, scaling, omega0);
+  const double g_norm = matrix_norm(g_matrix), c_norm = matrix_norm(c_matrix);
 
   // Shift: σ = 0 unless G is singular there (a free body has a pole at 0).
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
   const double scale = g_norm / c_norm;
   bool factorised = false;
   for (double sigma : {0.0, -1e-3 * scale, -1e-6 * scale, -1.0}) {
-    Eigen::SparseMatrix<double> shifted = g_matrix + sigma * system.C;
+    Eigen::SparseMatrix<double> shifted = g_matrix + sigma * c_matrix;
     shifted.makeCompressed();
     lu.analyzePattern(shifted);
     lu.factorize(shifted);
     if (lu.info() == Eigen::Success) {
-      result.shift = sigma;
+      result.shift = sigma * omega0;
       factorised = true;
       break;
     }
@@ -81,7 +90,7 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
   const bool dense = n <= options.dense_limit || options.count >= n - 2;
   if (dense) {
     result.method = "dense";
-    const Eigen::MatrixXd identity_c = Eigen::MatrixXd(system.C);
+    const Eigen::MatrixXd identity_c = Eigen::MatrixXd(c_matrix);
     const Eigen::MatrixXd a = lu.solve(identity_c);
     if (!a.allFinite()) return finish(Status::failure("shift-invert operator is not finite"));
     Eigen::EigenSolver<Eigen::MatrixXd> solver(a, options.keep_vectors);
@@ -107,7 +116,7 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
     const int wanted = options.count > 0 ? 2 * options.count + 4 : 10;
     const int nev = std::min(wanted, n - 3);
     const int ncv = std::min(n - 1, std::max(2 * nev + 1, nev + 30));
-    ShiftInvertOperator op(lu, system.C);
+    ShiftInvertOperator op(lu, c_matrix);
     Spectra::GenEigsSolver<ShiftInvertOperator> eigs(op, nev, ncv);
     eigs.init();
     // Poles clustered away from σ (e.g. the overdamped relaxation poles of Kelvin–Voigt
@@ -128,9 +137,10 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
   }
 
   const Eigen::SparseMatrix<std::complex<double>> gc = g_matrix.cast<std::complex<double>>();
-  const Eigen::SparseMatrix<std::complex<double>> cc = system.C.cast<std::complex<double>>();
+  const Eigen::SparseMatrix<std::complex<double>> cc = c_matrix.cast<std::complex<double>>();
   for (size_t k = 0; k < mus.size(); ++k) {
-    const std::complex<double> pole = result.shift - 1.0 / mus[k];
+    const std::complex<double> scaled_pole = result.shift / omega0 - 1.0 / mus[k];
+    const std::complex<double> pole = omega0 * scaled_pole;
     if (pole.imag() < -1e-9 * std::abs(pole)) continue;  // keep one of each conjugate pair
     Mode mode;
     mode.pole = std::complex<double>(pole.real(), std::abs(pole.imag()));
@@ -138,14 +148,19 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
     mode.frequency_hz = std::abs(pole.imag()) / two_pi;
     mode.damping_ratio = std::abs(pole) > 0.0 ? -pole.real() / std::abs(pole) : 0.0;
     if (vectors[k].size() == n) {
-      Eigen::VectorXcd x = vectors[k];
+      Eigen::VectorXcd x = vectors[k];  // of the equilibrated pencil
       if (pole.imag() < 0.0) x = x.conjugate();
+      const std::complex<double> scaled_mode_pole = mode.pole / omega0;
       const double norm = x.norm();
       if (norm > 0.0) {
-        mode.relative_residual = (gc * x + mode.pole * (cc * x)).norm() /
-                                 ((g_norm + std::abs(mode.pole) * c_norm) * norm);
+        mode.relative_residual = (gc * x + scaled_mode_pole * (cc * x)).norm() /
+                                 ((g_norm + std::abs(scaled_mode_pole) * c_norm) * norm);
       }
-      if (options.keep_vectors) mode.vector = x / norm;
+      if (options.keep_vectors) {
+        const Eigen::VectorXcd physical =
+            scaling.column.cast<std::complex<double>>().cwiseProduct(x);
+        mode.vector = physical / physical.norm();
+      }
     }
     const bool oscillatory = mode.frequency_hz > 1e-9 * mode.natural_frequency_hz;
     (oscillatory ? result.modes : result.real_poles).push_back(std::move(mode));
