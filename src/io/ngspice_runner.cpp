@@ -1,0 +1,1396 @@
+// The ngspice runner; see include/emnet/ngspice_runner.hpp for what it does and why.
+//
+// Layout of this file:
+//   POSIX handles (file descriptors, child processes, a temporary directory) in RAII wrappers;
+//   deck preparation and ngspice's error lines;
+//   the process's one libngspice (dlopen, dlsym, ngSpice_Init once, C callbacks that hand
+//   every event to the sink of the run in progress and never throw);
+//   one deck through the library (shared by the worker and the in-this-process mode);
+//   the forked worker and its record stream;
+//   the ngspice program as a subprocess and the rawfile parser;
+//   run_ngspice, which picks the backend and falls back.
+//
+// The worker's record stream, child to parent, one record after another:
+//   tag (1 byte) · payload length (8 bytes) · payload
+// with the payload of a vector record
+//   flags (1 byte: 1 scale, 2 complex) · name length (4 bytes) · name · count (8 bytes) ·
+//   count doubles (real) or count (real, imaginary) pairs
+// all in the machine's own byte order: both ends are the same program on the same machine,
+// and raw doubles carry every bit.
+#include "emnet/ngspice_runner.hpp"
+
+#include <dlfcn.h>
+#include <fcntl.h>
+#include <ngspice/sharedspice.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <system_error>
+#include <utility>
+
+extern char** environ;
+
+namespace emnet {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string errno_text(int error_number) {
+  return std::generic_category().message(error_number);
+}
+
+std::string signal_text(int signal_number) {
+  const char* name = strsignal(signal_number);
+  return "signal " + std::to_string(signal_number) + (name ? std::string(", ") + name : "");
+}
+
+std::string lower_case(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+std::string_view trimmed(std::string_view text) {
+  const auto is_space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
+  while (!text.empty() && is_space(text.back())) text.remove_suffix(1);
+  return text;
+}
+
+std::string format_seconds(double seconds) {
+  std::ostringstream text;
+  text << seconds;
+  return text.str();
+}
+
+// ---- POSIX handles ------------------------------------------------------------------------
+
+class FileDescriptor {
+ public:
+  FileDescriptor() = default;
+  explicit FileDescriptor(int descriptor) : descriptor_(descriptor) {}
+  FileDescriptor(FileDescriptor&& other) noexcept : descriptor_(other.release()) {}
+  FileDescriptor& operator=(FileDescriptor&& other) noexcept {
+    if (this != &other) reset(other.release());
+    return *this;
+  }
+  FileDescriptor(const FileDescriptor&) = delete;
+  FileDescriptor& operator=(const FileDescriptor&) = delete;
+  ~FileDescriptor() { reset(); }
+
+  int get() const { return descriptor_; }
+  bool is_open() const { return descriptor_ >= 0; }
+  int release() { return std::exchange(descriptor_, -1); }
+  void reset(int descriptor = -1) {
+    if (descriptor_ >= 0) ::close(descriptor_);
+    descriptor_ = descriptor;
+  }
+
+ private:
+  int descriptor_ = -1;
+};
+
+struct Pipe {
+  FileDescriptor read_end, write_end;
+};
+
+// A pipe whose ends are closed in programs this process starts (O_CLOEXEC).
+bool open_pipe(Pipe& pipe, std::string& why) {
+  int ends[2];
+  if (::pipe2(ends, O_CLOEXEC) != 0) {
+    why = "cannot create a pipe: " + errno_text(errno);
+    return false;
+  }
+  pipe.read_end.reset(ends[0]);
+  pipe.write_end.reset(ends[1]);
+  return true;
+}
+
+// Writes all of `size` bytes, retrying after interruptions; false when the reader is gone.
+bool write_fully(int descriptor, const void* data, std::size_t size) {
+  const char* bytes = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t written = ::write(descriptor, bytes, size);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    bytes += written;
+    size -= static_cast<std::size_t>(written);
+  }
+  return true;
+}
+
+// A child process that is killed (SIGKILL, its whole process group when it leads one) and
+// reaped when this handle goes away without having reaped it.
+class ChildProcess {
+ public:
+  ChildProcess() = default;
+  ChildProcess(pid_t process_id, bool leads_process_group)
+      : process_id_(process_id), leads_process_group_(leads_process_group) {}
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+  ~ChildProcess() {
+    if (running()) {
+      kill();
+      wait_blocking();
+    }
+  }
+
+  bool running() const { return process_id_ > 0 && !reaped_; }
+  void kill() {
+    if (!running()) return;
+    if (leads_process_group_) ::kill(-process_id_, SIGKILL);
+    ::kill(process_id_, SIGKILL);
+  }
+  // True once the child has ended (its wait status in `status()`).
+  bool try_wait() { return reap(WNOHANG); }
+  void wait_blocking() { reap(0); }
+  int status() const { return wait_status_; }
+  bool reap_failed() const { return reap_failed_; }
+
+ private:
+  bool reap(int flags) {
+    if (!running()) return reaped_;
+    for (;;) {
+      const pid_t result = ::waitpid(process_id_, &wait_status_, flags);
+      if (result == process_id_) {
+        reaped_ = true;
+        return true;
+      }
+      if (result == 0) return false;
+      if (errno == EINTR) continue;
+      // ECHILD: someone else reaped it (SIGCHLD ignored); its status is unknown.
+      reaped_ = true;
+      reap_failed_ = true;
+      return true;
+    }
+  }
+  pid_t process_id_ = -1;
+  bool leads_process_group_ = false;
+  bool reaped_ = false;
+  bool reap_failed_ = false;
+  int wait_status_ = 0;
+};
+
+class TemporaryDirectory {
+ public:
+  bool create(std::string& why) {
+    const char* base = std::getenv("TMPDIR");
+    std::string pattern = std::string(base && *base ? base : "/tmp") + "/emnet-ngspice-XXXXXX";
+    if (!::mkdtemp(pattern.data())) {
+      why = "cannot create a temporary directory (" + pattern + "): " + errno_text(errno);
+      return false;
+    }
+    path_ = pattern;
+    return true;
+  }
+  ~TemporaryDirectory() {
+    if (path_.empty()) return;
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+// Reads what is available on `descriptor` into `buffer`; false at end of file or on error.
+bool read_available(int descriptor, std::string& buffer) {
+  char chunk[65536];
+  for (;;) {
+    const ssize_t count = ::read(descriptor, chunk, sizeof chunk);
+    if (count > 0) {
+      buffer.append(chunk, static_cast<std::size_t>(count));
+      return true;
+    }
+    if (count < 0 && errno == EINTR) continue;
+    return false;
+  }
+}
+
+// Splits a stream's output into lines as it arrives, so that the lines of two streams keep
+// the order in which they came.
+class LineCollector {
+ public:
+  LineCollector(NgspiceStream stream, std::vector<NgspiceMessage>& messages)
+      : stream_(stream), messages_(messages) {}
+  void add(const char* data, std::size_t size) {
+    pending_.append(data, size);
+    std::size_t begin = 0;
+    for (std::size_t end; (end = pending_.find('\n', begin)) != std::string::npos; begin = end + 1)
+      push(pending_.substr(begin, end - begin));
+    pending_.erase(0, begin);
+  }
+  void finish() {
+    if (!pending_.empty()) push(std::exchange(pending_, std::string()));
+  }
+
+ private:
+  void push(std::string line) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    messages_.push_back({stream_, std::move(line)});
+  }
+  NgspiceStream stream_;
+  std::vector<NgspiceMessage>& messages_;
+  std::string pending_;
+};
+
+// Splits text output into lines; a last line without newline is kept.
+void append_lines(const std::string& text, NgspiceStream stream,
+                  std::vector<NgspiceMessage>& messages) {
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(begin, end - begin);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    messages.push_back({stream, std::move(line)});
+    begin = end + 1;
+  }
+}
+
+// ---- the deck and ngspice's error lines -------------------------------------------------
+
+// The deck's lines, `.end` last. Refuses a NUL byte (lines go to C strings) and any
+// `.control` / `.endc` line (no control commands through this runner).
+bool prepare_deck(const std::string& deck_text, std::vector<std::string>& lines, std::string& why) {
+  if (deck_text.find('\0') != std::string::npos) {
+    why = "the deck contains a NUL character";
+    return false;
+  }
+  std::istringstream stream(deck_text);
+  for (std::string line; std::getline(stream, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back(std::move(line));
+  }
+  if (lines.empty()) {
+    why = "the deck is empty";
+    return false;
+  }
+  const auto first_word = [](const std::string& line) {
+    const std::string_view text = trimmed(line);
+    return lower_case(std::string(text.substr(0, text.find_first_of(" \t"))));
+  };
+  for (std::size_t index = 1; index < lines.size(); ++index) {
+    const std::string word = first_word(lines[index]);
+    if (word == ".control" || word == ".endc") {
+      why = "the deck has a " + word + " line (line " + std::to_string(index + 1) +
+            "); the runner runs the deck's own analyses and takes no control commands: "
+            "write the deck without its .control block";
+      return false;
+    }
+  }
+  std::size_t last = lines.size();
+  while (last > 1 && trimmed(lines[last - 1]).empty()) --last;
+  if (last <= 1 || first_word(lines[last - 1]) != ".end") lines.push_back(".end");
+  return true;
+}
+
+bool is_error_line(const NgspiceMessage& message) {
+  if (message.stream != NgspiceStream::err) return false;
+  const std::string text = lower_case(std::string(trimmed(message.text)));
+  return text.rfind("error", 0) == 0;
+}
+
+bool has_error_line(const std::vector<NgspiceMessage>& messages) {
+  return std::any_of(messages.begin(), messages.end(), is_error_line);
+}
+
+// For a status message: ngspice's standard-error lines from its first error on, or when it
+// printed no error its warnings; "Note:" lines left out, at most 20 lines.
+std::string error_excerpt(const std::vector<NgspiceMessage>& messages) {
+  const auto starts_with = [](const NgspiceMessage& message, const char* prefix) {
+    return lower_case(std::string(trimmed(message.text))).rfind(prefix, 0) == 0;
+  };
+  auto first = std::find_if(messages.begin(), messages.end(), is_error_line);
+  const bool has_error = first != messages.end();
+  if (!has_error) first = messages.begin();
+  std::string text;
+  int count = 0;
+  bool in_note = false;
+  for (auto it = first; it != messages.end(); ++it) {
+    // A note and its indented continuation lines are left out.
+    const bool continuation =
+        !it->text.empty() && std::isspace(static_cast<unsigned char>(it->text.front())) != 0;
+    in_note = starts_with(*it, "note:") || (in_note && continuation);
+    if (trimmed(it->text).empty() || in_note) continue;
+    if (has_error ? it->stream != NgspiceStream::err : !starts_with(*it, "warning")) continue;
+    if (++count > 20) {
+      text += "\n  ...";
+      break;
+    }
+    text += "\n  " + std::string(trimmed(it->text));
+  }
+  return text.empty() ? std::string() : ":" + text;
+}
+
+// Rawfile names as ngspice names its vectors: "v(out)" -> "out", "i(v1)" -> "v1#branch".
+std::string vector_name_from_rawfile(const std::string& rawfile_name) {
+  std::string name = lower_case(rawfile_name);
+  if (name.size() > 3 && name.back() == ')') {
+    if (name.rfind("v(", 0) == 0) return name.substr(2, name.size() - 3);
+    if (name.rfind("i(", 0) == 0) return name.substr(2, name.size() - 3) + "#branch";
+  }
+  return name;
+}
+
+// ---- the process's libngspice ------------------------------------------------------------
+
+struct LibraryPlotInfo {
+  std::string name;        // "Transient Analysis"
+  std::string type;        // "tran1": ngspice's handle on the plot
+  std::string scale_name;  // "time"
+};
+
+// Receives the callbacks of one run. `message` must not throw.
+class LibraryRunSink {
+ public:
+  virtual ~LibraryRunSink() = default;
+  virtual void message(NgspiceStream stream, std::string text) noexcept = 0;
+
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::vector<LibraryPlotInfo> plots;
+  bool controlled_exit = false;
+  int controlled_exit_status = 0;
+  int background_thread_exits = 0;
+};
+
+std::atomic<LibraryRunSink*> current_sink{nullptr};
+
+// The callbacks: C signatures, called from ngspice's threads; nothing may escape them.
+int on_send_char(char* text, int, void*) {
+  try {
+    LibraryRunSink* sink = current_sink.load();
+    if (!sink || !text) return 0;
+    std::string_view line(text);
+    NgspiceStream stream = NgspiceStream::out;
+    if (line.rfind("stderr ", 0) == 0) {
+      stream = NgspiceStream::err;
+      line.remove_prefix(7);
+    } else if (line.rfind("stdout ", 0) == 0) {
+      line.remove_prefix(7);
+    }
+    sink->message(stream, std::string(line));
+  } catch (...) {
+  }
+  return 0;
+}
+
+int on_send_status(char*, int, void*) {
+  return 0;
+}
+
+int on_controlled_exit(int exit_status, NG_BOOL, NG_BOOL, int, void*) {
+  try {
+    if (LibraryRunSink* sink = current_sink.load()) {
+      std::lock_guard<std::mutex> lock(sink->mutex);
+      sink->controlled_exit = true;
+      sink->controlled_exit_status = exit_status;
+      sink->changed.notify_all();
+    }
+  } catch (...) {
+  }
+  return 0;
+}
+
+int on_send_init_data(pvecinfoall plot, int, void*) {
+  try {
+    LibraryRunSink* sink = current_sink.load();
+    if (!sink || !plot) return 0;
+    LibraryPlotInfo info;
+    info.name = plot->name ? plot->name : "";
+    info.type = plot->type ? plot->type : "";
+    for (int index = 0; index < plot->veccount; ++index) {
+      const pvecinfo vector = plot->vecs[index];
+      if (vector && vector->pdvec && vector->pdvec == vector->pdvecscale && vector->vecname)
+        info.scale_name = vector->vecname;
+    }
+    std::lock_guard<std::mutex> lock(sink->mutex);
+    sink->plots.push_back(std::move(info));
+  } catch (...) {
+  }
+  return 0;
+}
+
+// ngspice passes true when its background thread has ended, false when it starts.
+int on_background_thread(NG_BOOL thread_ended, int, void*) {
+  try {
+    LibraryRunSink* sink = current_sink.load();
+    if (!sink || !thread_ended) return 0;
+    std::lock_guard<std::mutex> lock(sink->mutex);
+    ++sink->background_thread_exits;
+    sink->changed.notify_all();
+  } catch (...) {
+  }
+  return 0;
+}
+
+class NgspiceLibrary {
+ public:
+  // The process's libngspice, loaded and initialised on first use from the first of `names`
+  // that loads; nullptr with `why` when none does. Reused while it is one of `names`; when it
+  // is not, `may_replace` (a worker, which owns its process) sets it aside and loads anew.
+  static NgspiceLibrary* acquire(const std::vector<std::string>& names, std::string& why,
+                                 bool may_replace) {
+    if (instance_ && may_replace && !instance_->matches_one_of(names)) {
+      instance_->handle_ = nullptr;  // left loaded: its code may still be referenced
+      instance_.reset();
+    }
+    if (instance_) {
+      if (instance_->matches_one_of(names)) return instance_.get();
+      why = "libngspice is already loaded in this process from " + instance_->loaded_name_ +
+            ", which is not among the library names asked for";
+      return nullptr;
+    }
+    std::string reasons;
+    for (const std::string& name : names) {
+      std::unique_ptr<NgspiceLibrary> library(new NgspiceLibrary);
+      std::string reason;
+      if (library->load(name, reason)) {
+        instance_ = std::move(library);
+        return instance_.get();
+      }
+      reasons += (reasons.empty() ? "" : "; ") + reason;
+    }
+    why = reasons.empty() ? "no library name given" : reasons;
+    return nullptr;
+  }
+  // Unloads the library (after it asked to be detached); the next acquire loads it afresh.
+  static void unload() { instance_.reset(); }
+
+  NgspiceLibrary(const NgspiceLibrary&) = delete;
+  NgspiceLibrary& operator=(const NgspiceLibrary&) = delete;
+  ~NgspiceLibrary() {
+    if (handle_ && !busy) ::dlclose(handle_);  // a busy library's thread still runs its code
+  }
+
+  const std::string& loaded_name() const { return loaded_name_; }
+  // True when one of `names` loads as this very library.
+  bool matches_one_of(const std::vector<std::string>& names) const {
+    for (const std::string& name : names) {
+      void* handle = ::dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NOLOAD);
+      if (!handle) continue;
+      const bool same = handle == handle_;
+      ::dlclose(handle);
+      if (same) return true;
+    }
+    return false;
+  }
+  int command(const char* text) { return command_(const_cast<char*>(text)); }
+
+  decltype(&ngSpice_Circ) circuit = nullptr;
+  decltype(&ngSpice_AllVecs) all_vectors = nullptr;
+  decltype(&ngGet_Vec_Info) vector_info = nullptr;
+  // Set when a run could not be stopped: the library is unusable in this process.
+  bool busy = false;
+
+ private:
+  NgspiceLibrary() = default;
+
+  template <class Function>
+  bool find_symbol(const char* symbol, Function& function, std::string& why) {
+    function = reinterpret_cast<Function>(::dlsym(handle_, symbol));
+    if (!function) why = loaded_name_ + " has no " + symbol;
+    return function != nullptr;
+  }
+
+  bool load(const std::string& name, std::string& why) {
+    ::dlerror();
+    handle_ = ::dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle_) {
+      const char* error = ::dlerror();
+      why = error ? error : name + ": cannot be loaded";
+      return false;
+    }
+    loaded_name_ = name;
+    decltype(&ngSpice_Init) initialise = nullptr;
+    if (!find_symbol("ngSpice_Init", initialise, why) ||
+        !find_symbol("ngSpice_Command", command_, why) ||
+        !find_symbol("ngSpice_Circ", circuit, why) ||
+        !find_symbol("ngSpice_AllVecs", all_vectors, why) ||
+        !find_symbol("ngGet_Vec_Info", vector_info, why))
+      return false;
+    // ngSpice_Init installs its own SIGINT handler; keep the process's.
+    struct sigaction interrupt_action {};
+    ::sigaction(SIGINT, nullptr, &interrupt_action);
+    const int result = initialise(on_send_char, on_send_status, on_controlled_exit, nullptr,
+                                  on_send_init_data, on_background_thread, nullptr);
+    ::sigaction(SIGINT, &interrupt_action, nullptr);
+    if (result != 0) {
+      why = loaded_name_ + ": ngSpice_Init failed (" + std::to_string(result) + ")";
+      return false;
+    }
+    return true;
+  }
+
+  void* handle_ = nullptr;
+  std::string loaded_name_;
+  decltype(&ngSpice_Command) command_ = nullptr;
+  static std::unique_ptr<NgspiceLibrary> instance_;
+};
+
+std::unique_ptr<NgspiceLibrary> NgspiceLibrary::instance_;
+
+// ---- one deck through the library -------------------------------------------------------
+
+struct LibraryRun {
+  Status status;
+  std::vector<std::string> plot_names;
+  std::vector<NgspiceVector> vectors;
+  double ngspice_seconds = 0.0;
+  bool library_asked_to_be_detached = false;
+};
+
+// Loads `lines`, runs them and reads the last plot back. `in_background`: run with bg_run and
+// stop it with bg_halt after `timeout_seconds` (in this process); otherwise a plain `run`
+// (in the worker, whose parent keeps the time limit). `messages` gives the run's messages
+// so far, for the error checks.
+template <class Messages>
+LibraryRun run_deck_in_library(NgspiceLibrary& library, LibraryRunSink& sink,
+                               const std::vector<std::string>& lines, bool in_background,
+                               double timeout_seconds, Messages messages) {
+  LibraryRun run;
+  const Clock::time_point start = Clock::now();
+  const auto controlled_exit = [&] {
+    std::lock_guard<std::mutex> lock(sink.mutex);
+    return sink.controlled_exit;
+  };
+  const auto fail = [&](const std::string& what) {
+    run.library_asked_to_be_detached = controlled_exit();
+    run.status = Status::failure(what + error_excerpt(messages()) +
+                                 (run.library_asked_to_be_detached
+                                      ? "\n  (libngspice stopped and asked to be detached)"
+                                      : ""));
+    run.ngspice_seconds = seconds_since(start);
+    return run;
+  };
+
+  std::vector<std::string> copies = lines;
+  std::vector<char*> line_pointers;
+  for (std::string& line : copies) line_pointers.push_back(line.data());
+  line_pointers.push_back(nullptr);
+  if (library.circuit(line_pointers.data()) != 0 || controlled_exit() || has_error_line(messages()))
+    return fail("ngspice could not read the deck");
+
+  if (!in_background) {
+    if (library.command("run") != 0 || controlled_exit() || has_error_line(messages()))
+      return fail("ngspice failed on the deck");
+  } else {
+    if (library.command("bg_run") != 0) return fail("ngspice could not start the run");
+    const auto deadline =
+        start + std::chrono::duration_cast<Clock::duration>(
+                    std::chrono::duration<double>(std::max(0.0, timeout_seconds)));
+    bool ended;
+    {
+      std::unique_lock<std::mutex> lock(sink.mutex);
+      ended = sink.changed.wait_until(
+          lock, deadline, [&] { return sink.background_thread_exits > 0 || sink.controlled_exit; });
+    }
+    if (!ended) {
+      library.command("bg_halt");  // waits up to a second for the thread to stop
+      std::unique_lock<std::mutex> lock(sink.mutex);
+      if (!sink.changed.wait_for(lock, std::chrono::seconds(2),
+                                 [&] { return sink.background_thread_exits > 0; }))
+        library.busy = true;
+      lock.unlock();
+      run.status = Status::failure(
+          "ngspice timed out: still running after " + format_seconds(timeout_seconds) +
+          " s (timeout_seconds) and was stopped" +
+          (library.busy ? "; it did not stop, so libngspice is unusable in this process" : ""));
+      run.ngspice_seconds = seconds_since(start);
+      return run;
+    }
+    if (controlled_exit() || has_error_line(messages())) return fail("ngspice failed on the deck");
+  }
+
+  LibraryPlotInfo plot;
+  {
+    std::lock_guard<std::mutex> lock(sink.mutex);
+    for (const LibraryPlotInfo& info : sink.plots) run.plot_names.push_back(info.name);
+    if (!sink.plots.empty()) plot = sink.plots.back();
+  }
+  if (plot.type.empty())
+    return fail("ngspice produced no analysis results (has the deck an analysis line?)");
+
+  std::vector<std::string> names;
+  if (char** all = library.all_vectors(plot.type.data()))
+    for (char** name = all; *name; ++name) names.emplace_back(*name);
+  std::reverse(names.begin(), names.end());  // ngspice lists the plot's vectors last first
+  for (const std::string& name : names) {
+    std::string qualified = plot.type + "." + name;
+    const pvector_info info = library.vector_info(qualified.data());
+    if (!info) continue;
+    NgspiceVector vector;
+    vector.name = name;
+    vector.is_scale = name == plot.scale_name;
+    const std::size_t length = static_cast<std::size_t>(std::max(0, info->v_length));
+    if (info->v_realdata) {
+      vector.real_values.assign(info->v_realdata, info->v_realdata + length);
+    } else if (info->v_compdata) {
+      vector.is_complex = true;
+      vector.complex_values.reserve(length);
+      for (std::size_t k = 0; k < length; ++k)
+        vector.complex_values.emplace_back(info->v_compdata[k].cx_real,
+                                           info->v_compdata[k].cx_imag);
+    }
+    run.vectors.push_back(std::move(vector));
+  }
+  std::stable_partition(run.vectors.begin(), run.vectors.end(),
+                        [](const NgspiceVector& v) { return v.is_scale; });
+  run.ngspice_seconds = seconds_since(start);
+  if (run.vectors.empty()) return fail("ngspice's last plot (" + plot.type + ") has no vectors");
+  run.status = Status::success();
+  return run;
+}
+
+// ---- libngspice in this process -----------------------------------------------------------
+
+class CollectingSink : public LibraryRunSink {
+ public:
+  void message(NgspiceStream stream, std::string text) noexcept override {
+    try {
+      std::lock_guard<std::mutex> lock(mutex);
+      messages.push_back({stream, std::move(text)});
+    } catch (...) {
+    }
+  }
+  std::vector<NgspiceMessage> snapshot() {
+    std::lock_guard<std::mutex> lock(mutex);
+    return messages;
+  }
+  std::vector<NgspiceMessage> messages;
+};
+
+// What an attempt at a backend gave: `available` false means it could not be started at all
+// (with `unavailable_reason`); then the caller may fall back.
+struct BackendAttempt {
+  bool available = false;
+  std::string unavailable_reason;
+  NgspiceResult result;
+};
+
+std::mutex in_process_mutex;  // one circuit state per process
+
+BackendAttempt run_library_in_this_process(const std::vector<std::string>& lines,
+                                           const NgspiceOptions& options) {
+  BackendAttempt attempt;
+  std::lock_guard<std::mutex> guard(in_process_mutex);
+  NgspiceLibrary* library = NgspiceLibrary::acquire(
+      options.library_names, attempt.unavailable_reason, /*may_replace=*/false);
+  if (!library) return attempt;
+  attempt.available = true;
+  NgspiceResult& result = attempt.result;
+  result.backend_used = NgspiceBackend::library;
+  result.backend_description =
+      "libngspice in-process (" + library->loaded_name() + ", in emnet's own process)";
+  if (library->busy) {
+    result.status = Status::failure(
+        "libngspice is still busy with an earlier deck that could not be stopped; run the "
+        "deck in a worker (library_in_this_process = false)");
+    return attempt;
+  }
+  CollectingSink sink;
+  current_sink.store(&sink);
+  LibraryRun run = run_deck_in_library(*library, sink, lines, /*in_background=*/true,
+                                       options.timeout_seconds, [&] { return sink.snapshot(); });
+  if (!library->busy && !run.library_asked_to_be_detached) {
+    CollectingSink discard;  // clean-up chatter is not the deck's
+    current_sink.store(&discard);
+    library->command("remcirc");
+    library->command("destroy all");
+  }
+  current_sink.store(nullptr);
+  if (run.library_asked_to_be_detached && !library->busy) NgspiceLibrary::unload();
+  result.status = run.status;
+  result.plot_names = std::move(run.plot_names);
+  result.vectors = std::move(run.vectors);
+  result.ngspice_seconds = run.ngspice_seconds;
+  result.messages = sink.snapshot();
+  return attempt;
+}
+
+// ---- libngspice in a forked worker ------------------------------------------------------
+
+enum class RecordTag : std::uint8_t {
+  message_out = 1,
+  message_err = 2,
+  library_loaded = 3,       // payload: the library's name
+  library_unavailable = 4,  // payload: why
+  plot_name = 5,
+  vector = 6,
+  status = 7,  // payload: ok byte, message
+  ngspice_seconds = 8,
+};
+
+class RecordWriter {
+ public:
+  explicit RecordWriter(int descriptor) : descriptor_(descriptor) {}
+  void write(RecordTag tag, const std::string& payload) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::uint64_t length = payload.size();
+    std::string record(1, static_cast<char>(tag));
+    record.append(reinterpret_cast<const char*>(&length), sizeof length);
+    write_fully(descriptor_, record.data(), record.size());
+    write_fully(descriptor_, payload.data(), payload.size());
+  }
+
+ private:
+  int descriptor_;
+  std::mutex mutex_;
+};
+
+template <class T>
+void append_raw(std::string& bytes, const T& value) {
+  bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+std::string encode_vector(const NgspiceVector& vector) {
+  std::string bytes;
+  append_raw(bytes,
+             static_cast<std::uint8_t>((vector.is_scale ? 1 : 0) | (vector.is_complex ? 2 : 0)));
+  append_raw(bytes, static_cast<std::uint32_t>(vector.name.size()));
+  bytes += vector.name;
+  append_raw(bytes, static_cast<std::uint64_t>(vector.size()));
+  if (vector.is_complex)
+    bytes.append(reinterpret_cast<const char*>(vector.complex_values.data()),
+                 vector.complex_values.size() * sizeof(std::complex<double>));
+  else
+    bytes.append(reinterpret_cast<const char*>(vector.real_values.data()),
+                 vector.real_values.size() * sizeof(double));
+  return bytes;
+}
+
+template <class T>
+bool read_raw(const std::string& bytes, std::size_t& position, T& value) {
+  if (bytes.size() - position < sizeof value) return false;
+  std::memcpy(&value, bytes.data() + position, sizeof value);
+  position += sizeof value;
+  return true;
+}
+
+bool decode_vector(const std::string& bytes, NgspiceVector& vector) {
+  std::size_t position = 0;
+  std::uint8_t flags;
+  std::uint32_t name_length;
+  std::uint64_t count;
+  if (!read_raw(bytes, position, flags) || !read_raw(bytes, position, name_length) ||
+      bytes.size() - position < name_length)
+    return false;
+  vector.name = bytes.substr(position, name_length);
+  position += name_length;
+  if (!read_raw(bytes, position, count)) return false;
+  vector.is_scale = (flags & 1) != 0;
+  vector.is_complex = (flags & 2) != 0;
+  const std::size_t element = vector.is_complex ? sizeof(std::complex<double>) : sizeof(double);
+  if ((bytes.size() - position) / element != count || (bytes.size() - position) % element != 0)
+    return false;
+  if (vector.is_complex) {
+    vector.complex_values.resize(count);
+    std::memcpy(vector.complex_values.data(), bytes.data() + position, count * element);
+  } else {
+    vector.real_values.resize(count);
+    std::memcpy(vector.real_values.data(), bytes.data() + position, count * element);
+  }
+  return true;
+}
+
+class StreamingSink : public LibraryRunSink {
+ public:
+  explicit StreamingSink(RecordWriter& writer) : writer_(writer) {}
+  void message(NgspiceStream stream, std::string text) noexcept override {
+    try {
+      writer_.write(stream == NgspiceStream::err ? RecordTag::message_err : RecordTag::message_out,
+                    text);
+      std::lock_guard<std::mutex> lock(mutex);
+      messages.push_back({stream, std::move(text)});
+    } catch (...) {
+    }
+  }
+  std::vector<NgspiceMessage> snapshot() {
+    std::lock_guard<std::mutex> lock(mutex);
+    return messages;
+  }
+  std::vector<NgspiceMessage> messages;
+
+ private:
+  RecordWriter& writer_;
+};
+
+// The worker's whole life, in the forked child. Never returns.
+[[noreturn]] void worker_main(int record_descriptor, int output_descriptor,
+                              const std::vector<std::string>& lines,
+                              const NgspiceOptions& options) {
+  // Anything printed past the callbacks goes to the parent, not to emnet's own output.
+  ::dup2(output_descriptor, STDOUT_FILENO);
+  ::dup2(output_descriptor, STDERR_FILENO);
+  const int null_input = ::open("/dev/null", O_RDONLY);
+  if (null_input >= 0) ::dup2(null_input, STDIN_FILENO);
+  ::signal(SIGPIPE, SIG_DFL);
+  ::signal(SIGINT, SIG_DFL);
+  try {
+    RecordWriter writer(record_descriptor);
+    std::string why;
+    NgspiceLibrary* library =
+        NgspiceLibrary::acquire(options.library_names, why, /*may_replace=*/true);
+    if (!library) {
+      writer.write(RecordTag::library_unavailable, why);
+      ::_exit(0);
+    }
+    writer.write(RecordTag::library_loaded, library->loaded_name());
+    StreamingSink sink(writer);
+    current_sink.store(&sink);
+    const LibraryRun run =
+        run_deck_in_library(*library, sink, lines, /*in_background=*/false, options.timeout_seconds,
+                            [&] { return sink.snapshot(); });
+    for (const std::string& name : run.plot_names) writer.write(RecordTag::plot_name, name);
+    for (const NgspiceVector& vector : run.vectors)
+      writer.write(RecordTag::vector, encode_vector(vector));
+    std::string seconds;
+    append_raw(seconds, run.ngspice_seconds);
+    writer.write(RecordTag::ngspice_seconds, seconds);
+    writer.write(RecordTag::status,
+                 std::string(1, run.status.ok ? '\1' : '\0') + run.status.message);
+  } catch (...) {
+    ::_exit(3);
+  }
+  ::_exit(0);
+}
+
+BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
+                                     const NgspiceOptions& options) {
+  BackendAttempt attempt;
+  NgspiceResult& result = attempt.result;
+  Pipe records, output;
+  std::string why;
+  if (!open_pipe(records, why) || !open_pipe(output, why)) {
+    attempt.available = true;
+    result.status = Status::failure(why);
+    return attempt;
+  }
+  std::fflush(nullptr);  // the child must not inherit unwritten output
+  const Clock::time_point start = Clock::now();
+  const pid_t process_id = ::fork();
+  if (process_id < 0) {
+    attempt.available = true;
+    result.status = Status::failure("cannot start the ngspice worker: " + errno_text(errno));
+    return attempt;
+  }
+  if (process_id == 0) {
+    records.read_end.reset();
+    output.read_end.reset();
+    worker_main(records.write_end.get(), output.write_end.get(), lines, options);
+  }
+  ChildProcess worker(process_id, /*leads_process_group=*/false);
+  records.write_end.reset();
+  output.write_end.reset();
+
+  // Read both pipes until they close or the time is up.
+  std::string record_bytes, output_bytes;
+  const double timeout = std::max(0.0, options.timeout_seconds);
+  bool timed_out = false;
+  while (records.read_end.is_open() || output.read_end.is_open()) {
+    const double remaining = timeout - seconds_since(start);
+    if (remaining <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd descriptors[2] = {{records.read_end.get(), POLLIN, 0},
+                             {output.read_end.get(), POLLIN, 0}};
+    const int ready =
+        ::poll(descriptors, 2, static_cast<int>(std::ceil(std::min(remaining, 1.0) * 1000)));
+    if (ready < 0 && errno != EINTR) break;
+    if (ready <= 0) continue;
+    if ((descriptors[0].revents & (POLLIN | POLLHUP | POLLERR)) &&
+        !read_available(records.read_end.get(), record_bytes))
+      records.read_end.reset();
+    if ((descriptors[1].revents & (POLLIN | POLLHUP | POLLERR)) &&
+        !read_available(output.read_end.get(), output_bytes))
+      output.read_end.reset();
+  }
+  // The pipes are closed: the worker is ending; give it the rest of the time to do so.
+  while (!timed_out && !worker.try_wait()) {
+    if (seconds_since(start) > timeout) {
+      timed_out = true;
+      break;
+    }
+    ::usleep(1000);
+  }
+  if (timed_out) {
+    worker.kill();
+    worker.wait_blocking();
+  }
+  result.seconds = seconds_since(start);
+
+  // Decode the complete records; a crash may have cut the last one.
+  bool library_loaded = false, have_status = false;
+  std::size_t position = 0;
+  while (record_bytes.size() - position >= 9) {
+    const auto tag = static_cast<RecordTag>(record_bytes[position]);
+    std::uint64_t length;
+    std::memcpy(&length, record_bytes.data() + position + 1, sizeof length);
+    if (record_bytes.size() - position - 9 < length) break;
+    std::string payload = record_bytes.substr(position + 9, length);
+    position += 9 + length;
+    switch (tag) {
+      case RecordTag::message_out:
+      case RecordTag::message_err:
+        result.messages.push_back(
+            {tag == RecordTag::message_err ? NgspiceStream::err : NgspiceStream::out,
+             std::move(payload)});
+        break;
+      case RecordTag::library_loaded:
+        library_loaded = true;
+        result.backend_description =
+            "libngspice in-process (" + payload + ", in a forked worker process)";
+        break;
+      case RecordTag::library_unavailable:
+        attempt.unavailable_reason = payload;
+        return attempt;
+      case RecordTag::plot_name:
+        result.plot_names.push_back(std::move(payload));
+        break;
+      case RecordTag::vector: {
+        NgspiceVector vector;
+        if (decode_vector(payload, vector)) result.vectors.push_back(std::move(vector));
+        break;
+      }
+      case RecordTag::ngspice_seconds:
+        if (payload.size() == sizeof(double))
+          std::memcpy(&result.ngspice_seconds, payload.data(), sizeof(double));
+        break;
+      case RecordTag::status:
+        have_status = !payload.empty();
+        if (have_status)
+          result.status = payload[0] ? Status::success() : Status::failure(payload.substr(1));
+        break;
+    }
+  }
+  append_lines(output_bytes, NgspiceStream::err, result.messages);
+
+  const int status = worker.status();
+  const bool signalled = !worker.reap_failed() && WIFSIGNALED(status);
+  if (!library_loaded && !timed_out && signalled) {
+    attempt.unavailable_reason =
+        "the worker died of " + signal_text(WTERMSIG(status)) + " while loading libngspice";
+    return attempt;
+  }
+  attempt.available = true;
+  result.backend_used = NgspiceBackend::library;
+  if (result.backend_description.empty())
+    result.backend_description = "libngspice in-process (in a forked worker process)";
+  if (timed_out) {
+    result.vectors.clear();
+    result.status =
+        Status::failure("ngspice timed out: still running after " + format_seconds(timeout) +
+                        " s (timeout_seconds); its worker process was killed");
+  } else if (signalled) {
+    result.vectors.clear();
+    result.status = Status::failure("ngspice crashed (" + signal_text(WTERMSIG(status)) +
+                                    ") on the deck" + error_excerpt(result.messages));
+  } else if (!have_status) {
+    result.vectors.clear();
+    result.status =
+        Status::failure("the ngspice worker ended without a result (exit status " +
+                        std::to_string(worker.reap_failed() ? -1 : WEXITSTATUS(status)) + ")" +
+                        error_excerpt(result.messages));
+  }
+  if (result.ngspice_seconds == 0.0) result.ngspice_seconds = result.seconds;
+  return attempt;
+}
+
+// ---- the ngspice program ------------------------------------------------------------------
+
+BackendAttempt run_program(const std::vector<std::string>& lines, const NgspiceOptions& options) {
+  BackendAttempt attempt;
+  NgspiceResult& result = attempt.result;
+  const auto fail_here = [&](const std::string& why) {
+    attempt.available = true;
+    result.status = Status::failure(why);
+    return attempt;
+  };
+  TemporaryDirectory directory;
+  std::string why;
+  if (!directory.create(why)) return fail_here(why);
+  const std::string deck_path = directory.path() + "/deck.cir";
+  const std::string rawfile_path = directory.path() + "/deck.raw";
+  {
+    std::ofstream deck(deck_path, std::ios::binary);
+    for (const std::string& line : lines) deck << line << '\n';
+    if (!deck.flush()) return fail_here("cannot write the deck to " + deck_path);
+  }
+  Pipe out, err;
+  if (!open_pipe(out, why) || !open_pipe(err, why)) return fail_here(why);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawnattr_t attributes;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawnattr_init(&attributes);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, out.write_end.get(), STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, err.write_end.get(), STDERR_FILENO);
+  // Its own process group (killed as a whole at the time limit), default signal handling.
+  sigset_t no_signals, default_signals;
+  sigemptyset(&no_signals);
+  sigemptyset(&default_signals);
+  sigaddset(&default_signals, SIGPIPE);
+  sigaddset(&default_signals, SIGINT);
+  posix_spawnattr_setsigmask(&attributes, &no_signals);
+  posix_spawnattr_setsigdefault(&attributes, &default_signals);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  posix_spawnattr_setflags(&attributes,
+                           POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  std::vector<std::string> arguments = {options.program, "-b", "-r", rawfile_path, deck_path};
+  std::vector<char*> argument_pointers;
+  for (std::string& argument : arguments) argument_pointers.push_back(argument.data());
+  argument_pointers.push_back(nullptr);
+
+  std::fflush(nullptr);
+  const Clock::time_point start = Clock::now();
+  pid_t process_id = -1;
+  const int spawn_error = ::posix_spawnp(&process_id, options.program.c_str(), &actions,
+                                         &attributes, argument_pointers.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
+  if (spawn_error != 0) {
+    attempt.unavailable_reason = "cannot run '" + options.program + "': " + errno_text(spawn_error);
+    return attempt;
+  }
+  ChildProcess program(process_id, /*leads_process_group=*/true);
+  out.write_end.reset();
+  err.write_end.reset();
+
+  LineCollector out_lines(NgspiceStream::out, result.messages);
+  LineCollector err_lines(NgspiceStream::err, result.messages);
+  bool printed_anything = false;
+  const double timeout = std::max(0.0, options.timeout_seconds);
+  bool timed_out = false;
+  while (out.read_end.is_open() || err.read_end.is_open()) {
+    const double remaining = timeout - seconds_since(start);
+    if (remaining <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd descriptors[2] = {{out.read_end.get(), POLLIN, 0}, {err.read_end.get(), POLLIN, 0}};
+    const int ready =
+        ::poll(descriptors, 2, static_cast<int>(std::ceil(std::min(remaining, 1.0) * 1000)));
+    if (ready < 0 && errno != EINTR) break;
+    if (ready <= 0) continue;
+    const auto drain = [&](pollfd& descriptor, FileDescriptor& end, LineCollector& lines) {
+      if (!(descriptor.revents & (POLLIN | POLLHUP | POLLERR))) return;
+      std::string chunk;
+      if (!read_available(end.get(), chunk)) end.reset();
+      printed_anything = printed_anything || !chunk.empty();
+      lines.add(chunk.data(), chunk.size());
+    };
+    drain(descriptors[0], out.read_end, out_lines);
+    drain(descriptors[1], err.read_end, err_lines);
+  }
+  out_lines.finish();
+  err_lines.finish();
+  while (!timed_out && !program.try_wait()) {
+    if (seconds_since(start) > timeout) {
+      timed_out = true;
+      break;
+    }
+    ::usleep(1000);
+  }
+  if (timed_out) {
+    program.kill();
+    program.wait_blocking();
+  }
+  result.ngspice_seconds = seconds_since(start);
+  attempt.available = true;
+  result.backend_used = NgspiceBackend::program;
+  result.backend_description = "ngspice program as a subprocess";
+
+  const int status = program.status();
+  if (timed_out)
+    return fail_here("ngspice timed out: still running after " + format_seconds(timeout) +
+                     " s (timeout_seconds); the program was killed");
+  if (!program.reap_failed() && WIFSIGNALED(status))
+    return fail_here("ngspice crashed (" + signal_text(WTERMSIG(status)) + ") on the deck" +
+                     error_excerpt(result.messages));
+  if (!program.reap_failed() && WIFEXITED(status) && WEXITSTATUS(status) != 0) {
+    if (WEXITSTATUS(status) == 127 && !printed_anything) {
+      attempt.available = false;
+      attempt.unavailable_reason = "'" + options.program + "' could not be executed";
+      return attempt;
+    }
+    return fail_here("ngspice failed on the deck (exit status " +
+                     std::to_string(WEXITSTATUS(status)) + ")" + error_excerpt(result.messages));
+  }
+  if (has_error_line(result.messages))
+    return fail_here("ngspice failed on the deck" + error_excerpt(result.messages));
+
+  std::ifstream rawfile(rawfile_path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(rawfile)),
+                          std::istreambuf_iterator<char>());
+  std::vector<NgspiceRawPlot> plots;
+  if (bytes.empty() || !parse_ngspice_rawfile(bytes, plots, why) || plots.empty())
+    return fail_here(
+        "ngspice wrote no readable results" +
+        (bytes.empty() ? std::string(" (has the deck an analysis line?)") : " (" + why + ")") +
+        error_excerpt(result.messages));
+  for (const NgspiceRawPlot& plot : plots) result.plot_names.push_back(plot.plot_name);
+  result.vectors = std::move(plots.back().vectors);
+  for (NgspiceVector& vector : result.vectors) vector.name = vector_name_from_rawfile(vector.name);
+  result.status = Status::success();
+  return attempt;
+}
+
+}  // namespace
+
+// ---- rawfile ------------------------------------------------------------------------------
+
+bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>& plots,
+                           std::string& why) {
+  std::size_t position = 0;
+  const auto next_line = [&](std::string& line) {
+    if (position >= bytes.size()) return false;
+    std::size_t end = bytes.find('\n', position);
+    if (end == std::string::npos) end = bytes.size();
+    line = bytes.substr(position, end - position);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    position = end + 1;
+    return true;
+  };
+  const auto parse_count = [](std::string_view text, std::size_t& count) {
+    text = trimmed(text);
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), count);
+    return error == std::errc() && end == text.data() + text.size();
+  };
+  const auto parse_double = [](std::string_view text, double& value) {
+    text = trimmed(text);
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    return error == std::errc() && end == text.data() + text.size();
+  };
+
+  while (position < bytes.size()) {
+    NgspiceRawPlot plot;
+    std::size_t variable_count = 0, point_count = 0;
+    bool have_variables = false, have_points = false, binary = false, values = false;
+    std::string line;
+    while (next_line(line)) {
+      if (trimmed(line).empty()) continue;
+      const std::size_t colon = line.find(':');
+      const std::string key = colon == std::string::npos ? line : line.substr(0, colon);
+      const std::string value =
+          colon == std::string::npos ? "" : std::string(trimmed(line.substr(colon + 1)));
+      if (key == "Title") {
+        plot.title = value;
+      } else if (key == "Plotname") {
+        plot.plot_name = value;
+      } else if (key == "Flags") {
+        plot.flags = value;
+      } else if (key == "No. Variables") {
+        have_variables = parse_count(value, variable_count);
+      } else if (key == "No. Points") {
+        have_points = parse_count(value, point_count);
+      } else if (key == "Variables") {
+        if (!have_variables) {
+          why = "'Variables:' before 'No. Variables:'";
+          return false;
+        }
+        for (std::size_t index = 0; index < variable_count; ++index) {
+          if (!next_line(line)) {
+            why = "the variable list ends early";
+            return false;
+          }
+          std::istringstream fields(line);
+          std::string number, name;
+          if (!(fields >> number >> name)) {
+            why = "cannot read variable line '" + line + "'";
+            return false;
+          }
+          NgspiceVector vector;
+          vector.name = name;
+          vector.is_scale = index == 0;
+          plot.vectors.push_back(std::move(vector));
+        }
+      } else if (key == "Binary") {
+        binary = true;
+        break;
+      } else if (key == "Values") {
+        values = true;
+        break;
+      }
+    }
+    if (!binary && !values) {
+      if (plots.empty()) why = "no 'Binary:' or 'Values:' section";
+      return !plots.empty();
+    }
+    if (!have_variables || !have_points || plot.vectors.size() != variable_count) {
+      why = "plot '" + plot.plot_name + "' lacks its variable or point count";
+      return false;
+    }
+    const bool complex = plot.flags.find("complex") != std::string::npos;
+    for (NgspiceVector& vector : plot.vectors) {
+      vector.is_complex = complex;
+      if (complex)
+        vector.complex_values.resize(point_count);
+      else
+        vector.real_values.resize(point_count);
+    }
+    if (binary) {
+      const std::size_t per_value = complex ? 2 * sizeof(double) : sizeof(double);
+      const std::size_t needed = point_count * variable_count * per_value;
+      if (bytes.size() - position < needed) {
+        why = "plot '" + plot.plot_name + "' is truncated";
+        return false;
+      }
+      for (std::size_t point = 0; point < point_count; ++point)
+        for (NgspiceVector& vector : plot.vectors) {
+          double parts[2] = {0.0, 0.0};
+          std::memcpy(parts, bytes.data() + position, per_value);
+          position += per_value;
+          if (complex)
+            vector.complex_values[point] = {parts[0], parts[1]};
+          else
+            vector.real_values[point] = parts[0];
+        }
+    } else {
+      // ASCII: "index<TAB>value" then one value per line; complex values as "re,im".
+      for (std::size_t point = 0; point < point_count; ++point)
+        for (std::size_t index = 0; index < variable_count; ++index) {
+          std::string text;
+          do {
+            if (!next_line(text)) {
+              why = "plot '" + plot.plot_name + "' is truncated";
+              return false;
+            }
+          } while (trimmed(text).empty());
+          if (index == 0) {
+            const std::string_view rest = trimmed(text);
+            const std::size_t gap = rest.find_first_of(" \t");
+            text = gap == std::string_view::npos ? "" : std::string(rest.substr(gap));
+          }
+          const std::size_t comma = text.find(',');
+          double real = 0.0, imaginary = 0.0;
+          const bool ok =
+              comma == std::string::npos
+                  ? parse_double(text, real)
+                  : parse_double(std::string_view(text).substr(0, comma), real) &&
+                        parse_double(std::string_view(text).substr(comma + 1), imaginary);
+          if (!ok) {
+            why = "cannot read value '" + text + "' in plot '" + plot.plot_name + "'";
+            return false;
+          }
+          NgspiceVector& vector = plot.vectors[index];
+          if (complex)
+            vector.complex_values[point] = {real, imaginary};
+          else
+            vector.real_values[point] = real;
+        }
+    }
+    // The scale of a complex plot is a real frequency; ngspice 39 writes uninitialised bytes
+    // in its imaginary half in binary rawfiles. It is zero, as libngspice reports it.
+    if (complex && !plot.vectors.empty())
+      for (std::complex<double>& value : plot.vectors.front().complex_values) value.imag(0.0);
+    plots.push_back(std::move(plot));
+  }
+  return true;
+}
+
+// ---- the result -----------------------------------------------------------------------------
+
+const NgspiceVector* NgspiceResult::find(std::string_view name) const {
+  const std::string wanted = vector_name_from_rawfile(std::string(trimmed(name)));
+  for (const NgspiceVector& vector : vectors)
+    if (lower_case(vector.name) == wanted) return &vector;
+  return nullptr;
+}
+
+const NgspiceVector* NgspiceResult::scale() const {
+  for (const NgspiceVector& vector : vectors)
+    if (vector.is_scale) return &vector;
+  return nullptr;
+}
+
+std::string NgspiceResult::messages_text() const {
+  std::string text;
+  for (const NgspiceMessage& message : messages)
+    text += (message.stream == NgspiceStream::err ? "stderr: " : "") + message.text + "\n";
+  return text;
+}
+
+// ---- run_ngspice ------------------------------------------------------------------------
+
+NgspiceResult run_ngspice(const std::string& deck_text, const NgspiceOptions& options) {
+  const Clock::time_point start = Clock::now();
+  const auto finish = [&](NgspiceResult result) {
+    result.seconds = seconds_since(start);
+    return result;
+  };
+  NgspiceResult result;
+  std::vector<std::string> lines;
+  std::string why;
+  if (!prepare_deck(deck_text, lines, why)) {
+    result.status = Status::failure("the deck was not run: " + why);
+    result.backend_description = "none (the deck was refused)";
+    return finish(std::move(result));
+  }
+
+  std::string library_reason;
+  if (options.backend != NgspiceBackend::program) {
+    BackendAttempt attempt = options.library_in_this_process
+                                 ? run_library_in_this_process(lines, options)
+                                 : run_library_in_worker(lines, options);
+    if (attempt.available) return finish(std::move(attempt.result));
+    library_reason = attempt.unavailable_reason;
+    if (options.backend == NgspiceBackend::library) {
+      result.status = Status::failure("libngspice could not be loaded (" + library_reason +
+                                      "); install the Debian package libngspice0");
+      result.backend_description = "none (libngspice not available)";
+      return finish(std::move(result));
+    }
+  }
+
+  BackendAttempt attempt = run_program(lines, options);
+  if (attempt.available) {
+    if (options.backend == NgspiceBackend::automatic)
+      attempt.result.backend_description += " (libngspice not available: " + library_reason + ")";
+    return finish(std::move(attempt.result));
+  }
+  if (options.backend == NgspiceBackend::automatic) {
+    result.status = Status::failure(
+        "ngspice is not available: libngspice could not be loaded (" + library_reason +
+        ") and the ngspice program could not be run (" + attempt.unavailable_reason +
+        "); install the Debian packages libngspice0 and ngspice");
+  } else {
+    result.status =
+        Status::failure("the ngspice program could not be run (" + attempt.unavailable_reason +
+                        "); install the Debian package ngspice");
+  }
+  result.backend_description = "none (ngspice not available)";
+  return finish(std::move(result));
+}
+
+}  // namespace emnet

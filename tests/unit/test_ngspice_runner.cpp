@@ -1,0 +1,394 @@
+// The ngspice runner (include/emnet/ngspice_runner.hpp) on small hand-written decks, over every
+// backend: libngspice in a forked worker, libngspice in this process, the ngspice program.
+//
+// References are closed forms of an RC low-pass (R = 1 kΩ, C = 1 µF, RC = 1 ms) and a resistive
+// divider; each tolerance says where it comes from. Failure cases (syntax error, a deck that
+// makes libngspice ask to be detached, a run past the time limit, a crash, missing library or
+// program) must give a failure status with a clear message, never a hang or a crash of the
+// test process. Time bounds in these tests only guard against hangs; they measure nothing.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <cstdlib>
+#include <fstream>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "emnet/ngspice_runner.hpp"
+
+namespace emnet {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kResistance = 1e3;
+constexpr double kCapacitance = 1e-6;
+constexpr double kTimeConstant = kResistance * kCapacitance;
+
+// V1 = 1 V over R1 = 1 kΩ and R2 = 3 kΩ: out = 3/4 V, the source's branch current −1/4 mA.
+const char* const kDividerDeck = R"(divider for the runner tests
+V1 in 0 DC 1
+R1 in out 1k
+R2 out 0 3k
+.op
+.end
+)";
+
+// RC low-pass driven by a unit AC source: out = 1 / (1 + jωRC).
+const char* const kLowPassAcDeck = R"(rc low-pass ac
+V1 in 0 DC 0 AC 1
+R1 in out 1k
+C1 out 0 1u
+.ac dec 5 1 100k
+.end
+)";
+
+// RC low-pass, unit step at t = 0 (UIC: the capacitor starts at its IC = 0 while the source is
+// already 1 V): out = 1 − exp(−t/RC). reltol = 1e-6 sets the integration error (see the test).
+const char* const kLowPassStepDeck = R"(rc low-pass step
+V1 in 0 DC 1
+R1 in out 1k
+C1 out 0 1u IC=0
+.options reltol=1e-6
+.tran 10u 5m UIC
+.end
+)";
+
+struct BackendCase {
+  std::string name;
+  NgspiceOptions options;
+};
+
+void PrintTo(const BackendCase& backend, std::ostream* stream) {
+  *stream << backend.name;
+}
+
+std::vector<BackendCase> backend_cases() {
+  NgspiceOptions worker;
+  worker.backend = NgspiceBackend::library;
+  NgspiceOptions in_this_process = worker;
+  in_this_process.library_in_this_process = true;
+  NgspiceOptions program;
+  program.backend = NgspiceBackend::program;
+  return {{"library_worker", worker},
+          {"library_in_this_process", in_this_process},
+          {"program", program}};
+}
+
+const NgspiceVector& vector_named(const NgspiceResult& result, const std::string& name) {
+  const NgspiceVector* vector = result.find(name);
+  if (!vector) {
+    ADD_FAILURE() << "no vector " << name << "\n" << result.messages_text();
+    static const NgspiceVector empty;
+    return empty;
+  }
+  return *vector;
+}
+
+class NgspiceRunnerBackends : public ::testing::TestWithParam<BackendCase> {};
+
+TEST_P(NgspiceRunnerBackends, OperatingPointOfDividerIsExact) {
+  const NgspiceResult result = run_ngspice(kDividerDeck, GetParam().options);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  EXPECT_EQ(result.backend_used, GetParam().options.backend);
+  ASSERT_EQ(result.plot_names, std::vector<std::string>{"Operating Point"});
+  const NgspiceVector& out = vector_named(result, "v(out)");
+  const NgspiceVector& current = vector_named(result, "i(v1)");
+  ASSERT_EQ(out.real_values.size(), 1u);
+  ASSERT_EQ(current.real_values.size(), 1u);
+  // A linear resistive network: ngspice's operating point is one LU solve of a 3×3 system
+  // (no gmin on resistors, Newton converges on its second pass), so the result is exact up
+  // to a few roundings: 1e-12 relative leaves a margin of ~1e3 over rounding.
+  EXPECT_NEAR(out.real_values[0], 0.75, 0.75 * 1e-12);
+  EXPECT_NEAR(current.real_values[0], -2.5e-4, 2.5e-4 * 1e-12);
+  EXPECT_EQ(result.find("out"), &out);  // ngspice's own name
+  EXPECT_EQ(result.find("V1#BRANCH"), &current);
+}
+
+TEST_P(NgspiceRunnerBackends, AcOfRcLowPassMatchesClosedForm) {
+  const NgspiceResult result = run_ngspice(kLowPassAcDeck, GetParam().options);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_EQ(result.plot_names, std::vector<std::string>{"AC Analysis"});
+  const NgspiceVector* frequency = result.scale();
+  ASSERT_NE(frequency, nullptr);
+  EXPECT_EQ(frequency->name, "frequency");
+  const NgspiceVector& out = vector_named(result, "out");
+  ASSERT_TRUE(out.is_complex);
+  ASSERT_EQ(frequency->size(), 26u);  // 5 a decade over 5 decades, both ends
+  ASSERT_EQ(out.size(), frequency->size());
+  // Each AC point is one complex LU solve of the linear network at ω = 2πf (f as ngspice
+  // reports it), so it is exact up to rounding: 1e-12 relative on the complex value, on the
+  // magnitude, and 1e-12 rad on the phase, with a margin of ~1e3 over rounding.
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const double f = frequency->complex_values[k].real();
+    const double omega_rc = 2 * kPi * f * kTimeConstant;
+    const std::complex<double> expected = 1.0 / std::complex<double>(1.0, omega_rc);
+    const std::complex<double> actual = out.complex_values[k];
+    EXPECT_LE(std::abs(actual - expected), 1e-12 * std::abs(expected)) << "f = " << f;
+    EXPECT_NEAR(std::abs(actual), 1 / std::sqrt(1 + omega_rc * omega_rc),
+                1e-12 * std::abs(expected));
+    EXPECT_NEAR(std::arg(actual), -std::atan(omega_rc), 1e-12) << "f = " << f;
+  }
+  EXPECT_NEAR(frequency->complex_values.front().real(), 1.0, 1e-12);
+  EXPECT_NEAR(frequency->complex_values.back().real(), 1e5, 1e-7);
+}
+
+TEST_P(NgspiceRunnerBackends, TransientStepOfRcLowPassWithinIntegrationError) {
+  const NgspiceResult result = run_ngspice(kLowPassStepDeck, GetParam().options);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  const NgspiceVector* time = result.scale();
+  ASSERT_NE(time, nullptr);
+  EXPECT_EQ(time->name, "time");
+  const NgspiceVector& out = vector_named(result, "v(out)");
+  ASSERT_EQ(out.size(), time->size());
+  ASSERT_GT(out.size(), 100u);
+  // With UIC ngspice's first output point is its first time step (0.1 µs here), not t = 0.
+  EXPECT_GE(time->real_values.front(), 0.0);
+  EXPECT_LT(time->real_values.front(), 1e-5);
+  EXPECT_NEAR(time->real_values.back(), 5e-3, 1e-15);
+  // ngspice's trapezoidal rule keeps each step's estimated truncation error below
+  // trtol·reltol·|v| = 7 × 1e-6 × 1 V; on this one decaying mode the global error stays of
+  // that order (measured 3.0e-6 V). Held to 2e-5 V, about 3·trtol·reltol. The start (UIC,
+  // capacitor at 0 with the source at 1 V) is an exact step, so no rise time enters.
+  double largest_error = 0;
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const double t = time->real_values[k];
+    largest_error =
+        std::max(largest_error, std::abs(out.real_values[k] - (1 - std::exp(-t / kTimeConstant))));
+  }
+  EXPECT_LT(largest_error, 2e-5);
+  RecordProperty("largest_error_volts", std::to_string(largest_error));
+}
+
+TEST_P(NgspiceRunnerBackends, SyntaxErrorIsAFailureWithNgspicesMessage) {
+  const NgspiceResult result = run_ngspice(
+      "bad deck\nV1 in 0 DC 1\nR1 in out 1k zzz\nC1 out 0 1u\n.op\n.end\n", GetParam().options);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("unknown parameter (zzz)"), std::string::npos)
+      << result.status.message;
+  EXPECT_TRUE(result.vectors.empty());
+}
+
+TEST_P(NgspiceRunnerBackends, DeckThatMakesLibngspiceAskToBeDetachedIsAFailure) {
+  // A .subckt without .ends: libngspice calls ControlledExit ("cannot recover and awaits to
+  // be detached"); the program stops with an error.
+  const NgspiceResult result =
+      run_ngspice("unbalanced subcircuit\nV1 in 0 1\n.subckt foo a b\nR1 a b 1\n.op\n.end\n",
+                  GetParam().options);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("Mismatch of .subckt ... .ends"), std::string::npos)
+      << result.status.message;
+  // The next deck runs normally (in this process: on a freshly loaded library).
+  const NgspiceResult next = run_ngspice(kDividerDeck, GetParam().options);
+  ASSERT_TRUE(next.status.ok) << next.status.message;
+  EXPECT_NEAR(vector_named(next, "out").real_values.at(0), 0.75, 1e-12);
+}
+
+TEST_P(NgspiceRunnerBackends, RunPastTheTimeLimitIsStoppedAndReported) {
+  NgspiceOptions options = GetParam().options;
+  options.timeout_seconds = 1;
+  const auto start = std::chrono::steady_clock::now();
+  // 1e11 steps of at most 1 ns: hours of work.
+  const NgspiceResult result = run_ngspice(
+      "endless\nV1 in 0 SIN(0 1 1meg)\nR1 in out 1k\nC1 out 0 1u\n.tran 1n 100 0 1n\n.end\n",
+      options);
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("timed out"), std::string::npos) << result.status.message;
+  EXPECT_LT(elapsed, 30.0);  // a hang guard only
+  // The runner (and, in this process, the library) is usable afterwards.
+  const NgspiceResult next = run_ngspice(kDividerDeck, GetParam().options);
+  ASSERT_TRUE(next.status.ok) << next.status.message;
+}
+
+INSTANTIATE_TEST_SUITE_P(Ngspice, NgspiceRunnerBackends, ::testing::ValuesIn(backend_cases()),
+                         [](const ::testing::TestParamInfo<BackendCase>& info) {
+                           return info.param.name;
+                         });
+
+// Every backend runs the same engine on the same deck: the same vectors, in the same order,
+// to the last bit (1e-12 relative is asked; the rawfile and the worker's pipe both carry raw
+// doubles).
+TEST(NgspiceRunner, BackendsGiveTheSameVectors) {
+  for (const char* deck : {kDividerDeck, kLowPassAcDeck, kLowPassStepDeck}) {
+    std::vector<NgspiceResult> results;
+    for (const BackendCase& backend : backend_cases()) {
+      results.push_back(run_ngspice(deck, backend.options));
+      ASSERT_TRUE(results.back().status.ok)
+          << backend.name << ": " << results.back().status.message;
+    }
+    const NgspiceResult& reference = results.front();
+    for (std::size_t r = 1; r < results.size(); ++r) {
+      const NgspiceResult& other = results[r];
+      EXPECT_EQ(other.plot_names, reference.plot_names);
+      ASSERT_EQ(other.vectors.size(), reference.vectors.size());
+      for (std::size_t v = 0; v < reference.vectors.size(); ++v) {
+        const NgspiceVector& a = reference.vectors[v];
+        const NgspiceVector& b = other.vectors[v];
+        EXPECT_EQ(b.name, a.name);
+        EXPECT_EQ(b.is_scale, a.is_scale);
+        EXPECT_EQ(b.is_complex, a.is_complex);
+        ASSERT_EQ(b.size(), a.size()) << a.name;
+        for (std::size_t k = 0; k < a.size(); ++k) {
+          const std::complex<double> x = a.is_complex ? a.complex_values[k] : a.real_values[k];
+          const std::complex<double> y = b.is_complex ? b.complex_values[k] : b.real_values[k];
+          EXPECT_LE(std::abs(x - y), 1e-12 * std::abs(x)) << a.name << "[" << k << "]";
+        }
+      }
+    }
+  }
+}
+
+TEST(NgspiceRunner, MissingLibraryFallsBackToTheProgramAndSaysSo) {
+  NgspiceOptions options;
+  options.library_names = {"/nonexistent/libngspice.so.0"};
+  const NgspiceResult result = run_ngspice(kDividerDeck, options);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  EXPECT_EQ(result.backend_used, NgspiceBackend::program);
+  EXPECT_NE(result.backend_description.find("libngspice not available"), std::string::npos)
+      << result.backend_description;
+  EXPECT_NE(result.backend_description.find("/nonexistent/libngspice.so.0"), std::string::npos)
+      << result.backend_description;
+  EXPECT_NEAR(vector_named(result, "out").real_values.at(0), 0.75, 1e-12);
+
+  options.library_in_this_process = true;
+  const NgspiceResult here = run_ngspice(kDividerDeck, options);
+  ASSERT_TRUE(here.status.ok) << here.status.message;
+  EXPECT_EQ(here.backend_used, NgspiceBackend::program);
+}
+
+TEST(NgspiceRunner, LibraryWithoutTheNgspiceApiFallsBack) {
+  NgspiceOptions options;
+  options.library_names = {"libm.so.6"};  // loads, but is not ngspice
+  const NgspiceResult result = run_ngspice(kDividerDeck, options);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  EXPECT_EQ(result.backend_used, NgspiceBackend::program);
+  EXPECT_NE(result.backend_description.find("has no ngSpice_Init"), std::string::npos)
+      << result.backend_description;
+}
+
+TEST(NgspiceRunner, MissingLibraryOrProgramSaysWhatToInstall) {
+  NgspiceOptions options;
+  options.library_names = {"/nonexistent/libngspice.so.0"};
+  options.backend = NgspiceBackend::library;
+  NgspiceResult result = run_ngspice(kDividerDeck, options);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("libngspice0"), std::string::npos) << result.status.message;
+
+  options.backend = NgspiceBackend::program;
+  options.program = "/nonexistent/ngspice";
+  result = run_ngspice(kDividerDeck, options);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("install the Debian package ngspice"), std::string::npos)
+      << result.status.message;
+
+  options.backend = NgspiceBackend::automatic;
+  result = run_ngspice(kDividerDeck, options);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("libngspice0 and ngspice"), std::string::npos)
+      << result.status.message;
+}
+
+TEST(NgspiceRunner, ControlBlockIsRefused) {
+  const NgspiceResult result = run_ngspice(
+      "title\nV1 in 0 1\n.op\n.control\nshell touch /tmp/emnet-should-not-exist\n.endc\n.end\n");
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find(".control"), std::string::npos) << result.status.message;
+  EXPECT_TRUE(result.messages.empty());  // ngspice never saw it
+}
+
+TEST(NgspiceRunner, DeckWithoutAnalysisIsAFailure) {
+  for (const BackendCase& backend : backend_cases()) {
+    const NgspiceResult result =
+        run_ngspice("no analysis\nV1 in 0 1\nR1 in 0 1k\n.end\n", backend.options);
+    EXPECT_FALSE(result.status.ok) << backend.name;
+    EXPECT_NE(result.status.message.find("analysis"), std::string::npos)
+        << backend.name << ": " << result.status.message;
+  }
+}
+
+// A stand-in libngspice whose ngSpice_Circ (or, with FAKE_NGSPICE_CRASH_IN_INIT set, whose
+// ngSpice_Init) dereferences a null pointer: a crash inside the library, caught by the worker.
+std::string build_crashing_library() {
+  const std::string directory =
+      ::testing::TempDir() + "emnet_fake_ngspice_" + std::to_string(::getpid());
+  const std::string source = directory + ".c", library = directory + ".so";
+  std::ofstream(source) << R"(#include <stdlib.h>
+static volatile int* nowhere = 0;
+int ngSpice_Init(void* a, void* b, void* c, void* d, void* e, void* f, void* g) {
+  if (getenv("FAKE_NGSPICE_CRASH_IN_INIT")) return *nowhere;
+  return 0;
+}
+int ngSpice_Command(char* command) { return 0; }
+int ngSpice_Circ(char** lines) { return *nowhere; }
+char** ngSpice_AllVecs(char* plot) { return 0; }
+void* ngGet_Vec_Info(char* name) { return 0; }
+)";
+  const std::string command = "cc -shared -fPIC -o '" + library + "' '" + source + "' 2>/dev/null";
+  return std::system(command.c_str()) == 0 ? library : std::string();
+}
+
+TEST(NgspiceRunner, CrashInsideTheLibraryIsReportedNotSuffered) {
+  const std::string library = build_crashing_library();
+  if (library.empty()) GTEST_SKIP() << "no C compiler (cc) to build the crashing stand-in";
+  NgspiceOptions options;
+  options.library_names = {library};
+  options.backend = NgspiceBackend::library;
+  const NgspiceResult result = run_ngspice(kDividerDeck, options);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("ngspice crashed (signal 11"), std::string::npos)
+      << result.status.message;
+
+  // A library that crashes while loading counts as not available: the program runs instead.
+  ::setenv("FAKE_NGSPICE_CRASH_IN_INIT", "1", 1);
+  options.backend = NgspiceBackend::automatic;
+  const NgspiceResult fallback = run_ngspice(kDividerDeck, options);
+  ::unsetenv("FAKE_NGSPICE_CRASH_IN_INIT");
+  ASSERT_TRUE(fallback.status.ok) << fallback.status.message;
+  EXPECT_EQ(fallback.backend_used, NgspiceBackend::program);
+  EXPECT_NE(fallback.backend_description.find("while loading libngspice"), std::string::npos)
+      << fallback.backend_description;
+}
+
+TEST(NgspiceRunner, AsciiRawfileGivesTheSameValues) {
+  NgspiceOptions options;
+  options.backend = NgspiceBackend::program;
+  const NgspiceResult binary = run_ngspice(kLowPassAcDeck, options);
+  ::setenv("SPICE_ASCIIRAWFILE", "1", 1);
+  const NgspiceResult ascii = run_ngspice(kLowPassAcDeck, options);
+  ::unsetenv("SPICE_ASCIIRAWFILE");
+  ASSERT_TRUE(binary.status.ok) << binary.status.message;
+  ASSERT_TRUE(ascii.status.ok) << ascii.status.message;
+  const NgspiceVector& a = vector_named(binary, "out");
+  const NgspiceVector& b = vector_named(ascii, "out");
+  ASSERT_EQ(a.size(), b.size());
+  // The ASCII rawfile prints 16 significant digits (%.15e): 1e-15 relative rounding.
+  for (std::size_t k = 0; k < a.size(); ++k)
+    EXPECT_LE(std::abs(a.complex_values[k] - b.complex_values[k]),
+              2e-15 * std::abs(a.complex_values[k]));
+}
+
+TEST(NgspiceRunner, RawfileParserRefusesATruncatedFile) {
+  const std::string header =
+      "Title: t\nDate: d\nPlotname: Operating Point\nFlags: real\nNo. Variables: 2\n"
+      "No. Points: 1\nVariables:\n\t0\tv(a)\tvoltage\n\t1\ti(v1)\tcurrent\nBinary:\n";
+  const double values[2] = {0.75, -2.5e-4};
+  std::string bytes = header + std::string(reinterpret_cast<const char*>(values), sizeof values);
+  std::vector<NgspiceRawPlot> plots;
+  std::string why;
+  ASSERT_TRUE(parse_ngspice_rawfile(bytes, plots, why)) << why;
+  ASSERT_EQ(plots.size(), 1u);
+  EXPECT_EQ(plots[0].vectors[1].name, "i(v1)");
+  EXPECT_EQ(plots[0].vectors[1].real_values.at(0), -2.5e-4);
+  bytes.pop_back();
+  plots.clear();
+  EXPECT_FALSE(parse_ngspice_rawfile(bytes, plots, why));
+  EXPECT_NE(why.find("truncated"), std::string::npos) << why;
+}
+
+}  // namespace
+}  // namespace emnet
