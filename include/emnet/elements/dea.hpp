@@ -64,6 +64,7 @@ class Dea : public Element {
   NodeId electrode_minus() const { return electrode_minus_; }
   const std::vector<Coupling>& coupling() const { return coupling_; }
   bool back_coupling() const { return back_coupling_; }
+  double ac_force() const { return ac_force_; }
 
  private:
   double across(const Eigen::VectorXd& y, NodeId node) const {

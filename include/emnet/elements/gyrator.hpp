@@ -18,6 +18,10 @@ class Gyrator : public Element {
   const char* kind() const override { return "gyrator"; }
   void stamp(Stamper& s) const override;
   double gyration() const { return gyration_; }
+  NodeId a() const { return a_; }
+  NodeId b() const { return b_; }
+  NodeId c() const { return c_; }
+  NodeId d() const { return d_; }
 
  private:
   NodeId a_, b_, c_, d_;
