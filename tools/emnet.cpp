@@ -19,6 +19,7 @@
 #include "emnet/periodic.hpp"
 #include "emnet/plot.hpp"
 #include "emnet/scene_reader.hpp"
+#include "emnet/spice_netlist.hpp"
 #include "emnet/transient.hpp"
 
 namespace {
@@ -946,6 +947,165 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   return 0;
 }
 
+void add_common(CLI::App* command, CommonOptions& options);
+
+// ---- netlist: SPICE export ------------------------------------------------------------
+//
+// `emnet netlist SCENE --analysis op|ac|tran [-o FILE.cir]`: the scene's network as a SPICE3
+// deck (src/io/spice_netlist.cpp; include/emnet/spice_netlist.hpp explains the mapping). The ac
+// options are those of `emnet ac`, the tran options those of `emnet tran`, plus the deck's own
+// max step and reltol.
+
+struct NetlistOptions {
+  std::string analysis;
+  std::string output;  // empty: standard output
+  bool control = false;
+  // ac, as `emnet ac`
+  std::string from_text, to_text;
+  std::optional<int> points;
+  std::string scale;
+  // tran, as `emnet tran`
+  double switching = 0.0;
+  double periods = 10.0;
+  std::string start = "rest";
+  int points_per_period = 100;
+  double max_step = 0.0;  // s; 0: the output step
+  double reltol = 1e-6;
+};
+
+int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
+  if (!options.csv.empty())
+    throw InputError("--csv", "--csv", "netlist writes a deck (-o), not a CSV table");
+  if (options.json && netlist.output.empty())
+    throw InputError("--json", "--json",
+                     "--json prints the deck's vector map; give the deck a file with -o");
+  emnet::SpiceDeckOptions deck_options;
+  deck_options.analysis = netlist.analysis == "ac"     ? emnet::SpiceAnalysis::ac
+                          : netlist.analysis == "tran" ? emnet::SpiceAnalysis::tran
+                                                       : emnet::SpiceAnalysis::op;
+  deck_options.control = netlist.control;
+  if (deck_options.analysis == emnet::SpiceAnalysis::tran) {
+    if (netlist.switching != 0.0) {
+      if (!(netlist.switching > 0.0) || !std::isfinite(netlist.switching))
+        throw InputError("--switching", "--switching", "must be a positive frequency in Hz");
+      options.overrides.push_back("drive.frequency=" + format("%.17g", netlist.switching));
+    }
+    if (!(netlist.periods > 0.0) || netlist.periods > 1e6)
+      throw InputError("--periods", "--periods", "must be > 0 and at most 1e6");
+    if (netlist.points_per_period < 2 || netlist.points_per_period > 100000)
+      throw InputError("--points-per-period", "--points-per-period",
+                       "must be between 2 and 100000");
+    if (!(netlist.reltol > 0.0 && netlist.reltol < 1.0))
+      throw InputError("--reltol", "--reltol", "must be between 0 and 1");
+    if (!(netlist.max_step >= 0.0) || !std::isfinite(netlist.max_step))
+      throw InputError("--max-step", "--max-step", "must be >= 0 s");
+  }
+  std::vector<std::string> shown_overrides = options.overrides;
+  if (options.segments != 0)
+    shown_overrides.push_back("beam.segments=" + std::to_string(options.segments));
+  const emnet::Model model = emnet::build_model(load_scene(options));
+  deck_options.overrides = shown_overrides;
+  if (!options.probes.empty()) deck_options.outputs = selected_probes(model, options);
+  if (deck_options.analysis == emnet::SpiceAnalysis::ac) {
+    emnet::AcSpec spec = model.scene.ac;
+    if (!netlist.from_text.empty()) spec.from = parse_frequency(netlist.from_text, "--from");
+    if (!netlist.to_text.empty()) spec.to = parse_frequency(netlist.to_text, "--to");
+    if (netlist.points) spec.points = *netlist.points;
+    if (!netlist.scale.empty()) spec.log = netlist.scale == "log";
+    if (spec.from < 0.0) throw InputError("--from", "--from", "must be >= 0 Hz");
+    if (!(spec.to > spec.from)) throw InputError("--to", "--to", "must be greater than --from");
+    if (spec.log && spec.from <= 0.0)
+      throw InputError("--from", "--from", "a log sweep needs --from > 0");
+    if (spec.points < 2 || spec.points > 1000000)
+      throw InputError("--points", "--points", "must be between 2 and 1000000");
+    deck_options.ac = spec;
+  }
+  if (deck_options.analysis == emnet::SpiceAnalysis::tran) {
+    const double frequency = model.scene.drive.frequency;
+    if (!(frequency > 0.0))
+      throw InputError(model.scene.file, "drive.frequency",
+                       "a transient needs a drive with a frequency (or --switching)");
+    const double period = 1.0 / frequency;
+    deck_options.end_time = netlist.periods * period;
+    deck_options.output_step = period / netlist.points_per_period;
+    deck_options.max_step = netlist.max_step;
+    deck_options.relative_tolerance = netlist.reltol;
+    deck_options.start =
+        netlist.start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
+  }
+  const emnet::SpiceDeck deck = emnet::write_spice_deck(model, deck_options);
+  if (netlist.output.empty()) {
+    std::cout << deck.text;
+    return 0;
+  }
+  {
+    std::ofstream out(netlist.output);
+    if (!out) throw InputError("-o", netlist.output, "cannot write file");
+    out << deck.text;
+    if (!out) throw InputError("-o", netlist.output, "cannot write file");
+  }
+  if (options.json) {
+    const emnet::System system = model.network.assemble();
+    Json out;
+    out["deck"] = netlist.output;
+    out["analysis"] = emnet::spice_analysis_name(deck.analysis);
+    out["unknowns"] = Json::array();
+    for (size_t k = 0; k < deck.unknowns.size(); ++k)
+      out["unknowns"].push_back({{"name", system.unknowns[k].name},
+                                 {"vector", deck.unknowns[k].vector},
+                                 {"sign", deck.unknowns[k].sign}});
+    out["outputs"] = Json::array();
+    for (const auto& o : deck.outputs)
+      out["outputs"].push_back({{"probe", o.probe},
+                                {"vector", o.vector},
+                                {"unit", o.unit},
+                                {"description", o.description}});
+    out["notes"] = deck.notes;
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << "SPICE deck (" << emnet::spice_analysis_name(deck.analysis) << ") written to "
+            << netlist.output << ": " << deck.outputs.size() << " outputs\n";
+  for (const auto& note : deck.notes) std::cout << "note: " << note << "\n";
+  return 0;
+}
+
+void add_netlist_command(CLI::App& app, CommonOptions& options, NetlistOptions& netlist,
+                         CLI::App*& command) {
+  command = app.add_subcommand(
+      "netlist",
+      "write the scene's network as a SPICE3 deck (ngspice runs it unchanged; LTspice reads\n"
+      "it): op = the static network in displacements, ac = the small-signal input of\n"
+      "`emnet ac`, tran = the drive's time functions from the start state of `emnet tran`");
+  add_common(command, options);
+  command->add_option("--analysis", netlist.analysis, "op, ac or tran")
+      ->required()
+      ->check(CLI::IsMember({"op", "ac", "tran"}));
+  command->add_option("-o,--output", netlist.output, "deck file (default: standard output)");
+  command->add_flag("--control", netlist.control,
+                    "append an ngspice-only .control block (run, wrdata of the outputs)");
+  command->add_option("--from", netlist.from_text, "ac: start frequency [Hz] (scene ac.from)");
+  command->add_option("--to", netlist.to_text, "ac: stop frequency [Hz] (scene ac.to)");
+  command->add_option("--points", netlist.points, "ac: number of frequencies (scene ac.points)");
+  command->add_option("--scale", netlist.scale, "ac: lin or log")
+      ->check(CLI::IsMember({"lin", "log"}));
+  command->add_option("--switching", netlist.switching,
+                      "tran: switching frequency [Hz] (default: the scene's drive.frequency)");
+  command->add_option("--periods", netlist.periods, "tran: number of periods (default 10)");
+  command
+      ->add_option("--start", netlist.start,
+                   "tran: rest (default) or static (the static state under the first "
+                   "half-period's drive)")
+      ->check(CLI::IsMember({"rest", "static"}));
+  command->add_option("--points-per-period", netlist.points_per_period,
+                      "tran: output step = period / this (default 100)");
+  command->add_option("--max-step", netlist.max_step,
+                      "tran: largest time step of the deck [s] (default: the output step)");
+  command->add_option("--reltol", netlist.reltol, "tran: the deck's .options reltol (1e-6)");
+}
+
+// ---- end of netlist --------------------------------------------------------------------
+
 void add_common(CLI::App* command, CommonOptions& options) {
   command->add_option("scene", options.scene_path, "scene file (TOML), e.g. netlists/fishfin.toml")
       ->required();
@@ -1061,6 +1221,10 @@ int main(int argc, char** argv) {
   identify_command->add_option("--resonance", target_hz, "target frequency [Hz]")->required();
   identify_command->add_option("--mode", mode_number, "which oscillatory mode (default 1)");
 
+  NetlistOptions netlist_options;
+  CLI::App* netlist_command = nullptr;
+  add_netlist_command(app, options, netlist_options, netlist_command);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -1080,6 +1244,7 @@ int main(int argc, char** argv) {
     if (*identify_command) return run_identify(options, target_hz, mode_number);
     if (*tran_command) return run_tran_command(options, tran_options);
     if (*sweep_command) return run_sweep_command(options, sweep_options);
+    if (*netlist_command) return run_netlist_command(options, netlist_options);
   } catch (const InputError& e) {
     std::cerr << "emnet: error: " << e.what() << "\n";
     return 2;
