@@ -30,7 +30,7 @@ struct DiagonalScaling {
 
 DiagonalScaling equilibrate(const Eigen::SparseMatrix<double>& matrix);
 DiagonalScaling equilibrate_pencil(const Eigen::SparseMatrix<double>& a,
-                                   const Eigen::SparseMatrix<double>& b);
+                                   const Eigen::SparseMatrix<double>& b, double frequency = 0.0);
 
 // diag(row)·matrix·diag(column)·factor.
 Eigen::SparseMatrix<double> scaled(const Eigen::SparseMatrix<double>& matrix,

@@ -42,7 +42,10 @@ void fill_extremes(PeriodicResult& result, const Refine& refine) {
 }  // namespace
 
 struct PeriodicSolver::Impl {
-  explicit Impl(const System& reference) : system(reference), form(system), space(form) {
+  explicit Impl(const System& reference)
+      : system(reference),
+        form(system),
+        space(form, characteristic_angular_frequency(system, 0.0)) {
     Eigen::EigenSolver<Eigen::MatrixXd> solver(space.m());
     if (solver.info() != Eigen::Success) throw std::runtime_error("eigen-decomposition failed");
     lambda = solver.eigenvalues();

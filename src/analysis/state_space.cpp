@@ -5,15 +5,29 @@
 #include <stdexcept>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "equilibration.hpp"
+
 namespace emnet {
 
-LinearStateSpace::LinearStateSpace(const DisplacementForm& form) {
+double characteristic_angular_frequency(const System& system, double end_time) {
+  double frequency = end_time > 0.0 ? 1.0 / end_time : 0.0;
+  for (const auto& w : system.waveforms)
+    if (w.period > 0.0) frequency = std::max(frequency, 1.0 / w.period);
+  return 2 * M_PI * frequency;
+}
+
+LinearStateSpace::LinearStateSpace(const DisplacementForm& form, double angular_frequency) {
   if (form.system().is_nonlinear())
     throw std::runtime_error(
         "the exact method needs a linear network; this one has nonlinear DEAs (set "
         "drive.electrical_dynamics = false for ideal voltage-driven DEAs, or use IDA)");
   n_ = form.size();
-  const Eigen::MatrixXd e = Eigen::MatrixXd(form.e()), a = Eigen::MatrixXd(form.a());
+  const DiagonalScaling scaling = equilibrate_pencil(form.a(), form.e(), angular_frequency);
+  time_scale_ = scaling.frequency;
+  row_scale_ = scaling.row;
+  column_scale_ = scaling.column;
+  const Eigen::MatrixXd e = Eigen::MatrixXd(scaled(form.e(), scaling, time_scale_));
+  const Eigen::MatrixXd a = Eigen::MatrixXd(scaled(form.a(), scaling));
   const Eigen::BDCSVD<Eigen::MatrixXd> svd(e, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::VectorXd sigma = svd.singularValues();
   while (nd_ < sigma.size() && sigma[nd_] > 1e-12 * sigma[0]) ++nd_;
@@ -28,24 +42,79 @@ LinearStateSpace::LinearStateSpace(const DisplacementForm& form) {
   if (na_ > 0 && !a22_lu_.isInvertible())
     throw std::runtime_error("the network's DAE has index > 1 or no unique solution");
   a22_inv_a21_ = na_ > 0 ? Eigen::MatrixXd(a22_lu_.solve(a21)) : Eigen::MatrixXd(0, nd_);
-  sigma_inv_ = sigma.head(nd_).cwiseInverse();
+  // d/dt = ω₀·d/dt̂: the physical-time state equation is ω₀ times the scaled one.
+  sigma_inv_ = time_scale_ * sigma.head(nd_).cwiseInverse();
   m_ = sigma_inv_.asDiagonal() * (a12_ * a22_inv_a21_ - a11);
   if (!m_.allFinite()) throw std::runtime_error("the reduced state matrix is not finite");
+  // Osborne's balancing (as in LAPACK's dgebal, powers of two): D such that every row and
+  // column of D⁻¹·M·D, off the diagonal, has the same 1-norm. The exponential's rounding
+  // error is relative to ‖M·h‖, which balancing makes as small as a diagonal similarity can.
+  balance_ = Eigen::VectorXd::Ones(nd_);
+  balanced_m_ = m_;
+  for (int sweep = 0; sweep < 100; ++sweep) {
+    bool changed = false;
+    for (Eigen::Index k = 0; k < nd_; ++k) {
+      const double column = balanced_m_.col(k).cwiseAbs().sum() - std::abs(balanced_m_(k, k));
+      const double row = balanced_m_.row(k).cwiseAbs().sum() - std::abs(balanced_m_(k, k));
+      if (column == 0.0 || row == 0.0) continue;
+      const double factor = std::exp2(std::round(0.5 * std::log2(row / column)));
+      if (factor == 1.0) continue;
+      changed = true;
+      balanced_m_.col(k) *= factor;
+      balanced_m_.row(k) /= factor;
+      balance_[k] *= factor;
+    }
+    if (!changed) break;
+  }
+  // Hidden constraints H·u = 0 (differentiated levers, displacement_form.hpp) are invariants of
+  // the state equation: M has a zero eigenvalue for each, and rounding in M·x + N·f would
+  // let the state drift along them (a lever slowly violating its kinematics). project()
+  // removes that drift along M's null vectors.
+  const std::vector<int>& hidden = form.hidden_constraints();
+  const Eigen::Index k = static_cast<Eigen::Index>(hidden.size());
+  if (k > 0 && k <= nd_) {
+    Eigen::MatrixXd h(k, n_);
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> e_rows = form.e();
+    for (Eigen::Index i = 0; i < k; ++i) h.row(i) = Eigen::RowVectorXd(e_rows.row(hidden[i]));
+    constraint_ = h;
+    const Eigen::BDCSVD<Eigen::MatrixXd> m_svd(balanced_m_,
+                                               Eigen::ComputeFullU | Eigen::ComputeFullV);
+    null_vectors_ = balance_.asDiagonal() * m_svd.matrixV().rightCols(k);
+    Eigen::VectorXd u, up;
+    Eigen::MatrixXd h_null(k, k);
+    const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(n_);
+    for (Eigen::Index j = 0; j < k; ++j) {
+      full_state(null_vectors_.col(j), no_force, u, up);
+      h_null.col(j) = constraint_ * u;
+    }
+    constraint_lu_.compute(h_null);
+    if (constraint_lu_.rcond() < 1e-12) constraint_.resize(0, 0);  // not the invariants
+  }
+}
+
+Eigen::VectorXd LinearStateSpace::project(const Eigen::VectorXd& x,
+                                          const Eigen::VectorXd& f) const {
+  if (constraint_.size() == 0) return x;
+  Eigen::VectorXd u, up;
+  full_state(x, f, u, up);
+  return x - null_vectors_ * constraint_lu_.solve(constraint_ * u);
 }
 
 Eigen::VectorXd LinearStateSpace::forcing(const Eigen::VectorXd& f) const {
-  const Eigen::VectorXd f_hat = left_.transpose() * f;
+  const Eigen::VectorXd f_hat = left_.transpose() * row_scale_.cwiseProduct(f);
   if (na_ == 0) return sigma_inv_.asDiagonal() * f_hat.head(nd_);
   const Eigen::VectorXd a22_inv_f2 = a22_lu_.solve(f_hat.tail(na_));
   return sigma_inv_.asDiagonal() * (f_hat.head(nd_) - a12_ * a22_inv_f2);
 }
 
 LinearStateSpace::Propagator LinearStateSpace::propagator(double h) const {
+  // On the balanced M_b = D⁻¹·M·D: Γ = D·Γ_b·D⁻¹.
   Eigen::MatrixXd augmented = Eigen::MatrixXd::Zero(2 * nd_, 2 * nd_);
-  augmented.topLeftCorner(nd_, nd_) = m_ * h;
+  augmented.topLeftCorner(nd_, nd_) = balanced_m_ * h;
   augmented.topRightCorner(nd_, nd_) = Eigen::MatrixXd::Identity(nd_, nd_) * h;
   const Eigen::MatrixXd exponential = augmented.exp();
-  return {exponential.topLeftCorner(nd_, nd_), exponential.topRightCorner(nd_, nd_)};
+  return {balance_.asDiagonal() * exponential.topRightCorner(nd_, nd_) *
+          balance_.cwiseInverse().asDiagonal()};
 }
 
 void LinearStateSpace::full_state(const Eigen::VectorXd& x, const Eigen::VectorXd& f,
@@ -55,16 +124,16 @@ void LinearStateSpace::full_state(const Eigen::VectorXd& x, const Eigen::VectorX
   w.head(nd_) = x;
   wp.head(nd_) = xp;
   if (na_ > 0) {
-    const Eigen::VectorXd f_hat = left_.transpose() * f;
+    const Eigen::VectorXd f_hat = left_.transpose() * row_scale_.cwiseProduct(f);
     w.tail(na_) = a22_lu_.solve(f_hat.tail(na_)) - a22_inv_a21_ * x;
     wp.tail(na_) = -a22_inv_a21_ * xp;
   }
-  u = right_ * w;
-  up = right_ * wp;
+  u = column_scale_.cwiseProduct(right_ * w);
+  up = column_scale_.cwiseProduct(right_ * wp);
 }
 
 Eigen::VectorXd LinearStateSpace::state_of(const Eigen::VectorXd& u) const {
-  return (right_.transpose() * u).head(nd_);
+  return (right_.transpose() * u.cwiseQuotient(column_scale_)).head(nd_);
 }
 
 const LinearStateSpace::Propagator& PropagatorCache::get(double h) {

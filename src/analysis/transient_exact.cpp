@@ -42,7 +42,7 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
   if (Status pieces = require_piecewise_constant(system); !pieces.ok) return finish(pieces);
   try {
     const DisplacementForm form(system);
-    const LinearStateSpace space(form);
+    const LinearStateSpace space(form, characteristic_angular_frequency(system, options.end_time));
     PropagatorCache cache(space, 1e-13 * std::max(options.end_time, 1e-300));
 
     Eigen::VectorXd x = Eigen::VectorXd::Zero(space.state_size());
@@ -66,7 +66,7 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
         const double h = outputs[next_output] - t;
         if (h >= 0.0) {
           const auto& p = cache.get(h);
-          space.full_state(p.phi * x + p.gamma * nf, f, u, up);
+          space.full_state(space.project(space.advance(p, x, nf), f), f, u, up);
           result.times.push_back(outputs[next_output]);
           for (size_t k = 0; k < probes.size(); ++k)
             result.values[k].push_back(form.probe(probes[k], u, up));
@@ -74,7 +74,7 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
         ++next_output;
       }
       const auto& p = cache.get(stop - t);
-      x = p.phi * x + p.gamma * nf;
+      x = space.project(space.advance(p, x, nf), f);
       ++result.statistics.restarts;
       t = stop;
     }
