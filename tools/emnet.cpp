@@ -552,6 +552,7 @@ struct TranOptions {
   double switching = 0.0;  // Hz; 0: the scene's drive.frequency
   double periods = 10.0;
   double rtol = 1e-6;
+  double max_step = 0.0;
   double atol = 0.0;
   std::string method = "ida";
   std::string start = "rest";
@@ -598,10 +599,14 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   }
   if (!(tran.periods > 0.0) || tran.periods > 1e6)
     throw InputError("--periods", "--periods", "must be > 0 and at most 1e6");
-  if (!(tran.rtol > 0.0 && tran.rtol < 1.0))
-    throw InputError("--rtol", "--rtol", "must be between 0 and 1");
+  if (!(tran.rtol >= 1e-13 && tran.rtol < 1.0))
+    throw InputError("--rtol", "--rtol",
+                     "must be at least 1e-13 (below that, double-precision rounding of the "
+                     "residual exceeds the tolerance) and below 1");
   if (!(tran.atol >= 0.0) || !std::isfinite(tran.atol))
     throw InputError("--atol", "--atol", "must be >= 0");
+  if (!(tran.max_step >= 0.0) || !std::isfinite(tran.max_step))
+    throw InputError("--max-step", "--max-step", "must be >= 0 (0: no limit)");
   if (tran.points_per_period < 2 || tran.points_per_period > 100000)
     throw InputError("--points-per-period", "--points-per-period", "must be between 2 and 100000");
   const emnet::Model model = emnet::build_model(load_scene(options));
@@ -615,6 +620,7 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   transient.end_time = tran.periods * period;
   transient.relative_tolerance = tran.rtol;
   transient.absolute_tolerance = tran.atol;
+  transient.max_step = tran.max_step;
   transient.start = tran.start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
   const long count = std::lround(tran.periods * tran.points_per_period);
   for (long k = 0; k <= count; ++k)
@@ -1182,6 +1188,8 @@ int main(int argc, char** argv) {
   tran_command->add_option("--atol", tran_options.atol,
                            "IDA absolute tolerance for every unknown (default: rtol times a "
                            "scale per kind of unknown from the static state)");
+  tran_command->add_option("--max-step", tran_options.max_step,
+                           "IDA's largest step [s] (default 0: no limit)");
   tran_command->add_option("--method", tran_options.method, "ida or exact")
       ->check(CLI::IsMember({"ida", "exact"}));
   tran_command

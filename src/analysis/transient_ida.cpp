@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "consistent_start.hpp"
 #include "displacement_form.hpp"
 #include "emnet/analysis.hpp"
 #include "emnet/transient.hpp"
@@ -242,17 +243,26 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
       data.interval_end = stop;
       // Consistent values at the start of the interval: algebraic unknowns and derivatives
       // follow the sources' new values; differential unknowns are continuous.
-      if (result.statistics.restarts > 0) {
-        accumulate_statistics();
-        IDAReInit(mem, t, yy, yp);
+      // Own Newton iteration first (consistent_start.hpp); IDACalcIC only if it fails.
+      Eigen::VectorXd u_start = Eigen::Map<const Eigen::VectorXd>(yy.data(), n);
+      Eigen::VectorXd up_start = Eigen::Map<const Eigen::VectorXd>(yp.data(), n);
+      const Status consistent = make_consistent(form, source_time(data, t), u_start, up_start);
+      if (consistent.ok) {
+        Eigen::Map<Eigen::VectorXd>(yy.data(), n) = u_start;
+        Eigen::Map<Eigen::VectorXd>(yp.data(), n) = up_start;
       }
+      if (result.statistics.restarts > 0) accumulate_statistics();
+      if (result.statistics.restarts > 0 || consistent.ok) IDAReInit(mem, t, yy, yp);
       ++result.statistics.restarts;
-      const int ic = IDACalcIC(mem, IDA_YA_YDP_INIT, t + 1e-3 * (stop - t));
-      if (ic != IDA_SUCCESS)
-        return finish(Status::failure("consistent initial values at t = " + format_time(t) +
-                                      " s failed (" + data.last_error +
-                                      "); try a nonzero drive.rise_time or --start static"));
-      IDAGetConsistentIC(mem, yy, yp);
+      if (!consistent.ok) {
+        const int ic = IDACalcIC(mem, IDA_YA_YDP_INIT, t + 1e-3 * (stop - t));
+        if (ic != IDA_SUCCESS)
+          return finish(Status::failure("consistent initial values at t = " + format_time(t) +
+                                        " s failed (" + consistent.message + "; then " +
+                                        data.last_error +
+                                        "); try a nonzero drive.rise_time or --start static"));
+        IDAGetConsistentIC(mem, yy, yp);
+      }
       while (next_output < outputs.size() && outputs[next_output] <= t) {
         if (outputs[next_output] == t) record(t);
         ++next_output;

@@ -1,0 +1,27 @@
+// Consistent values at the start of a constant-source interval of the displacement form
+//   F(t, u, u') = E·u' + A·u + ĝ(u, u') − f(t) = 0:
+// the differential unknowns u_d are continuous across a source edge; the algebraic unknowns
+// u_a and the derivatives u'_d follow the new sources (u'_a is set to zero; it does not enter
+// F). For an index-1 form the square system F = 0 in w = (u'_d, u_a) has the Jacobian
+//   J_w = [∂F/∂u'_d  ∂F/∂u_a],
+// which is non-singular; it is solved by Newton's method (one step for a linear network) with a
+// sparse LU of the equilibrated J_w (equilibration.hpp), so that stiffness and mixed units do
+// not matter. This replaces IDACalcIC, whose Newton iteration uses the integrator's matrix
+// ∂F/∂u + c_j·∂F/∂u' with c_j from a guessed first step and stalls on stiff networks (the
+// 500-segment fish fin with zero rise time failed at t = 0).
+#pragma once
+
+#include <Eigen/Dense>
+#include <string>
+
+#include "displacement_form.hpp"
+#include "emnet/errors.hpp"
+
+namespace emnet {
+
+// Makes (u, up) consistent at source_time keeping u_d. On failure u and up are unchanged and the
+// status says why. Success means every row of F is zero to 1e-10 of the size of its terms.
+Status make_consistent(const DisplacementForm& form, double source_time, Eigen::VectorXd& u,
+                       Eigen::VectorXd& up);
+
+}  // namespace emnet
