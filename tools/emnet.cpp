@@ -765,11 +765,16 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   std::unique_ptr<emnet::PeriodicSolver> solver;
   std::vector<double> frequencies;
   std::vector<emnet::PeriodicResult> results;
+  const emnet::Scene base_scene = load_scene(options);  // read once; only the frequency varies
+  if (!(base_scene.drive.rise_time < 0.5 / sweep.to))
+    throw InputError(base_scene.file, "drive.rise_time",
+                     "must be shorter than half the shortest period of the sweep (" +
+                         si(0.5 / sweep.to, "s") + " at --to " + si(sweep.to, "Hz") + ")");
   for (long k = 0; k < count; ++k) {
     const double f = sweep.from + sweep.step * static_cast<double>(k);
-    CommonOptions at = options;
-    at.overrides.push_back("drive.frequency=" + format("%.17g", f));
-    const emnet::Model m = emnet::build_model(load_scene(at));
+    emnet::Scene at = base_scene;
+    at.drive.frequency = f;
+    const emnet::Model m = emnet::build_model(at);
     const emnet::System system = m.network.assemble();
     emnet::PeriodicResult r;
     if (sweep.method == "exact") {
