@@ -1,0 +1,133 @@
+// `emnet crosscheck` (include/emnet/crosscheck.hpp): both checked-in scenes pass against
+// ngspice with the tolerances the header justifies; a perturbed ngspice vector fails the report;
+// ngspice missing gives exit status 3 with a clear message; the peak fit is exact for an
+// isolated mode.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "cli_run.hpp"
+#include "emnet/crosscheck.hpp"
+#include "emnet/model.hpp"
+#include "emnet/scene_reader.hpp"
+
+namespace {
+
+using namespace emnet;
+
+std::string source_path(const std::string& relative) {
+  return std::string(EMNET_SOURCE_DIR) + "/" + relative;
+}
+
+bool ngspice_available() {
+  return std::system("command -v ngspice > /dev/null 2>&1") == 0;
+}
+
+// The whole cross-check of the fish fin (op, ac, modal, tran at the defaults).
+TEST(Crosscheck, FishFinPassesAgainstNgspice) {
+  if (!ngspice_available()) GTEST_SKIP() << "ngspice is not installed";
+  const auto run = emnet::testing::run_emnet(
+      "crosscheck " + source_path("netlists/fishfin.toml") + " --timeout 60", "timeout 120 ");
+  EXPECT_EQ(run.status, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("crosscheck passed"), std::string::npos) << run.out;
+  for (const char* analysis : {"\nop ", "\nac ", "\nmodal ", "\ntran "})
+    EXPECT_NE(run.out.find(analysis), std::string::npos) << analysis << "\n" << run.out;
+}
+
+// The cantilever's step load from rest: ngspice stops with "timestep too small" at max steps
+// below ~T/1000 (README), so its tran runs at max step T/200; ngspice's own steps are far
+// smaller there (its error control at reltol 1e-6 binds, not the max step).
+TEST(Crosscheck, CantileverPassesAgainstNgspice) {
+  if (!ngspice_available()) GTEST_SKIP() << "ngspice is not installed";
+  const auto run =
+      emnet::testing::run_emnet("crosscheck " + source_path("netlists/cantilever.toml") +
+                                    " --points-per-period 200 --timeout 60",
+                                "timeout 120 ");
+  EXPECT_EQ(run.status, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("crosscheck passed"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("\nmodal  f2"), std::string::npos) << run.out;
+}
+
+// A deliberately perturbed ngspice vector (one output 1e-5 relative off, ten times the
+// tolerance) must fail its row, and only its analysis.
+TEST(Crosscheck, PerturbedNgspiceVectorFailsTheReport) {
+  if (!ngspice_available()) GTEST_SKIP() << "ngspice is not installed";
+  const Model model = build_model(read_scene(source_path("netlists/fishfin.toml")));
+  CrosscheckOptions options;
+  options.analyses = {CrosscheckAnalysis::op, CrosscheckAnalysis::ac};
+  const CrosscheckReport clean = run_crosscheck(model, options);
+  ASSERT_TRUE(clean.status.ok) << clean.status.message;
+  EXPECT_TRUE(clean.all_pass());
+  options.inspect_ngspice_result = [](CrosscheckAnalysis analysis, NgspiceResult& result) {
+    if (analysis != CrosscheckAnalysis::ac) return;
+    for (auto& vector : result.vectors)
+      if (vector.name == "out_tip")
+        for (auto& value : vector.complex_values) value *= 1.0 + 1e-5;
+  };
+  const CrosscheckReport perturbed = run_crosscheck(model, options);
+  ASSERT_TRUE(perturbed.status.ok) << perturbed.status.message;
+  EXPECT_FALSE(perturbed.all_pass());
+  bool ac_magnitude_failed = false;
+  for (const auto& row : perturbed.rows) {
+    if (row.analysis == CrosscheckAnalysis::op) EXPECT_TRUE(row.pass) << row.quantity;
+    if (row.analysis == CrosscheckAnalysis::ac && row.quantity == "outputs |Y|") {
+      ac_magnitude_failed = !row.pass;
+      EXPECT_NEAR(row.largest_difference, 1e-5, 1e-7);
+      EXPECT_NE(row.where.find("tip"), std::string::npos) << row.where;
+    }
+  }
+  EXPECT_TRUE(ac_magnitude_failed);
+}
+
+TEST(Crosscheck, MissingNgspiceProgramExitsThreeWithAClearMessage) {
+  const auto run = emnet::testing::run_emnet(
+      "crosscheck " + source_path("netlists/fishfin.toml") +
+          " --backend program --ngspice-program /nonexistent/ngspice --analysis op",
+      "timeout 60 ");
+  EXPECT_EQ(run.status, 3) << run.out << run.err;
+  EXPECT_NE(run.err.find("ngspice"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("/nonexistent/ngspice"), std::string::npos) << run.err;
+}
+
+TEST(Crosscheck, BadAnalysisNameIsBadInput) {
+  EXPECT_THROW(parse_crosscheck_analyses("op,pz", "--analysis"), InputError);
+  EXPECT_EQ(parse_crosscheck_analyses("all", "--analysis").size(), 4u);
+  const auto run = emnet::testing::run_emnet("crosscheck " + source_path("netlists/fishfin.toml") +
+                                             " --analysis op,pz");
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_NE(run.err.find("pz"), std::string::npos) << run.err;
+}
+
+// 1/|H|² of an isolated mode's displacement response is quadratic in f²: the three-point fit
+// finds f_n·sqrt(1 − 2ζ²) to rounding, on any grid around it, damped or not.
+TEST(Crosscheck, ParabolicPeakIsExactForAnIsolatedMode) {
+  for (const double zeta : {0.0, 0.02, 0.12}) {
+    const double natural = 6.385;
+    const double expected = natural * std::sqrt(1.0 - 2.0 * zeta * zeta);
+    std::vector<double> frequencies, magnitudes;
+    for (int k = 0; k < 200; ++k) {
+      const double f = expected * (0.97 + 0.06 * (k + 0.5) / 200.0);
+      const std::complex<double> denominator(natural * natural - f * f, 2.0 * zeta * natural * f);
+      frequencies.push_back(f);
+      magnitudes.push_back(1.0 / std::abs(denominator));
+    }
+    double peak = 0.0;
+    ASSERT_TRUE(parabolic_peak_frequency(frequencies, magnitudes, peak)) << zeta;
+    EXPECT_NEAR(peak, expected, 1e-9 * expected) << zeta;
+  }
+  // A monotone response has no peak inside the grid.
+  double peak = 0.0;
+  EXPECT_FALSE(parabolic_peak_frequency({1.0, 2.0, 3.0, 4.0}, {1.0, 2.0, 3.0, 4.0}, peak));
+}
+
+TEST(Crosscheck, LargestRelativeDifference) {
+  const auto largest = largest_relative_difference({1.0, 2.0, 3.0}, {1.0, 2.5, 3.1}, 2.0);
+  EXPECT_EQ(largest.index, 1u);
+  EXPECT_DOUBLE_EQ(largest.value, 0.25);
+}
+
+}  // namespace
