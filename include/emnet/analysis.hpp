@@ -101,7 +101,7 @@ std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y,
 // Large systems: implicitly restarted Arnoldi (Spectra) for the `count` poles nearest σ,
 // one sparse LU.
 struct ModalOptions {
-  int count = 0;          // large systems: oscillatory poles wanted (0: the 10 poles nearest σ)
+  int count = 0;          // large systems: oscillatory poles wanted (0: the 10 lowest)
   int dense_limit = 600;  // unknowns up to which the dense method is used
   bool keep_vectors = true;
 };
@@ -126,6 +126,7 @@ struct ModalResult {
   double seconds = 0.0;
   bool complete = false;  // true when every finite pole was computed
   std::string note;       // e.g. how many of the requested poles converged
+  long iterations = 0;    // Arnoldi restarts over all attempts (0 for dense)
 };
 
 ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,
