@@ -1,6 +1,7 @@
 // Linear state equation of the displacement form: see state_space.hpp.
 #include "state_space.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <stdexcept>
 #include <unsupported/Eigen/MatrixFunctions>
@@ -115,6 +116,36 @@ LinearStateSpace::Propagator LinearStateSpace::propagator(double h) const {
   const Eigen::MatrixXd exponential = augmented.exp();
   return {balance_.asDiagonal() * exponential.topRightCorner(nd_, nd_) *
           balance_.cwiseInverse().asDiagonal()};
+}
+
+bool LinearStateSpace::advance_by_modes(Eigen::VectorXd& x, const Eigen::VectorXd& nf,
+                                        double h) const {
+  if (modes_state_ == 0) {
+    modes_state_ = -1;
+    const Eigen::EigenSolver<Eigen::MatrixXd> solver(balanced_m_);
+    if (solver.info() == Eigen::Success) {
+      eigenvalues_ = solver.eigenvalues();
+      eigenvectors_ = balance_.cast<std::complex<double>>().asDiagonal() * solver.eigenvectors();
+      eigenvectors_lu_.compute(eigenvectors_);
+      const Eigen::MatrixXcd inverse = eigenvectors_lu_.inverse();
+      const double condition = eigenvectors_.cwiseAbs().colwise().sum().maxCoeff() *
+                               inverse.cwiseAbs().colwise().sum().maxCoeff();
+      if (condition < 1e6 && inverse.allFinite()) modes_state_ = 1;
+    }
+  }
+  if (modes_state_ < 0) return false;
+  const Eigen::VectorXcd rate = eigenvectors_lu_.solve((m_ * x + nf).cast<std::complex<double>>());
+  Eigen::VectorXcd weighted(rate.size());
+  for (Eigen::Index k = 0; k < rate.size(); ++k) {
+    const std::complex<double> z = eigenvalues_[k] * h;
+    // φ₁ by its series where e^z − 1 would cancel (error below z⁴/120 ≈ 1e-14 there).
+    const std::complex<double> phi = std::abs(z) < 1e-3
+                                         ? 1.0 + z * (1.0 / 2.0 + z * (1.0 / 6.0 + z / 24.0))
+                                         : (std::exp(z) - 1.0) / z;
+    weighted[k] = h * phi * rate[k];
+  }
+  x += (eigenvectors_ * weighted).real();
+  return true;
 }
 
 void LinearStateSpace::full_state(const Eigen::VectorXd& x, const Eigen::VectorXd& f,

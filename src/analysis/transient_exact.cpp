@@ -65,8 +65,11 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
       while (next_output < outputs.size() && outputs[next_output] <= stop) {
         const double h = outputs[next_output] - t;
         if (h >= 0.0) {
-          const auto& p = cache.get(h);
-          space.full_state(space.project(space.advance(p, x, nf), f), f, u, up);
+          // Outputs by M's eigen-decomposition (no exponential per distinct output offset:
+          // irregular output times, e.g. another simulator's, cost O(n²) each), else Γ(h).
+          Eigen::VectorXd at = x;
+          if (!space.advance_by_modes(at, nf, h)) at = space.advance(cache.get(h), x, nf);
+          space.full_state(space.project(at, f), f, u, up);
           result.times.push_back(outputs[next_output]);
           for (size_t k = 0; k < probes.size(); ++k)
             result.values[k].push_back(form.probe(probes[k], u, up));
