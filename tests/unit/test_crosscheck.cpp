@@ -39,17 +39,16 @@ TEST(Crosscheck, FishFinPassesAgainstNgspice) {
 }
 
 // The cantilever's step load from rest: ngspice stops with "timestep too small" at max steps
-// below ~T/1000 (README), so its tran runs at max step T/200; ngspice's own steps are far
-// smaller there (its error control at reltol 1e-6 binds, not the max step).
+// below ~T/1000 (README), so the default run (T/2000) must retry at max step T/200 and say so;
+// ngspice's own steps are far smaller there (its error control at reltol 1e-6 binds).
 TEST(Crosscheck, CantileverPassesAgainstNgspice) {
   if (!ngspice_available()) GTEST_SKIP() << "ngspice is not installed";
-  const auto run =
-      emnet::testing::run_emnet("crosscheck " + source_path("netlists/cantilever.toml") +
-                                    " --points-per-period 200 --timeout 60",
-                                "timeout 120 ");
+  const auto run = emnet::testing::run_emnet(
+      "crosscheck " + source_path("netlists/cantilever.toml") + " --timeout 60", "timeout 120 ");
   EXPECT_EQ(run.status, 0) << run.out << run.err;
   EXPECT_NE(run.out.find("crosscheck passed"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("\nmodal  f2"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("retried with T/200"), std::string::npos) << run.out;
 }
 
 // A deliberately perturbed ngspice vector (one output 1e-5 relative off, ten times the
