@@ -316,7 +316,10 @@ bool prepare_deck(const std::string& deck_text, std::vector<std::string>& lines,
 bool is_error_line(const NgspiceMessage& message) {
   if (message.stream != NgspiceStream::err) return false;
   const std::string text = lower_case(std::string(trimmed(message.text)));
-  return text.rfind("error", 0) == 0;
+  // "doAnalyses: TRAN:  Timestep too small" ends the run early with the vectors so far; the
+  // result must not pass for a whole run.
+  return text.rfind("error", 0) == 0 || text.find("timestep too small") != std::string::npos ||
+         text.find("simulation(s) aborted") != std::string::npos;
 }
 
 bool has_error_line(const std::vector<NgspiceMessage>& messages) {
