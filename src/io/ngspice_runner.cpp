@@ -198,6 +198,23 @@ class ChildProcess {
   int wait_status_ = 0;
 };
 
+// Waits for `child` until `timeout` seconds after `start` (not at all when `timed_out`
+// already), then kills it. Returns whether the time ran out.
+bool finish_or_kill(ChildProcess& child, Clock::time_point start, double timeout, bool timed_out) {
+  while (!timed_out && !child.try_wait()) {
+    if (seconds_since(start) > timeout) {
+      timed_out = true;
+      break;
+    }
+    ::usleep(1000);
+  }
+  if (timed_out) {
+    child.kill();
+    child.wait_blocking();
+  }
+  return timed_out;
+}
+
 class TemporaryDirectory {
  public:
   bool create(std::string& why) {
@@ -939,17 +956,7 @@ BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
       output.read_end.reset();
   }
   // The pipes are closed: the worker is ending; give it the rest of the time to do so.
-  while (!timed_out && !worker.try_wait()) {
-    if (seconds_since(start) > timeout) {
-      timed_out = true;
-      break;
-    }
-    ::usleep(1000);
-  }
-  if (timed_out) {
-    worker.kill();
-    worker.wait_blocking();
-  }
+  timed_out = finish_or_kill(worker, start, timeout, timed_out);
   result.seconds = seconds_since(start);
 
   // Decode the complete records; a crash may have cut the last one.
@@ -1118,17 +1125,7 @@ BackendAttempt run_program(const std::vector<std::string>& lines, const NgspiceO
   }
   out_lines.finish();
   err_lines.finish();
-  while (!timed_out && !program.try_wait()) {
-    if (seconds_since(start) > timeout) {
-      timed_out = true;
-      break;
-    }
-    ::usleep(1000);
-  }
-  if (timed_out) {
-    program.kill();
-    program.wait_blocking();
-  }
+  timed_out = finish_or_kill(program, start, timeout, timed_out);
   result.ngspice_seconds = seconds_since(start);
   attempt.available = true;
   result.backend_used = NgspiceBackend::program;
