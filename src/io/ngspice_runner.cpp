@@ -842,23 +842,18 @@ bool decode_vector(const std::string& bytes, NgspiceVector& vector) {
   return true;
 }
 
-class StreamingSink : public LibraryRunSink {
+// Collects like CollectingSink and also streams every message to the parent.
+class StreamingSink : public CollectingSink {
  public:
   explicit StreamingSink(RecordWriter& writer) : writer_(writer) {}
   void message(NgspiceStream stream, std::string text) noexcept override {
     try {
       writer_.write(stream == NgspiceStream::err ? RecordTag::message_err : RecordTag::message_out,
                     text);
-      std::lock_guard<std::mutex> lock(mutex);
-      messages.push_back({stream, std::move(text)});
     } catch (...) {
     }
+    CollectingSink::message(stream, std::move(text));
   }
-  std::vector<NgspiceMessage> snapshot() {
-    std::lock_guard<std::mutex> lock(mutex);
-    return messages;
-  }
-  std::vector<NgspiceMessage> messages;
 
  private:
   RecordWriter& writer_;
