@@ -118,34 +118,34 @@ LinearStateSpace::Propagator LinearStateSpace::propagator(double h) const {
           balance_.cwiseInverse().asDiagonal()};
 }
 
-bool LinearStateSpace::advance_by_modes(Eigen::VectorXd& x, const Eigen::VectorXd& nf,
-                                        double h) const {
+const LinearStateSpace::ModalBasis* LinearStateSpace::modal_basis() const {
   if (modes_state_ == 0) {
     modes_state_ = -1;
     const Eigen::EigenSolver<Eigen::MatrixXd> solver(balanced_m_);
     if (solver.info() == Eigen::Success) {
-      eigenvalues_ = solver.eigenvalues();
-      eigenvectors_ = balance_.cast<std::complex<double>>().asDiagonal() * solver.eigenvectors();
-      eigenvectors_lu_.compute(eigenvectors_);
-      const Eigen::MatrixXcd inverse = eigenvectors_lu_.inverse();
-      const double condition = eigenvectors_.cwiseAbs().colwise().sum().maxCoeff() *
+      basis_.values = solver.eigenvalues();
+      basis_.vectors = balance_.cast<std::complex<double>>().asDiagonal() * solver.eigenvectors();
+      basis_.vectors_lu.compute(basis_.vectors);
+      const Eigen::MatrixXcd inverse = basis_.vectors_lu.inverse();
+      const double condition = basis_.vectors.cwiseAbs().colwise().sum().maxCoeff() *
                                inverse.cwiseAbs().colwise().sum().maxCoeff();
       if (condition < 1e6 && inverse.allFinite()) modes_state_ = 1;
     }
   }
-  if (modes_state_ < 0) return false;
-  const Eigen::VectorXcd rate = eigenvectors_lu_.solve((m_ * x + nf).cast<std::complex<double>>());
-  Eigen::VectorXcd weighted(rate.size());
-  for (Eigen::Index k = 0; k < rate.size(); ++k) {
-    const std::complex<double> z = eigenvalues_[k] * h;
+  return modes_state_ > 0 ? &basis_ : nullptr;
+}
+
+Eigen::VectorXcd LinearStateSpace::ModalBasis::increments(double h) const {
+  Eigen::VectorXcd out(values.size());
+  for (Eigen::Index k = 0; k < values.size(); ++k) {
+    const std::complex<double> z = values[k] * h;
     // φ₁ by its series where e^z − 1 would cancel (error below z⁴/120 ≈ 1e-14 there).
     const std::complex<double> phi = std::abs(z) < 1e-3
                                          ? 1.0 + z * (1.0 / 2.0 + z * (1.0 / 6.0 + z / 24.0))
                                          : (std::exp(z) - 1.0) / z;
-    weighted[k] = h * phi * rate[k];
+    out[k] = h * phi;
   }
-  x += (eigenvectors_ * weighted).real();
-  return true;
+  return out;
 }
 
 void LinearStateSpace::full_state(const Eigen::VectorXd& x, const Eigen::VectorXd& f,

@@ -49,11 +49,18 @@ class LinearStateSpace {
                           const Eigen::VectorXd& nf) const {
     return x + p.gamma * (m_ * x + nf);
   }
-  // The state after h from x under constant forcing nf by M's eigen-decomposition,
-  // x + V·diag(h·φ₁(λh))·V⁻¹·(M·x + N·f) with φ₁(z) = (e^z − 1)/z: O(n²) per call instead of an
-  // exponential. False (x unchanged) when M's eigenvectors are too ill-conditioned (condition
-  // above 1e6, so that rounding could exceed ~1e-10) — then use propagator().
-  bool advance_by_modes(Eigen::VectorXd& x, const Eigen::VectorXd& nf, double h) const;
+  // M = V·Λ·V⁻¹, for evaluating many outputs cheaply: over a constant interval,
+  // x(t₀ + h) = x₀ + V·diag(increments(h))·V⁻¹·(M·x₀ + N·f), increments(h)_k = h·φ₁(λ_k h),
+  // φ₁(z) = (e^z − 1)/z: O(n) exponentials and O(n²) products per time instead of an
+  // exponential of M. Null (made on first use, then kept) when V's condition exceeds 1e6, so
+  // that rounding stays below ~1e-10; use propagator() then.
+  struct ModalBasis {
+    Eigen::VectorXcd values;
+    Eigen::MatrixXcd vectors;
+    Eigen::PartialPivLU<Eigen::MatrixXcd> vectors_lu;
+    Eigen::VectorXcd increments(double h) const;
+  };
+  const ModalBasis* modal_basis() const;
   // x moved along M's null vectors until the hidden constraints hold (no-op without them).
   Eigen::VectorXd project(const Eigen::VectorXd& x, const Eigen::VectorXd& f) const;
   // u and u' from the state x at a time where the sources are f.
@@ -71,11 +78,9 @@ class LinearStateSpace {
   Eigen::MatrixXd balanced_m_;
   Eigen::MatrixXd constraint_, null_vectors_;           // H (hidden constraints), M's null vectors
   Eigen::PartialPivLU<Eigen::MatrixXd> constraint_lu_;  // of H·(u of the null vectors)
-  // Eigen-decomposition of M for advance_by_modes, made on first use.
+  // Eigen-decomposition of M for modal_basis(), made on first use.
   mutable int modes_state_ = 0;  // 0 not tried, 1 usable, −1 ill-conditioned
-  mutable Eigen::VectorXcd eigenvalues_;
-  mutable Eigen::MatrixXcd eigenvectors_;
-  mutable Eigen::PartialPivLU<Eigen::MatrixXcd> eigenvectors_lu_;
+  mutable ModalBasis basis_;
   Eigen::VectorXd sigma_inv_;  // of Ê, times ω₀: the reduced equations in physical time
   Eigen::FullPivLU<Eigen::MatrixXd> a22_lu_;
 };

@@ -58,21 +58,53 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
     size_t next_output = 0;
     double t = 0.0;
     Eigen::VectorXd u, up;
+    // Outputs: each probe is linear in (x, f), p = gᵀ·x + c(f), so with M's eigen-basis an
+    // output inside an interval starting at x₀ costs n exponentials and a dot product per probe:
+    // p(t₀ + h) = p(x₀, f) + Re Σ_k (gᵀV)_k·r_k·h·φ₁(λ_k h),  r = V⁻¹·(M·x₀ + N·f).
+    const LinearStateSpace::ModalBasis* basis = space.modal_basis();
+    std::vector<Eigen::RowVectorXcd> probe_modes;
+    if (basis) {
+      const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(form.size());
+      for (const Probe& probe : probes) {
+        Eigen::RowVectorXd g(space.state_size());
+        for (Eigen::Index k = 0; k < space.state_size(); ++k) {
+          Eigen::VectorXd unit = Eigen::VectorXd::Zero(space.state_size());
+          unit[k] = 1.0;
+          space.full_state(unit, no_force, u, up);
+          g[k] = form.probe(probe, u, up);
+        }
+        probe_modes.push_back(g.cast<std::complex<double>>() * basis->vectors);
+      }
+    }
     for (double stop : stops) {
       if (stop <= t) continue;
       const Eigen::VectorXd f = form.f(0.5 * (t + stop));  // constant inside the interval
       const Eigen::VectorXd nf = space.forcing(f);
+      std::vector<double> start_values;
+      std::vector<Eigen::RowVectorXcd> weights;
+      if (basis && next_output < outputs.size() && outputs[next_output] <= stop) {
+        space.full_state(x, f, u, up);
+        const Eigen::VectorXcd rate =
+            basis->vectors_lu.solve((space.m() * x + nf).cast<std::complex<double>>());
+        for (size_t k = 0; k < probes.size(); ++k) {
+          start_values.push_back(form.probe(probes[k], u, up));
+          weights.push_back(probe_modes[k].cwiseProduct(rate.transpose()));
+        }
+      }
       while (next_output < outputs.size() && outputs[next_output] <= stop) {
         const double h = outputs[next_output] - t;
         if (h >= 0.0) {
-          // Outputs by M's eigen-decomposition (no exponential per distinct output offset:
-          // irregular output times, e.g. another simulator's, cost O(n²) each), else Γ(h).
-          Eigen::VectorXd at = x;
-          if (!space.advance_by_modes(at, nf, h)) at = space.advance(cache.get(h), x, nf);
-          space.full_state(space.project(at, f), f, u, up);
           result.times.push_back(outputs[next_output]);
-          for (size_t k = 0; k < probes.size(); ++k)
-            result.values[k].push_back(form.probe(probes[k], u, up));
+          if (basis) {
+            const Eigen::VectorXcd increments = basis->increments(h);
+            for (size_t k = 0; k < probes.size(); ++k)
+              result.values[k].push_back(start_values[k] +
+                                         (weights[k] * increments).value().real());
+          } else {
+            space.full_state(space.project(space.advance(cache.get(h), x, nf), f), f, u, up);
+            for (size_t k = 0; k < probes.size(); ++k)
+              result.values[k].push_back(form.probe(probes[k], u, up));
+          }
         }
         ++next_output;
       }
