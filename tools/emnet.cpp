@@ -1,4 +1,4 @@
-// emnet command-line program: static, ac, modes and identify over one scene.
+// emnet command-line program: static, ac, modes, sensitivity and identify over one scene.
 //
 // Exit status: 0 success; 2 bad input (scene file, override, option), with one message naming
 // the file, line and key; 3 numerical failure, with the reason (for crosscheck also: ngspice
@@ -22,6 +22,7 @@
 #include "emnet/periodic.hpp"
 #include "emnet/plot.hpp"
 #include "emnet/scene_reader.hpp"
+#include "emnet/sensitivity.hpp"
 #include "emnet/spice_netlist.hpp"
 #include "emnet/transient.hpp"
 
@@ -961,6 +962,109 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   return 0;
 }
 
+// ---- sensitivity ------------------------------------------------------------------------
+//
+// `emnet sensitivity SCENE [--modes K] [--parameter KEY ...] [--check]`: df/dp of the first K
+// resonances for every scene parameter, from the eigenvectors (include/emnet/sensitivity.hpp),
+// and with --check the finite-difference reference.
+
+struct SensitivityCommandOptions {
+  int modes = 3;
+  std::vector<std::string> parameters;
+  bool check = false;
+};
+
+int run_sensitivity_command(const CommonOptions& options, const SensitivityCommandOptions& cmd) {
+  const auto start = std::chrono::steady_clock::now();
+  if (cmd.modes < 1) throw InputError("--modes", "--modes", "must be >= 1");
+  const emnet::Scene scene = load_scene(options);
+  emnet::SensitivityOptions sensitivity_options;
+  sensitivity_options.modes = cmd.modes;
+  sensitivity_options.check = cmd.check;
+  const emnet::SensitivityResult result =
+      emnet::run_sensitivity(scene, cmd.parameters, sensitivity_options);
+  if (!result.status.ok) throw NumericalFailure("sensitivity: " + result.status.message);
+  for (const auto& parameter : result.parameters)
+    for (const auto& mode : parameter.modes) {
+      finite(mode.frequency_derivative, "df/d" + parameter.parameter.key);
+      finite(mode.normalised, "the normalised sensitivity to " + parameter.parameter.key);
+    }
+  const double total = seconds_since(start);
+  const auto& modes = result.modes;
+  if (options.json) {
+    Json out;
+    out["scene"] = scene.name;
+    out["segments"] = scene.beam.segments;
+    out["modes"] = Json::array();
+    for (const auto& mode : modes)
+      out["modes"].push_back({{"frequency_hz", mode.frequency_hz},
+                              {"natural_frequency_hz", mode.natural_frequency_hz},
+                              {"pole", {mode.pole.real(), mode.pole.imag()}}});
+    out["parameters"] = Json::array();
+    for (const auto& parameter : result.parameters) {
+      Json entry = {{"key", parameter.parameter.key},
+                    {"value", parameter.parameter.value},
+                    {"unit", parameter.parameter.unit},
+                    {"modes", Json::array()}};
+      for (const auto& s : parameter.modes) {
+        Json mode = {{"pole_derivative", {s.pole_derivative.real(), s.pole_derivative.imag()}},
+                     {"frequency_derivative", s.frequency_derivative},
+                     {"natural_frequency_derivative", s.natural_frequency_derivative},
+                     {"normalised", s.normalised},
+                     {"normalised_natural", s.normalised_natural}};
+        if (cmd.check) {
+          mode["finite_difference_pole_derivative"] = {s.finite_difference_pole_derivative.real(),
+                                                       s.finite_difference_pole_derivative.imag()};
+          mode["check_difference"] = s.check_difference;
+          mode["check_error_estimate"] = s.check_error_estimate;
+        }
+        entry["modes"].push_back(mode);
+      }
+      out["parameters"].push_back(entry);
+    }
+    out["left_vector_residual"] = result.left_vector_residual;
+    out["cost"] = {{"sensitivity_seconds", result.seconds - result.check_seconds},
+                   {"check_seconds", result.check_seconds},
+                   {"total_seconds", total}};
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << "scene " << scene.name << " (" << scene.file << "): " << scene.beam.segments
+            << " segments\nmodes:";
+  for (size_t k = 0; k < modes.size(); ++k)
+    std::printf(" f%zu = %.6f Hz (natural %.6f Hz)%s", k + 1, modes[k].frequency_hz,
+                modes[k].natural_frequency_hz, k + 1 < modes.size() ? "," : "\n");
+  std::cout << "method: first-order eigenvalue perturbation, ds/dp = -y^H (dG/dp + s dC/dp) x / "
+               "(y^H C x), matrices differenced at p(1 +/- 1e-6); left-vector residual "
+            << format("%.2g", result.left_vector_residual) << "\n"
+            << "columns per mode: df/dp of the damped frequency [Hz per unit], S = (p/f) df/dp [-]"
+            << (cmd.check ? ", and the check: |dS analytic - FD| (FD error estimate), FD of the "
+                            "poles at p(1 +/- 1e-4)"
+                          : "")
+            << "\ncost: " << milliseconds(result.seconds - result.check_seconds)
+            << (cmd.check ? ", check " + milliseconds(result.check_seconds) : "") << ", total "
+            << milliseconds(total) << "\n\n";
+  std::printf("%-32s %13s %-6s", "parameter", "value", "unit");
+  for (size_t k = 0; k < modes.size(); ++k) {
+    std::printf(" %13s %9s", ("df" + std::to_string(k + 1) + "/dp").c_str(),
+                ("S" + std::to_string(k + 1)).c_str());
+    if (cmd.check) std::printf(" %19s", "check");
+  }
+  std::printf("\n");
+  for (const auto& parameter : result.parameters) {
+    std::printf("%-32s %13.6g %-6s", parameter.parameter.key.c_str(), parameter.parameter.value,
+                parameter.parameter.unit.c_str());
+    for (const auto& s : parameter.modes) {
+      // |S| below 1e-12 is rounding of an exact zero (a parameter the modes do not see).
+      const bool zero = std::abs(s.normalised) < 1e-12;
+      std::printf(" %13.5g %+9.5f", zero ? 0.0 : s.frequency_derivative, zero ? 0.0 : s.normalised);
+      if (cmd.check) std::printf(" %8.1e (%8.1e)", s.check_difference, s.check_error_estimate);
+    }
+    std::printf("\n");
+  }
+  return 0;
+}
+
 void add_common(CLI::App* command, CommonOptions& options);
 
 // ---- netlist: SPICE export ------------------------------------------------------------
@@ -1381,6 +1485,24 @@ int main(int argc, char** argv) {
   identify_command->add_option("--resonance", target_hz, "target frequency [Hz]")->required();
   identify_command->add_option("--mode", mode_number, "which oscillatory mode (default 1)");
 
+  SensitivityCommandOptions sensitivity_options;
+  auto* sensitivity_command = app.add_subcommand(
+      "sensitivity",
+      "derivative of each resonance frequency with respect to every scene parameter, from the\n"
+      "eigenvectors (first-order eigenvalue perturbation); --check compares with finite\n"
+      "differences of the poles");
+  add_common(sensitivity_command, options);
+  sensitivity_command->add_option("--modes", sensitivity_options.modes,
+                                  "number of lowest oscillatory modes (default 3)");
+  sensitivity_command
+      ->add_option("--parameter", sensitivity_options.parameters,
+                   "a scene key, e.g. beam.bending_stiffness or dea[A].lever_arm (default: every "
+                   "non-zero parameter)")
+      ->allow_extra_args(false);
+  sensitivity_command->add_flag("--check", sensitivity_options.check,
+                                "also difference the poles at p(1 +/- 1e-4) and report the "
+                                "difference");
+
   NetlistOptions netlist_options;
   CLI::App* netlist_command = nullptr;
   add_netlist_command(app, options, netlist_options, netlist_command);
@@ -1408,6 +1530,7 @@ int main(int argc, char** argv) {
     if (*identify_command) return run_identify(options, target_hz, mode_number);
     if (*tran_command) return run_tran_command(options, tran_options);
     if (*sweep_command) return run_sweep_command(options, sweep_options);
+    if (*sensitivity_command) return run_sensitivity_command(options, sensitivity_options);
     if (*netlist_command) return run_netlist_command(options, netlist_options);
     if (*crosscheck_command) return run_crosscheck_command(options, crosscheck_options);
   } catch (const InputError& e) {

@@ -1,0 +1,101 @@
+// Eigenvalue sensitivities (include/emnet/sensitivity.hpp) against closed forms and finite
+// differences of the poles.
+//
+// Closed form: the undamped lumped cantilever has f ∝ √(EI/ρA)/L² for any N (stiffnesses
+// ∝ EI/l³, masses ∝ ρA·l), so the normalised sensitivities are +½ (EI), −½ (ρA), −2 (L) for every
+// mode. The analytic derivative is exact up to the matrices' central difference, whose rounding is
+// ε/δ ≈ 2e-10 relative (δ = 1e-6), times the eigenvalue's condition: 1e-8 is the tolerance.
+//
+// Reference: the poles re-computed at p·(1 ± h), h = 1e-4 and 2e-4. The test asks the
+// analytic-minus-FD difference to be within 3× the FD's own estimated error (Richardson
+// truncation + rounding of the poles) plus the analytic part's 1e-8.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cli_run.hpp"
+#include "emnet/scene_reader.hpp"
+#include "emnet/sensitivity.hpp"
+#include "fixtures.hpp"
+
+namespace emnet {
+namespace {
+
+const std::string fishfin_path = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+
+TEST(Sensitivity, UndampedCantileverScalesExactlyLikeTheContinuum) {
+  const Scene scene = testing::cantilever_scene(7);
+  SensitivityOptions options;
+  options.modes = 7;
+  const SensitivityResult result = run_sensitivity(
+      scene, {"beam.bending_stiffness", "beam.mass_per_length", "beam.length"}, options);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_EQ(result.modes.size(), 7u);
+  EXPECT_LT(result.left_vector_residual, 1e-12);
+  const double expected[] = {0.5, -0.5, -2.0};
+  ASSERT_EQ(result.parameters.size(), 3u);
+  for (size_t p = 0; p < 3; ++p)
+    for (size_t k = 0; k < result.modes.size(); ++k) {
+      const ModeSensitivity& s = result.parameters[p].modes[k];
+      EXPECT_NEAR(s.normalised, expected[p], 1e-8)
+          << result.parameters[p].parameter.key << " mode " << k + 1;
+      EXPECT_NEAR(s.normalised_natural, expected[p], 1e-8);
+      EXPECT_NEAR(s.pole_derivative.real(), 0.0, 1e-8 * std::abs(result.modes[k].pole));
+    }
+}
+
+TEST(Sensitivity, FishFinAnalyticMatchesFiniteDifferencesForEveryParameter) {
+  const Scene scene = read_scene(fishfin_path);
+  SensitivityOptions options;
+  options.modes = 3;
+  options.check = true;
+  const SensitivityResult result = run_sensitivity(scene, {}, options);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_EQ(result.modes.size(), 3u);
+  EXPECT_LT(result.left_vector_residual, 1e-12);
+  // Beam, damping and the two DEAs' six parameters each, and the drive voltage.
+  EXPECT_EQ(result.parameters.size(), 3u + 2u + 12u + 1u);
+  for (const auto& parameter : result.parameters)
+    for (size_t k = 0; k < parameter.modes.size(); ++k) {
+      const ModeSensitivity& s = parameter.modes[k];
+      EXPECT_LE(s.check_difference, 3.0 * s.check_error_estimate + 1e-8)
+          << parameter.parameter.key << " mode " << k + 1 << ": analytic " << s.pole_derivative
+          << ", FD " << s.finite_difference_pole_derivative;
+      EXPECT_LT(s.check_error_estimate, 1e-5) << parameter.parameter.key;
+    }
+  // The first mode of the damped fin still scales nearly as the undamped beam.
+  EXPECT_NEAR(result.parameters[0].modes[0].normalised, -2.0, 0.01);
+}
+
+TEST(Sensitivity, UnknownAndZeroParametersAreInputErrors) {
+  const Scene scene = read_scene(fishfin_path);
+  EXPECT_THROW(find_scene_parameter(scene, "beam.colour"), InputError);
+  EXPECT_THROW(find_scene_parameter(scene, "dea[C].lever_arm"), InputError);
+  EXPECT_THROW(find_scene_parameter(scene, "beam.rotary_inertia_per_length"), InputError);
+  EXPECT_EQ(find_scene_parameter(scene, "dea.B.lever_arm").key, "dea[B].lever_arm");
+  EXPECT_EQ(find_scene_parameter(scene, "dea.0.lever_arm").key, "dea[A].lever_arm");
+}
+
+TEST(SensitivityCli, TableAndCheck) {
+  const auto r = testing::run_emnet("sensitivity " + fishfin_path +
+                                    " --modes 2 --parameter beam.length --check");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("beam.length"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("-1.999"), std::string::npos) << r.out;
+}
+
+TEST(SensitivityCli, UnknownParameterExitsTwoNamingIt) {
+  const auto r = testing::run_emnet("sensitivity " + fishfin_path + " --parameter beam.colour");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("beam.colour"), std::string::npos) << r.err;
+}
+
+TEST(SensitivityCli, JsonHasEveryParameter) {
+  const auto r = testing::run_emnet("sensitivity " + fishfin_path + " --modes 1 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"dea[B].electrode_resistance\""), std::string::npos);
+  EXPECT_NE(r.out.find("\"normalised\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace emnet
