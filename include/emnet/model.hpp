@@ -14,10 +14,12 @@
 // Ends: clamped (v = Ω = 0), pinned (v = 0), sliding (Ω = 0), free: tied to ground or left open.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "emnet/fluid_loading.hpp"
 #include "emnet/network.hpp"
 #include "emnet/scene.hpp"
 
@@ -69,6 +71,14 @@ struct Model {
   std::vector<DeaLayout> deas;
   std::vector<Probe> probes;       // the scene's probes (a tip deflection probe if it has none)
   std::vector<std::string> notes;  // what was built and why, for the user
+  // [environment] fluid loading as stamped: m_a added to the beam's mass per length, c_a to its
+  // viscous damping per length (lumped like them); empty for environment.fluid = "none".
+  struct AppliedFluidLoading {
+    FluidLoading loading;
+    double vacuum_frequency = 0.0;  // [Hz] first undamped resonance of the bare beam
+    int fixed_point_steps = 0;      // 0 when environment.frequency is given
+  };
+  std::optional<AppliedFluidLoading> fluid;
   Probe make_probe(const ProbeSpec& spec) const;
   // Parses "deflection@70mm", "velocity@0.1", "dea_current:A" or a probe name of the scene.
   Probe parse_probe(const std::string& text) const;

@@ -101,6 +101,20 @@ struct AcSpec {
   bool log = false;   // ac.scale = "lin" | "log"
 };
 
+// [environment]: the fluid around the beam (fluid loading, emnet/fluid_loading.hpp).
+enum class Fluid { none, air, water };
+const char* fluid_name(Fluid fluid);
+
+struct EnvironmentSpec {
+  Fluid fluid = Fluid::none;       // environment.fluid
+  double density = 0.0;            // environment.density ρ [kg/m³] (default: the fluid's, 20 °C)
+  double dynamic_viscosity = 0.0;  // environment.dynamic_viscosity η [Pa·s] (default as density)
+  double width = 0.0;              // environment.width b [m]: the plate's width across the motion
+  // environment.frequency [Hz] at which the hydrodynamic function is evaluated; unset: the
+  // first resonance of the loaded beam, found by fixed-point iteration.
+  std::optional<double> frequency;
+};
+
 struct Scene {
   std::string file;   // path it was read from
   std::string name;   // scene.name
@@ -112,6 +126,7 @@ struct Scene {
   std::vector<LoadSpec> loads;
   std::vector<ProbeSpec> probes;
   AcSpec ac;
+  EnvironmentSpec environment;
   std::map<std::string, std::string> provenance;  // [provenance] "dotted.key" = "paper: …"
 };
 

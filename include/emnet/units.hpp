@@ -46,6 +46,8 @@ inline constexpr Dimension bending_stiffness{1, 3, -2, 0};         // N*m^2
 inline constexpr Dimension mass_per_length{1, -1, 0, 0};           // kg/m
 inline constexpr Dimension rotary_inertia_per_length{1, 1, 0, 0};  // kg*m
 inline constexpr Dimension damping_per_length{1, -1, -1, 0};       // N*s/m^2
+inline constexpr Dimension dynamic_viscosity{1, -1, -1, 0};        // Pa*s (= N*s/m^2)
+inline constexpr Dimension density{1, -3, 0, 0};                   // kg/m^3
 }  // namespace dim
 
 // The conventional SI symbol of a dimension: "m", "V", "N*m^2", "kg/m"; the base-unit text for

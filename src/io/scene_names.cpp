@@ -17,6 +17,18 @@ const char* end_condition_name(EndCondition end) {
   return "?";
 }
 
+const char* fluid_name(Fluid fluid) {
+  switch (fluid) {
+    case Fluid::none:
+      return "none";
+    case Fluid::air:
+      return "air";
+    case Fluid::water:
+      return "water";
+  }
+  return "?";
+}
+
 const char* drive_kind_name(DriveKind kind) {
   switch (kind) {
     case DriveKind::none:

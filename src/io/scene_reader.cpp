@@ -67,6 +67,10 @@ const std::vector<TableSchema>& scene_schema() {
       {"load", true, false, {"kind", "at", "value"}},
       {"probe", true, false, {"name", "quantity", "at", "dea"}},
       {"ac", false, false, {"from", "to", "points", "scale"}},
+      {"environment",
+       false,
+       false,
+       {"fluid", "density", "dynamic_viscosity", "width", "frequency"}},
       {"provenance", false, true, {}},
   };
   return schema;
@@ -442,6 +446,7 @@ class SceneReader {
   void read_loads(const toml::table& root, Scene& scene) const;
   void read_probes(const toml::table& root, Scene& scene) const;
   void read_ac(const toml::table& root, AcSpec& ac) const;
+  void read_environment(const toml::table& root, EnvironmentSpec& environment) const;
   void read_provenance(const toml::table& root, Scene& scene) const;
   void read_provenance_table(const toml::table& table, const std::string& prefix,
                              Scene& scene) const;
@@ -787,6 +792,33 @@ void SceneReader::read_ac(const toml::table& root, AcSpec& ac) const {
   ac.points = static_cast<int>(points);
 }
 
+// Fluid properties at 20 °C and 101.325 kPa: water ρ = 998.2 kg/m³ (CRC Handbook of Chemistry
+// and Physics, density of water), η = 1.002e-3 Pa·s (ISO/TR 3666:1998, the viscosity of water
+// at 20 °C); dry air ρ = 1.204 kg/m³ (ideal gas, M = 28.96 g/mol), η = 1.81e-5 Pa·s (CRC
+// Handbook, viscosity of air).
+void SceneReader::read_environment(const toml::table& root, EnvironmentSpec& environment) const {
+  const Section reader = section(root, "environment");
+  environment.fluid =
+      reader
+          .optional_choice("fluid",
+                           std::vector<std::pair<std::string, Fluid>>{
+                               {"none", Fluid::none}, {"air", Fluid::air}, {"water", Fluid::water}})
+          .value_or(Fluid::none);
+  if (environment.fluid == Fluid::none) {
+    for (const char* key : {"density", "dynamic_viscosity", "width", "frequency"})
+      if (reader.has(key))
+        reader.fail(key, "is only used with environment.fluid = \"air\" or \"water\"");
+    return;
+  }
+  const bool water = environment.fluid == Fluid::water;
+  environment.density =
+      reader.quantity_or("density", dim::density, Bound::positive, water ? 998.2 : 1.204);
+  environment.dynamic_viscosity = reader.quantity_or("dynamic_viscosity", dim::dynamic_viscosity,
+                                                     Bound::positive, water ? 1.002e-3 : 1.81e-5);
+  environment.width = reader.quantity("width", dim::length, Bound::positive);
+  environment.frequency = reader.optional_quantity("frequency", dim::frequency, Bound::positive);
+}
+
 void SceneReader::read_provenance_table(const toml::table& table, const std::string& prefix,
                                         Scene& scene) const {
   static const std::vector<std::string> sources = {
@@ -845,6 +877,7 @@ Scene SceneReader::read(const toml::table& root) const {
   read_loads(root, scene);
   read_probes(root, scene);
   read_ac(root, scene.ac);
+  read_environment(root, scene.environment);
   read_provenance(root, scene);
   return scene;
 }

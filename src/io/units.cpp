@@ -77,6 +77,7 @@ const NamedDimension kNamedDimensions[] = {
     {dim::mass_per_length, "a mass per length", "kg/m"},
     {dim::rotary_inertia_per_length, "a rotary inertia per length", "kg*m"},
     {dim::damping_per_length, "a damping per length", "N*s/m^2"},
+    {dim::density, "a density", "kg/m^3"},
 };
 
 const NamedDimension* find_named_dimension(const Dimension& dimension) {

@@ -12,10 +12,12 @@
 // A DEA not named by the drive has its source node tied to ground through its resistance.
 #include "emnet/model.hpp"
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
+#include "emnet/analysis.hpp"
 #include "emnet/elements/conductance.hpp"
 #include "emnet/elements/current_source.hpp"
 #include "emnet/elements/dea.hpp"
@@ -69,13 +71,102 @@ std::vector<Waveform> squared_force(const Waveform& voltage, double force_consta
   return {force};
 }
 
+// First undamped resonance [Hz] of the bare beam chain (no damping, no DEAs).
+double first_beam_resonance(const Scene& scene, const BeamSpec& beam) {
+  Network network;
+  add_beam(network, beam, DampingSpec{});
+  const System system = network.assemble();
+  ModalOptions options;
+  options.count = 1;
+  options.keep_vectors = false;
+  const ModalResult result = run_modes(system, Eigen::VectorXd::Zero(system.size()), options);
+  if (!result.status.ok || result.modes.empty())
+    throw InputError(
+        scene.file, "environment.frequency",
+        "the beam's first resonance, at which the fluid loading is evaluated, was "
+        "not found (" +
+            (result.status.ok ? std::string("no oscillatory mode") : result.status.message) +
+            "); give environment.frequency");
+  return result.modes.front().frequency_hz;
+}
+
+std::string format_number(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+// [environment]: Sader's added mass m_a and damping c_a per length (emnet/fluid_loading.hpp),
+// added to the beam's mass and viscous damping per length. Γ is taken at environment.frequency,
+// or else at the first undamped resonance of the loaded beam, found by the fixed point
+// f ← f₁(ρA + m_a(f)) from the bare beam's f₁ (it contracts fast: m_a varies with f only
+// through Γ_r(Re), weakly; stops at a relative change of 1e-10).
+Model::AppliedFluidLoading apply_fluid_loading(const Scene& scene, BeamSpec& beam,
+                                               DampingSpec& damping,
+                                               std::vector<std::string>& notes) {
+  const EnvironmentSpec& environment = scene.environment;
+  Model::AppliedFluidLoading applied;
+  auto loading_at = [&](double frequency) {
+    return rectangular_beam_fluid_loading(environment.density, environment.dynamic_viscosity,
+                                          environment.width, frequency);
+  };
+  std::string where;
+  if (environment.frequency) {
+    applied.loading = loading_at(*environment.frequency);
+    where = "environment.frequency";
+  } else {
+    applied.vacuum_frequency = first_beam_resonance(scene, beam);
+    double frequency = applied.vacuum_frequency;
+    constexpr int kMaximumSteps = 100;
+    constexpr double kRelativeChange = 1e-10;
+    for (int step = 1; step <= kMaximumSteps; ++step) {
+      BeamSpec loaded = beam;
+      loaded.mass_per_length += loading_at(frequency).added_mass_per_length;
+      const double next = first_beam_resonance(scene, loaded);
+      applied.fixed_point_steps = step;
+      const bool converged = std::abs(next - frequency) <= kRelativeChange * next;
+      frequency = next;
+      if (converged) break;
+    }
+    applied.loading = loading_at(frequency);
+    where = "the loaded beam's first undamped resonance (fixed point in " +
+            std::to_string(applied.fixed_point_steps) + " steps from the bare beam's " +
+            format_number("%.4g", applied.vacuum_frequency) + " Hz)";
+  }
+  const FluidLoading& loading = applied.loading;
+  notes.push_back(std::string("fluid loading, ") + fluid_name(environment.fluid) +
+                  " (rho = " + format_number("%.5g", environment.density) +
+                  " kg/m^3, eta = " + format_number("%.4g", environment.dynamic_viscosity) +
+                  " Pa*s, plate width " + format_number("%.4g", environment.width * 1e3) +
+                  " mm), Sader 1998: at " + format_number("%.5g", loading.frequency) + " Hz, " +
+                  where + ": Re = " + format_number("%.4g", loading.reynolds) +
+                  ", Gamma = " + format_number("%.5g", loading.hydrodynamic.real()) + " + " +
+                  format_number("%.4g", loading.hydrodynamic.imag()) + "i; added mass " +
+                  format_number("%.4g", loading.added_mass_per_length * 1e3) + " g/m (" +
+                  format_number("%.3g", loading.added_mass_per_length / beam.mass_per_length) +
+                  " x the beam's), damping " + format_number("%.4g", loading.damping_per_length) +
+                  " N*s/m^2 to ground");
+  if (loading.reynolds < kSaderCorrectionMinimumReynolds ||
+      loading.reynolds > kSaderCorrectionMaximumReynolds)
+    notes.push_back("fluid loading: Re = " + format_number("%.3g", loading.reynolds) +
+                    " lies outside [1e-6, 1e4], where Sader's rectangular correction is fitted; "
+                    "it is extrapolated");
+  beam.mass_per_length += loading.added_mass_per_length;
+  damping.viscous_per_length += loading.damping_per_length;
+  return applied;
+}
+
 }  // namespace
 
 Model build_model(const Scene& scene) {
   Model model;
   model.scene = scene;
   Network& network = model.network;
-  model.beam = add_beam(network, scene.beam, scene.damping);
+  BeamSpec beam_spec = scene.beam;
+  DampingSpec damping = scene.damping;
+  if (scene.environment.fluid != Fluid::none)
+    model.fluid = apply_fluid_loading(scene, beam_spec, damping, model.notes);
+  model.beam = add_beam(network, beam_spec, damping);
   const BeamLayout& beam = model.beam;
 
   // Point loads: consistent nodal loads from the Hermite shape functions, exact at the nodes.
