@@ -25,6 +25,7 @@
 #include "emnet/sensitivity.hpp"
 #include "emnet/spice_netlist.hpp"
 #include "emnet/transient.hpp"
+#include "emnet/units.hpp"
 
 namespace {
 
@@ -914,11 +915,23 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
 
 // ---- identify -------------------------------------------------------------------------
 
-int run_identify(const CommonOptions& options, double target_hz, int mode_number) {
-  const auto start = std::chrono::steady_clock::now();
-  if (!(target_hz > 0.0) || !std::isfinite(target_hz))
-    throw InputError("--resonance", "--resonance", "must be a positive frequency in Hz");
-  if (mode_number < 1) throw InputError("--mode", "--mode", "must be >= 1");
+// The identified bending stiffness: the fixed point of EI ← EI·(target/f)², from the
+// scene's (and overrides') value.
+struct StiffnessFit {
+  double stiffness = 0.0, frequency = 0.0;
+  int iterations = 0;
+};
+StiffnessFit fit_stiffness(const CommonOptions& options, double target_hz, int mode_number);
+
+// --peak NAME=VALUE[@VOLTAGE]: the periodic-state peak |deflection| of probe NAME under the
+// scene's drive (at VOLTAGE when given) at the switching frequency `frequency_hz`.
+struct PeakTarget {
+  std::string probe;
+  double value = 0.0;    // [m]
+  double voltage = 0.0;  // [V]; 0: the scene's drive.voltage
+};
+
+StiffnessFit fit_stiffness(const CommonOptions& options, double target_hz, int mode_number) {
   CommonOptions trial = options;
   double stiffness = load_scene(options).beam.bending_stiffness;
   double frequency = 0.0;
@@ -941,7 +954,114 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
     if (std::abs(frequency - target_hz) <= 1e-10 * target_hz) break;
     stiffness *= (target_hz / frequency) * (target_hz / frequency);
   }
+  return {stiffness, frequency, iterations};
+}
+
+PeakTarget parse_peak_target(const std::string& text) {
+  PeakTarget target;
+  const size_t equals = text.find('=');
+  if (equals == std::string::npos || equals == 0)
+    throw InputError("--peak", "--peak", "expected NAME=VALUE[@VOLTAGE], e.g. P4=9.3mm@4kV");
+  target.probe = text.substr(0, equals);
+  std::string rest = text.substr(equals + 1);
+  const size_t at = rest.find('@');
+  try {
+    target.value = emnet::parse_quantity(rest.substr(0, at), emnet::dim::length);
+    if (at != std::string::npos)
+      target.voltage = emnet::parse_quantity(rest.substr(at + 1), emnet::dim::voltage);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--peak", "--peak", e.what());
+  }
+  if (!(target.value > 0.0)) throw InputError("--peak", "--peak", "the peak must be > 0");
+  if (at != std::string::npos && !(target.voltage > 0.0))
+    throw InputError("--peak", "--peak", "the voltage must be > 0");
+  return target;
+}
+
+// The periodic peak max(|min|, |max|) of `probe` at `frequency_hz` with the given overrides
+// (DEAs as ideal voltage-driven forces: the exact periodic method needs a linear network).
+double periodic_peak(const CommonOptions& options, const std::string& probe_name,
+                     double frequency_hz) {
+  CommonOptions at = options;
+  at.overrides.push_back("drive.electrical_dynamics=false");
+  at.overrides.push_back("drive.frequency=" + format("%.17g", frequency_hz));
+  const emnet::Model model = emnet::build_model(load_scene(at));
+  const emnet::System system = model.network.assemble();
+  std::vector<emnet::Probe> probes;
+  for (const auto& probe : transient_probes(model))
+    if (probe.name == probe_name) probes.push_back(probe);
+  for (const auto& probe : model.probes)
+    if (probes.empty() && probe.name == probe_name) probes.push_back(probe);
+  if (probes.empty())
+    throw InputError("--peak", "--peak", "no deflection output named '" + probe_name + "'");
+  const emnet::PeriodicSolver solver(system);
+  const emnet::PeriodicResult r = solver.solve(system, probes, 1.0 / frequency_hz, 256);
+  if (!r.status.ok) throw NumericalFailure("identify --peak: " + r.status.message);
+  return std::max(std::abs(r.minimum[0]), std::abs(r.maximum[0]));
+}
+
+int run_identify(const CommonOptions& options, double target_hz, int mode_number,
+                 const std::string& peak_text) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!(target_hz > 0.0) || !std::isfinite(target_hz))
+    throw InputError("--resonance", "--resonance", "must be a positive frequency in Hz");
+  if (mode_number < 1) throw InputError("--mode", "--mode", "must be >= 1");
+  // 1. Bending stiffness to the resonance; 2. with --peak, the loss factor to the peak at the
+  // resonance, then the stiffness again (the damping moves the damped frequency a little),
+  // until both hold.
+  CommonOptions fitted = options;
+  StiffnessFit fit = fit_stiffness(fitted, target_hz, mode_number);
+  std::optional<PeakTarget> peak;
+  double loss_factor = 0.0, achieved_peak = 0.0;
+  int peak_rounds = 0;
+  if (!peak_text.empty()) {
+    peak = parse_peak_target(peak_text);
+    const emnet::Scene scene = load_scene(options);
+    if (!scene.damping.loss_factor)
+      throw InputError(scene.file, "damping.loss_factor",
+                       "--peak fits damping.loss_factor, which the scene does not set");
+    loss_factor = *scene.damping.loss_factor;
+    if (peak->voltage > 0.0)
+      fitted.overrides.push_back("drive.voltage=" + format("%.17g", peak->voltage));
+    auto with = [&](double eta, double stiffness) {
+      CommonOptions o = fitted;
+      o.overrides.push_back("damping.loss_factor=" + format("%.17g", eta));
+      o.overrides.push_back("beam.bending_stiffness=" + format("%.17g", stiffness));
+      return o;
+    };
+    for (peak_rounds = 1; peak_rounds <= 10; ++peak_rounds) {
+      // The peak falls monotonically with the loss factor: bisection in log η over [1e-5, 2].
+      double low = 1e-5, high = 2.0;
+      auto peak_at = [&](double eta) {
+        return periodic_peak(with(eta, fit.stiffness), peak->probe, target_hz);
+      };
+      if (peak_at(low) < peak->value || peak_at(high) > peak->value)
+        throw NumericalFailure("identify --peak: no loss factor in [1e-5, 2] gives the peak " +
+                               si(peak->value, "m") + " at " + si(target_hz, "Hz"));
+      for (int k = 0; k < 80 && high / low > 1 + 1e-12; ++k) {
+        const double middle = std::sqrt(low * high);
+        (peak_at(middle) > peak->value ? low : high) = middle;
+      }
+      const double previous = loss_factor;
+      loss_factor = std::sqrt(low * high);
+      CommonOptions o = fitted;
+      o.overrides.push_back("damping.loss_factor=" + format("%.17g", loss_factor));
+      const double previous_stiffness = fit.stiffness;
+      fit = fit_stiffness(o, target_hz, mode_number);
+      achieved_peak = periodic_peak(with(loss_factor, fit.stiffness), peak->probe, target_hz);
+      if (std::abs(loss_factor - previous) <= 1e-9 * loss_factor &&
+          std::abs(fit.stiffness - previous_stiffness) <= 1e-9 * fit.stiffness)
+        break;
+    }
+  }
+  const double stiffness = fit.stiffness, frequency = fit.frequency;
+  const int iterations = fit.iterations;
   const double total = seconds_since(start);
+  // The command that re-identifies the values, for the scene's [provenance].
+  std::string command =
+      "emnet identify " + options.scene_path + " --resonance " + format("%.6g", target_hz);
+  if (mode_number != 1) command += " --mode " + std::to_string(mode_number);
+  if (peak) command += " --peak " + peak_text;
   if (options.json) {
     Json out = {{"parameter", "beam.bending_stiffness"},
                 {"value", stiffness},
@@ -950,7 +1070,15 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
                 {"target_hz", target_hz},
                 {"achieved_hz", frequency},
                 {"iterations", iterations},
+                {"command", command},
                 {"total_seconds", total}};
+    if (peak) {
+      out["loss_factor"] = loss_factor;
+      out["peak_probe"] = peak->probe;
+      out["target_peak_m"] = peak->value;
+      out["achieved_peak_m"] = achieved_peak;
+      out["peak_rounds"] = peak_rounds;
+    }
     std::cout << out.dump(2) << "\n";
     return 0;
   }
@@ -958,7 +1086,15 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
       "identified beam.bending_stiffness = %.6e N*m^2: mode %d at %.9f Hz (target %.6g Hz), "
       "%d iteration(s), %s\n",
       stiffness, mode_number, frequency, target_hz, iterations, milliseconds(total).c_str());
-  std::printf("scene line:\n  bending_stiffness = \"%.6e N*m^2\"\n", stiffness);
+  if (peak)
+    std::printf(
+        "identified damping.loss_factor = %.6e: periodic peak of %s at %.6g Hz = %.6e m "
+        "(target %.6g m; DEAs as ideal voltage-driven forces), %d round(s)\n",
+        loss_factor, peak->probe.c_str(), target_hz, achieved_peak, peak->value, peak_rounds);
+  std::printf("scene lines:\n  bending_stiffness = \"%.6e N*m^2\"\n", stiffness);
+  if (peak) std::printf("  loss_factor = %.6e\n", loss_factor);
+  std::printf("provenance:\n  \"beam.bending_stiffness\" = \"identified: %s\"\n", command.c_str());
+  if (peak) std::printf("  \"damping.loss_factor\" = \"identified: %s\"\n", command.c_str());
   return 0;
 }
 
@@ -1479,11 +1615,19 @@ int main(int argc, char** argv) {
 
   double target_hz = 0.0;
   int mode_number = 1;
+  std::string peak_text;
   auto* identify_command = app.add_subcommand(
-      "identify", "fit beam.bending_stiffness so that a mode sits at a target frequency");
+      "identify",
+      "fit beam.bending_stiffness so that a mode sits at a target frequency (and, with --peak, "
+      "damping.loss_factor to a measured peak deflection)");
   add_common(identify_command, options);
   identify_command->add_option("--resonance", target_hz, "target frequency [Hz]")->required();
   identify_command->add_option("--mode", mode_number, "which oscillatory mode (default 1)");
+  identify_command->add_option(
+      "--peak", peak_text,
+      "also fit damping.loss_factor: NAME=VALUE[@VOLTAGE], the periodic peak |deflection| of "
+      "output NAME (P4, dx4, tip, ...) under the scene's square-wave drive switched at the "
+      "--resonance frequency, e.g. P4=9.3mm@4kV");
 
   SensitivityCommandOptions sensitivity_options;
   auto* sensitivity_command = app.add_subcommand(
@@ -1527,7 +1671,7 @@ int main(int argc, char** argv) {
     if (*static_command) return run_static(options);
     if (*modes_command) return run_modes_command(options, modes_options);
     if (*ac_command) return run_ac_command(options, ac_options, from_text, to_text);
-    if (*identify_command) return run_identify(options, target_hz, mode_number);
+    if (*identify_command) return run_identify(options, target_hz, mode_number, peak_text);
     if (*tran_command) return run_tran_command(options, tran_options);
     if (*sweep_command) return run_sweep_command(options, sweep_options);
     if (*sensitivity_command) return run_sensitivity_command(options, sensitivity_options);
