@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "emnet/scene_reader.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {
@@ -124,6 +125,29 @@ TEST(SupportedBeamModes, FreeFreeHasRigidBodyPolesAndElasticModes) {
   for (const Mode& mode : modes.modes)
     if (std::abs(mode.pole) < 1e-6 * 2 * M_PI * exact) ++near_zero;
   EXPECT_GE(near_zero, 2);
+}
+
+// Repeated real poles are not modes. With the loss factor 1e-5 the fish fin's seven Kelvin–Voigt
+// dashpots relax at the same rate 1/τ = 2π·f_ref/η (f_ref = 6.385 Hz), a repeated pole that
+// rounding splits into complex pairs ~1e-8·|s| apart (it came out as a 0.0071 Hz "mode").
+// Reference: the undamped 7-segment chain has 7 modes (one per free mass, all below 1 kHz), and
+// the dashpots' 7 poles are real at −1/τ (to 1e-6: the split of a double root, ~√ε).
+TEST(FishFinModes, RepeatedKelvinVoigtPolesAreRealPoles) {
+  const Scene scene = read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml",
+                                 {"damping.loss_factor=1e-5", "drive.electrical_dynamics=false"});
+  const System system = build_model(scene).network.assemble();
+  const StaticResult rest = solve_static(system);
+  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  const ModalResult modes = run_modes(system, rest.operating_point);
+  ASSERT_TRUE(modes.status.ok) << modes.status.message;
+  EXPECT_EQ(modes.modes.size(), 7u);
+  for (const Mode& mode : modes.modes) EXPECT_LT(mode.natural_frequency_hz, 1e3);
+  const double relaxation_rate = 2 * M_PI * 6.385 / 1e-5;
+  EXPECT_EQ(modes.real_poles.size(), 7u);
+  for (const Mode& pole : modes.real_poles) {
+    EXPECT_EQ(pole.pole.imag(), 0.0);
+    EXPECT_NEAR(-pole.pole.real() / relaxation_rate, 1.0, 1e-6);
+  }
 }
 
 }  // namespace
