@@ -1006,6 +1006,23 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   if (!(target_hz > 0.0) || !std::isfinite(target_hz))
     throw InputError("--resonance", "--resonance", "must be a positive frequency in Hz");
   if (mode_number < 1) throw InputError("--mode", "--mode", "must be >= 1");
+  // Only parameters the scene marks as identified or assumed are fitted: a value taken from the
+  // paper or a data sheet is a given, not an unknown.
+  {
+    const emnet::Scene scene = load_scene(options);
+    std::vector<std::string> fitted_keys{"beam.bending_stiffness"};
+    if (!peak_text.empty()) fitted_keys.push_back("damping.loss_factor");
+    for (const std::string& key : fitted_keys) {
+      const auto entry = scene.provenance.find(key);
+      if (entry == scene.provenance.end()) continue;
+      const std::string& origin = entry->second;
+      if (origin.rfind("paper", 0) == 0 || origin.rfind("data sheet", 0) == 0)
+        throw InputError(scene.file, "provenance." + key,
+                         "identify would fit " + key + ", which the scene takes as given (\"" +
+                             origin.substr(0, origin.find(':')) +
+                             "\"); only 'identified:' or 'assumed:' values are fitted");
+    }
+  }
   // 1. Bending stiffness to the resonance; 2. with --peak, the loss factor to the peak at the
   // resonance, then the stiffness again (the damping moves the damped frequency a little),
   // until both hold.

@@ -9,8 +9,12 @@
 // two scenes in netlists/ that come from identify, re-identified from perturbed starts: their
 // values are written with 7 significant digits, so they come back within 1e-6 relative.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <cstdio>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "cli_run.hpp"
@@ -88,6 +92,26 @@ TEST(Identify, BadPeakTargetsAreInputErrors) {
     EXPECT_EQ(run.status, 2) << peak << ": " << run.err;
     EXPECT_NE(run.err.find("--peak"), std::string::npos) << peak << ": " << run.err;
   }
+}
+
+// A value the scene takes from the paper or a data sheet is a given: identify refuses to fit it
+// and names the provenance key.
+TEST(Identify, GivenValuesAreNotFitted) {
+  std::ifstream source(scene("fishfin.toml"));
+  std::stringstream text;
+  text << source.rdbuf();
+  std::string scene_text = text.str();
+  const std::string from = "\"beam.bending_stiffness\" = \"identified:";
+  const auto at = scene_text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  scene_text.replace(at, from.size(), "\"beam.bending_stiffness\" = \"paper:");
+  const std::string path =
+      ::testing::TempDir() + "emnet_given_stiffness_" + std::to_string(getpid()) + ".toml";
+  std::ofstream(path) << scene_text;
+  const auto run = run_emnet("identify " + path + " --resonance 6");
+  std::remove(path.c_str());
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_NE(run.err.find("provenance.beam.bending_stiffness"), std::string::npos) << run.err;
 }
 
 }  // namespace
