@@ -63,6 +63,9 @@ struct DriveSpec {
   double frequency = 0.0;            // drive.frequency [Hz]: switching / sine frequency
   double rise_time = 0.0;            // drive.rise_time [s]
   double duty = 0.5;                 // drive.duty [-]: fraction of the period A is on
+  // drive.overlap [s] (antagonistic): A stays on this long after B has switched on, both on
+  // together; negative, a dead time: A switches off this long before B switches on.
+  double overlap = 0.0;
   // drive.electrical_dynamics: true = each DEA is its capacitor behind its electrode
   // resistance and its force follows the capacitor voltage (nonlinear); false = an ideal
   // voltage-driven force k_F·V(t)² from the source (a linear network: exact transient).

@@ -62,7 +62,7 @@ const std::vector<TableSchema>& scene_schema() {
       {"drive",
        false,
        false,
-       {"kind", "deas", "voltage", "bias", "amplitude", "frequency", "rise_time", "duty",
+       {"kind", "deas", "voltage", "bias", "amplitude", "frequency", "rise_time", "duty", "overlap",
         "electrical_dynamics"}},
       {"load", true, false, {"kind", "at", "value"}},
       {"probe", true, false, {"name", "quantity", "at", "dea"}},
@@ -694,6 +694,18 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
   drive.duty = reader.quantity_or("duty", dim::none, Bound::any, 0.5);
   if (!(drive.duty > 0.0 && drive.duty < 1.0)) {
     reader.fail("duty", "must be between 0 and 1 (exclusive), got " + format_number(drive.duty));
+  }
+  drive.overlap = reader.quantity_or("overlap", dim::time, Bound::any, 0.0);
+  if (drive.overlap != 0.0 && drive.kind != DriveKind::antagonistic)
+    reader.fail("overlap", "applies to the antagonistic drive only");
+  if (frequency && drive.overlap != 0.0) {
+    // A's on-time (duty·T + overlap) must stay inside (rise time, T − rise time).
+    const double period = 1.0 / *frequency;
+    const double on_time = drive.duty * period + drive.overlap;
+    if (!(on_time > 2.0 * drive.rise_time && on_time < period - 2.0 * drive.rise_time))
+      reader.fail("overlap", "makes DEA A's on-time " + format_quantity(on_time, dim::time) +
+                                 " leave the period " + format_quantity(period, dim::time) +
+                                 " (with the rise time at both edges)");
   }
   drive.electrical_dynamics = reader.optional_boolean("electrical_dynamics").value_or(true);
 }

@@ -695,8 +695,10 @@ void DeckWriter::write_header(std::ostringstream& out) const {
                      (deas.empty() ? std::string() : " on DEA " + deas) + ", voltage " +
                      number(drive.voltage) + " V, bias " + number(drive.bias) + " V, amplitude " +
                      number(drive.amplitude) + " V, frequency " + number(drive.frequency) +
-                     " Hz, duty " + number(drive.duty) + ", rise time " + number(drive.rise_time) +
-                     " s, electrical dynamics " + (drive.electrical_dynamics ? "on" : "off"));
+                     " Hz, duty " + number(drive.duty) +
+                     (drive.overlap != 0.0 ? ", overlap " + number(drive.overlap) + " s" : "") +
+                     ", rise time " + number(drive.rise_time) + " s, electrical dynamics " +
+                     (drive.electrical_dynamics ? "on" : "off"));
   if (ac_) {
     switch (drive.kind) {
       case DriveKind::antagonistic:

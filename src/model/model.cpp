@@ -2,7 +2,8 @@
 //
 // DEA electrical loop, per DEA X:  source s_X —[electrode resistance]— e_X —[C₀ + transducer]— 0
 // Drives (DESIGN §3):
-//   antagonistic       A: 0/V square wave on for the first `duty` of each period, B the rest.
+//   antagonistic       A: 0/V square wave on for the first `duty` of each period, B the rest;
+//                      A's on-time lengthened by `overlap` (both on together; < 0: a dead time).
 //                      AC input: the alternating part of the DEA forces, amplitude k_F·V²/2 on
 //                      each DEA, A and B in antiphase (the square wave's ±level; its
 //                      fundamental is 4/π times this). Static / at rest: A on.
@@ -197,7 +198,8 @@ Model build_model(const Scene& scene) {
     const double period = 1.0 / drive.frequency;
     switch (drive.kind) {
       case DriveKind::antagonistic:
-        w = role == 0 ? Waveform::square(0.0, drive.voltage, drive.frequency, drive.duty, 0.0,
+        w = role == 0 ? Waveform::square(0.0, drive.voltage, drive.frequency,
+                                         drive.duty + drive.overlap * drive.frequency, 0.0,
                                          drive.rise_time)
                       : Waveform::square(0.0, drive.voltage, drive.frequency, 1.0 - drive.duty,
                                          drive.duty * period, drive.rise_time);
