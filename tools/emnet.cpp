@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -741,6 +742,18 @@ struct SweepOptions {
   std::string plot;
 };
 
+// drive.overlap is in seconds: DEA A's on-time duty·T + overlap must stay inside the period
+// (less the rise time at both edges) at the switching frequency `frequency_hz` too.
+void check_overlap_fits(const emnet::Scene& scene, double frequency_hz, const std::string& where) {
+  const auto& drive = scene.drive;
+  if (drive.overlap == 0.0) return;
+  const double period = 1.0 / frequency_hz, on_time = drive.duty * period + drive.overlap;
+  if (!(on_time > 2.0 * drive.rise_time && on_time < period - 2.0 * drive.rise_time))
+    throw InputError(scene.file, "drive.overlap",
+                     si(drive.overlap, "s") + " makes DEA A's on-time leave the period " +
+                         si(period, "s") + " at " + si(frequency_hz, "Hz") + " (" + where + ")");
+}
+
 int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   const auto start = std::chrono::steady_clock::now();
   if (!(sweep.from > 0.0) || !(sweep.to >= sweep.from) || !(sweep.step > 0.0) ||
@@ -775,6 +788,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
     throw InputError(base_scene.file, "drive.rise_time",
                      "must be shorter than half the shortest period of the sweep (" +
                          si(0.5 / sweep.to, "s") + " at --to " + si(sweep.to, "Hz") + ")");
+  check_overlap_fits(base_scene, sweep.to, "--to");
   for (long k = 0; k < count; ++k) {
     const double f = sweep.from + sweep.step * static_cast<double>(k);
     emnet::Scene at = base_scene;
@@ -887,9 +901,9 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   print_header(model, model.network.assemble());
   for (const auto& note : notes) std::cout << "note: " << note << "\n";
   std::cout << "periodic steady state, " << sweep.method
-            << (sweep.method == "exact"
-                    ? " (one eigen-decomposition, closed-form periodic state, extremes by Newton)"
-                    : " (Newton shooting on one period of IDA)")
+            << (sweep.method == "exact" ? " (one eigen-decomposition, closed-form periodic state, "
+                                          "global extremes: bounded search, then Newton)"
+                                        : " (Newton shooting on one period of IDA)")
             << ", " << results.size() << " switching frequencies\n"
             << "accuracy: worst periodicity residual " << format("%.2g", worst_periodicity)
             << "\ncost: periodic solves " << milliseconds(solve_seconds) << ", total "
@@ -978,14 +992,15 @@ PeakTarget parse_peak_target(const std::string& text) {
   return target;
 }
 
-// The periodic peak max(|min|, |max|) of `probe` at `frequency_hz` with the given overrides
-// (DEAs as ideal voltage-driven forces: the exact periodic method needs a linear network).
-double periodic_peak(const CommonOptions& options, const std::string& probe_name,
-                     double frequency_hz) {
-  CommonOptions at = options;
-  at.overrides.push_back("drive.electrical_dynamics=false");
-  at.overrides.push_back("drive.frequency=" + format("%.17g", frequency_hz));
-  const emnet::Model model = emnet::build_model(load_scene(at));
+// The periodic extremes (minimum, maximum) of output `probe_name` of `scene` switched at
+// `frequency_hz`, DEAs as ideal voltage-driven forces (the exact periodic method needs a linear
+// network; the full DEA model moves the fish fin's peak at 5 Hz by 5e-4).
+std::pair<double, double> periodic_extremes(emnet::Scene scene, const std::string& probe_name,
+                                            double frequency_hz, const std::string& option) {
+  check_overlap_fits(scene, frequency_hz, option);
+  scene.drive.electrical_dynamics = false;
+  scene.drive.frequency = frequency_hz;
+  const emnet::Model model = emnet::build_model(scene);
   const emnet::System system = model.network.assemble();
   std::vector<emnet::Probe> probes;
   for (const auto& probe : transient_probes(model))
@@ -993,11 +1008,21 @@ double periodic_peak(const CommonOptions& options, const std::string& probe_name
   for (const auto& probe : model.probes)
     if (probes.empty() && probe.name == probe_name) probes.push_back(probe);
   if (probes.empty())
-    throw InputError("--peak", "--peak", "no deflection output named '" + probe_name + "'");
+    throw InputError(option, option, "no deflection output named '" + probe_name + "'");
   const emnet::PeriodicSolver solver(system);
   const emnet::PeriodicResult r = solver.solve(system, probes, 1.0 / frequency_hz, 256);
-  if (!r.status.ok) throw NumericalFailure("identify --peak: " + r.status.message);
-  return std::max(std::abs(r.minimum[0]), std::abs(r.maximum[0]));
+  if (!r.status.ok) throw NumericalFailure("periodic state: " + r.status.message);
+  finite(r.minimum[0], "a periodic minimum");
+  finite(r.maximum[0], "a periodic maximum");
+  return {r.minimum[0], r.maximum[0]};
+}
+
+// The periodic peak max(|min|, |max|) with the given overrides.
+double periodic_peak(const CommonOptions& options, const std::string& probe_name,
+                     double frequency_hz) {
+  const auto [minimum, maximum] =
+      periodic_extremes(load_scene(options), probe_name, frequency_hz, "--peak");
+  return std::max(std::abs(minimum), std::abs(maximum));
 }
 
 int run_identify(const CommonOptions& options, double target_hz, int mode_number,
@@ -1112,6 +1137,120 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   if (peak) std::printf("  loss_factor = %.6e\n", loss_factor);
   std::printf("provenance:\n  \"beam.bending_stiffness\" = \"identified: %s\"\n", command.c_str());
   if (peak) std::printf("  \"damping.loss_factor\" = \"identified: %s\"\n", command.c_str());
+  return 0;
+}
+
+// ---- mismatch ---------------------------------------------------------------------------
+//
+// `emnet mismatch SCENE [--frequency F] [--output NAME] [--change X]`: the left/right asymmetry
+// of the periodic swing when the antagonistic pair is not identical — DEA A's electrode area
+// (electrode width) or film thickness changed by ±X, or the switching overlapping (A on X·T/2
+// longer, both on together) or leaving a dead time (−X·T/2). The paper (Sect. 3) explains its
+// larger left-side deflection by such tolerances.
+//
+// Asymmetry = (|left| − right) / ((|left| + right)/2), left = the negative side: > 0 when the
+// swing is larger to the left. In the linear network a mismatch adds a constant force to the
+// symmetric square wave: a static offset that the resonance does not amplify.
+
+struct MismatchOptions {
+  double frequency = 0.0;  // 0: the scene's drive.frequency
+  std::string output;      // "": the last deflection output (dx4 on the fish fin)
+  double change = 0.05;
+};
+
+int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cmd) {
+  const auto start = std::chrono::steady_clock::now();
+  const emnet::Scene scene = load_scene(options);
+  if (scene.drive.kind != emnet::DriveKind::antagonistic || scene.drive.deas.size() != 2)
+    throw InputError(scene.file, "drive.kind",
+                     "mismatch needs the antagonistic drive of two DEAs (drive.kind = "
+                     "\"antagonistic\", drive.deas = [A, B])");
+  if (!(cmd.change > 0.0 && cmd.change < 0.5))
+    throw InputError("--change", "--change", "must be between 0 and 0.5 (a fraction)");
+  const double frequency = cmd.frequency > 0.0 ? cmd.frequency : scene.drive.frequency;
+  if (!(frequency > 0.0) || !std::isfinite(frequency))
+    throw InputError("--frequency", "--frequency", "must be a positive frequency in Hz");
+  std::string output = cmd.output;
+  if (output.empty()) {
+    const emnet::Model model = emnet::build_model(scene);
+    // The last speckle-point difference dx_k (the paper measures dx4), else the last deflection.
+    for (const auto& probe : transient_probes(model))
+      if (probe.unit == "m" && (output.rfind("dx", 0) != 0 || probe.name.rfind("dx", 0) == 0))
+        output = probe.name;
+    if (output.empty()) throw InputError(scene.file, "probe", "the scene has no deflection output");
+  }
+  const std::string& dea_name = scene.drive.deas[0];
+  size_t dea = scene.deas.size();
+  for (size_t k = 0; k < scene.deas.size(); ++k)
+    if (scene.deas[k].name == dea_name) dea = k;
+  if (dea == scene.deas.size())
+    throw InputError(scene.file, "drive.deas", "no DEA named '" + dea_name + "'");
+
+  struct Case {
+    std::string label, key;
+    std::function<void(emnet::Scene&, double)> apply;  // change by the fraction x
+  };
+  const double half_period = 0.5 / frequency;
+  const std::vector<Case> cases = {
+      {"electrode area of " + dea_name, "dea." + dea_name + ".electrode_width",
+       [dea](emnet::Scene& s, double x) { s.deas[dea].electrode_width *= 1.0 + x; }},
+      {"film thickness of " + dea_name, "dea." + dea_name + ".dielectric_thickness",
+       [dea](emnet::Scene& s, double x) { s.deas[dea].dielectric_thickness *= 1.0 + x; }},
+      {"switching overlap (of T/2)", "drive.overlap",
+       [half_period](emnet::Scene& s, double x) { s.drive.overlap = x * half_period; }},
+  };
+  auto asymmetry = [](std::pair<double, double> extremes) {
+    const double left = std::abs(extremes.first), right = extremes.second;
+    return (left - right) / (0.5 * (left + right));
+  };
+  const auto nominal = periodic_extremes(scene, output, frequency, "--output");
+  struct Row {
+    std::string label, key;
+    double change;
+    std::pair<double, double> extremes;
+    double asymmetry;
+  };
+  std::vector<Row> rows;
+  for (const Case& c : cases)
+    for (const double x : {-cmd.change, cmd.change}) {
+      emnet::Scene changed = scene;
+      c.apply(changed, x);
+      const auto extremes = periodic_extremes(changed, output, frequency, "--output");
+      rows.push_back({c.label, c.key, x, extremes, asymmetry(extremes)});
+    }
+  const double total = seconds_since(start);
+  if (options.json) {
+    Json out = {{"output", output},
+                {"frequency_hz", frequency},
+                {"nominal", {{"left_m", nominal.first}, {"right_m", nominal.second}}},
+                {"cases", Json::array()},
+                {"total_seconds", total}};
+    for (size_t k = 0; k < rows.size(); ++k)
+      out["cases"].push_back({{"key", rows[k].key},
+                              {"change", rows[k].change},
+                              {"left_m", rows[k].extremes.first},
+                              {"right_m", rows[k].extremes.second},
+                              {"asymmetry", rows[k].asymmetry},
+                              {"asymmetry_per_unit_change", rows[k].asymmetry / cmd.change}});
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::printf(
+      "scene %s: left/right asymmetry of %s switched at %s, DEAs as ideal voltage-driven "
+      "forces\n",
+      scene.name.c_str(), output.c_str(), si(frequency, "Hz").c_str());
+  std::printf("asymmetry = (|left| - right) / mean, > 0: larger to the left (negative) side\n");
+  std::printf("accuracy: exact periodic states, extremes to 1e-11 of the peak\n");
+  std::printf("cost: %d periodic solves, total %s\n\n", static_cast<int>(rows.size()) + 1,
+              milliseconds(total).c_str());
+  std::printf("%-28s %8s %12s %12s %12s %16s\n", "mismatch", "change", "left [mm]", "right [mm]",
+              "asymmetry", "per 1 % change");
+  std::printf("%-28s %8s %12.5f %12.5f %11.4f%% %16s\n", "none", "", nominal.first * 1e3,
+              nominal.second * 1e3, 100.0 * asymmetry(nominal), "");
+  for (const Row& row : rows)  // asymmetry [%] per 1 % of change = asymmetry / |change|
+    std::printf("%-28s %+7.1f%% %12.5f %12.5f %11.4f%% %15.5f%%\n", row.label.c_str(),
+                100.0 * row.change, row.extremes.first * 1e3, row.extremes.second * 1e3,
+                100.0 * row.asymmetry, row.asymmetry / cmd.change);
   return 0;
 }
 
@@ -1664,6 +1803,19 @@ int main(int argc, char** argv) {
                                 "also difference the poles at p(1 +/- 1e-4) and report the "
                                 "difference");
 
+  MismatchOptions mismatch_options;
+  auto* mismatch_command = app.add_subcommand(
+      "mismatch",
+      "left/right asymmetry of the periodic swing from a mismatched antagonistic pair: DEA A's\n"
+      "electrode area or film thickness changed by +/-X, or the switching overlapping by X*T/2");
+  add_common(mismatch_command, options);
+  mismatch_command->add_option("--frequency", mismatch_options.frequency,
+                               "switching frequency [Hz] (default: the scene's drive.frequency)");
+  mismatch_command->add_option("--output", mismatch_options.output,
+                               "deflection output (default: the last, e.g. dx4)");
+  mismatch_command->add_option("--change", mismatch_options.change,
+                               "relative change of each parameter (default 0.05)");
+
   NetlistOptions netlist_options;
   CLI::App* netlist_command = nullptr;
   add_netlist_command(app, options, netlist_options, netlist_command);
@@ -1692,6 +1844,7 @@ int main(int argc, char** argv) {
     if (*tran_command) return run_tran_command(options, tran_options);
     if (*sweep_command) return run_sweep_command(options, sweep_options);
     if (*sensitivity_command) return run_sensitivity_command(options, sensitivity_options);
+    if (*mismatch_command) return run_mismatch_command(options, mismatch_options);
     if (*netlist_command) return run_netlist_command(options, netlist_options);
     if (*crosscheck_command) return run_crosscheck_command(options, crosscheck_options);
   } catch (const InputError& e) {
