@@ -1,0 +1,27 @@
+// Left eigenvector of the pencil (G + J_g) + s·C at a computed pole, for eigenvalue
+// sensitivities (sensitivity.cpp) and the bi-orthogonal modal expansion (modal_reduction.cpp).
+//
+// y with yᴴ·(G + s·C) = 0, by two steps of inverse iteration on the equilibrated adjoint pencil
+// (equilibration.hpp) (Ĝᵀ + conj(ŝ)·Ĉᵀ)·ŷ = ŷ_previous, from ŷ = 1, mapped back to physical
+// rows: y = diag(r)·ŷ. The pole is exact to rounding, so the adjoint is singular to rounding and
+// one step already amplifies the wanted direction by ~1/ε; the second cleans up. A pole
+// repeated to rounding (a cluster) has no unique left vector: the caller must not rely on it.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <complex>
+#include <string>
+
+namespace emnet {
+
+// ‖·‖₁ of a sparse matrix (largest column sum).
+double sparse_one_norm(const Eigen::SparseMatrix<double>& m);
+
+// `residual`: ‖(Ĝᵀ + conj(ŝ)Ĉᵀ)·ŷ‖ / (‖Ĝ‖₁ + |ŝ|·‖Ĉ‖₁) with ‖ŷ‖ = 1, on the equilibrated
+// pencil (unit-free). False, with `why`, when the adjoint cannot be factorised or the iteration
+// gives no finite vector.
+bool left_eigenvector(const Eigen::SparseMatrix<double>& g_matrix,
+                      const Eigen::SparseMatrix<double>& c_matrix, std::complex<double> pole,
+                      Eigen::VectorXcd& left, double& residual, std::string& why);
+
+}  // namespace emnet
