@@ -457,8 +457,8 @@ emnet::ReductionOptions reduction_options(const std::string& tolerance, const st
 std::string tolerance_warning(double measured, double tolerance) {
   return "WARNING: modal reduction: the requested tolerance is NOT MET: measured error " +
          format("%.3g", measured) + " > " + format("%.3g", tolerance) +
-         " against the full model. Raise --band (a higher cut-off keeps more modes), or run "
-         "without --reduce.";
+         " against the full model. Raise --band (a higher cut-off keeps more modes) unless the "
+         "note says poles below the cut-off were not found, or run without --reduce.";
 }
 
 int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,

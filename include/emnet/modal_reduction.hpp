@@ -11,8 +11,10 @@
 // 1/s parts of all modes cancel because the network has a static state), so
 //   z(s) = Σ_k v^z_k·β_k/(s − s_k) + D,   β_k = w_kᵀ·b.
 // Kept: the poles with |s_k| < 2π·f_c (oscillatory ones with their conjugate, real ones — RC
-// loops, overdamped relaxations — alone). The truncated ones and the infinite part are replaced
-// by their value at s = 0 (static correction):
+// loops, overdamped relaxations — alone), from run_modes on the equilibrated pencil: dense up to
+// ReductionOptions::dense_limit unknowns (all poles), Arnoldi beyond (the request doubled until
+// a pole beyond f_c is found, or it stops converging: then `all_found` is false and said). The
+// truncated ones and the infinite part are replaced by their value at s = 0 (static correction):
 //   D = z_static − Σ_kept v^z_k·β_k/(−s_k),
 // z_static from one static solve (StaticOperator, the same one the AC sweep uses at f = 0), so
 // the reduced response equals the static one at f = 0 exactly, whatever is kept.
@@ -20,15 +22,15 @@
 // Cut-off. A truncated oscillatory pair at natural frequency f_k with damping ratio ζ_k is
 // 1/(1 − (f/f_k)² + 2jζ_k·f/f_k) times its static part; the static correction keeps that
 // static part, so the error left is its static part times
-//   ρ_k(f) = |(f/f_k)² − 2jζ_k·f/f_k| / |1 − (f/f_k)² + 2jζ_k·f/f_k| ≈ (f/f_k)²  (ζ_k·f_k ≪ f).
+//   ρ_k(f) = |(f/f_k)² − 2jζ_k·f/f_k| / |1 − (f/f_k)² + 2jζ_k·f/f_k| ≈ (f/f_k)²  (2ζ_k ≪ f/f_k).
 // Inside the band f ≤ f_band this is ≤ tol when f_k ≥ f_band/√tol, so
 //   f_c = f_band / √tol.
 // A truncated static part is itself a fraction of the total response (for a beam mode k's
 // static flexibility falls like 1/f_k²), so the error relative to the largest response is
 // usually far below tol: the rule is conservative. A real pole −a has ρ = f/√(f² + (a/2π)²),
-// first order: damping-dominated relaxations (Kelvin–Voigt: a cluster at −1/τ carrying the
-// static flexibility of every overdamped mode, ρ ≈ 2πf·τ at any cut-off) are the case where
-// the cut-off alone does not bound the error. Hence both an estimate and a measurement:
+// first order: damping-dominated relaxations (Kelvin–Voigt damping turns every mode with
+// ω_k·τ > 2 into two real poles, one in a cluster near −1/τ, one near −τ·ω_k²) are the case
+// where the cut-off alone does not bound the error. Hence both an estimate and a measurement:
 //   estimate: max over probes of ρ_max(f)·|static-correction part at f| / max|o| at the band's
 //             edge f (or the sweep's, when it reaches beyond the band),
 //             ρ_max over the truncated poles the eigen-solver found (the undamped (f/f_c)²

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <set>
@@ -30,6 +31,12 @@ double truncation_error(Complex pole, bool oscillatory, double omega) {
   if (!oscillatory) return std::abs(s / (s - pole));
   const Complex ratio = std::norm(pole) / ((s - pole) * (s - std::conj(pole)));
   return std::abs(ratio - 1.0);
+}
+
+std::string hertz(double value) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%.4g Hz", value);
+  return buffer;
 }
 
 // s^e for e in {−1, 0, 1}.
@@ -146,8 +153,8 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
     // A request that did not converge has reached a cluster; a larger one would not either.
     if (!modal.note.empty() || 2 * count > n / 4) {
       result.all_found = false;
-      result.note = "poles found up to " + std::to_string(largest / two_pi) +
-                    " Hz of f_c = " + std::to_string(result.cutoff_hz) + " Hz" +
+      result.note = "poles found up to " + hertz(largest / two_pi) +
+                    " of f_c = " + hertz(result.cutoff_hz) +
                     (modal.note.empty() ? "" : " (" + modal.note + ")") +
                     "; the static correction carries the rest";
       break;

@@ -197,6 +197,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(ToleranceCase{"cantilever", 7, 1e-2}, ToleranceCase{"cantilever", 7, 1e-3},
                       ToleranceCase{"cantilever", 100, 1e-2},
                       ToleranceCase{"cantilever", 100, 1e-3},
+                      ToleranceCase{"cantilever", 500, 1e-2},
                       ToleranceCase{"cantilever", 500, 1e-3}, ToleranceCase{"fishfin", 7, 1e-2},
                       ToleranceCase{"fishfin", 7, 1e-3}, ToleranceCase{"fishfin", 100, 1e-2},
                       ToleranceCase{"fishfin", 100, 1e-3}, ToleranceCase{"fishfin", 500, 1e-2},
@@ -208,8 +209,9 @@ INSTANTIATE_TEST_SUITE_P(
 
 // Periodic steady state under the fish fin's square-wave drive (ideal drive: a linear network):
 // reduced against PeriodicSolver (exact), every sample of one period, relative to each probe's
-// largest |deflection|. Tolerance: the requested one, with band = the highest switching
-// frequency (7 Hz) as the command uses.
+// largest |deflection|, and the left and right peaks. Tolerance: the requested one, with
+// band = the highest switching frequency (7 Hz) as the command uses (f_c = band/tol; measured
+// 6e-4..8e-4 at tol 1e-2, 1.5e-5..1.8e-5 at N = 100 and rounding at N = 7 for tol 1e-3).
 TEST(ModalReduction, PeriodicReducedMatchesTheExactSolution) {
   for (int segments : {7, 100})
     for (double tolerance : {1e-2, 1e-3}) {
