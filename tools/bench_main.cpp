@@ -42,6 +42,14 @@
 //     on log(N) over the points with N ≥ 300. A point is skipped when the previous point's
 //     time extrapolated with the fitted exponent (at least
 //     1) exceeds the point budget.
+//  5b. Modal reduction. Fish fin (ideal drive) at N = 7, 100, 500 (--quick: 7, 100): the
+//     1000-point AC sweep (0–10 Hz) by run_ac and by run_ac_reduced (band 10 Hz, tol 1e-2,
+//     1e-3, 1e-4), and the 61-frequency periodic sweep (1–7 Hz) by PeriodicSolver and by
+//     ReducedPeriodicSolver (band 7 Hz) at N = 7 and 100, each timed side by side in this run;
+//     error: the largest difference at every point (every sample of every period), relative
+//     to each probe's largest |value|.
+//
+// --only 5b runs section 5b alone and writes report-5b.md.
 //
 // Outputs (in --out): report.md, data files *.dat and gnuplot scripts *.gp for the Pareto
 // plots (tools/bench runs gnuplot), decks/*.cir.
@@ -72,6 +80,7 @@
 #include <vector>
 
 #include "emnet/analysis.hpp"
+#include "emnet/modal_reduction.hpp"
 #include "emnet/model.hpp"
 #include "emnet/ngspice_runner.hpp"
 #include "emnet/periodic.hpp"
@@ -242,6 +251,7 @@ struct Settings {
   std::string emnet = "build/emnet";  // the program, for whole-process times
   std::string self;                   // this program, for scale points
   bool quick = false;                 // smoke test: tiny sizes, few repetitions
+  std::string only;                   // --only 5b: that section alone (report-5b.md)
   std::string fishfin() const { return root + "/netlists/fishfin.toml"; }
   std::string cantilever() const { return root + "/netlists/cantilever.toml"; }
 };
@@ -1367,6 +1377,144 @@ std::string scale_section(const Settings& settings, std::map<std::string, double
   return md.str();
 }
 
+// ---- 5b. modal reduction ----------------------------------------------------------------------
+
+// 5b. Modal reduction (modal_reduction.hpp) against the full model, side by side in this run.
+// AC: the fish fin's 1000-point sweep (0–10 Hz, band 10 Hz) by run_ac and by run_ac_reduced
+// (time: reduction + evaluation, without its own check); error: the largest |difference| over
+// all 1000 points, relative to each probe's largest |response|. Periodic: the 61-frequency
+// switching sweep (1–7 Hz, ideal drive, band 7 Hz, 256 samples) by PeriodicSolver and by
+// ReducedPeriodicSolver, each with its one-off decomposition or reduction; error: the largest
+// periodic_difference (every sample, relative to each probe's largest |deflection|).
+std::string reduction_section(const Settings& settings) {
+  std::ostringstream md;
+  const std::vector<int> sizes =
+      settings.quick ? std::vector<int>{7, 100} : std::vector<int>{7, 100, 500};
+  const std::vector<double> tolerances =
+      settings.quick ? std::vector<double>{1e-2, 1e-3} : std::vector<double>{1e-2, 1e-3, 1e-4};
+  md << "## 5b. Modal reduction: speed gained and error\n\n"
+     << "Modes below f_c = band/√tol kept, the rest as a static correction "
+        "(`emnet ac --reduce`, `emnet sweep-switching --reduce`; README, Modal reduction). "
+        "Full and reduced timed side by side in this run; the error is measured against the "
+        "full model at every point.\n\n"
+     << "AC, fish fin, 1000 points 0–10 Hz, band 10 Hz (reduced time: poles, left vectors, "
+        "static solve and evaluation):\n\n"
+     << "| N | unknowns | tol | f_c | kept modes (method) | full run_ac | reduced | speed-up | "
+        "max error | |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  for (int n : sizes) {
+    std::vector<std::string> overrides = ideal_drive;
+    overrides.push_back("beam.segments=" + std::to_string(n));
+    const emnet::Model model = build(settings.fishfin(), overrides);
+    const emnet::System system = model.network.assemble();
+    const emnet::StaticResult rest = emnet::solve_static(system);
+    const std::vector<emnet::Probe> probes = deflection_probes(model);
+    const auto grid = emnet::frequency_grid(0.0, 10.0, 1000, false);
+    emnet::AcResult full;
+    const Timing full_time = measure(
+        [&] { return full = emnet::run_ac(system, rest.operating_point, grid, probes), -1.0; }, 5,
+        3.0);
+    for (double tolerance : tolerances) {
+      emnet::ReductionOptions options;
+      options.band = 10.0;
+      options.tolerance = tolerance;
+      emnet::AcReductionResult reduced;
+      const Timing reduced_time = measure(
+          [&] {
+            reduced = emnet::run_ac_reduced(system, rest.operating_point, grid, probes, options);
+            return reduced.reduce_seconds + reduced.evaluate_seconds;
+          },
+          5, 3.0);
+      double error = NAN;
+      if (reduced.status.ok && full.status.ok) {
+        error = 0.0;
+        for (size_t p = 0; p < probes.size(); ++p) {
+          double largest = 0.0, difference = 0.0;
+          for (size_t f = 0; f < grid.size(); ++f) {
+            largest = std::max(largest, std::abs(full.values[p][f]));
+            difference =
+                std::max(difference, std::abs(reduced.ac.values[p][f] - full.values[p][f]));
+          }
+          error = std::max(error, difference / largest);
+        }
+      }
+      md << "| " << n << " | " << system.size() << " | " << format("%.0e", tolerance) << " | "
+         << format("%.4g Hz", reduced.model.cutoff_hz) << " | " << reduced.model.kept_modes << " ("
+         << reduced.model.modal_method << ") | " << full_time.text() << " | " << reduced_time.text()
+         << " | " << ratio_text(full_time.median / reduced_time.median) << " | "
+         << error_text(error) << " | "
+         << (!reduced.status.ok   ? "failed: " + reduced.status.message
+             : error <= tolerance ? "met"
+                                  : "**not met**")
+         << " |\n";
+    }
+  }
+  md << "\nPeriodic steady state, fish fin (ideal drive), 61 switching frequencies 1–7 Hz, "
+        "band 7 Hz, 256 samples (times include the one-off decomposition or reduction):\n\n"
+     << "| N | tol | kept modes | full (PeriodicSolver) | reduced | speed-up | max error | |\n"
+     << "|---|---|---|---|---|---|---|---|\n";
+  for (int n : std::vector<int>{7, 100}) {
+    std::vector<std::string> overrides = ideal_drive;
+    overrides.push_back("beam.segments=" + std::to_string(n));
+    const emnet::Scene scene = emnet::read_scene(settings.fishfin(), overrides);
+    const emnet::Model model = emnet::build_model(scene);
+    const std::vector<emnet::Probe> probes = deflection_probes(model);
+    std::vector<emnet::System> systems;
+    const int count = settings.quick ? 7 : 61;
+    for (int k = 0; k < count; ++k) {
+      emnet::Scene at = scene;
+      at.drive.frequency = 1.0 + (settings.quick ? 1.0 : 0.1) * k;
+      systems.push_back(emnet::build_model(at).network.assemble());
+    }
+    std::vector<emnet::PeriodicResult> full(systems.size());
+    const Timing full_time = measure(
+        [&] {
+          const emnet::PeriodicSolver solver(systems[0]);
+          for (size_t k = 0; k < systems.size(); ++k)
+            full[k] =
+                solver.solve(systems[k], probes, 1.0 / (1.0 + (settings.quick ? 1.0 : 0.1) * k));
+          return -1.0;
+        },
+        5, 5.0);
+    for (double tolerance : tolerances) {
+      emnet::ReductionOptions options;
+      options.band = 7.0;
+      options.tolerance = tolerance;
+      std::vector<emnet::PeriodicResult> reduced(systems.size());
+      int kept = 0;
+      std::string failure;
+      const Timing reduced_time = measure(
+          [&] {
+            const emnet::ReducedPeriodicSolver solver(systems[0], options);
+            kept = solver.reduction().kept_modes;
+            for (size_t k = 0; k < systems.size(); ++k)
+              reduced[k] =
+                  solver.solve(systems[k], probes, 1.0 / (1.0 + (settings.quick ? 1.0 : 0.1) * k));
+            return -1.0;
+          },
+          5, 5.0);
+      double error = 0.0;
+      for (size_t k = 0; k < systems.size(); ++k) {
+        if (!reduced[k].status.ok || !full[k].status.ok) {
+          failure = (reduced[k].status.ok ? full[k] : reduced[k]).status.message;
+          error = NAN;
+          break;
+        }
+        error = std::max(error, emnet::periodic_difference(reduced[k], full[k]));
+      }
+      const double speed_up = full_time.median / reduced_time.median;
+      md << "| " << n << " | " << format("%.0e", tolerance) << " | " << kept << " | "
+         << full_time.text() << " | " << reduced_time.text() << " | " << ratio_text(speed_up)
+         << (speed_up < 1.0 ? " (slower)" : "") << " | " << error_text(error) << " | "
+         << (!failure.empty()     ? "failed: " + failure
+             : error <= tolerance ? "met"
+                                  : "**not met**")
+         << " |\n";
+    }
+  }
+  md << "\n";
+  return md.str();
+}
+
 // ---- the report ------------------------------------------------------------------------------
 
 std::string machine_text() {
@@ -1401,6 +1549,13 @@ std::string goal_line(const std::string& name, double measured, double goal,
 int run(const Settings& settings) {
   const auto start = Clock::now();
   mkdir(settings.out.c_str(), 0755);
+  if (settings.only == "5b") {
+    std::ofstream(settings.out + "/report-5b.md") << "Machine: " << machine_text() << ".\n\n"
+                                                  << reduction_section(settings);
+    std::cerr << "emnet_bench: " << settings.out << "/report-5b.md ("
+              << time_text(seconds_since(start)) << ")\n";
+    return 0;
+  }
   std::vector<ParetoPoint> discretisation_points, ac_points, tran_points, sweep_points;
   std::cerr << "emnet_bench: 1. discretisation\n";
   const std::string discretisation = discretisation_section(settings, discretisation_points);
@@ -1414,6 +1569,8 @@ int run(const Settings& settings) {
   std::cerr << "emnet_bench: 4. scale\n";
   std::map<std::string, double> exponents;
   const std::string scale = scale_section(settings, exponents);
+  std::cerr << "emnet_bench: 5b. modal reduction\n";
+  const std::string reduction = reduction_section(settings);
   write_pareto_plot(settings, "discretisation", "cantilever: discretisation error against cost",
                     discretisation_points);
   write_pareto_plot(settings, "ac", "fish fin AC, 1000 points: error against time", ac_points);
@@ -1460,7 +1617,7 @@ int run(const Settings& settings) {
      << sweep.markdown << "\n![sweep](pareto-sweep.png)\n\n"
      << "## 4. Scale\n\n"
      << scale << "\n![scale](scale.png)\n\n"
-     << "Total benchmark time: " << time_text(seconds_since(start)) << ".\n";
+     << reduction << "Total benchmark time: " << time_text(seconds_since(start)) << ".\n";
   std::cerr << "emnet_bench: report written to " << settings.out << "/report.md ("
             << time_text(seconds_since(start)) << ")\n";
   return 0;
@@ -1492,11 +1649,18 @@ int main(int argc, char** argv) {
       settings.emnet = value();
     } else if (argument == "--quick") {
       settings.quick = true;
+    } else if (argument == "--only") {
+      settings.only = value();
+      if (settings.only != "5b") {
+        std::cerr << "emnet_bench: --only takes 5b (the modal reduction section)\n";
+        return 2;
+      }
     } else if (argument == "--scale-point") {
       scale_analysis = value();
       scale_segments = std::stoi(value());
     } else {
-      std::cerr << "usage: emnet_bench [--root DIR] [--out DIR] [--emnet PROGRAM] [--quick]\n";
+      std::cerr << "usage: emnet_bench [--root DIR] [--out DIR] [--emnet PROGRAM] [--quick] "
+                   "[--only 5b]\n";
       return 2;
     }
   }

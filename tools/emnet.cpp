@@ -19,6 +19,7 @@
 #include "emnet/analysis.hpp"
 #include "emnet/crosscheck.hpp"
 #include "emnet/errors.hpp"
+#include "emnet/modal_reduction.hpp"
 #include "emnet/model.hpp"
 #include "emnet/periodic.hpp"
 #include "emnet/plot.hpp"
@@ -408,6 +409,8 @@ struct AcOptions {
   std::optional<int> points;
   std::string scale;
   std::string plot;
+  bool reduce = false;
+  std::string tolerance, band;  // --reduce: as given, parsed and checked by reduction_options
 };
 
 double parse_frequency(const std::string& text, const std::string& option) {
@@ -430,6 +433,34 @@ double parse_frequency(const std::string& text, const std::string& option) {
   }
 }
 
+// --tolerance and --band of a modal reduction (ac, sweep-switching); band defaults to
+// `default_band` [Hz]. Bad values are input errors naming the option.
+emnet::ReductionOptions reduction_options(const std::string& tolerance, const std::string& band,
+                                          double default_band) {
+  emnet::ReductionOptions reduction;
+  if (!tolerance.empty()) {
+    try {
+      size_t used = 0;
+      reduction.tolerance = std::stod(tolerance, &used);
+      if (used != tolerance.size()) throw std::invalid_argument("trailing text");
+    } catch (const std::exception&) {
+      throw InputError("--tolerance", "tolerance",
+                       "expected a relative error in (0, 1), got '" + tolerance + "'");
+    }
+  }
+  reduction.band = band.empty() ? default_band : parse_frequency(band, "--band");
+  emnet::validate(reduction);
+  return reduction;
+}
+
+// The reduction's modes, cut-off and measured error, said loudly when the tolerance is not met.
+std::string tolerance_warning(double measured, double tolerance) {
+  return "WARNING: modal reduction: the requested tolerance is NOT MET: measured error " +
+         format("%.3g", measured) + " > " + format("%.3g", tolerance) +
+         " against the full model. Raise --band (a higher cut-off keeps more modes) unless the "
+         "note says poles below the cut-off were not found, or run without --reduce.";
+}
+
 int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
                    const std::string& from_text, const std::string& to_text) {
   const auto start = std::chrono::steady_clock::now();
@@ -447,21 +478,41 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
     throw InputError("--points", "--points", "must be between 2 and 1000000");
   const auto probes = selected_probes(p.model, options);
   const auto grid = emnet::frequency_grid(spec.from, spec.to, spec.points, spec.log);
-  const emnet::AcResult result = emnet::run_ac(p.system, p.rest.operating_point, grid, probes);
+  std::optional<emnet::AcReductionResult> reduction;
+  if (ac_options.reduce) {
+    const emnet::ReductionOptions reduction_settings =
+        reduction_options(ac_options.tolerance, ac_options.band, spec.to);
+    reduction =
+        emnet::run_ac_reduced(p.system, p.rest.operating_point, grid, probes, reduction_settings);
+    if (!reduction->status.ok) throw NumericalFailure("ac --reduce: " + reduction->status.message);
+  } else if (!ac_options.tolerance.empty() || !ac_options.band.empty()) {
+    throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
+  }
+  const emnet::AcResult result =
+      reduction ? reduction->ac : emnet::run_ac(p.system, p.rest.operating_point, grid, probes);
   if (!result.status.ok) throw NumericalFailure("ac: " + result.status.message);
   for (const auto& series : result.values)
     for (const auto& v : series) finite(std::abs(v), "an AC response");
 
-  // Resonances in the band, to mark them and to report them.
-  emnet::ModalOptions modal_options;
-  modal_options.keep_vectors = false;
-  if (p.system.size() > modal_options.dense_limit) modal_options.count = 10;
-  const auto modes = emnet::run_modes(p.system, p.rest.operating_point, modal_options);
+  // Resonances in the band, to mark them and to report them (reduced: the kept modes).
   std::vector<emnet::PlotMarker> markers;
-  if (modes.status.ok)
-    for (const auto& mode : modes.modes)
-      if (mode.frequency_hz >= spec.from && mode.frequency_hz <= spec.to)
-        markers.push_back({mode.frequency_hz, "f = " + format("%.4f", mode.frequency_hz) + " Hz"});
+  std::vector<double> resonances;
+  if (reduction) {
+    for (const auto& kept : reduction->model.kept)
+      if (kept.oscillatory) resonances.push_back(std::abs(kept.pole.imag()) / (2 * pi));
+    std::sort(resonances.begin(), resonances.end());
+  } else {
+    emnet::ModalOptions modal_options;
+    modal_options.keep_vectors = false;
+    if (p.system.size() > modal_options.dense_limit) modal_options.count = 10;
+    const auto modes = emnet::run_modes(p.system, p.rest.operating_point, modal_options);
+    if (modes.status.ok)
+      for (const auto& mode : modes.modes) resonances.push_back(mode.frequency_hz);
+  }
+  for (double f : resonances)
+    if (f >= spec.from && f <= spec.to) markers.push_back({f, "f = " + format("%.4f", f) + " Hz"});
+  if (reduction && !reduction->tolerance_met)
+    std::cerr << tolerance_warning(reduction->measured_error, reduction->model.tolerance) << "\n";
   const double total = seconds_since(start);
   const std::string input = ac_input_description(p.model.scene);
 
@@ -515,17 +566,75 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
     for (const auto& m : markers) out["resonances_hz"].push_back(m.frequency_hz);
     out["accuracy"] = {{"max_relative_residual", result.max_relative_residual}};
     out["cost"] = {{"ac_seconds", result.seconds}, {"total_seconds", total}};
+    if (reduction) {
+      const auto& r = *reduction;
+      const auto& m = r.model;
+      Json errors = Json::object();
+      for (size_t k = 0; k < probes.size(); ++k) errors[probes[k].name] = r.probe_errors[k];
+      out["reduction"] = {{"status", r.tolerance_met ? "met" : "NOT MET"},
+                          {"tolerance", m.tolerance},
+                          {"band_hz", m.band_hz},
+                          {"cutoff_hz", m.cutoff_hz},
+                          {"kept_modes", m.kept_modes},
+                          {"kept_real_poles", m.kept_real_poles},
+                          {"truncated_poles", m.truncated_poles},
+                          {"clustered_poles", m.clustered_poles},
+                          {"all_poles_below_cutoff_found", m.all_found},
+                          {"full_unknowns", m.full_unknowns},
+                          {"modal_method", m.modal_method},
+                          {"error_estimate", r.error_estimate},
+                          {"measured_error", r.measured_error},
+                          {"probe_errors", errors},
+                          {"check_frequencies_hz", r.check_frequencies},
+                          {"note", m.note},
+                          {"cost",
+                           {{"reduce_seconds", r.reduce_seconds},
+                            {"evaluate_seconds", r.evaluate_seconds},
+                            {"check_seconds", r.check_seconds}}}};
+    }
     std::cout << out.dump(2) << "\n";
     return 0;
   }
   print_header(p.model, p.system);
   std::cout << input << "\n"
             << "sweep: " << grid.size() << " points, " << si(spec.from, "Hz") << " to "
-            << si(spec.to, "Hz") << (spec.log ? " (log)" : " (lin)") << "\n"
-            << "accuracy: worst relative residual of the complex solves "
-            << format("%.2g", result.max_relative_residual) << "\n"
-            << "cost: sweep " << milliseconds(result.seconds) << ", total " << milliseconds(total)
-            << "\n";
+            << si(spec.to, "Hz") << (spec.log ? " (log)" : " (lin)") << "\n";
+  if (reduction) {
+    const auto& r = *reduction;
+    const auto& m = r.model;
+    std::cout << "method: modal reduction with static correction: band " << si(m.band_hz, "Hz")
+              << ", tolerance " << format("%.3g", m.tolerance)
+              << " -> cut-off f_c = band/sqrt(tol) = " << si(m.cutoff_hz, "Hz") << "\n"
+              << "  kept " << m.kept_modes << " mode(s) and " << m.kept_real_poles
+              << " real pole(s) of a " << m.full_unknowns << "-unknown network (" << m.modal_method
+              << "); " << m.truncated_poles
+              << " computed pole(s) truncated into the static correction"
+              << (m.clustered_poles ? " (" + std::to_string(m.clustered_poles) +
+                                          " of them in groups repeated to rounding)"
+                                    : std::string())
+              << "\n";
+    if (!m.note.empty()) std::cout << "  note: " << m.note << "\n";
+    std::cout << "  error against the full model at " << r.check_frequencies.size()
+              << " frequencies (5 spread over the sweep and each probe's largest response), "
+                 "relative to each probe's largest |response|: "
+              << format("%.3g", r.measured_error) << " (";
+    for (size_t k = 0; k < probes.size(); ++k)
+      std::cout << (k ? ", " : "") << probes[k].name << " " << format("%.2g", r.probe_errors[k]);
+    std::cout << "); a-priori estimate " << format("%.2g", r.error_estimate) << "\n"
+              << "  tolerance " << format("%.3g", m.tolerance)
+              << (r.tolerance_met ? ": met" : ": NOT MET") << "\n";
+    if (!r.tolerance_met) std::cout << tolerance_warning(r.measured_error, m.tolerance) << "\n";
+    std::cout << "cost: reduction " << milliseconds(r.reduce_seconds)
+              << " (poles, left vectors, one static solve), evaluation "
+              << milliseconds(r.evaluate_seconds) << " (" << grid.size() << " points), check "
+              << milliseconds(r.check_seconds) << " (full model, " << r.check_frequencies.size()
+              << " points), total " << milliseconds(total) << "\n";
+  } else {
+    std::cout << "accuracy: worst relative residual of the complex solves "
+              << format("%.2g", result.max_relative_residual) << "\n"
+              << "cost: sweep " << milliseconds(result.seconds) << ", total " << milliseconds(total)
+              << "\n";
+  }
   for (const auto& m : markers) std::cout << "resonance in band: " << m.label << "\n";
   std::cout << "\n";
   std::printf("%14s", "f [Hz]");
@@ -740,6 +849,20 @@ struct SweepOptions {
   int samples = 256;
   double rtol = 1e-9;
   std::string plot;
+  bool reduce = false;
+  std::string tolerance, band;  // --reduce
+};
+
+// The reduced periodic sweep checked against the exact one at a few switching frequencies.
+struct PeriodicReductionCheck {
+  emnet::ModalReduction model;
+  double build_seconds = 0.0;               // poles, left vectors, static solves
+  std::vector<double> frequencies, errors;  // check frequencies, periodic_difference there
+  double measured_error = 0.0;
+  double full_build_seconds = 0.0;     // PeriodicSolver's decomposition
+  double full_solve_seconds = 0.0;     // per frequency: the fastest at the check frequencies
+  double reduced_solve_seconds = 0.0;  // the same for the reduced solves there
+  bool tolerance_met = false;
 };
 
 // drive.overlap is in seconds: DEA A's on-time duty·T + overlap must stay inside the period
@@ -781,6 +904,17 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   for (const auto& probe : transient_probes(model))
     if (probe.unit == "m") probes.push_back(probe);
   std::unique_ptr<emnet::PeriodicSolver> solver;
+  std::unique_ptr<emnet::ReducedPeriodicSolver> reduced;
+  std::optional<PeriodicReductionCheck> check;
+  emnet::ReductionOptions reduction_settings;
+  if (sweep.reduce) {
+    if (sweep.method != "exact")
+      throw InputError("--reduce", "--method", "--reduce replaces the exact method, not shooting");
+    reduction_settings = reduction_options(sweep.tolerance, sweep.band, sweep.to);
+    check.emplace();
+  } else if (!sweep.tolerance.empty() || !sweep.band.empty()) {
+    throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
+  }
   std::vector<double> frequencies;
   std::vector<emnet::PeriodicResult> results;
   const emnet::Scene base_scene = load_scene(options);  // read once; only the frequency varies
@@ -796,7 +930,17 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
     const emnet::Model m = emnet::build_model(at);
     const emnet::System system = m.network.assemble();
     emnet::PeriodicResult r;
-    if (sweep.method == "exact") {
+    if (sweep.reduce) {
+      if (!reduced) {
+        const auto build_start = std::chrono::steady_clock::now();
+        reduced = std::make_unique<emnet::ReducedPeriodicSolver>(system, reduction_settings);
+        check->build_seconds = seconds_since(build_start);
+        if (!reduced->reduction().status.ok)
+          throw NumericalFailure("sweep-switching --reduce: " +
+                                 reduced->reduction().status.message);
+      }
+      r = reduced->solve(system, probes, 1.0 / f, sweep.samples);
+    } else if (sweep.method == "exact") {
       if (!solver) solver = std::make_unique<emnet::PeriodicSolver>(system);
       r = solver->solve(system, probes, 1.0 / f, sweep.samples);
     } else {
@@ -825,6 +969,45 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
     if (results[k].maximum[main_probe] - results[k].minimum[main_probe] >
         results[best].maximum[main_probe] - results[best].minimum[main_probe])
       best = k;
+  if (check && !results.empty()) {
+    // The full exact method at the first, the largest-swing and the last frequency.
+    check->model = reduced->reduction();
+    std::vector<size_t> picked{0, best, results.size() - 1};
+    std::sort(picked.begin(), picked.end());
+    picked.erase(std::unique(picked.begin(), picked.end()), picked.end());
+    std::unique_ptr<emnet::PeriodicSolver> full;
+    for (size_t k : picked) {
+      emnet::Scene at = base_scene;
+      at.drive.frequency = frequencies[k];
+      const emnet::Model m = emnet::build_model(at);
+      const emnet::System system = m.network.assemble();
+      if (!full) {
+        const auto build_start = std::chrono::steady_clock::now();
+        full = std::make_unique<emnet::PeriodicSolver>(system);
+        check->full_build_seconds = seconds_since(build_start);
+      }
+      const emnet::PeriodicResult exact =
+          full->solve(system, probes, 1.0 / frequencies[k], sweep.samples);
+      if (!exact.status.ok)
+        throw NumericalFailure("sweep-switching --reduce check at " + si(frequencies[k], "Hz") +
+                               ": " + exact.status.message);
+      // Per frequency: the fastest check solve (the first also fills per-probe caches).
+      check->full_solve_seconds = check->full_solve_seconds > 0.0
+                                      ? std::min(check->full_solve_seconds, exact.seconds)
+                                      : exact.seconds;
+      check->reduced_solve_seconds =
+          check->reduced_solve_seconds > 0.0
+              ? std::min(check->reduced_solve_seconds, results[k].seconds)
+              : results[k].seconds;
+      const double error = emnet::periodic_difference(results[k], exact);
+      check->frequencies.push_back(frequencies[k]);
+      check->errors.push_back(error);
+      check->measured_error = std::max(check->measured_error, error);
+    }
+    check->tolerance_met = check->measured_error <= reduction_settings.tolerance;
+    if (!check->tolerance_met)
+      std::cerr << tolerance_warning(check->measured_error, reduction_settings.tolerance) << "\n";
+  }
   std::vector<emnet::PlotMarker> markers;
   {
     const emnet::System system = model.network.assemble();
@@ -879,7 +1062,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   if (options.json) {
     Json out;
     out["scene"] = model.scene.name;
-    out["method"] = sweep.method;
+    out["method"] = sweep.reduce ? "reduced" : sweep.method;
     out["notes"] = notes;
     out["frequencies_hz"] = frequencies;
     out["outputs"] = Json::array();
@@ -895,19 +1078,80 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
     out["sweep_peak_hz"] = results.empty() ? 0.0 : frequencies[best];
     out["accuracy"] = {{"worst_periodicity_residual", worst_periodicity}};
     out["cost"] = {{"solve_seconds", solve_seconds}, {"total_seconds", total}};
+    if (check) {
+      const auto& m = check->model;
+      const double n = static_cast<double>(results.size());
+      out["reduction"] = {{"status", check->tolerance_met ? "met" : "NOT MET"},
+                          {"tolerance", m.tolerance},
+                          {"band_hz", m.band_hz},
+                          {"cutoff_hz", m.cutoff_hz},
+                          {"kept_modes", m.kept_modes},
+                          {"kept_real_poles", m.kept_real_poles},
+                          {"truncated_poles", m.truncated_poles},
+                          {"full_unknowns", m.full_unknowns},
+                          {"modal_method", m.modal_method},
+                          {"check_frequencies_hz", check->frequencies},
+                          {"errors", check->errors},
+                          {"measured_error", check->measured_error},
+                          {"cost",
+                           {{"reduce_seconds", check->build_seconds},
+                            {"reduced_seconds_per_frequency", check->reduced_solve_seconds},
+                            {"full_decomposition_seconds", check->full_build_seconds},
+                            {"full_seconds_per_frequency", check->full_solve_seconds},
+                            {"reduced_sweep_seconds", check->build_seconds + solve_seconds},
+                            {"full_sweep_seconds_estimated",
+                             check->full_build_seconds + n * check->full_solve_seconds}}}};
+    }
     std::cout << out.dump(2) << "\n";
     return 0;
   }
   print_header(model, model.network.assemble());
   for (const auto& note : notes) std::cout << "note: " << note << "\n";
-  std::cout << "periodic steady state, " << sweep.method
-            << (sweep.method == "exact" ? " (one eigen-decomposition, closed-form periodic state, "
-                                          "global extremes: bounded search, then Newton)"
-                                        : " (Newton shooting on one period of IDA)")
+  std::cout << "periodic steady state, " << (sweep.reduce ? "reduced" : sweep.method)
+            << (sweep.reduce ? " (modal coordinates of the kept modes, closed-form periodic state, "
+                               "extremes: samples, switching edges, then Newton)"
+                : sweep.method == "exact"
+                    ? " (one eigen-decomposition, closed-form periodic state, "
+                      "global extremes: bounded search, then Newton)"
+                    : " (Newton shooting on one period of IDA)")
             << ", " << results.size() << " switching frequencies\n"
             << "accuracy: worst periodicity residual " << format("%.2g", worst_periodicity)
             << "\ncost: periodic solves " << milliseconds(solve_seconds) << ", total "
-            << milliseconds(total) << "\n\n";
+            << milliseconds(total) << "\n";
+  if (check) {
+    const auto& m = check->model;
+    const double n = static_cast<double>(results.size());
+    const double reduced_sweep = check->build_seconds + solve_seconds;
+    const double full_sweep = check->full_build_seconds + n * check->full_solve_seconds;
+    std::cout << "reduced: modal coordinates of " << m.kept_modes << " mode(s) and "
+              << m.kept_real_poles
+              << " real pole(s) below f_c = band/tol = " << si(m.cutoff_hz, "Hz") << " (band "
+              << si(m.band_hz, "Hz") << ", tolerance " << format("%.3g", m.tolerance)
+              << "), static correction as a direct feed-through; " << m.full_unknowns
+              << " unknowns in the full network\n"
+              << "  error against the full exact periodic solution (every sample, relative to "
+                 "each probe's largest |deflection|):";
+    for (size_t k = 0; k < check->frequencies.size(); ++k)
+      std::cout << " " << format("%.2e", check->errors[k]) << " at "
+                << si(check->frequencies[k], "Hz")
+                << (k + 1 < check->frequencies.size() ? "," : "");
+    std::cout << "\n  tolerance " << format("%.3g", m.tolerance)
+              << (check->tolerance_met ? ": met" : ": NOT MET") << "\n";
+    if (!check->tolerance_met)
+      std::cout << tolerance_warning(check->measured_error, m.tolerance) << "\n";
+    std::cout << "  cost: reduced sweep " << milliseconds(reduced_sweep) << " (reduction "
+              << milliseconds(check->build_seconds) << " + " << results.size()
+              << " solves); full exact sweep, estimated from the check ("
+              << milliseconds(check->full_build_seconds) << " decomposition + "
+              << milliseconds(check->full_solve_seconds)
+              << " per frequency): " << milliseconds(full_sweep) << " -> the reduced path is "
+              << (reduced_sweep <= full_sweep
+                      ? format("%.2g", full_sweep / reduced_sweep) + "x faster"
+                      : format("%.2g", reduced_sweep / full_sweep) +
+                            "x SLOWER (the full eigen-decomposition is small here)")
+              << "\n";
+  }
+  std::cout << "\n";
   std::printf("%10s", "f [Hz]");
   for (const auto& probe : probes)
     std::printf(" %12s %12s", (probe.name + " left").c_str(), (probe.name + " right").c_str());
@@ -1722,6 +1966,13 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"lin", "log"}));
   ac_command->add_option("--plot", ac_options.plot,
                          "write a Bode plot (PNG or SVG, by extension), resonances marked");
+  ac_command->add_flag("--reduce", ac_options.reduce,
+                       "evaluate the sweep by modal reduction (modes below band/sqrt(tolerance), "
+                       "static correction for the rest), checked against the full model");
+  ac_command->add_option("--tolerance", ac_options.tolerance,
+                         "--reduce: relative error wanted, in (0, 1) (1e-3)");
+  ac_command->add_option("--band", ac_options.band,
+                         "--reduce: highest frequency of interest [Hz] (default: --to)");
 
   TranOptions tran_options;
   auto* tran_command = app.add_subcommand(
@@ -1768,6 +2019,13 @@ int main(int argc, char** argv) {
                             "shooting: IDA relative tolerance (1e-9)");
   sweep_command->add_option("--plot", sweep_options.plot,
                             "write the curve (PNG/SVG), resonance marked");
+  sweep_command->add_flag("--reduce", sweep_options.reduce,
+                          "periodic state of a modal reduction (modes below band/sqrt(tolerance), "
+                          "static correction as a feed-through), checked against the exact one");
+  sweep_command->add_option("--tolerance", sweep_options.tolerance,
+                            "--reduce: relative error wanted, in (0, 1) (1e-3)");
+  sweep_command->add_option("--band", sweep_options.band,
+                            "--reduce: highest frequency of interest [Hz] (default: --to)");
 
   double target_hz = 0.0;
   int mode_number = 1;

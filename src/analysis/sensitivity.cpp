@@ -9,14 +9,13 @@
 #include <memory>
 
 #include "emnet/model.hpp"
-#include "equilibration.hpp"
+#include "left_eigenvector.hpp"
 
 namespace emnet {
 
 namespace {
 
 constexpr double two_pi = 6.283185307179586476925286766559;
-using ComplexSparse = Eigen::SparseMatrix<std::complex<double>>;
 
 // ---- parameters by key ----------------------------------------------------------------
 
@@ -137,60 +136,6 @@ ModalResult modes_of(const Linearised& network, int count, bool keep_vectors) {
   options.keep_vectors = keep_vectors;
   if (network.system.size() > options.dense_limit) options.count = count + 2;
   return run_modes(network.system, network.operating_point, options);
-}
-
-double one_norm(const Eigen::SparseMatrix<double>& m) {
-  double largest = 0.0;
-  for (int col = 0; col < m.outerSize(); ++col) {
-    double sum = 0.0;
-    for (Eigen::SparseMatrix<double>::InnerIterator it(m, col); it; ++it)
-      sum += std::abs(it.value());
-    largest = std::max(largest, sum);
-  }
-  return largest;
-}
-
-// Left eigenvector y (physical, yᴴ·(G + sC) = 0) by two steps of inverse iteration on the
-// equilibrated adjoint pencil; `residual` as SensitivityResult::left_vector_residual.
-bool left_eigenvector(const Eigen::SparseMatrix<double>& g_matrix,
-                      const Eigen::SparseMatrix<double>& c_matrix, std::complex<double> pole,
-                      Eigen::VectorXcd& left, double& residual, std::string& why) {
-  const DiagonalScaling scaling = equilibrate_pencil(g_matrix, c_matrix);
-  const Eigen::SparseMatrix<double> g_hat = scaled(g_matrix, scaling);
-  const Eigen::SparseMatrix<double> c_hat = scaled(c_matrix, scaling, scaling.frequency);
-  const std::complex<double> s_hat = pole / scaling.frequency;
-  Eigen::SparseLU<ComplexSparse> lu;
-  ComplexSparse adjoint;
-  // The pencil is singular at the pole only to rounding; should the LU find an exact zero
-  // pivot, a shift of 1e-12·|ŝ| changes ŷ by O(1e-12).
-  for (double offset : {0.0, 1e-12, 1e-9}) {
-    const std::complex<double> shift = s_hat * (1.0 + offset);
-    adjoint = ComplexSparse(g_hat.transpose().cast<std::complex<double>>()) +
-              std::conj(shift) * ComplexSparse(c_hat.transpose().cast<std::complex<double>>());
-    adjoint.makeCompressed();
-    lu.compute(adjoint);
-    if (lu.info() == Eigen::Success) break;
-  }
-  if (lu.info() != Eigen::Success) {
-    why = "the adjoint pencil at the pole could not be factorised";
-    return false;
-  }
-  const ComplexSparse exact_adjoint =
-      ComplexSparse(g_hat.transpose().cast<std::complex<double>>()) +
-      std::conj(s_hat) * ComplexSparse(c_hat.transpose().cast<std::complex<double>>());
-  Eigen::VectorXcd y_hat = Eigen::VectorXcd::Ones(g_matrix.rows());
-  for (int step = 0; step < 2; ++step) {
-    y_hat = lu.solve(y_hat);
-    const double norm = y_hat.norm();
-    if (!std::isfinite(norm) || norm == 0.0) {
-      why = "inverse iteration for the left eigenvector gave no finite vector";
-      return false;
-    }
-    y_hat /= norm;
-  }
-  residual = (exact_adjoint * y_hat).norm() / (one_norm(g_hat) + std::abs(s_hat) * one_norm(c_hat));
-  left = scaling.row.cast<std::complex<double>>().cwiseProduct(y_hat);
-  return true;
 }
 
 void fill_frequencies(ModeSensitivity& sensitivity, std::complex<double> pole, double value) {

@@ -1,0 +1,36 @@
+// Left eigenvector of the pencil (G + J_g) + s·C at a computed pole, for eigenvalue
+// sensitivities (sensitivity.cpp) and the bi-orthogonal modal expansion (modal_reduction.cpp).
+//
+// y with yᴴ·(G + s·C) = 0, by two steps of inverse iteration on the equilibrated adjoint pencil
+// (equilibration.hpp) (Ĝᵀ + conj(ŝ)·Ĉᵀ)·ŷ = ŷ_previous, from ŷ = 1, mapped back to physical
+// rows: y = diag(r)·ŷ. The pole is exact to rounding, so the adjoint is singular to rounding and
+// one step already amplifies the wanted direction by ~1/ε; the second cleans up. A pole
+// repeated to rounding (a cluster of m poles) has no unique left vector: left_eigenspace gives
+// m vectors from m different starts with one factorisation, which span the cluster's left
+// space (to the cluster's width over its distance to the next pole), not the individual left
+// vectors; a caller combines them by the bi-orthogonality matrix Wᵀ·C·V.
+#pragma once
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <complex>
+#include <string>
+
+namespace emnet {
+
+// ‖·‖₁ of a sparse matrix (largest column sum).
+double sparse_one_norm(const Eigen::SparseMatrix<double>& m);
+
+// `residual`: ‖(Ĝᵀ + conj(ŝ)Ĉᵀ)·ŷ‖ / (‖Ĝ‖₁ + |ŝ|·‖Ĉ‖₁) with ‖ŷ‖ = 1, on the equilibrated
+// pencil (unit-free). False, with `why`, when the adjoint cannot be factorised or the iteration
+// gives no finite vector.
+bool left_eigenvector(const Eigen::SparseMatrix<double>& g_matrix,
+                      const Eigen::SparseMatrix<double>& c_matrix, std::complex<double> pole,
+                      Eigen::VectorXcd& left, double& residual, std::string& why);
+// `count` such vectors (columns of `left`) from different starts, the first from ŷ = 1 (so
+// count = 1 is left_eigenvector); `residual` the worst of them.
+bool left_eigenspace(const Eigen::SparseMatrix<double>& g_matrix,
+                     const Eigen::SparseMatrix<double>& c_matrix, std::complex<double> pole,
+                     int count, Eigen::MatrixXcd& left, double& residual, std::string& why);
+
+}  // namespace emnet
