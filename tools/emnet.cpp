@@ -23,6 +23,7 @@
 #include "emnet/periodic.hpp"
 #include "emnet/plot.hpp"
 #include "emnet/scene_reader.hpp"
+#include "emnet/segment_selection.hpp"
 #include "emnet/sensitivity.hpp"
 #include "emnet/spice_netlist.hpp"
 #include "emnet/transient.hpp"
@@ -76,7 +77,33 @@ emnet::Scene load_scene(const CommonOptions& options) {
   std::vector<std::string> overrides = options.overrides;
   if (options.segments != 0)
     overrides.push_back("beam.segments=" + std::to_string(options.segments));
-  return emnet::read_scene(options.scene_path, overrides);
+  emnet::Scene scene = emnet::read_scene(options.scene_path, overrides);
+  // beam.segments = "auto": chosen once here, so that every model a command builds from the
+  // scene (sweeps, fits, finite differences) has the same N; the choice travels with the scene.
+  if (scene.beam.auto_segments) scene = emnet::build_model(scene).scene;
+  return scene;
+}
+
+// A --probe asking for an electrical quantity (drive.electrical_dynamics = "auto" keeps the
+// RC dynamics for it).
+bool electrical_probe_requested(const CommonOptions& options) {
+  for (const auto& text : options.probes)
+    if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0) return true;
+  return false;
+}
+
+// "automatic_choices" of --json: what each "auto" key became, why, its error estimate, cost.
+Json automatic_choices_json(const std::vector<emnet::AutomaticChoice>& automatic_choices) {
+  Json choices = Json::array();
+  for (const auto& choice : automatic_choices)
+    choices.push_back({{"key", choice.key},
+                       {"value", choice.value},
+                       {"reason", choice.reason},
+                       {"estimated_error", choice.estimated_error},
+                       {"tolerance", choice.tolerance},
+                       {"band_hz", {choice.band_from_hz, choice.band_to_hz}},
+                       {"seconds", choice.seconds}});
+  return choices;
 }
 
 std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const CommonOptions& options) {
@@ -172,7 +199,7 @@ struct Prepared {
 // body) can still be analysed dynamically: its operating point is then zero, as said in a note;
 // `static` itself requires the static state.
 Prepared prepare(const CommonOptions& options, bool require_static = false) {
-  Prepared p{emnet::build_model(load_scene(options)), {}, {}};
+  Prepared p{emnet::build_model(load_scene(options), electrical_probe_requested(options)), {}, {}};
   p.system = p.model.network.assemble();
   p.rest = emnet::solve_static(p.system);
   if (!p.rest.status.ok) {
@@ -210,6 +237,7 @@ int run_static(const CommonOptions& options) {
   if (options.json) {
     Json out;
     out["scene"] = p.model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(p.model.automatic_choices);
     out["segments"] = p.model.scene.beam.segments;
     out["nodes"] = Json::array();
     for (const auto& row : rows)
@@ -266,12 +294,12 @@ std::vector<double> discretisation_errors(const CommonOptions& options, const em
   modal_options.keep_vectors = false;
   const auto fine_modes = emnet::run_modes(fine.system, fine.rest.operating_point, modal_options);
   std::vector<double> errors;
-  if (fine_modes.status.ok)
-    for (size_t k = 0; k < modes.size() && k < fine_modes.modes.size(); ++k) {
-      const double coarse = modes[k].frequency_hz, refined = fine_modes.modes[k].frequency_hz;
-      const double extrapolated = refined + (refined - coarse) / 3.0;
-      errors.push_back(std::abs(coarse - extrapolated) / extrapolated);
-    }
+  if (fine_modes.status.ok) {
+    std::vector<double> coarse, refined;
+    for (const auto& mode : modes) coarse.push_back(mode.frequency_hz);
+    for (const auto& mode : fine_modes.modes) refined.push_back(mode.frequency_hz);
+    errors = emnet::richardson_errors(coarse, refined);
+  }
   seconds = seconds_since(start);
   return errors;
 }
@@ -330,6 +358,7 @@ int run_modes_command(const CommonOptions& options, const ModesOptions& modes_op
   if (options.json) {
     Json out;
     out["scene"] = p.model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(p.model.automatic_choices);
     out["segments"] = p.model.scene.beam.segments;
     out["modes"] = Json::array();
     for (size_t k = 0; k < modes.size(); ++k) {
@@ -495,6 +524,7 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
   if (options.json) {
     Json out;
     out["scene"] = p.model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(p.model.automatic_choices);
     out["segments"] = p.model.scene.beam.segments;
     out["input"] = input;
     out["frequencies_hz"] = grid;
@@ -671,6 +701,7 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   if (options.json) {
     Json out;
     out["scene"] = model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
     out["method"] = result.method;
     out["start_state"] = start_text;
     out["switching_frequency_hz"] = frequency;
@@ -879,6 +910,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   if (options.json) {
     Json out;
     out["scene"] = model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
     out["method"] = sweep.method;
     out["notes"] = notes;
     out["frequencies_hz"] = frequencies;
@@ -1286,6 +1318,7 @@ int run_sensitivity_command(const CommonOptions& options, const SensitivityComma
   if (options.json) {
     Json out;
     out["scene"] = scene.name;
+    out["automatic_choices"] = automatic_choices_json(scene.automatic_choices);
     out["segments"] = scene.beam.segments;
     out["modes"] = Json::array();
     for (const auto& mode : modes)
@@ -1322,7 +1355,9 @@ int run_sensitivity_command(const CommonOptions& options, const SensitivityComma
     return 0;
   }
   std::cout << "scene " << scene.name << " (" << scene.file << "): " << scene.beam.segments
-            << " segments\nmodes:";
+            << " segments\n";
+  for (const auto& choice : scene.automatic_choices) std::cout << "note: " << choice.reason << "\n";
+  std::cout << "modes:";
   for (size_t k = 0; k < modes.size(); ++k)
     std::printf(" f%zu = %.6f Hz (natural %.6f Hz)%s", k + 1, modes[k].frequency_hz,
                 modes[k].natural_frequency_hz, k + 1 < modes.size() ? "," : "\n");
@@ -1564,6 +1599,7 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
   if (options.json) {
     Json out;
     out["scene"] = model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
     out["backend"] = report.backend;
     out["status"] = report.status.ok ? "ok" : "failure";
     if (!report.status.ok) out["failure"] = report.status.message;
