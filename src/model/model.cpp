@@ -251,6 +251,10 @@ AutomaticChoice choose_electrical_dynamics(const Scene& scene, bool electrical_p
                     format_number("%.3g", choice.estimated_error) + (keep ? " > " : " <= ") +
                     "model.tolerance " + format_number("%.3g", scene.model.tolerance) +
                     " (phase lag 2*pi*f_high*tau = " + format_number("%.3g", omega_tau) + " rad)";
+    if (scene.drive.kind == DriveKind::antagonistic && band.to < 3 * scene.drive.frequency)
+      choice.reason += "; the square wave's harmonics from 3f = " +
+                       format_number("%.4g", 3 * scene.drive.frequency) +
+                       " Hz lie above the band and are not counted";
   }
   choice.value = keep ? "true" : "false";
   choice.reason = "drive.electrical_dynamics = \"auto\": RC dynamics " + choice.reason;
