@@ -80,7 +80,11 @@ emnet::Scene load_scene(const CommonOptions& options) {
   emnet::Scene scene = emnet::read_scene(options.scene_path, overrides);
   // beam.segments = "auto": chosen once here, so that every model a command builds from the
   // scene (sweeps, fits, finite differences) has the same N; the choice travels with the scene.
-  if (scene.beam.auto_segments) scene = emnet::build_model(scene).scene;
+  if (scene.beam.auto_segments) {
+    const emnet::Scene resolved = emnet::build_model(scene).scene;
+    scene.beam = resolved.beam;  // N only: drive.electrical_dynamics = "auto" stays to choose
+    scene.automatic_choices = resolved.automatic_choices;
+  }
   return scene;
 }
 
@@ -1031,6 +1035,7 @@ std::pair<double, double> periodic_extremes(emnet::Scene scene, const std::strin
                                             double frequency_hz, const std::string& option) {
   check_overlap_fits(scene, frequency_hz, option);
   scene.drive.electrical_dynamics = false;
+  scene.drive.electrical_dynamics_auto = false;
   scene.drive.frequency = frequency_hz;
   const emnet::Model model = emnet::build_model(scene);
   const emnet::System system = model.network.assemble();

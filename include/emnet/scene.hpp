@@ -75,7 +75,9 @@ struct DriveSpec {
   bool electrical_dynamics = true;
   // drive.electrical_dynamics = "auto": the model builder keeps the RC dynamics only when a
   // probe asks for an electrical quantity or the RC lag matters in [model]'s band to its
-  // tolerance (src/model/model.cpp); electrical_dynamics then holds the choice made.
+  // tolerance (src/model/model.cpp). The model's scene holds the choice in
+  // electrical_dynamics, with this flag cleared; code that sets electrical_dynamics on a read
+  // scene clears it too.
   bool electrical_dynamics_auto = false;
 };
 

@@ -290,9 +290,10 @@ Model build_model(const Scene& scene, bool electrical_probe_requested) {
   if (scene.drive.electrical_dynamics_auto) {
     model.automatic_choices.push_back(
         choose_electrical_dynamics(scene, electrical_probe_requested));
-    // The choice into the model's scene; electrical_dynamics_auto stays set (a rebuild from
-    // it chooses again, alike), so that messages can say the choice was automatic.
+    // The choice into the model's scene, resolved: code that sets electrical_dynamics on a
+    // copy of it (an ideal-drive variant) gets what it sets.
     model.scene.drive.electrical_dynamics = model.automatic_choices.back().value == "true";
+    model.scene.drive.electrical_dynamics_auto = false;
   }
   for (const AutomaticChoice& choice : model.automatic_choices)
     model.notes.push_back(choice.reason);
@@ -450,12 +451,16 @@ Probe Model::make_probe(const ProbeSpec& spec) const {
       const DeaLayout* dea = find_dea(deas, spec.dea);
       if (!dea) throw InputError("probe " + spec.name, "dea", "no DEA named '" + spec.dea + "'");
       if (dea->electrode_node == ground)
-        throw InputError(
-            "probe " + spec.name, "dea",
-            "DEA '" + spec.dea + "' has no electrical model (drive.electrical_dynamics = " +
-                (scene.drive.electrical_dynamics_auto ? std::string("\"auto\" chose false")
-                                                      : "false") +
-                "; set it true, e.g. --set drive.electrical_dynamics=true)");
+        throw InputError("probe " + spec.name, "dea",
+                         "DEA '" + spec.dea +
+                             "' has no electrical model (drive.electrical_dynamics = " +
+                             (std::any_of(automatic_choices.begin(), automatic_choices.end(),
+                                          [](const AutomaticChoice& choice) {
+                                            return choice.key == "drive.electrical_dynamics";
+                                          })
+                                  ? std::string("\"auto\" chose false")
+                                  : "false") +
+                             "; set it true, e.g. --set drive.electrical_dynamics=true)");
       if (spec.quantity == ProbeQuantity::dea_voltage) {
         probe.terms = {{dea->electrode_node, 1.0}};
         probe.description = "capacitor voltage of DEA " + spec.dea;
