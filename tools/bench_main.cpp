@@ -45,8 +45,9 @@
 //  5a. Simplifications: what each costs and saves. Fish fin, band 0–130 Hz, beam.segments =
 //     "auto" at model.tolerance 1e-2, 1e-3, 1e-4: the chosen N, the selection's estimate and
 //     its time, the band modes' error against the bare beam converged by Richardson from
-//     N = 1000 and 2000, and the full model's modal solve at N against a fixed N = 200
-//     (ratios of medians, with and without the time to choose). Ideal against RC drive at
+//     N = 1000 and 2000, and the analyses N serves on the full model, run_modes (5 modes)
+//     and a 1000-point AC sweep over the band, at N against a fixed N = 200 (ratios of
+//     medians, without and with the time to choose). Ideal against RC drive at
 //     the scene's N = 7 and 5 Hz: periodic steady state (exact PeriodicSolver against IDA
 //     shooting) and 50 periods of transient (exact against IDA), cost ratio RC/ideal and
 //     the largest peak-deflection difference relative to the RC peak.
