@@ -8,7 +8,8 @@
 // Search: start from N₀ = 4·k segments, k the number of modes up to the band's top (several
 // segments per half wavelength: mode k has about k half waves); halve while N₀ already
 // meets the tolerance (down to 2·k), else double until it does; then, inside the bracket
-// (largest failing N, smallest passing N), predict N from e ∝ N⁻² and bisect to one segment.
+// (largest failing N, smallest passing N), predict N from e ∝ N⁻² (up to three predictions,
+// each one evaluated) and bisect the rest to one segment.
 // The result is the smallest N ≥ 2·k whose estimated error meets the tolerance, assuming the
 // error decreases with N (it does for the lumped-mass chain).
 // The estimate is made on the bare beam chain (mass, stiffness and rotary inertia as given;

@@ -25,6 +25,8 @@ constexpr int kMinimumSegmentsPerMode = 2;
 constexpr int kStartSegmentsPerMode = 4;
 // Chain used first to count the modes up to the band's top.
 constexpr int kCountingSegments = 32;
+// Steps refined by the N⁻² prediction before bisection takes over.
+constexpr int kPredictedSteps = 3;
 
 std::string format_number(const char* format, double value) {
   char buffer[64];
@@ -187,12 +189,14 @@ SegmentSelection select_segments(const BeamSpec& beam, double band_from, double 
       failing_error = e;
     }
   }
-  // Refine inside (failing, passing]: first the N⁻² prediction, then bisection.
-  bool predicted = false;
+  // Refine inside (failing, passing]: predict N from the largest failing N's error by the N⁻²
+  // law (when it holds, the prediction passes and the next one, N − 1, fails: two steps), at
+  // most kPredictedSteps times, then bisect.
+  int predictions = 0;
   while (passing - failing > 1) {
     int probe = (failing + passing) / 2;
-    if (!predicted && std::isfinite(failing_error) && failing_error > 0.0) {
-      predicted = true;
+    if (predictions < kPredictedSteps && std::isfinite(failing_error) && failing_error > 0.0) {
+      ++predictions;
       probe = static_cast<int>(std::ceil(failing * std::sqrt(failing_error / tolerance)));
       probe = std::clamp(probe, failing + 1, passing - 1);
     }
