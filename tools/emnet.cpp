@@ -1070,8 +1070,10 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   if (mode_number < 1) throw InputError("--mode", "--mode", "must be >= 1");
   // Only parameters the scene marks as identified or assumed are fitted: a value taken from the
   // paper or a data sheet is a given, not an unknown.
+  std::vector<emnet::AutomaticChoice> automatic_choices;
   {
     const emnet::Scene scene = load_scene(options);
+    automatic_choices = scene.automatic_choices;
     std::vector<std::string> fitted_keys{"beam.bending_stiffness"};
     if (!peak_text.empty()) fitted_keys.push_back("damping.loss_factor");
     for (const std::string& key : fitted_keys) {
@@ -1142,7 +1144,8 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   if (mode_number != 1) command += " --mode " + std::to_string(mode_number);
   if (peak) command += " --peak " + peak_text;
   if (options.json) {
-    Json out = {{"parameter", "beam.bending_stiffness"},
+    Json out = {{"automatic_choices", automatic_choices_json(automatic_choices)},
+                {"parameter", "beam.bending_stiffness"},
                 {"value", stiffness},
                 {"unit", "N*m^2"},
                 {"mode", mode_number},
@@ -1174,6 +1177,7 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   if (peak) std::printf("  loss_factor = %.6e\n", loss_factor);
   std::printf("provenance:\n  \"beam.bending_stiffness\" = \"identified: %s\"\n", command.c_str());
   if (peak) std::printf("  \"damping.loss_factor\" = \"identified: %s\"\n", command.c_str());
+  for (const auto& choice : automatic_choices) std::cout << "note: " << choice.reason << "\n";
   return 0;
 }
 
@@ -1257,7 +1261,8 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
     }
   const double total = seconds_since(start);
   if (options.json) {
-    Json out = {{"output", output},
+    Json out = {{"automatic_choices", automatic_choices_json(scene.automatic_choices)},
+                {"output", output},
                 {"frequency_hz", frequency},
                 {"nominal", {{"left_m", nominal.first}, {"right_m", nominal.second}}},
                 {"cases", Json::array()},
@@ -1278,8 +1283,10 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
       scene.name.c_str(), output.c_str(), si(frequency, "Hz").c_str());
   std::printf("asymmetry = (|left| - right) / mean, > 0: larger to the left (negative) side\n");
   std::printf("accuracy: exact periodic states, extremes to 1e-11 of the peak\n");
-  std::printf("cost: %d periodic solves, total %s\n\n", static_cast<int>(rows.size()) + 1,
+  std::printf("cost: %d periodic solves, total %s\n", static_cast<int>(rows.size()) + 1,
               milliseconds(total).c_str());
+  for (const auto& choice : scene.automatic_choices) std::cout << "note: " << choice.reason << "\n";
+  std::printf("\n");
   std::printf("%-28s %8s %12s %12s %12s %16s\n", "mismatch", "change", "left [mm]", "right [mm]",
               "asymmetry", "per 1 % change");
   std::printf("%-28s %8s %12.5f %12.5f %11.4f%% %16s\n", "none", "", nominal.first * 1e3,
@@ -1498,6 +1505,7 @@ int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
     const emnet::System system = model.network.assemble();
     Json out;
     out["deck"] = netlist.output;
+    out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
     out["analysis"] = emnet::spice_analysis_name(deck.analysis);
     out["unknowns"] = Json::array();
     for (size_t k = 0; k < deck.unknowns.size(); ++k)
