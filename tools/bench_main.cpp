@@ -1395,8 +1395,8 @@ std::string simplification_section(const Settings& settings) {
   const std::vector<double> fine = emnet::beam_frequencies(beam, 2 * reference_n, 5);
   std::vector<double> converged;
   for (size_t k = 0; k < coarse.size() && k < fine.size(); ++k)
-    if (fine[k] + (fine[k] - coarse[k]) / 3.0 <= band_top)
-      converged.push_back(fine[k] + (fine[k] - coarse[k]) / 3.0);
+    if (emnet::richardson_extrapolate(coarse[k], fine[k]) <= band_top)
+      converged.push_back(emnet::richardson_extrapolate(coarse[k], fine[k]));
   auto true_error = [&](int segments) {
     const std::vector<double> f = emnet::beam_frequencies(beam, segments, 5);
     double worst = 0.0;

@@ -23,6 +23,9 @@
 
 namespace emnet {
 
+// Richardson extrapolation of an O(N⁻²) quantity from N (coarse) and 2N (fine) segments:
+// f∞ ≈ fine + (fine − coarse)/3.
+double richardson_extrapolate(double coarse, double fine);
 // Richardson error estimate of the coarse value from N (coarse) and 2N (fine) segments:
 // |coarse − f∞|/f∞ with f∞ = fine + (fine − coarse)/3.
 double richardson_error(double coarse, double fine);

@@ -908,11 +908,11 @@ void SceneReader::read_model(const toml::table& root, Scene& scene) const {
     reader.fail("tolerance",
                 "must lie in (0, 0.5) (a relative error), got " + format_number(model.tolerance));
   const bool band_known = model.band_to || scene.ac.given || (scene.drive.kind != DriveKind::none);
+  // (drive.electrical_dynamics = "auto" needs a band only with a drive, which brings one.)
   if (!band_known) {
-    const bool segments_auto = scene.beam.auto_segments;
-    if (segments_auto || scene.drive.electrical_dynamics_auto) {
-      const Section owner = section(root, segments_auto ? "beam" : "drive");
-      owner.fail(segments_auto ? "segments" : "electrical_dynamics",
+    if (scene.beam.auto_segments) {
+      const Section owner = section(root, "beam");
+      owner.fail("segments",
                  "\"auto\" needs a frequency band to be accurate in: give [model] band (e.g. "
                  "band = \"130 Hz\"), an [ac] table or a periodic drive");
     }

@@ -36,8 +36,12 @@ std::string format_number(const char* format, double value) {
 
 }  // namespace
 
+double richardson_extrapolate(double coarse, double fine) {
+  return fine + (fine - coarse) / 3.0;
+}
+
 double richardson_error(double coarse, double fine) {
-  const double extrapolated = fine + (fine - coarse) / 3.0;
+  const double extrapolated = richardson_extrapolate(coarse, fine);
   return std::abs(coarse - extrapolated) / std::abs(extrapolated);
 }
 

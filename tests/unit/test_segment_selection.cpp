@@ -101,7 +101,7 @@ TEST(SegmentSelection, FishfinAutoWithinToleranceOfConvergedAnswer) {
   const std::vector<double> coarse = beam_frequencies(fin, 1000, 3);
   const std::vector<double> fine = beam_frequencies(fin, 2000, 3);
   std::vector<double> converged;
-  for (size_t k = 0; k < 3; ++k) converged.push_back(fine[k] + (fine[k] - coarse[k]) / 3.0);
+  for (size_t k = 0; k < 3; ++k) converged.push_back(richardson_extrapolate(coarse[k], fine[k]));
   int previous = 0;
   for (const double tolerance : {1e-2, 1e-3}) {
     const Scene scene = read_scene(
