@@ -649,7 +649,8 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
     throw InputError("--max-step", "--max-step", "must be >= 0 (0: no limit)");
   if (tran.points_per_period < 2 || tran.points_per_period > 100000)
     throw InputError("--points-per-period", "--points-per-period", "must be between 2 and 100000");
-  const emnet::Model model = emnet::build_model(load_scene(options));
+  const emnet::Model model =
+      emnet::build_model(load_scene(options), electrical_probe_requested(options));
   const emnet::System system = model.network.assemble();
   const double frequency = model.scene.drive.frequency;
   if (!(frequency > 0.0))
@@ -800,7 +801,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   if (sweep.samples < 8 || sweep.samples > 1000000)
     throw InputError("--samples", "--samples", "must be between 8 and 1000000");
   // The exact method needs a linear network: DEAs as ideal voltage-driven forces.
-  emnet::Model model = emnet::build_model(load_scene(options));
+  emnet::Model model = emnet::build_model(load_scene(options), electrical_probe_requested(options));
   std::vector<std::string> notes;
   if (sweep.method == "exact" && model.network.assemble().is_nonlinear()) {
     double tau = 0.0;
@@ -810,7 +811,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
                     si(tau, "s") + " is " + format("%.2g", tau * sweep.to) +
                     " of the shortest period); --method shooting integrates the full model");
     options.overrides.push_back("drive.electrical_dynamics=false");
-    model = emnet::build_model(load_scene(options));
+    model = emnet::build_model(load_scene(options), electrical_probe_requested(options));
   }
   std::vector<emnet::Probe> probes;
   for (const auto& probe : transient_probes(model))
@@ -1460,7 +1461,8 @@ int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
   std::vector<std::string> shown_overrides = options.overrides;
   if (options.segments != 0)
     shown_overrides.push_back("beam.segments=" + std::to_string(options.segments));
-  const emnet::Model model = emnet::build_model(load_scene(options));
+  const emnet::Model model =
+      emnet::build_model(load_scene(options), electrical_probe_requested(options));
   deck_options.overrides = shown_overrides;
   if (!options.probes.empty()) deck_options.outputs = selected_probes(model, options);
   if (deck_options.analysis == emnet::SpiceAnalysis::ac) {
@@ -1605,7 +1607,8 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
   check.overrides = options.overrides;
   if (options.segments != 0)
     check.overrides.push_back("beam.segments=" + std::to_string(options.segments));
-  const emnet::Model model = emnet::build_model(load_scene(options));
+  const emnet::Model model =
+      emnet::build_model(load_scene(options), electrical_probe_requested(options));
   const emnet::CrosscheckReport report = emnet::run_crosscheck(model, check);
   const double total = seconds_since(start);
   const bool pass = report.all_pass();
