@@ -142,7 +142,8 @@ TEST(SegmentSelection, IntegerOverrideWins) {
 // The criterion's numbers for the fish fin: C0 = ε0·εr·w·l/d = 8.854e-12·2.8·25 mm·70 mm/51 µm
 // = 0.8507 nF, τ = 1 MΩ·C0 = 0.8507 ms. At f_high = 130 Hz, (2π·130 Hz·τ)²/2 = 0.241 > 1e-3:
 // the RC lag matters there, the dynamics are kept. Ideal only below
-// f = √(2·tol)/(2πτ) = 8.37 Hz (tol 1e-3): at 8 Hz the estimate is 9.1e-4.
+// f = √(2·tol)/(2πτ) = 8.37 Hz (tol 1e-3): at 8 Hz the estimate is 9.1e-4. Tolerances: 1e-12
+// against the same formula (rounding only), 0.001 on 0.241 (the three digits quoted here).
 TEST(ElectricalDynamicsAuto, CriterionNumbersForTheFishfin) {
   const double tau = 1e6 * 8.8541878128e-12 * 2.8 * 0.025 * 0.070 / 51e-6;
   {
