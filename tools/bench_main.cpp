@@ -42,6 +42,15 @@
 //     on log(N) over the points with N ≥ 300. A point is skipped when the previous point's
 //     time extrapolated with the fitted exponent (at least
 //     1) exceeds the point budget.
+//  5a. Simplifications: what each costs and saves. Fish fin, band 0–130 Hz, beam.segments =
+//     "auto" at model.tolerance 1e-2, 1e-3, 1e-4: the chosen N, the selection's estimate and
+//     its time, the band modes' error against the bare beam converged by Richardson from
+//     N = 1000 and 2000, and the analyses N serves on the full model, run_modes (5 modes)
+//     and a 1000-point AC sweep over the band, at N against a fixed N = 200 (ratios of
+//     medians, without and with the time to choose). Ideal against RC drive at
+//     the scene's N = 7 and 5 Hz: periodic steady state (exact PeriodicSolver against IDA
+//     shooting) and 50 periods of transient (exact against IDA), cost ratio RC/ideal and
+//     the largest peak-deflection difference relative to the RC peak.
 //  5b. Modal reduction. Fish fin (ideal drive) at N = 7, 100, 500 (--quick: 7, 100): the
 //     1000-point AC sweep (0–10 Hz) by run_ac and by run_ac_reduced (band 10 Hz, tol 1e-2,
 //     1e-3, 1e-4), and the 61-frequency periodic sweep (1–7 Hz) by PeriodicSolver and by
@@ -49,7 +58,7 @@
 //     error: the largest difference at every point (every sample of every period), relative
 //     to each probe's largest |value|.
 //
-// --only 5b runs section 5b alone and writes report-5b.md.
+// --only 5a or --only 5b runs that section alone and writes report-5a.md or report-5b.md.
 //
 // Outputs (in --out): report.md, data files *.dat and gnuplot scripts *.gp for the Pareto
 // plots (tools/bench runs gnuplot), decks/*.cir.
@@ -85,6 +94,7 @@
 #include "emnet/ngspice_runner.hpp"
 #include "emnet/periodic.hpp"
 #include "emnet/scene_reader.hpp"
+#include "emnet/segment_selection.hpp"
 #include "emnet/spice_netlist.hpp"
 #include "emnet/transient.hpp"
 
@@ -251,7 +261,7 @@ struct Settings {
   std::string emnet = "build/emnet";  // the program, for whole-process times
   std::string self;                   // this program, for scale points
   bool quick = false;                 // smoke test: tiny sizes, few repetitions
-  std::string only;                   // --only 5b: that section alone (report-5b.md)
+  std::string only;                   // --only 5a|5b: that section alone (report-5a.md, …)
   std::string fishfin() const { return root + "/netlists/fishfin.toml"; }
   std::string cantilever() const { return root + "/netlists/cantilever.toml"; }
 };
@@ -1515,6 +1525,175 @@ std::string reduction_section(const Settings& settings) {
   return md.str();
 }
 
+// ---- 5a. simplifications ---------------------------------------------------------------------
+
+// 5a. What each automatic simplification (emnet/segment_selection.hpp, drive.electrical_dynamics
+// = "auto") costs in accuracy and saves in time, measured side by side.
+std::string simplification_section(const Settings& settings) {
+  std::ostringstream md;
+  const int repetitions = settings.quick ? 2 : 10;
+  const double budget = settings.quick ? 0.5 : 3.0;
+  const double band_top = 130.0;
+  const std::string band = "model.band=\"" + format("%g", band_top) + " Hz\"";
+  // Converged reference: the bare fin beam, Richardson from N = 1000 and 2000 (N = 200 and
+  // 400 with --quick).
+  const emnet::BeamSpec beam = emnet::read_scene(settings.fishfin()).beam;
+  const int reference_n = settings.quick ? 200 : 1000;
+  const std::vector<double> coarse = emnet::beam_frequencies(beam, reference_n, 5);
+  const std::vector<double> fine = emnet::beam_frequencies(beam, 2 * reference_n, 5);
+  std::vector<double> converged;
+  for (size_t k = 0; k < coarse.size() && k < fine.size(); ++k)
+    if (emnet::richardson_extrapolate(coarse[k], fine[k]) <= band_top)
+      converged.push_back(emnet::richardson_extrapolate(coarse[k], fine[k]));
+  auto true_error = [&](int segments) {
+    const std::vector<double> f = emnet::beam_frequencies(beam, segments, 5);
+    double worst = 0.0;
+    for (size_t k = 0; k < converged.size() && k < f.size(); ++k)
+      worst = std::max(worst, std::abs(f[k] - converged[k]) / converged[k]);
+    return worst;
+  };
+  // The analyses the choice serves, on the full fin model (damped, RC DEAs): run_modes (5
+  // lowest modes) and a 1000-point AC sweep over the band (P2-P4, tip).
+  const std::vector<double> grid = emnet::frequency_grid(0.0, band_top, 1000, false);
+  auto analysis_times = [&](int segments) {
+    const emnet::Model m = build(settings.fishfin(), {"beam.segments=" + std::to_string(segments)});
+    const emnet::System system = m.network.assemble();
+    const Eigen::VectorXd rest = emnet::solve_static(system).operating_point;
+    emnet::ModalOptions options;
+    options.count = 5;
+    options.keep_vectors = false;
+    const std::vector<emnet::Probe> probes = deflection_probes(m);
+    return std::make_pair(measure([&] { return emnet::run_modes(system, rest, options).seconds; },
+                                  repetitions, budget),
+                          measure([&] { return emnet::run_ac(system, rest, grid, probes).seconds; },
+                                  repetitions, budget));
+  };
+  const int fixed_n = 200;
+  const auto [fixed_modes, fixed_ac] = analysis_times(fixed_n);
+  md << "### Beam segments: `beam.segments = \"auto\"` against a fixed N = " << fixed_n << "\n\n"
+     << "Fish fin, band 0–" << format("%g", band_top) << " Hz (" << converged.size()
+     << " modes), the modes' worst relative error against the bare beam converged by "
+        "Richardson from N = "
+     << reference_n << " and " << 2 * reference_n
+     << ". Choosing: the selection's own time (median over runs of build_model). The analyses "
+        "it serves, on the full model (damped, RC DEAs): run_modes (5 lowest) and a 1000-point "
+        "AC sweep over the band; \"saved\" is the time at N = "
+     << fixed_n << " over the time at the chosen N, without and with the time to choose.\n\n"
+     << "| tolerance | chosen N | estimate | error vs converged | time to choose | modes at N "
+        "(saved) | ac at N (saved) | saved incl. choosing, modes + ac |\n"
+     << "|---|---|---|---|---|---|---|---|\n";
+  for (const double tolerance : {1e-2, 1e-3, 1e-4}) {
+    const std::vector<std::string> overrides = {"beam.segments=auto", band,
+                                                "model.tolerance=" + format("%g", tolerance)};
+    int chosen = 0;
+    double estimate = 0.0;
+    const Timing choose = measure(
+        [&] {
+          const emnet::Model m = build(settings.fishfin(), overrides);
+          chosen = m.scene.beam.segments;
+          estimate = m.automatic_choices.front().estimated_error;
+          return m.automatic_choices.front().seconds;
+        },
+        repetitions, budget);
+    const auto [modes, ac] = analysis_times(chosen);
+    md << "| " << format("%g", tolerance) << " | " << chosen << " | " << error_text(estimate)
+       << " | " << error_text(true_error(chosen)) << " | " << choose.text() << " | "
+       << time_text(modes.median) << " (" << ratio_text(fixed_modes.median / modes.median) << ") | "
+       << time_text(ac.median) << " (" << ratio_text(fixed_ac.median / ac.median) << ") | "
+       << ratio_text((fixed_modes.median + fixed_ac.median) /
+                     (modes.median + ac.median + choose.median))
+       << " |\n";
+  }
+  md << "| (fixed) | " << fixed_n << " | – | " << error_text(true_error(fixed_n)) << " | – | "
+     << fixed_modes.text() << " | " << fixed_ac.text() << " | 1× |\n\n";
+
+  // Ideal against RC drive, at the scene's N = 7 and 5 Hz switching.
+  const emnet::Model rc = build(settings.fishfin(), {});
+  const emnet::Model ideal = build(settings.fishfin(), ideal_drive);
+  const emnet::System rc_system = rc.network.assemble();
+  const emnet::System ideal_system = ideal.network.assemble();
+  const std::vector<emnet::Probe> rc_probes = deflection_probes(rc);
+  const std::vector<emnet::Probe> ideal_probes = deflection_probes(ideal);
+  const double period = 1.0 / rc.scene.drive.frequency;
+  emnet::PeriodicResult rc_periodic, ideal_periodic;
+  const Timing rc_periodic_time = measure(
+      [&] {
+        rc_periodic = emnet::run_periodic_shooting(rc_system, rc_probes, period, 1e-9);
+        return rc_periodic.seconds;
+      },
+      repetitions, budget);
+  const Timing ideal_periodic_time = measure(
+      [&] {
+        const auto start = Clock::now();
+        emnet::PeriodicSolver solver(ideal_system);
+        ideal_periodic = solver.solve(ideal_system, ideal_probes, period);
+        return seconds_since(start);
+      },
+      repetitions, budget);
+  const int periods = settings.quick ? 5 : 50;
+  emnet::TransientOptions options;
+  options.end_time = periods * period;
+  for (int k = 0; k <= 100 * periods; ++k) options.output_times.push_back(k * period / 100);
+  emnet::TransientOptions rc_options = options;
+  rc_options.relative_tolerance = 1e-8;
+  emnet::TransientResult rc_transient, ideal_transient;
+  const Timing rc_transient_time = measure(
+      [&] {
+        rc_transient = emnet::run_transient_ida(rc_system, rc_probes, rc_options);
+        return rc_transient.seconds;
+      },
+      repetitions, budget);
+  const Timing ideal_transient_time = measure(
+      [&] {
+        ideal_transient = emnet::run_transient_exact(ideal_system, ideal_probes, options);
+        return ideal_transient.seconds;
+      },
+      repetitions, budget);
+  // Worst peak difference over the deflection outputs, relative to the RC model's peak.
+  double periodic_difference = 0.0, transient_difference = 0.0;
+  for (size_t p = 0; p < rc_probes.size(); ++p) {
+    const double peak =
+        std::max(std::abs(rc_periodic.maximum[p]), std::abs(rc_periodic.minimum[p]));
+    if (peak <= 0.0) continue;
+    periodic_difference = std::max(
+        {periodic_difference, std::abs(ideal_periodic.maximum[p] - rc_periodic.maximum[p]) / peak,
+         std::abs(ideal_periodic.minimum[p] - rc_periodic.minimum[p]) / peak});
+    double rc_peak = 0.0, ideal_peak = 0.0;
+    for (double v : rc_transient.values[p]) rc_peak = std::max(rc_peak, std::abs(v));
+    for (double v : ideal_transient.values[p]) ideal_peak = std::max(ideal_peak, std::abs(v));
+    if (rc_peak > 0.0)
+      transient_difference =
+          std::max(transient_difference, std::abs(ideal_peak - rc_peak) / rc_peak);
+  }
+  double tau = 0.0;
+  for (const auto& dea : rc.deas) tau = std::max(tau, dea.electrode_resistance * dea.capacitance);
+  const double drive_estimate =
+      std::pow(2 * 3.14159265358979323846 * rc.scene.drive.frequency * tau, 2) / 2;
+  md << "### DEA drive: ideal (`electrical_dynamics = false`) against RC\n\n"
+     << "Fish fin as in the scene (N = " << rc.scene.beam.segments << ", 4 kV square wave at "
+     << format("%g", rc.scene.drive.frequency)
+     << " Hz), RC time constant tau = " << format("%.4g", tau * 1e3)
+     << " ms. Difference: the largest |difference| of the peak "
+        "deflections over the outputs (P2–P4, tip), relative to the RC model's peak. The "
+        "criterion's estimate at the drive frequency, (2*pi*f*tau)^2/2 = "
+     << error_text(drive_estimate)
+     << ". Periodic: RC by Newton shooting (IDA, rtol 1e-9), "
+        "ideal by the exact PeriodicSolver (set-up included). Transient: "
+     << periods
+     << " periods from rest, 100 outputs per period; RC by IDA (rtol 1e-8), ideal "
+        "by the exact method.\n\n"
+     << "| analysis | RC model | ideal drive | cost ratio RC/ideal | peak difference |\n"
+     << "|---|---|---|---|---|\n"
+     << "| periodic steady state | " << rc_periodic_time.text() << " | "
+     << ideal_periodic_time.text() << " | "
+     << ratio_text(rc_periodic_time.median / ideal_periodic_time.median) << " | "
+     << error_text(periodic_difference) << " |\n"
+     << "| transient | " << rc_transient_time.text() << " | " << ideal_transient_time.text()
+     << " | " << ratio_text(rc_transient_time.median / ideal_transient_time.median) << " | "
+     << error_text(transient_difference) << " |\n\n";
+  return md.str();
+}
+
 // ---- the report ------------------------------------------------------------------------------
 
 std::string machine_text() {
@@ -1549,11 +1728,14 @@ std::string goal_line(const std::string& name, double measured, double goal,
 int run(const Settings& settings) {
   const auto start = Clock::now();
   mkdir(settings.out.c_str(), 0755);
-  if (settings.only == "5b") {
-    std::ofstream(settings.out + "/report-5b.md") << "Machine: " << machine_text() << ".\n\n"
-                                                  << reduction_section(settings);
-    std::cerr << "emnet_bench: " << settings.out << "/report-5b.md ("
-              << time_text(seconds_since(start)) << ")\n";
+  if (!settings.only.empty()) {
+    const std::string file = settings.out + "/report-" + settings.only + ".md";
+    std::ofstream(file) << "Machine: " << machine_text() << ".\n\n"
+                        << (settings.only == "5a" ? "## 5a. Simplifications: what each costs and "
+                                                    "saves\n\n" +
+                                                        simplification_section(settings)
+                                                  : reduction_section(settings));
+    std::cerr << "emnet_bench: " << file << " (" << time_text(seconds_since(start)) << ")\n";
     return 0;
   }
   std::vector<ParetoPoint> discretisation_points, ac_points, tran_points, sweep_points;
@@ -1569,6 +1751,8 @@ int run(const Settings& settings) {
   std::cerr << "emnet_bench: 4. scale\n";
   std::map<std::string, double> exponents;
   const std::string scale = scale_section(settings, exponents);
+  std::cerr << "emnet_bench: 5a. simplifications\n";
+  const std::string simplifications = simplification_section(settings);
   std::cerr << "emnet_bench: 5b. modal reduction\n";
   const std::string reduction = reduction_section(settings);
   write_pareto_plot(settings, "discretisation", "cantilever: discretisation error against cost",
@@ -1617,7 +1801,9 @@ int run(const Settings& settings) {
      << sweep.markdown << "\n![sweep](pareto-sweep.png)\n\n"
      << "## 4. Scale\n\n"
      << scale << "\n![scale](scale.png)\n\n"
-     << reduction << "Total benchmark time: " << time_text(seconds_since(start)) << ".\n";
+     << "## 5a. Simplifications: what each costs and saves\n\n"
+     << simplifications << reduction << "Total benchmark time: " << time_text(seconds_since(start))
+     << ".\n";
   std::cerr << "emnet_bench: report written to " << settings.out << "/report.md ("
             << time_text(seconds_since(start)) << ")\n";
   return 0;
@@ -1651,8 +1837,8 @@ int main(int argc, char** argv) {
       settings.quick = true;
     } else if (argument == "--only") {
       settings.only = value();
-      if (settings.only != "5b") {
-        std::cerr << "emnet_bench: --only takes 5b (the modal reduction section)\n";
+      if (settings.only != "5a" && settings.only != "5b") {
+        std::cerr << "emnet_bench: --only takes 5a (simplifications) or 5b (modal reduction)\n";
         return 2;
       }
     } else if (argument == "--scale-point") {
@@ -1660,7 +1846,7 @@ int main(int argc, char** argv) {
       scale_segments = std::stoi(value());
     } else {
       std::cerr << "usage: emnet_bench [--root DIR] [--out DIR] [--emnet PROGRAM] [--quick] "
-                   "[--only 5b]\n";
+                   "[--only 5a|5b]\n";
       return 2;
     }
   }

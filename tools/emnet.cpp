@@ -24,6 +24,7 @@
 #include "emnet/periodic.hpp"
 #include "emnet/plot.hpp"
 #include "emnet/scene_reader.hpp"
+#include "emnet/segment_selection.hpp"
 #include "emnet/sensitivity.hpp"
 #include "emnet/spice_netlist.hpp"
 #include "emnet/transient.hpp"
@@ -77,7 +78,37 @@ emnet::Scene load_scene(const CommonOptions& options) {
   std::vector<std::string> overrides = options.overrides;
   if (options.segments != 0)
     overrides.push_back("beam.segments=" + std::to_string(options.segments));
-  return emnet::read_scene(options.scene_path, overrides);
+  emnet::Scene scene = emnet::read_scene(options.scene_path, overrides);
+  // beam.segments = "auto": chosen once here, so that every model a command builds from the
+  // scene (sweeps, fits, finite differences) has the same N; the choice travels with the scene.
+  if (scene.beam.auto_segments) {
+    const emnet::Scene resolved = emnet::build_model(scene).scene;
+    scene.beam = resolved.beam;  // N only: drive.electrical_dynamics = "auto" stays to choose
+    scene.automatic_choices = resolved.automatic_choices;
+  }
+  return scene;
+}
+
+// A --probe asking for an electrical quantity (drive.electrical_dynamics = "auto" keeps the
+// RC dynamics for it).
+bool electrical_probe_requested(const CommonOptions& options) {
+  for (const auto& text : options.probes)
+    if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0) return true;
+  return false;
+}
+
+// "automatic_choices" of --json: what each "auto" key became, why, its error estimate, cost.
+Json automatic_choices_json(const std::vector<emnet::AutomaticChoice>& automatic_choices) {
+  Json choices = Json::array();
+  for (const auto& choice : automatic_choices)
+    choices.push_back({{"key", choice.key},
+                       {"value", choice.value},
+                       {"reason", choice.reason},
+                       {"estimated_error", choice.estimated_error},
+                       {"tolerance", choice.tolerance},
+                       {"band_hz", {choice.band_from_hz, choice.band_to_hz}},
+                       {"seconds", choice.seconds}});
+  return choices;
 }
 
 std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const CommonOptions& options) {
@@ -173,7 +204,7 @@ struct Prepared {
 // body) can still be analysed dynamically: its operating point is then zero, as said in a note;
 // `static` itself requires the static state.
 Prepared prepare(const CommonOptions& options, bool require_static = false) {
-  Prepared p{emnet::build_model(load_scene(options)), {}, {}};
+  Prepared p{emnet::build_model(load_scene(options), electrical_probe_requested(options)), {}, {}};
   p.system = p.model.network.assemble();
   p.rest = emnet::solve_static(p.system);
   if (!p.rest.status.ok) {
@@ -211,6 +242,7 @@ int run_static(const CommonOptions& options) {
   if (options.json) {
     Json out;
     out["scene"] = p.model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(p.model.automatic_choices);
     out["segments"] = p.model.scene.beam.segments;
     out["nodes"] = Json::array();
     for (const auto& row : rows)
@@ -267,12 +299,12 @@ std::vector<double> discretisation_errors(const CommonOptions& options, const em
   modal_options.keep_vectors = false;
   const auto fine_modes = emnet::run_modes(fine.system, fine.rest.operating_point, modal_options);
   std::vector<double> errors;
-  if (fine_modes.status.ok)
-    for (size_t k = 0; k < modes.size() && k < fine_modes.modes.size(); ++k) {
-      const double coarse = modes[k].frequency_hz, refined = fine_modes.modes[k].frequency_hz;
-      const double extrapolated = refined + (refined - coarse) / 3.0;
-      errors.push_back(std::abs(coarse - extrapolated) / extrapolated);
-    }
+  if (fine_modes.status.ok) {
+    std::vector<double> coarse, refined;
+    for (const auto& mode : modes) coarse.push_back(mode.frequency_hz);
+    for (const auto& mode : fine_modes.modes) refined.push_back(mode.frequency_hz);
+    errors = emnet::richardson_errors(coarse, refined);
+  }
   seconds = seconds_since(start);
   return errors;
 }
@@ -331,6 +363,7 @@ int run_modes_command(const CommonOptions& options, const ModesOptions& modes_op
   if (options.json) {
     Json out;
     out["scene"] = p.model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(p.model.automatic_choices);
     out["segments"] = p.model.scene.beam.segments;
     out["modes"] = Json::array();
     for (size_t k = 0; k < modes.size(); ++k) {
@@ -434,10 +467,12 @@ double parse_frequency(const std::string& text, const std::string& option) {
 }
 
 // --tolerance and --band of a modal reduction (ac, sweep-switching); band defaults to
-// `default_band` [Hz]. Bad values are input errors naming the option.
+// `default_band` [Hz], tolerance to the scene's model.tolerance. Bad values are input errors
+// naming the option.
 emnet::ReductionOptions reduction_options(const std::string& tolerance, const std::string& band,
-                                          double default_band) {
+                                          double default_band, double default_tolerance) {
   emnet::ReductionOptions reduction;
+  reduction.tolerance = default_tolerance;
   if (!tolerance.empty()) {
     try {
       size_t used = 0;
@@ -480,8 +515,8 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
   const auto grid = emnet::frequency_grid(spec.from, spec.to, spec.points, spec.log);
   std::optional<emnet::AcReductionResult> reduction;
   if (ac_options.reduce) {
-    const emnet::ReductionOptions reduction_settings =
-        reduction_options(ac_options.tolerance, ac_options.band, spec.to);
+    const emnet::ReductionOptions reduction_settings = reduction_options(
+        ac_options.tolerance, ac_options.band, spec.to, p.model.scene.model.tolerance);
     reduction =
         emnet::run_ac_reduced(p.system, p.rest.operating_point, grid, probes, reduction_settings);
     if (!reduction->status.ok) throw NumericalFailure("ac --reduce: " + reduction->status.message);
@@ -546,6 +581,7 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
   if (options.json) {
     Json out;
     out["scene"] = p.model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(p.model.automatic_choices);
     out["segments"] = p.model.scene.beam.segments;
     out["input"] = input;
     out["frequencies_hz"] = grid;
@@ -724,7 +760,8 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
     throw InputError("--max-step", "--max-step", "must be >= 0 (0: no limit)");
   if (tran.points_per_period < 2 || tran.points_per_period > 100000)
     throw InputError("--points-per-period", "--points-per-period", "must be between 2 and 100000");
-  const emnet::Model model = emnet::build_model(load_scene(options));
+  const emnet::Model model =
+      emnet::build_model(load_scene(options), electrical_probe_requested(options));
   const emnet::System system = model.network.assemble();
   const double frequency = model.scene.drive.frequency;
   if (!(frequency > 0.0))
@@ -780,6 +817,7 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   if (options.json) {
     Json out;
     out["scene"] = model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
     out["method"] = result.method;
     out["start_state"] = start_text;
     out["switching_frequency_hz"] = frequency;
@@ -888,7 +926,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   if (sweep.samples < 8 || sweep.samples > 1000000)
     throw InputError("--samples", "--samples", "must be between 8 and 1000000");
   // The exact method needs a linear network: DEAs as ideal voltage-driven forces.
-  emnet::Model model = emnet::build_model(load_scene(options));
+  emnet::Model model = emnet::build_model(load_scene(options), electrical_probe_requested(options));
   std::vector<std::string> notes;
   if (sweep.method == "exact" && model.network.assemble().is_nonlinear()) {
     double tau = 0.0;
@@ -898,7 +936,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
                     si(tau, "s") + " is " + format("%.2g", tau * sweep.to) +
                     " of the shortest period); --method shooting integrates the full model");
     options.overrides.push_back("drive.electrical_dynamics=false");
-    model = emnet::build_model(load_scene(options));
+    model = emnet::build_model(load_scene(options), electrical_probe_requested(options));
   }
   std::vector<emnet::Probe> probes;
   for (const auto& probe : transient_probes(model))
@@ -910,7 +948,8 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   if (sweep.reduce) {
     if (sweep.method != "exact")
       throw InputError("--reduce", "--method", "--reduce replaces the exact method, not shooting");
-    reduction_settings = reduction_options(sweep.tolerance, sweep.band, sweep.to);
+    reduction_settings =
+        reduction_options(sweep.tolerance, sweep.band, sweep.to, model.scene.model.tolerance);
     check.emplace();
   } else if (!sweep.tolerance.empty() || !sweep.band.empty()) {
     throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
@@ -1062,6 +1101,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   if (options.json) {
     Json out;
     out["scene"] = model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
     out["method"] = sweep.reduce ? "reduced" : sweep.method;
     out["notes"] = notes;
     out["frequencies_hz"] = frequencies;
@@ -1243,6 +1283,7 @@ std::pair<double, double> periodic_extremes(emnet::Scene scene, const std::strin
                                             double frequency_hz, const std::string& option) {
   check_overlap_fits(scene, frequency_hz, option);
   scene.drive.electrical_dynamics = false;
+  scene.drive.electrical_dynamics_auto = false;
   scene.drive.frequency = frequency_hz;
   const emnet::Model model = emnet::build_model(scene);
   const emnet::System system = model.network.assemble();
@@ -1277,8 +1318,10 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   if (mode_number < 1) throw InputError("--mode", "--mode", "must be >= 1");
   // Only parameters the scene marks as identified or assumed are fitted: a value taken from the
   // paper or a data sheet is a given, not an unknown.
+  std::vector<emnet::AutomaticChoice> automatic_choices;
   {
     const emnet::Scene scene = load_scene(options);
+    automatic_choices = scene.automatic_choices;
     std::vector<std::string> fitted_keys{"beam.bending_stiffness"};
     if (!peak_text.empty()) fitted_keys.push_back("damping.loss_factor");
     for (const std::string& key : fitted_keys) {
@@ -1349,7 +1392,8 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   if (mode_number != 1) command += " --mode " + std::to_string(mode_number);
   if (peak) command += " --peak " + peak_text;
   if (options.json) {
-    Json out = {{"parameter", "beam.bending_stiffness"},
+    Json out = {{"automatic_choices", automatic_choices_json(automatic_choices)},
+                {"parameter", "beam.bending_stiffness"},
                 {"value", stiffness},
                 {"unit", "N*m^2"},
                 {"mode", mode_number},
@@ -1381,6 +1425,7 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   if (peak) std::printf("  loss_factor = %.6e\n", loss_factor);
   std::printf("provenance:\n  \"beam.bending_stiffness\" = \"identified: %s\"\n", command.c_str());
   if (peak) std::printf("  \"damping.loss_factor\" = \"identified: %s\"\n", command.c_str());
+  for (const auto& choice : automatic_choices) std::cout << "note: " << choice.reason << "\n";
   return 0;
 }
 
@@ -1464,7 +1509,8 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
     }
   const double total = seconds_since(start);
   if (options.json) {
-    Json out = {{"output", output},
+    Json out = {{"automatic_choices", automatic_choices_json(scene.automatic_choices)},
+                {"output", output},
                 {"frequency_hz", frequency},
                 {"nominal", {{"left_m", nominal.first}, {"right_m", nominal.second}}},
                 {"cases", Json::array()},
@@ -1485,8 +1531,10 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
       scene.name.c_str(), output.c_str(), si(frequency, "Hz").c_str());
   std::printf("asymmetry = (|left| - right) / mean, > 0: larger to the left (negative) side\n");
   std::printf("accuracy: exact periodic states, extremes to 1e-11 of the peak\n");
-  std::printf("cost: %d periodic solves, total %s\n\n", static_cast<int>(rows.size()) + 1,
+  std::printf("cost: %d periodic solves, total %s\n", static_cast<int>(rows.size()) + 1,
               milliseconds(total).c_str());
+  for (const auto& choice : scene.automatic_choices) std::cout << "note: " << choice.reason << "\n";
+  std::printf("\n");
   std::printf("%-28s %8s %12s %12s %12s %16s\n", "mismatch", "change", "left [mm]", "right [mm]",
               "asymmetry", "per 1 % change");
   std::printf("%-28s %8s %12.5f %12.5f %11.4f%% %16s\n", "none", "", nominal.first * 1e3,
@@ -1530,6 +1578,7 @@ int run_sensitivity_command(const CommonOptions& options, const SensitivityComma
   if (options.json) {
     Json out;
     out["scene"] = scene.name;
+    out["automatic_choices"] = automatic_choices_json(scene.automatic_choices);
     out["segments"] = scene.beam.segments;
     out["modes"] = Json::array();
     for (const auto& mode : modes)
@@ -1566,7 +1615,9 @@ int run_sensitivity_command(const CommonOptions& options, const SensitivityComma
     return 0;
   }
   std::cout << "scene " << scene.name << " (" << scene.file << "): " << scene.beam.segments
-            << " segments\nmodes:";
+            << " segments\n";
+  for (const auto& choice : scene.automatic_choices) std::cout << "note: " << choice.reason << "\n";
+  std::cout << "modes:";
   for (size_t k = 0; k < modes.size(); ++k)
     std::printf(" f%zu = %.6f Hz (natural %.6f Hz)%s", k + 1, modes[k].frequency_hz,
                 modes[k].natural_frequency_hz, k + 1 < modes.size() ? "," : "\n");
@@ -1657,7 +1708,8 @@ int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
   std::vector<std::string> shown_overrides = options.overrides;
   if (options.segments != 0)
     shown_overrides.push_back("beam.segments=" + std::to_string(options.segments));
-  const emnet::Model model = emnet::build_model(load_scene(options));
+  const emnet::Model model =
+      emnet::build_model(load_scene(options), electrical_probe_requested(options));
   deck_options.overrides = shown_overrides;
   if (!options.probes.empty()) deck_options.outputs = selected_probes(model, options);
   if (deck_options.analysis == emnet::SpiceAnalysis::ac) {
@@ -1702,6 +1754,7 @@ int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
     const emnet::System system = model.network.assemble();
     Json out;
     out["deck"] = netlist.output;
+    out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
     out["analysis"] = emnet::spice_analysis_name(deck.analysis);
     out["unknowns"] = Json::array();
     for (size_t k = 0; k < deck.unknowns.size(); ++k)
@@ -1801,13 +1854,15 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
   check.overrides = options.overrides;
   if (options.segments != 0)
     check.overrides.push_back("beam.segments=" + std::to_string(options.segments));
-  const emnet::Model model = emnet::build_model(load_scene(options));
+  const emnet::Model model =
+      emnet::build_model(load_scene(options), electrical_probe_requested(options));
   const emnet::CrosscheckReport report = emnet::run_crosscheck(model, check);
   const double total = seconds_since(start);
   const bool pass = report.all_pass();
   if (options.json) {
     Json out;
     out["scene"] = model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
     out["backend"] = report.backend;
     out["status"] = report.status.ok ? "ok" : "failure";
     if (!report.status.ok) out["failure"] = report.status.message;
@@ -1970,7 +2025,8 @@ int main(int argc, char** argv) {
                        "evaluate the sweep by modal reduction (modes below band/sqrt(tolerance), "
                        "static correction for the rest), checked against the full model");
   ac_command->add_option("--tolerance", ac_options.tolerance,
-                         "--reduce: relative error wanted, in (0, 1) (1e-3)");
+                         "--reduce: relative error wanted, in (0, 1) (default: the scene's "
+                         "model.tolerance, 1e-3)");
   ac_command->add_option("--band", ac_options.band,
                          "--reduce: highest frequency of interest [Hz] (default: --to)");
 
@@ -2020,10 +2076,11 @@ int main(int argc, char** argv) {
   sweep_command->add_option("--plot", sweep_options.plot,
                             "write the curve (PNG/SVG), resonance marked");
   sweep_command->add_flag("--reduce", sweep_options.reduce,
-                          "periodic state of a modal reduction (modes below band/sqrt(tolerance), "
+                          "periodic state of a modal reduction (modes below band/tolerance, "
                           "static correction as a feed-through), checked against the exact one");
   sweep_command->add_option("--tolerance", sweep_options.tolerance,
-                            "--reduce: relative error wanted, in (0, 1) (1e-3)");
+                            "--reduce: relative error wanted, in (0, 1) (default: the scene's "
+                            "model.tolerance, 1e-3)");
   sweep_command->add_option("--band", sweep_options.band,
                             "--reduce: highest frequency of interest [Hz] (default: --to)");
 

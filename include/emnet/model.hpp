@@ -71,6 +71,7 @@ struct Model {
   std::vector<DeaLayout> deas;
   std::vector<Probe> probes;       // the scene's probes (a tip deflection probe if it has none)
   std::vector<std::string> notes;  // what was built and why, for the user
+  std::vector<AutomaticChoice> automatic_choices;  // resolved "auto" keys, in the notes too
   // [environment] fluid loading as stamped: m_a added to the beam's mass per length, c_a to its
   // viscous damping per length (lumped like them); empty for environment.fluid = "none".
   struct AppliedFluidLoading {
@@ -84,6 +85,8 @@ struct Model {
   Probe parse_probe(const std::string& text) const;
 };
 
-Model build_model(const Scene& scene);
+// `electrical_probe_requested`: a probe outside the scene (the command line's --probe) asks for
+// dea_voltage or dea_current, which drive.electrical_dynamics = "auto" must then keep.
+Model build_model(const Scene& scene, bool electrical_probe_requested = false);
 
 }  // namespace emnet

@@ -16,8 +16,11 @@ enum class EndCondition { clamped, free, pinned, sliding };
 const char* end_condition_name(EndCondition end);
 
 struct BeamSpec {
-  double length = 0.0;                        // beam.length [m]
-  int segments = 0;                           // beam.segments [-]
+  double length = 0.0;  // beam.length [m]
+  int segments = 0;     // beam.segments [-]
+  // beam.segments = "auto": the model builder chooses N from [model] (segments is 0 until
+  // then; emnet/segment_selection.hpp). An integer, or --segments N, sets it false.
+  bool auto_segments = false;
   double bending_stiffness = 0.0;             // beam.bending_stiffness EI [N·m²]
   double mass_per_length = 0.0;               // beam.mass_per_length ρA [kg/m]
   double rotary_inertia_per_length = 0.0;     // beam.rotary_inertia_per_length ρI [kg·m]
@@ -70,6 +73,12 @@ struct DriveSpec {
   // resistance and its force follows the capacitor voltage (nonlinear); false = an ideal
   // voltage-driven force k_F·V(t)² from the source (a linear network: exact transient).
   bool electrical_dynamics = true;
+  // drive.electrical_dynamics = "auto": the model builder keeps the RC dynamics only when a
+  // probe asks for an electrical quantity or the RC lag matters in [model]'s band to its
+  // tolerance (src/model/model.cpp). The model's scene holds the choice in
+  // electrical_dynamics, with this flag cleared; code that sets electrical_dynamics on a read
+  // scene clears it too.
+  bool electrical_dynamics_auto = false;
 };
 
 enum class LoadKind { force, moment };
@@ -98,10 +107,21 @@ struct ProbeSpec {
 };
 
 struct AcSpec {
-  double from = 0.1;  // ac.from [Hz]
-  double to = 10.0;   // ac.to [Hz]
-  int points = 200;   // ac.points
-  bool log = false;   // ac.scale = "lin" | "log"
+  double from = 0.1;   // ac.from [Hz]
+  double to = 10.0;    // ac.to [Hz]
+  int points = 200;    // ac.points
+  bool log = false;    // ac.scale = "lin" | "log"
+  bool given = false;  // the scene has an [ac] table (its upper end then bounds the default band)
+};
+
+// [model]: what the scene wants to know, for the automatic choices (beam.segments = "auto",
+// drive.electrical_dynamics = "auto"). model.band = ["0 Hz", "130 Hz"] or "130 Hz" (from 0);
+// unset, the band is 0 to the larger of ac.to (with an [ac] table) and 10 x drive.frequency
+// (emnet/segment_selection.hpp, band_of_interest).
+struct ModelSpec {
+  std::optional<double> band_from;  // model.band lower end [Hz]
+  std::optional<double> band_to;    // model.band upper end [Hz]
+  double tolerance = 1e-3;          // model.tolerance: relative accuracy of the band's resonances
 };
 
 // [environment]: the fluid around the beam (fluid loading, emnet/fluid_loading.hpp).
@@ -118,6 +138,19 @@ struct EnvironmentSpec {
   std::optional<double> frequency;
 };
 
+// A choice the model builder made for the scene ("auto" keys): what, why, at what estimated
+// error and cost; printed in every command's notes and as "automatic_choices" in --json.
+struct AutomaticChoice {
+  std::string key;               // "beam.segments", "drive.electrical_dynamics"
+  std::string value;             // "38", "false"
+  std::string reason;            // one line, with the numbers
+  double estimated_error = 0.0;  // relative, the criterion's estimate of what the choice costs
+  double tolerance = 0.0;        // model.tolerance it was held to
+  double band_from_hz = 0.0;     // the band of interest it was made for
+  double band_to_hz = 0.0;
+  double seconds = 0.0;  // time spent choosing
+};
+
 struct Scene {
   std::string file;   // path it was read from
   std::string name;   // scene.name
@@ -130,7 +163,11 @@ struct Scene {
   std::vector<ProbeSpec> probes;
   AcSpec ac;
   EnvironmentSpec environment;
+  ModelSpec model;
   std::map<std::string, std::string> provenance;  // [provenance] "dotted.key" = "paper: …"
+  // Choices already made for this scene (a model's scene has beam.segments = "auto" resolved
+  // and carries the choice here, so a model rebuilt from it keeps the same N and says why).
+  std::vector<AutomaticChoice> automatic_choices;
 };
 
 }  // namespace emnet

@@ -71,6 +71,7 @@ const std::vector<TableSchema>& scene_schema() {
        false,
        false,
        {"fluid", "density", "dynamic_viscosity", "width", "frequency"}},
+      {"model", false, false, {"band", "tolerance"}},
       {"provenance", false, true, {}},
   };
   return schema;
@@ -447,6 +448,7 @@ class SceneReader {
   void read_probes(const toml::table& root, Scene& scene) const;
   void read_ac(const toml::table& root, AcSpec& ac) const;
   void read_environment(const toml::table& root, EnvironmentSpec& environment) const;
+  void read_model(const toml::table& root, Scene& scene) const;
   void read_provenance(const toml::table& root, Scene& scene) const;
   void read_provenance_table(const toml::table& table, const std::string& prefix,
                              Scene& scene) const;
@@ -521,14 +523,23 @@ void SceneReader::read_scene_table(const toml::table& root, Scene& scene) const 
 void SceneReader::read_beam(const toml::table& root, BeamSpec& beam) const {
   const Section reader = section(root, "beam");
   beam.length = reader.quantity("length", dim::length, Bound::positive);
-  const std::optional<long long> segments = reader.optional_integer("segments");
+  beam.auto_segments = false;
+  if (const toml::node* node = reader.find("segments"); node != nullptr && node->is_string()) {
+    const std::string text = node->as_string()->get();
+    if (text != "auto")
+      reader.fail("segments", "must be an integer >= 1 or \"auto\", got '" + text + "'");
+    beam.auto_segments = true;
+    beam.segments = 0;  // chosen by the model builder (emnet/segment_selection.hpp)
+  }
+  const std::optional<long long> segments =
+      beam.auto_segments ? std::optional<long long>(1) : reader.optional_integer("segments");
   if (!segments) reader.fail_missing("segments");
   if (*segments < 1) reader.fail("segments", "must be >= 1, got " + std::to_string(*segments));
   if (*segments > kMaximumSegments) {
     reader.fail("segments", std::to_string(*segments) + " segments is absurdly large (at most " +
                                 std::to_string(kMaximumSegments) + ")");
   }
-  beam.segments = static_cast<int>(*segments);
+  if (!beam.auto_segments) beam.segments = static_cast<int>(*segments);
   beam.bending_stiffness =
       reader.quantity("bending_stiffness", dim::bending_stiffness, Bound::positive);
   beam.mass_per_length = reader.quantity("mass_per_length", dim::mass_per_length, Bound::positive);
@@ -707,7 +718,17 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
                                  " leave the period " + format_quantity(period, dim::time) +
                                  " (with the rise time at both edges)");
   }
-  drive.electrical_dynamics = reader.optional_boolean("electrical_dynamics").value_or(true);
+  drive.electrical_dynamics_auto = false;
+  if (const toml::node* node = reader.find("electrical_dynamics");
+      node != nullptr && node->is_string()) {
+    const std::string text = node->as_string()->get();
+    if (text != "auto")
+      reader.fail("electrical_dynamics", "must be true, false or \"auto\", got '" + text + "'");
+    drive.electrical_dynamics_auto = true;
+    drive.electrical_dynamics = true;  // until the model builder chooses
+  } else {
+    drive.electrical_dynamics = reader.optional_boolean("electrical_dynamics").value_or(true);
+  }
 }
 
 void SceneReader::read_loads(const toml::table& root, Scene& scene) const {
@@ -778,6 +799,7 @@ void SceneReader::read_probes(const toml::table& root, Scene& scene) const {
 
 void SceneReader::read_ac(const toml::table& root, AcSpec& ac) const {
   const Section reader = section(root, "ac");
+  ac.given = root.contains("ac");
   ac.log = reader
                .optional_choice("scale", std::vector<std::pair<std::string, bool>>{{"lin", false},
                                                                                    {"log", true}})
@@ -829,6 +851,72 @@ void SceneReader::read_environment(const toml::table& root, EnvironmentSpec& env
                                                      Bound::positive, water ? 1.002e-3 : 1.81e-5);
   environment.width = reader.quantity("width", dim::length, Bound::positive);
   environment.frequency = reader.optional_quantity("frequency", dim::frequency, Bound::positive);
+}
+
+// [model]: band = "130 Hz" (from 0) or ["0 Hz", "130 Hz"], 0 <= from < to, finite;
+// tolerance in (0, 0.5) (a relative error of one half is no accuracy at all). The automatic
+// choices need a band: from model.band, else from an [ac] table or the drive frequency
+// (band_of_interest in emnet/segment_selection.hpp); without any, "auto" is an error here.
+void SceneReader::read_model(const toml::table& root, Scene& scene) const {
+  const Section reader = section(root, "model");
+  ModelSpec& model = scene.model;
+  auto frequency_of = [&](const toml::node& node, const std::string& what) {
+    double value = 0.0;
+    if (const auto* integer = node.as_integer()) {
+      value = static_cast<double>(integer->get());
+    } else if (const auto* floating = node.as_floating_point()) {
+      value = floating->get();
+    } else if (const auto* text = node.as_string()) {
+      try {
+        value = parse_quantity(text->get(), dim::frequency);
+      } catch (const std::invalid_argument& error) {
+        reader.fail("band", what + ": " + error.what());
+      }
+    } else {
+      reader.fail("band",
+                  what + " must be a frequency such as \"130 Hz\", got " + describe_node(node));
+    }
+    if (!std::isfinite(value))
+      reader.fail("band", what + " must be finite, got " + format_number(value));
+    return value;
+  };
+  if (const toml::node* band = reader.find("band")) {
+    double from = 0.0, to = 0.0;
+    if (const toml::array* array = band->as_array()) {
+      if (array->size() != 2)
+        reader.fail("band", "must be [from, to] (two frequencies) or one upper frequency, got " +
+                                std::to_string(array->size()) + " entries");
+      from = frequency_of(*array->get(0), "the lower end");
+      to = frequency_of(*array->get(1), "the upper end");
+    } else {
+      to = frequency_of(*band, "the upper end");
+    }
+    if (!(from >= 0.0))
+      reader.fail("band",
+                  "the lower end must be >= 0, got " + format_quantity(from, dim::frequency));
+    if (!(to > 0.0))
+      reader.fail("band", "the upper end must be > 0, got " + format_quantity(to, dim::frequency));
+    if (!(to > from))
+      reader.fail("band", "the lower end (" + format_quantity(from, dim::frequency) +
+                              ") must be below the upper end (" +
+                              format_quantity(to, dim::frequency) + ")");
+    model.band_from = from;
+    model.band_to = to;
+  }
+  model.tolerance = reader.quantity_or("tolerance", dim::none, Bound::any, 1e-3);
+  if (!(model.tolerance > 0.0 && model.tolerance < 0.5))
+    reader.fail("tolerance",
+                "must lie in (0, 0.5) (a relative error), got " + format_number(model.tolerance));
+  const bool band_known = model.band_to || scene.ac.given || (scene.drive.kind != DriveKind::none);
+  // (drive.electrical_dynamics = "auto" needs a band only with a drive, which brings one.)
+  if (!band_known) {
+    if (scene.beam.auto_segments) {
+      const Section owner = section(root, "beam");
+      owner.fail("segments",
+                 "\"auto\" needs a frequency band to be accurate in: give [model] band (e.g. "
+                 "band = \"130 Hz\"), an [ac] table or a periodic drive");
+    }
+  }
 }
 
 void SceneReader::read_provenance_table(const toml::table& table, const std::string& prefix,
@@ -890,6 +978,7 @@ Scene SceneReader::read(const toml::table& root) const {
   read_probes(root, scene);
   read_ac(root, scene.ac);
   read_environment(root, scene.environment);
+  read_model(root, scene);
   read_provenance(root, scene);
   return scene;
 }

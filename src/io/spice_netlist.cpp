@@ -839,6 +839,12 @@ SpiceDeck DeckWriter::write() {
   }
   write_outputs();
 
+  // What the model builder chose for the scene's "auto" keys ([model] band and tolerance).
+  for (const auto& choice : model_.automatic_choices) {
+    std::string note = choice.reason;  // plain comment text: '"auto"' as 'auto'
+    note.erase(std::remove(note.begin(), note.end(), '"'), note.end());
+    deck_.notes.push_back(note);
+  }
   if (op_) {
     deck_.notes.push_back(
         "op: mechanical node voltages are displacements and rotations (emnet's static state "

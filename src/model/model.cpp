@@ -11,9 +11,29 @@
 //                      B, the network linearised at V₀ (moment exactly linear in v).
 //   single             V = V₀ + v·sin(2πft) on one DEA; AC input v, linearised at V₀.
 // A DEA not named by the drive has its source node tied to ground through its resistance.
+//
+// drive.electrical_dynamics = "auto": the RC loop (electrode resistance R_e, capacitance C₀)
+// makes the capacitor voltage a first-order lag of the source, V_C = V_s/(1 + jωτ), τ = R_e·C₀.
+// Its amplitude is |V_C/V_s| = 1/√(1 + (ωτ)²) ≈ 1 − (ωτ)²/2, so the ideal drive (V_C = V_s)
+// overstates the voltage amplitude at ω by about (ωτ)²/2 relative (the phase lag ωτ is a
+// delay of about τ, which shifts a periodic response in time but not its amplitude). The
+// RC dynamics are kept when (a) a probe asks for dea_voltage or dea_current, or (b) this
+// error at the band's top, (2π·f_high·τ)²/2 with the largest τ of the driven DEAs, exceeds
+// model.tolerance; otherwise the ideal drive is built. (About a bias the force's alternating
+// part 2k_F·V₀·v_C has the voltage's relative error; for a 0/V pulse, whose square follows
+// (1 − e^(−t/τ))², each harmonic's error is of the same order.) The estimate counts the band
+// only: a square wave's harmonics above f_high are not counted, and the note says so when
+// f_high < 3f. Measured on the fish fin switched at 5 Hz, the ideal drive moves the periodic
+// peaks by 8.3e-4 of the peak (tools/bench 5a), which an 8 Hz band's estimate, 9.1e-4, only
+// just covers and a 6 Hz band's, 5.1e-4, does not.
+//
+// beam.segments = "auto": N from segment_selection (emnet/segment_selection.hpp) on the bare
+// beam with the band of interest; with fluid loading, chosen again on the loaded beam.
 #include "emnet/model.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -24,6 +44,7 @@
 #include "emnet/elements/dea.hpp"
 #include "emnet/elements/voltage_source.hpp"
 #include "emnet/errors.hpp"
+#include "emnet/segment_selection.hpp"
 #include "emnet/units.hpp"
 
 namespace emnet {
@@ -157,16 +178,129 @@ Model::AppliedFluidLoading apply_fluid_loading(const Scene& scene, BeamSpec& bea
   return applied;
 }
 
+// beam.segments = "auto" on `beam` (bare or fluid-loaded): the chosen N into `beam`.
+AutomaticChoice choose_segments(const Scene& scene, BeamSpec& beam, const std::string& what) {
+  const BandOfInterest band = band_of_interest(scene, "beam.segments");
+  SegmentSelection selection;
+  try {
+    selection = select_segments(beam, band.from, band.to, scene.model.tolerance);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::runtime_error& error) {
+    throw InputError(scene.file, "beam.segments", error.what());
+  }
+  beam.segments = selection.segments;
+  beam.auto_segments = false;
+  AutomaticChoice choice;
+  choice.key = "beam.segments";
+  choice.value = std::to_string(selection.segments);
+  choice.estimated_error = selection.estimated_error;
+  choice.tolerance = scene.model.tolerance;
+  choice.band_from_hz = band.from;
+  choice.band_to_hz = band.to;
+  choice.seconds = selection.seconds;
+  choice.reason = "beam.segments = \"auto\"" + what + ": " + selection.summary() +
+                  "; the smallest N meeting model.tolerance " +
+                  format_number("%.3g", scene.model.tolerance) + " in the band " +
+                  format_number("%.5g", band.from) + " to " + format_number("%.5g", band.to) +
+                  " Hz (" + band.source + ")";
+  return choice;
+}
+
+// drive.electrical_dynamics = "auto" (see the top comment): true keeps the RC dynamics.
+AutomaticChoice choose_electrical_dynamics(const Scene& scene, bool electrical_probe_requested) {
+  const auto start = std::chrono::steady_clock::now();
+  AutomaticChoice choice;
+  choice.key = "drive.electrical_dynamics";
+  choice.tolerance = scene.model.tolerance;
+  std::string asking;
+  for (const ProbeSpec& probe : scene.probes)
+    if (probe.quantity == ProbeQuantity::dea_voltage ||
+        probe.quantity == ProbeQuantity::dea_current)
+      asking = "probe " + probe.name + " asks for " + probe_quantity_name(probe.quantity);
+  if (asking.empty() && electrical_probe_requested)
+    asking = "a --probe asks for an electrical quantity";
+  bool keep = false;
+  if (!asking.empty()) {
+    keep = true;
+    choice.reason = "kept: " + asking;
+  } else if (scene.drive.kind == DriveKind::none || scene.deas.empty()) {
+    choice.reason = "left out: no DEA is driven (drive.kind = none), the RC loop carries nothing";
+  } else {
+    const BandOfInterest band = band_of_interest(scene, "drive.electrical_dynamics");
+    choice.band_from_hz = band.from;
+    choice.band_to_hz = band.to;
+    double tau = 0.0;
+    std::string which;
+    for (const DeaSpec& spec : scene.deas) {
+      if (std::find(scene.drive.deas.begin(), scene.drive.deas.end(), spec.name) ==
+          scene.drive.deas.end())
+        continue;
+      const double capacitance =
+          dea_capacitance(spec.relative_permittivity, spec.dielectric_thickness,
+                          spec.electrode_width, spec.to - spec.from);
+      if (spec.electrode_resistance * capacitance > tau) {
+        tau = spec.electrode_resistance * capacitance;
+        which = spec.name;
+      }
+    }
+    const double omega_tau = 2 * pi * band.to * tau;
+    choice.estimated_error = omega_tau * omega_tau / 2;
+    keep = choice.estimated_error > scene.model.tolerance;
+    choice.reason = std::string(keep ? "kept" : "left out") +
+                    ": RC time constant tau = R_e*C0 = " + format_number("%.4g", tau * 1e3) +
+                    " ms (DEA " + which + "), band top f_high = " + format_number("%.5g", band.to) +
+                    " Hz (" + band.source +
+                    "): the ideal drive's amplitude error (2*pi*f_high*tau)^2/2 = " +
+                    format_number("%.3g", choice.estimated_error) + (keep ? " > " : " <= ") +
+                    "model.tolerance " + format_number("%.3g", scene.model.tolerance) +
+                    " (phase lag 2*pi*f_high*tau = " + format_number("%.3g", omega_tau) + " rad)";
+    if (scene.drive.kind == DriveKind::antagonistic && band.to < 3 * scene.drive.frequency)
+      choice.reason += "; the square wave's harmonics from 3f = " +
+                       format_number("%.4g", 3 * scene.drive.frequency) +
+                       " Hz lie above the band and are not counted";
+  }
+  choice.value = keep ? "true" : "false";
+  choice.reason = "drive.electrical_dynamics = \"auto\": RC dynamics " + choice.reason;
+  choice.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return choice;
+}
+
 }  // namespace
 
-Model build_model(const Scene& scene) {
+Model build_model(const Scene& scene, bool electrical_probe_requested) {
   Model model;
   model.scene = scene;
   Network& network = model.network;
   BeamSpec beam_spec = scene.beam;
   DampingSpec damping = scene.damping;
-  if (scene.environment.fluid != Fluid::none)
+  model.automatic_choices = scene.automatic_choices;
+  if (beam_spec.auto_segments) {
+    model.automatic_choices.push_back(choose_segments(scene, beam_spec, ""));
+    if (scene.environment.fluid != Fluid::none) {
+      // The fluid's added mass moves the modes relative to the band: choose again on the
+      // loaded beam (the loading itself was evaluated with the bare beam's N).
+      model.fluid = apply_fluid_loading(scene, beam_spec, damping, model.notes);
+      beam_spec.auto_segments = true;
+      model.automatic_choices.back() =
+          choose_segments(scene, beam_spec, " on the fluid-loaded beam");
+    }
+    model.scene.beam.segments = beam_spec.segments;
+    model.scene.beam.auto_segments = false;
+    model.scene.automatic_choices = model.automatic_choices;
+  } else if (scene.environment.fluid != Fluid::none) {
     model.fluid = apply_fluid_loading(scene, beam_spec, damping, model.notes);
+  }
+  if (scene.drive.electrical_dynamics_auto) {
+    model.automatic_choices.push_back(
+        choose_electrical_dynamics(scene, electrical_probe_requested));
+    // The choice into the model's scene, resolved: code that sets electrical_dynamics on a
+    // copy of it (an ideal-drive variant) gets what it sets.
+    model.scene.drive.electrical_dynamics = model.automatic_choices.back().value == "true";
+    model.scene.drive.electrical_dynamics_auto = false;
+  }
+  for (const AutomaticChoice& choice : model.automatic_choices)
+    model.notes.push_back(choice.reason);
   model.beam = add_beam(network, beam_spec, damping);
   const BeamLayout& beam = model.beam;
 
@@ -185,7 +319,7 @@ Model build_model(const Scene& scene) {
   }
 
   // Which DEA gets which source waveform.
-  const DriveSpec& drive = scene.drive;
+  const DriveSpec& drive = model.scene.drive;
   auto drive_waveform = [&](const std::string& name, double& ac_force_factor) {
     ac_force_factor = 0.0;
     Waveform w = Waveform::constant(0.0);
@@ -262,10 +396,24 @@ Model build_model(const Scene& scene) {
                      layout.force_constant, coupling, spec.back_coupling, ac_force);
     model.deas.push_back(layout);
   }
-  if (!drive.electrical_dynamics)
+  if (!drive.electrical_dynamics && !scene.deas.empty())
     model.notes.push_back(
-        "DEA electrical dynamics left out (drive.electrical_dynamics = false): each DEA is an "
-        "ideal force k_F*V(t)^2 of its source voltage");
+        std::string("DEA electrical dynamics left out (drive.electrical_dynamics = ") +
+        (scene.drive.electrical_dynamics_auto ? "\"auto\"" : "false") +
+        "): each DEA is an ideal force k_F*V(t)^2 of its source voltage");
+  // One note for the back-coupling i += V*dC/dt, whichever DEAs leave it out.
+  std::string without, asked;
+  for (const DeaSpec& spec : scene.deas)
+    (spec.back_coupling ? asked : without) += (std::string(" ") + spec.name);
+  if (!drive.electrical_dynamics && !asked.empty())
+    model.notes.push_back(
+        "DEA back-coupling left out: the ideal drive has no electrical loop "
+        "to carry it (asked by dea[].back_coupling for DEA(s)" +
+        asked + ")");
+  else if (!without.empty())
+    model.notes.push_back(std::string("DEA back-coupling left out") +
+                          (asked.empty() ? "" : " for DEA(s)" + without) +
+                          ": not asked (dea[].back_coupling)");
 
   if (drive.kind == DriveKind::single && drive.bias == 0.0)
     model.notes.push_back(
@@ -307,9 +455,16 @@ Probe Model::make_probe(const ProbeSpec& spec) const {
       const DeaLayout* dea = find_dea(deas, spec.dea);
       if (!dea) throw InputError("probe " + spec.name, "dea", "no DEA named '" + spec.dea + "'");
       if (dea->electrode_node == ground)
-        throw InputError(
-            "probe " + spec.name, "dea",
-            "DEA '" + spec.dea + "' has no electrical model (drive.electrical_dynamics = false)");
+        throw InputError("probe " + spec.name, "dea",
+                         "DEA '" + spec.dea +
+                             "' has no electrical model (drive.electrical_dynamics = " +
+                             (std::any_of(automatic_choices.begin(), automatic_choices.end(),
+                                          [](const AutomaticChoice& choice) {
+                                            return choice.key == "drive.electrical_dynamics";
+                                          })
+                                  ? std::string("\"auto\" chose false")
+                                  : "false") +
+                             "; set it true, e.g. --set drive.electrical_dynamics=true)");
       if (spec.quantity == ProbeQuantity::dea_voltage) {
         probe.terms = {{dea->electrode_node, 1.0}};
         probe.description = "capacitor voltage of DEA " + spec.dea;
