@@ -402,9 +402,11 @@ int run_modes_command(const CommonOptions& options, const ModesOptions& modes_op
                                 : " shift-invert Arnoldi (the poles nearest 0)")
             << ", " << modes.size() << " oscillatory shown, " << result.real_poles.size()
             << " real pole(s)\n"
+            << (result.note.empty() ? "" : "note: " + result.note + "\n")
             << "accuracy: residual per mode below; discretisation error vs the continuum beam "
             << (estimate ? "estimated from N and 2N segments (Richardson, O(N^-2))"
-                         : "not estimated (N > 1000)")
+                : modes_options.error_estimate ? "not estimated (N > 1000)"
+                                               : "not estimated (--no-error-estimate)")
             << "\ncost: modes " << milliseconds(result.seconds) << ", error estimate "
             << milliseconds(estimate_seconds) << ", total " << milliseconds(total) << "\n\n";
   std::printf("%5s %14s %14s %16s %12s %14s\n", "mode", "freq [Hz]", "damping ratio",
