@@ -618,6 +618,7 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
                           {"truncated_poles", m.truncated_poles},
                           {"clustered_poles", m.clustered_poles},
                           {"all_poles_below_cutoff_found", m.all_found},
+                          {"correction_order", m.correction_order},
                           {"full_unknowns", m.full_unknowns},
                           {"modal_method", m.modal_method},
                           {"error_estimate", r.error_estimate},
@@ -652,6 +653,9 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
                                     : std::string())
               << "\n";
     if (!m.note.empty()) std::cout << "  note: " << m.note << "\n";
+    if (m.correction_order > 0)
+      std::cout << "  the static correction is a series to s^" << m.correction_order
+                << " (the truncated part's Taylor terms at s = 0, for the poles not found)\n";
     std::cout << "  error against the full model at " << r.check_frequencies.size()
               << " frequencies (5 spread over the sweep and each probe's largest response), "
                  "relative to each probe's largest |response|: "
@@ -662,11 +666,12 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
               << "  tolerance " << format("%.3g", m.tolerance)
               << (r.tolerance_met ? ": met" : ": NOT MET") << "\n";
     if (!r.tolerance_met) std::cout << tolerance_warning(r.measured_error, m.tolerance) << "\n";
-    std::cout << "cost: reduction " << milliseconds(r.reduce_seconds)
-              << " (poles, left vectors, one static solve), evaluation "
-              << milliseconds(r.evaluate_seconds) << " (" << grid.size() << " points), check "
-              << milliseconds(r.check_seconds) << " (full model, " << r.check_frequencies.size()
-              << " points), total " << milliseconds(total) << "\n";
+    std::cout << "cost: reduction " << milliseconds(r.reduce_seconds) << " (poles, left vectors, "
+              << (m.correction_order > 0 ? std::to_string(1 + m.correction_order) + " static solves"
+                                         : std::string("one static solve"))
+              << "), evaluation " << milliseconds(r.evaluate_seconds) << " (" << grid.size()
+              << " points), check " << milliseconds(r.check_seconds) << " (full model, "
+              << r.check_frequencies.size() << " points), total " << milliseconds(total) << "\n";
   } else {
     std::cout << "accuracy: worst relative residual of the complex solves "
               << format("%.2g", result.max_relative_residual) << "\n"

@@ -19,24 +19,84 @@ Status require_piecewise_constant(const System& system);  // transient_exact.cpp
 namespace {
 
 constexpr double two_pi = 6.283185307179586476925286766559;
+constexpr int kMaxSeriesOrder = 4;
 using Complex = std::complex<double>;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// ρ(ω): the relative dynamic error of a truncated pole replaced by its static value (header).
-double truncation_error(Complex pole, bool oscillatory, double omega) {
+// ρ(ω): the relative dynamic error of a truncated pole replaced by its static value (header),
+// or by its Taylor series at s = 0 up to s^order: |H(s) − Σ_{m ≤ order} c_m·s^m| for the pole's
+// normalised term H (H(0) = 1): 1/(1 − s/p), or 1/((1 − s/p)(1 − s/p̄)) for a pair.
+double truncation_error(Complex pole, bool oscillatory, double omega, int order = 0) {
   const Complex s(0.0, omega);
-  if (!oscillatory) return std::abs(s / (s - pole));
+  if (!oscillatory) return std::abs(std::pow(s / pole, order + 1) / (1.0 - s / pole));
   const Complex ratio = std::norm(pole) / ((s - pole) * (s - std::conj(pole)));
-  return std::abs(ratio - 1.0);
+  Complex series = 0.0;
+  for (int m = 0; m <= order; ++m) {
+    Complex c = 0.0;  // Σ_{i+j=m} p^−i·p̄^−j
+    for (int i = 0; i <= m; ++i) c += std::pow(pole, -i) * std::pow(std::conj(pole), i - m);
+    series += c * std::pow(s, m);
+  }
+  return std::abs(ratio - series);
+}
+
+// Σ_m s^m·D_m[index] for m = 1 … (the series part of the correction).
+Complex series_part(const std::vector<Eigen::VectorXcd>& terms, Complex s, Eigen::Index index) {
+  Complex sum = 0.0, power_of_s = 1.0;
+  for (const Eigen::VectorXcd& d : terms) {
+    power_of_s *= s;
+    sum += power_of_s * d[index];
+  }
+  return sum;
 }
 
 std::string hertz(double value) {
   char buffer[48];
   std::snprintf(buffer, sizeof buffer, "%.4g Hz", value);
   return buffer;
+}
+
+// The undamped bound r²/(1 − r²) (r = ω/|s| of the nearest pole not found) for a zeroth-order
+// correction; with the series to order m ≥ 1, the real-pole bound r^(m+1)/(1 − r).
+double unfound_bound(double r, int order) {
+  if (!(r < 1.0)) return 1.0;
+  return order == 0 ? r * r / (1.0 - r * r) : std::pow(r, order + 1) / (1.0 - r);
+}
+
+// The s¹ and s² parts A₁, A₂ of the static form's operator A(s) = A₀ + s·A₁ + s²·A₂
+// (StaticOperator::matrix is A₀): the pencil G + s·C on z, with mechanical columns multiplied by
+// s (y = s·z there) and divided rows by s (their G entries lie in mechanical columns only,
+// static.cpp). Then A₀·z_m = −A₁·z_(m−1) − A₂·z_(m−2) for z(s) = Σ z_m·s^m.
+std::pair<Eigen::SparseMatrix<double>, Eigen::SparseMatrix<double>> expansion_matrices(
+    const System& system, const Eigen::SparseMatrix<double>& g_matrix,
+    const StaticOperator& static_operator) {
+  const std::vector<bool>& mechanical = static_operator.mechanical();
+  const std::vector<bool>& divided = static_operator.divided_rows();
+  const int n = system.size();
+  std::vector<Eigen::Triplet<double>> first, second;
+  for (int col = 0; col < n; ++col) {
+    const bool mech = mechanical[static_cast<size_t>(col)];
+    // G·s^(mech − divided): order 1 on mechanical columns of rows not divided.
+    if (mech)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(g_matrix, col); it; ++it)
+        if (!divided[static_cast<size_t>(it.row())]) first.emplace_back(it.row(), col, it.value());
+    // C·s^(1 + mech − divided).
+    for (Eigen::SparseMatrix<double>::InnerIterator it(system.C, col); it; ++it) {
+      const bool row_divided = divided[static_cast<size_t>(it.row())];
+      if (mech == row_divided)
+        first.emplace_back(it.row(), col, it.value());
+      else if (mech)
+        second.emplace_back(it.row(), col, it.value());
+    }
+  }
+  std::pair<Eigen::SparseMatrix<double>, Eigen::SparseMatrix<double>> out;
+  out.first.resize(n, n);
+  out.first.setFromTriplets(first.begin(), first.end());
+  out.second.resize(n, n);
+  out.second.setFromTriplets(second.begin(), second.end());
+  return out;
 }
 
 // s^e for e in {−1, 0, 1}.
@@ -71,6 +131,8 @@ Complex ModalReduction::response(const Probe& probe, double omega, int input) co
     const int e = (mechanical[static_cast<size_t>(index)] ? 1 : 0) - probe.integrations;
     if (omega == 0.0 && e != 0) continue;  // the static limit, as run_ac at f = 0
     Complex z = correction[static_cast<size_t>(input)][index];
+    if (!correction_series.empty())
+      z += series_part(correction_series[static_cast<size_t>(input)], s, index);
     for (size_t k = 0; k < kept.size(); ++k) {
       const KeptPole& p = kept[k];
       const Complex residue = p.z_vector[index] * beta[k][static_cast<size_t>(input)];
@@ -85,11 +147,9 @@ Complex ModalReduction::response(const Probe& probe, double omega, int input) co
 double ModalReduction::truncation_factor_at(double omega) const {
   double factor = 0.0;
   for (const auto& [pole, oscillatory] : truncated)
-    factor = std::max(factor, truncation_error(pole, oscillatory, omega));
-  if (!all_found && largest_found > 0.0) {
-    const double r2 = std::pow(omega / largest_found, 2);
-    factor = std::max(factor, r2 < 1.0 ? r2 / (1.0 - r2) : 1.0);
-  }
+    factor = std::max(factor, truncation_error(pole, oscillatory, omega, correction_order));
+  if (!all_found && largest_found > 0.0)
+    factor = std::max(factor, unfound_bound(omega / largest_found, correction_order));
   return factor;
 }
 
@@ -99,7 +159,10 @@ Complex ModalReduction::correction_response(const Probe& probe, double omega, in
   for (const auto& [index, coefficient] : probe.terms) {
     const int e = (mechanical[static_cast<size_t>(index)] ? 1 : 0) - probe.integrations;
     if (omega == 0.0 && e != 0) continue;
-    sum += coefficient * power(s, e) * correction[static_cast<size_t>(input)][index];
+    Complex z = correction[static_cast<size_t>(input)][index];
+    if (!correction_series.empty())
+      z += series_part(correction_series[static_cast<size_t>(input)], s, index);
+    sum += coefficient * power(s, e) * z;
   }
   return sum;
 }
@@ -161,6 +224,37 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
     }
   }
   result.modal_method = modal.method;
+  // Poles below f_c that were not found are neither kept nor bounded by the cut-off; the
+  // truncated part is then matched to order m at s = 0, the lowest m with
+  // r^(m+1)/(1 − r) ≤ tol, r = ω_band/|s| of the largest pole found (header).
+  int& order = result.correction_order;
+  if (options.series_correction && !result.all_found) {
+    double largest = 0.0;
+    for (const auto* list : {&modal.modes, &modal.real_poles})
+      for (const Mode& m : *list) largest = std::max(largest, std::abs(m.pole));
+    const double r = largest > 0.0 ? omega_band / largest : 1.0;
+    order = 1;
+    while (r < 1.0 && order < kMaxSeriesOrder && unfound_bound(r, order) > options.tolerance)
+      ++order;
+  }
+  std::vector<std::vector<Eigen::VectorXcd>> taylor;  // [input][m]: z_m, z(s) = Σ z_m·s^m
+  if (order > 0) {
+    const auto [a1, a2] = expansion_matrices(system, g_matrix, static_operator);
+    const Eigen::SparseMatrix<Complex> a1c = a1.cast<Complex>(), a2c = a2.cast<Complex>();
+    for (const Eigen::VectorXcd& z0 : statics) {
+      std::vector<Eigen::VectorXcd> z{z0};
+      for (int m = 1; m <= order; ++m) {
+        Eigen::VectorXcd rhs = -(a1c * z[static_cast<size_t>(m - 1)]);
+        if (m >= 2) rhs -= a2c * z[static_cast<size_t>(m - 2)];
+        Eigen::VectorXcd next;
+        std::string why;
+        if (!static_operator.solve(rhs, next, why))
+          return finish(Status::failure("series correction: " + why));
+        z.push_back(std::move(next));
+      }
+      taylor.push_back(std::move(z));
+    }
+  }
 
   struct Candidate {
     const Mode* mode;
@@ -176,8 +270,8 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
   auto truncate = [&](const Candidate& c) {
     ++result.truncated_poles;
     result.truncated.emplace_back(c.mode->pole, c.oscillatory);
-    result.truncation_factor = std::max(result.truncation_factor,
-                                        truncation_error(c.mode->pole, c.oscillatory, omega_band));
+    result.truncation_factor = std::max(
+        result.truncation_factor, truncation_error(c.mode->pole, c.oscillatory, omega_band, order));
   };
   // Poles repeated to rounding (|Δs| < 1e-6·|s|: the two DEAs' equal RC loops, the
   // Kelvin–Voigt relaxations near −1/τ) form groups, kept or truncated as a whole; a group is
@@ -308,6 +402,19 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
       if (p.oscillatory) d += residue.conjugate() / std::conj(p.pole);
     }
     result.correction.push_back(std::move(d));
+    // D_m = z_m − Σ_kept (the s^m term of R/(s − s_k), −R·s^m/s_k^(m+1)).
+    if (order > 0) result.correction_series.emplace_back();
+    for (int m = 1; m <= order; ++m) {
+      Eigen::VectorXcd dm = taylor[j][static_cast<size_t>(m)];
+      for (size_t k = 0; k < result.kept.size(); ++k) {
+        const KeptPole& p = result.kept[k];
+        const Complex factor = std::pow(p.pole, -(m + 1));
+        const Eigen::VectorXcd residue = p.z_vector * result.beta[k][j];
+        dm += residue * factor;
+        if (p.oscillatory) dm += residue.conjugate() * std::conj(factor);
+      }
+      result.correction_series.back().push_back(std::move(dm));
+    }
   }
   return finish(Status::success());
 }
@@ -423,6 +530,7 @@ ReducedPeriodicSolver::ReducedPeriodicSolver(const System& system,
   ReductionOptions periodic = options;
   periodic.cutoff_hz = options.band / options.tolerance;
   periodic.dense_limit = std::max(options.dense_limit, 600);
+  periodic.series_correction = false;
   reduction_ = reduce_modal(system, Eigen::VectorXd::Zero(system.size()), inputs, periodic);
 }
 

@@ -160,6 +160,13 @@ TEST(ModalReduction, KeepingAllModesReproducesTheFullModel) {
 // the check frequencies run_ac_reduced measures itself). Reference: run_ac on the same system,
 // every grid point; the error of each probe relative to its largest |response| (DESIGN: the
 // error the user asked for). Tolerance: the requested one, the point of the feature.
+// The fish fin at N = 100 and 500 with tol 1e-4 (f_c = 1 kHz) is the case where Arnoldi stops
+// at the Kelvin–Voigt cluster near −1/τ (159 Hz) and the 4th mode and the cluster are not found:
+// the static correction is then a series in s (modal_reduction.hpp; measured 9.3e-7 at N = 100
+// over 1000 points, 2.9e-4 with the static value alone). At N = 500 run_ac itself is off by
+// 9.6e-5 at the first resonance (residual 3e-8; the reduced model is within 3.1e-7 of an
+// iteratively refined full solve), so there the measured error is mostly the reference's, and
+// the bound is still the requested tolerance: that is what a user checks against.
 struct ToleranceCase {
   std::string scene;
   int segments;
@@ -188,6 +195,8 @@ TEST_P(ReductionTolerance, MeetsTheRequestedToleranceAgainstTheFullModel) {
   EXPECT_TRUE(reduced.tolerance_met);
   if (c.segments >= 100) {  // a reduction indeed (at N = 7 the fin keeps 14 of 48 poles)
     EXPECT_EQ(reduced.model.modal_method, "arnoldi");
+    // The series correction is used exactly when poles below f_c were not found.
+    EXPECT_EQ(reduced.model.correction_order > 0, !reduced.model.all_found);
     EXPECT_LT(reduced.model.kept.size(), static_cast<size_t>(b.system.size()) / 20);
   }
 }
@@ -201,7 +210,8 @@ INSTANTIATE_TEST_SUITE_P(
                       ToleranceCase{"cantilever", 500, 1e-3}, ToleranceCase{"fishfin", 7, 1e-2},
                       ToleranceCase{"fishfin", 7, 1e-3}, ToleranceCase{"fishfin", 100, 1e-2},
                       ToleranceCase{"fishfin", 100, 1e-3}, ToleranceCase{"fishfin", 500, 1e-2},
-                      ToleranceCase{"fishfin", 500, 1e-3}),
+                      ToleranceCase{"fishfin", 500, 1e-3}, ToleranceCase{"fishfin", 100, 1e-4},
+                      ToleranceCase{"fishfin", 500, 1e-4}),
     [](const ::testing::TestParamInfo<ToleranceCase>& info) {
       return info.param.scene + "_N" + std::to_string(info.param.segments) + "_tol" +
              std::to_string(static_cast<int>(std::lround(-std::log10(info.param.tolerance))));
