@@ -163,10 +163,9 @@ TEST(ModalReduction, KeepingAllModesReproducesTheFullModel) {
 // The fish fin at N = 100 and 500 with tol 1e-4 (f_c = 1 kHz) is the case where Arnoldi stops
 // at the Kelvin–Voigt cluster near −1/τ (159 Hz) and the 4th mode and the cluster are not found:
 // the static correction is then a series in s (modal_reduction.hpp; measured 9.3e-7 at N = 100
-// over 1000 points, 2.9e-4 with the static value alone). At N = 500 run_ac itself is off by
-// 9.6e-5 at the first resonance (residual 3e-8; the reduced model is within 3.1e-7 of an
-// iteratively refined full solve), so there the measured error is mostly the reference's, and
-// the bound is still the requested tolerance: that is what a user checks against.
+// over 1000 points, 2.9e-4 with the static value alone; 3.1e-7 at N = 500). (At N = 500 the
+// reference itself was off by 9.6e-5 at the first resonance until the AC solver's KLU used
+// partial pivoting proper: src/analysis/complex_klu.hpp.)
 struct ToleranceCase {
   std::string scene;
   int segments;
@@ -191,7 +190,9 @@ TEST_P(ReductionTolerance, MeetsTheRequestedToleranceAgainstTheFullModel) {
   EXPECT_LE(error, c.tolerance) << "kept " << reduced.model.kept_modes << " modes below "
                                 << reduced.model.cutoff_hz << " Hz (" << reduced.model.modal_method
                                 << ")";
-  EXPECT_LE(reduced.measured_error, error * (1 + 1e-9));  // the check sees part of the grid
+  // The check sees part of the grid, solved by a run_ac of its own (another pivot history):
+  // the two full solves agree to 1e-9 of the peak (AcAccuracy test), hence the slack.
+  EXPECT_LE(reduced.measured_error, error + 1e-9);
   EXPECT_TRUE(reduced.tolerance_met);
   if (c.segments >= 100) {  // a reduction indeed (at N = 7 the fin keeps 14 of 48 poles)
     EXPECT_EQ(reduced.model.modal_method, "arnoldi");
