@@ -468,6 +468,19 @@ double parse_frequency(const std::string& text, const std::string& option) {
   }
 }
 
+// The fields a reduced model reports in --json, for ac and sweep-switching alike.
+Json reduction_json(const emnet::ModalReduction& m, bool tolerance_met) {
+  return {{"status", tolerance_met ? "met" : "NOT MET"},
+          {"tolerance", m.tolerance},
+          {"band_hz", m.band_hz},
+          {"cutoff_hz", m.cutoff_hz},
+          {"kept_modes", m.kept_modes},
+          {"kept_real_poles", m.kept_real_poles},
+          {"truncated_poles", m.truncated_poles},
+          {"full_unknowns", m.full_unknowns},
+          {"modal_method", m.modal_method}};
+}
+
 // --tolerance and --band of a modal reduction (ac, sweep-switching); band defaults to
 // `default_band` [Hz], tolerance to the scene's model.tolerance. Bad values are input errors
 // naming the option.
@@ -609,27 +622,20 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
       const auto& m = r.model;
       Json errors = Json::object();
       for (size_t k = 0; k < probes.size(); ++k) errors[probes[k].name] = r.probe_errors[k];
-      out["reduction"] = {{"status", r.tolerance_met ? "met" : "NOT MET"},
-                          {"tolerance", m.tolerance},
-                          {"band_hz", m.band_hz},
-                          {"cutoff_hz", m.cutoff_hz},
-                          {"kept_modes", m.kept_modes},
-                          {"kept_real_poles", m.kept_real_poles},
-                          {"truncated_poles", m.truncated_poles},
-                          {"clustered_poles", m.clustered_poles},
-                          {"all_poles_below_cutoff_found", m.all_found},
-                          {"correction_order", m.correction_order},
-                          {"full_unknowns", m.full_unknowns},
-                          {"modal_method", m.modal_method},
-                          {"error_estimate", r.error_estimate},
-                          {"measured_error", r.measured_error},
-                          {"probe_errors", errors},
-                          {"check_frequencies_hz", r.check_frequencies},
-                          {"note", m.note},
-                          {"cost",
-                           {{"reduce_seconds", r.reduce_seconds},
-                            {"evaluate_seconds", r.evaluate_seconds},
-                            {"check_seconds", r.check_seconds}}}};
+      Json reduced = reduction_json(m, r.tolerance_met);
+      reduced.update({{"clustered_poles", m.clustered_poles},
+                      {"all_poles_below_cutoff_found", m.all_found},
+                      {"correction_order", m.correction_order},
+                      {"error_estimate", r.error_estimate},
+                      {"measured_error", r.measured_error},
+                      {"probe_errors", errors},
+                      {"check_frequencies_hz", r.check_frequencies},
+                      {"note", m.note},
+                      {"cost",
+                       {{"reduce_seconds", r.reduce_seconds},
+                        {"evaluate_seconds", r.evaluate_seconds},
+                        {"check_seconds", r.check_seconds}}}});
+      out["reduction"] = reduced;
     }
     std::cout << out.dump(2) << "\n";
     return 0;
@@ -1128,26 +1134,19 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
     if (check) {
       const auto& m = check->model;
       const double n = static_cast<double>(results.size());
-      out["reduction"] = {{"status", check->tolerance_met ? "met" : "NOT MET"},
-                          {"tolerance", m.tolerance},
-                          {"band_hz", m.band_hz},
-                          {"cutoff_hz", m.cutoff_hz},
-                          {"kept_modes", m.kept_modes},
-                          {"kept_real_poles", m.kept_real_poles},
-                          {"truncated_poles", m.truncated_poles},
-                          {"full_unknowns", m.full_unknowns},
-                          {"modal_method", m.modal_method},
-                          {"check_frequencies_hz", check->frequencies},
-                          {"errors", check->errors},
-                          {"measured_error", check->measured_error},
-                          {"cost",
-                           {{"reduce_seconds", check->build_seconds},
-                            {"reduced_seconds_per_frequency", check->reduced_solve_seconds},
-                            {"full_decomposition_seconds", check->full_build_seconds},
-                            {"full_seconds_per_frequency", check->full_solve_seconds},
-                            {"reduced_sweep_seconds", check->build_seconds + solve_seconds},
-                            {"full_sweep_seconds_estimated",
-                             check->full_build_seconds + n * check->full_solve_seconds}}}};
+      Json reduced = reduction_json(m, check->tolerance_met);
+      reduced.update({{"check_frequencies_hz", check->frequencies},
+                      {"errors", check->errors},
+                      {"measured_error", check->measured_error},
+                      {"cost",
+                       {{"reduce_seconds", check->build_seconds},
+                        {"reduced_seconds_per_frequency", check->reduced_solve_seconds},
+                        {"full_decomposition_seconds", check->full_build_seconds},
+                        {"full_seconds_per_frequency", check->full_solve_seconds},
+                        {"reduced_sweep_seconds", check->build_seconds + solve_seconds},
+                        {"full_sweep_seconds_estimated",
+                         check->full_build_seconds + n * check->full_solve_seconds}}}});
+      out["reduction"] = reduced;
     }
     std::cout << out.dump(2) << "\n";
     return 0;

@@ -128,4 +128,15 @@ Eigen::SparseMatrix<double> scaled(const Eigen::SparseMatrix<double>& matrix,
   return out;
 }
 
+double sparse_one_norm(const Eigen::SparseMatrix<double>& m) {
+  double largest = 0.0;
+  for (int col = 0; col < m.outerSize(); ++col) {
+    double sum = 0.0;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(m, col); it; ++it)
+      sum += std::abs(it.value());
+    largest = std::max(largest, sum);
+  }
+  return largest;
+}
+
 }  // namespace emnet

@@ -23,6 +23,9 @@
 
 namespace emnet {
 
+// ‖·‖₁ of a sparse matrix (largest column sum).
+double sparse_one_norm(const Eigen::SparseMatrix<double>& m);
+
 struct DiagonalScaling {
   Eigen::VectorXd row, column;  // powers of two; 1 on empty rows and columns
   double frequency = 1.0;       // ω₀ [1/s] of a pencil; 1 for a single matrix

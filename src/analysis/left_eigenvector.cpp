@@ -13,17 +13,6 @@ namespace {
 using ComplexSparse = Eigen::SparseMatrix<std::complex<double>>;
 }
 
-double sparse_one_norm(const Eigen::SparseMatrix<double>& m) {
-  double largest = 0.0;
-  for (int col = 0; col < m.outerSize(); ++col) {
-    double sum = 0.0;
-    for (Eigen::SparseMatrix<double>::InnerIterator it(m, col); it; ++it)
-      sum += std::abs(it.value());
-    largest = std::max(largest, sum);
-  }
-  return largest;
-}
-
 bool left_eigenspace(const Eigen::SparseMatrix<double>& g_matrix,
                      const Eigen::SparseMatrix<double>& c_matrix, std::complex<double> pole,
                      int count, Eigen::MatrixXcd& left, double& residual, std::string& why) {

@@ -18,9 +18,6 @@
 
 namespace emnet {
 
-// ‖·‖₁ of a sparse matrix (largest column sum).
-double sparse_one_norm(const Eigen::SparseMatrix<double>& m);
-
 // `residual`: ‖(Ĝᵀ + conj(ŝ)Ĉᵀ)·ŷ‖ / (‖Ĝ‖₁ + |ŝ|·‖Ĉ‖₁) with ‖ŷ‖ = 1, on the equilibrated
 // pencil (unit-free). False, with `why`, when the adjoint cannot be factorised or the iteration
 // gives no finite vector.

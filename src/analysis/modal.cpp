@@ -42,17 +42,6 @@ class ShiftInvertOperator {
   const Eigen::SparseMatrix<double>& c_;
 };
 
-double matrix_norm(const Eigen::SparseMatrix<double>& m) {
-  double largest = 0.0;  // max column sum (1-norm)
-  for (int col = 0; col < m.outerSize(); ++col) {
-    double sum = 0.0;
-    for (Eigen::SparseMatrix<double>::InnerIterator it(m, col); it; ++it)
-      sum += std::abs(it.value());
-    largest = std::max(largest, sum);
-  }
-  return largest;
-}
-
 }  // namespace
 
 ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,
@@ -62,7 +51,7 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
   const int n = system.size();
   result.unknowns = n;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
-  if (matrix_norm(system.C) == 0.0)
+  if (sparse_one_norm(system.C) == 0.0)
     return finish(Status::failure("the network stores no energy: no poles"));
   // Everything below works on the equilibrated pencil (Ĝ, Ĉ) with poles ŝ = s/ω₀, so that
   // thresholds relative to the largest entry or eigenvalue do not depend on the units
@@ -72,7 +61,7 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
   const double omega0 = scaling.frequency;
   const Eigen::SparseMatrix<double> g_matrix = scaled(unscaled_g, scaling);
   const Eigen::SparseMatrix<double> c_matrix = scaled(system.C, scaling, omega0);
-  const double g_norm = matrix_norm(g_matrix), c_norm = matrix_norm(c_matrix);
+  const double g_norm = sparse_one_norm(g_matrix), c_norm = sparse_one_norm(c_matrix);
 
   // Shift: σ = 0 unless G is singular there (a free body has a pole at 0).
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;

@@ -3,6 +3,10 @@
 #pragma once
 
 #include "emnet/analysis.hpp"
+#include "emnet/elements/capacitor.hpp"
+#include "emnet/elements/conductance.hpp"
+#include "emnet/elements/current_source.hpp"
+#include "emnet/elements/inductor.hpp"
 #include "emnet/model.hpp"
 #include "emnet/scene.hpp"
 
@@ -36,6 +40,24 @@ inline LoadSpec load(LoadKind kind, double at, double value) {
   spec.at = at;
   spec.value = value;
   return spec;
+}
+
+// One mass m on a spring k and a damper c to ground, driven by a force of AC magnitude 1:
+// X(s) = 1/(m·s² + c·s + k). `velocity` is the mass's node.
+struct OneMass {
+  Network network;
+  NodeId velocity = ground;
+};
+inline OneMass one_mass_spring_damper(double mass, double stiffness, double damping) {
+  OneMass one;
+  one.velocity = one.network.add_node("v", Domain::translational, "mass velocity");
+  one.network.add<Capacitor>("m", one.velocity, ground, mass);
+  one.network.add<Inductor>("k", one.velocity, ground, 1.0 / stiffness, Domain::translational);
+  one.network.add<Conductance>("c", one.velocity, ground, damping);
+  Waveform force = Waveform::constant(0.0);
+  force.ac_magnitude = 1.0;
+  one.network.add<CurrentSource>("F", ground, one.velocity, force);
+  return one;
 }
 
 }  // namespace emnet::testing

@@ -36,13 +36,9 @@ Probe displacement_of(NodeId node) {
 // Reference: closed form; tolerance 1e-12 relative (one 3×3 LU, rounding only).
 TEST(AcFixtures, OneMassSpringMatchesClosedForm) {
   const double m = 0.2, k = 50.0, c = 0.3;
-  Network network;
-  const NodeId v = network.add_node("v", Domain::translational, "mass velocity");
-  network.add<Capacitor>("m", v, ground, m);
-  network.add<Inductor>("k", v, ground, 1.0 / k, Domain::translational);
-  network.add<Conductance>("c", v, ground, c);
-  network.add<CurrentSource>("F", ground, v, unit_ac());
-  const System system = network.assemble();
+  const testing::OneMass one = testing::one_mass_spring_damper(m, k, c);
+  const NodeId v = one.velocity;
+  const System system = one.network.assemble();
   const StaticResult rest = solve_static(system);
   ASSERT_TRUE(rest.status.ok);
   const auto grid = frequency_grid(0.01, 20.0, 200, true);

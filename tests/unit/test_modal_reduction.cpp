@@ -64,15 +64,9 @@ double worst_relative(const std::vector<std::vector<Complex>>& a,
 // correction alone is left, X = 1/k at every frequency, exactly the mode-acceleration answer.
 TEST(ModalReduction, MassSpringDamperClosedForm) {
   const double m = 0.2, k = 50.0, c = 0.3;
-  Network network;
-  const NodeId v = network.add_node("v", Domain::translational, "mass velocity");
-  network.add<Capacitor>("m", v, ground, m);
-  network.add<Inductor>("k", v, ground, 1.0 / k, Domain::translational);
-  network.add<Conductance>("c", v, ground, c);
-  Waveform force = Waveform::constant(0.0);
-  force.ac_magnitude = 1.0;
-  network.add<CurrentSource>("F", ground, v, force);
-  const System system = network.assemble();
+  const testing::OneMass one = testing::one_mass_spring_damper(m, k, c);
+  const NodeId v = one.velocity;
+  const System system = one.network.assemble();
   Probe x;
   x.name = "x";
   x.terms = {{v, 1.0}};
