@@ -897,7 +897,10 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
 struct SweepOptions {
   double from = 1.0, to = 7.0, step = 0.1;
   std::string method = "exact";
-  int samples = 256;
+  // 0: the method's default. The exact method's extremes are global whatever the count (a
+  // curvature-bounded search between samples), so a few samples per period only seed it;
+  // shooting (a parabola) and --reduce (Newton) refine the largest samples.
+  int samples = 0;
   double rtol = 1e-9;
   std::string plot;
   bool reduce = false;
@@ -928,7 +931,7 @@ void check_overlap_fits(const emnet::Scene& scene, double frequency_hz, const st
                          si(period, "s") + " at " + si(frequency_hz, "Hz") + " (" + where + ")");
 }
 
-int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
+int run_sweep_command(CommonOptions options, SweepOptions sweep) {
   const auto start = std::chrono::steady_clock::now();
   if (!(sweep.from > 0.0) || !(sweep.to >= sweep.from) || !(sweep.step > 0.0) ||
       !std::isfinite(sweep.to))
@@ -936,6 +939,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
                      "need 0 < from <= to and step > 0 (frequencies in Hz)");
   const long count = std::lround(std::floor((sweep.to - sweep.from) / sweep.step + 1e-9)) + 1;
   if (count > 100000) throw InputError("--step", "--step", "more than 100000 frequencies");
+  if (sweep.samples == 0) sweep.samples = sweep.method == "shooting" || sweep.reduce ? 256 : 64;
   if (sweep.samples < 8 || sweep.samples > 1000000)
     throw InputError("--samples", "--samples", "must be between 8 and 1000000");
   // The exact method needs a linear network: DEAs as ideal voltage-driven forces.
@@ -2076,7 +2080,10 @@ int main(int argc, char** argv) {
   sweep_command->add_option("--method", sweep_options.method, "exact (default) or shooting")
       ->check(CLI::IsMember({"exact", "shooting"}));
   sweep_command->add_option("--samples", sweep_options.samples,
-                            "samples per period before refining the extremes (256)");
+                            "samples per period before refining the extremes (default 64 "
+                            "for the exact method, whose extremes are global whatever the "
+                            "count; 256 for shooting and --reduce, which refine the largest "
+                            "samples)");
   sweep_command->add_option("--rtol", sweep_options.rtol,
                             "shooting: IDA relative tolerance (1e-9)");
   sweep_command->add_option("--plot", sweep_options.plot,
