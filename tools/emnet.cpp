@@ -918,9 +918,9 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
 struct SweepOptions {
   double from = 1.0, to = 7.0, step = 0.1;
   std::string method = "exact";
-  // 0: the method's default. The exact method's extremes are global whatever the count (a
-  // curvature-bounded search between samples), so a few samples per period only seed it;
-  // shooting (a parabola) and --reduce (Newton) refine the largest samples.
+  // 0: the method's default. The exact method's extremes, reduced or not, are global whatever
+  // the count (a curvature-bounded search between samples), so a few samples per period only
+  // seed it; shooting refines the largest samples by a parabola.
   int samples = 0;
   double rtol = 1e-9;
   std::string plot;
@@ -960,7 +960,7 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
                      "need 0 < from <= to and step > 0 (frequencies in Hz)");
   const long count = std::lround(std::floor((sweep.to - sweep.from) / sweep.step + 1e-9)) + 1;
   if (count > 100000) throw InputError("--step", "--step", "more than 100000 frequencies");
-  if (sweep.samples == 0) sweep.samples = sweep.method == "shooting" || sweep.reduce ? 256 : 64;
+  if (sweep.samples == 0) sweep.samples = sweep.method == "shooting" ? 256 : 64;
   if (sweep.samples < 8 || sweep.samples > 1000000)
     throw InputError("--samples", "--samples", "must be between 8 and 1000000");
   // The exact method needs a linear network: DEAs as ideal voltage-driven forces.
@@ -1180,7 +1180,7 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
   for (const auto& note : notes) std::cout << "note: " << note << "\n";
   std::cout << "periodic steady state, " << (sweep.reduce ? "reduced" : sweep.method)
             << (sweep.reduce ? " (modal coordinates of the kept modes, closed-form periodic state, "
-                               "extremes: samples, switching edges, then Newton)"
+                               "global extremes: bounded search, then Newton)"
                 : sweep.method == "exact"
                     ? " (one eigen-decomposition, closed-form periodic state, "
                       "global extremes: bounded search, then Newton)"
@@ -2107,8 +2107,8 @@ int main(int argc, char** argv) {
   sweep_command->add_option("--samples", sweep_options.samples,
                             "samples per period before refining the extremes (default 64 "
                             "for the exact method, whose extremes are global whatever the "
-                            "count; 256 for shooting and --reduce, which refine the largest "
-                            "samples)");
+                            "count, also with --reduce; 256 for shooting, which refines the "
+                            "largest samples)");
   sweep_command->add_option("--rtol", sweep_options.rtol,
                             "shooting: IDA relative tolerance (1e-9)");
   sweep_command->add_option("--plot", sweep_options.plot,

@@ -194,8 +194,8 @@ class ReducedPeriodicSolver {
  public:
   ReducedPeriodicSolver(const System& system, const ReductionOptions& options);
   const ModalReduction& reduction() const { return reduction_; }
-  // As PeriodicSolver::solve: samples at t = T·s/samples; extremes from the samples, every
-  // switching edge, and Newton on p'(t) = 0 from the best of them.
+  // As PeriodicSolver::solve, and with the same sampling and global extremes
+  // (src/analysis/exponential_series.hpp): samples at t = T·s/samples.
   PeriodicResult solve(const System& system, const std::vector<Probe>& probes, double period,
                        int samples = 256) const;
 

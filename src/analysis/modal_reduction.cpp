@@ -9,6 +9,7 @@
 #include <limits>
 #include <set>
 
+#include "exponential_series.hpp"
 #include "left_eigenvector.hpp"
 #include "timed.hpp"
 
@@ -557,10 +558,7 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& system, const std::vec
 
   const std::vector<KeptPole>& kept = reduction_.kept;
   const size_t modes = kept.size(), inputs = waveforms_.size();
-  std::vector<double> edges{0.0};
-  for (double t : system.breakpoints(0.0, period))
-    if (t < period * (1 - 1e-12)) edges.push_back(t);
-  edges.push_back(period);
+  const std::vector<double> edges = constant_intervals(system, period);
   const size_t intervals = edges.size() - 1;
   std::vector<std::vector<double>> u(intervals, std::vector<double>(inputs));
   std::vector<Eigen::VectorXcd> particular(intervals, Eigen::VectorXcd::Zero(modes));
@@ -597,10 +595,9 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& system, const std::vec
   }
   result.periodicity_residual = (q - start_of[0]).norm() / std::max(start_of[0].norm(), 1e-300);
 
-  // Probe p in interval i at offset h: offset_pi + Re Σ_k a_pik·e^{λ_k h}.
-  std::vector<std::vector<double>> offset(probes.size(), std::vector<double>(intervals));
-  std::vector<std::vector<Eigen::VectorXcd>> coefficient(
-      probes.size(), std::vector<Eigen::VectorXcd>(intervals, Eigen::VectorXcd::Zero(modes)));
+  // Probe p in interval i at offset h: offset_pi + Re Σ_k a_pik·e^{λ_k h} (one pole of each
+  // conjugate pair kept, its coefficient doubled).
+  std::vector<ExponentialSeries> series(probes.size());
   for (size_t p = 0; p < probes.size(); ++p) {
     Eigen::VectorXcd g = Eigen::VectorXcd::Zero(modes);
     std::vector<Complex> d(inputs, 0.0);
@@ -612,64 +609,11 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& system, const std::vec
     for (size_t i = 0; i < intervals; ++i) {
       double value = 0.0;
       for (size_t j = 0; j < inputs; ++j) value += d[j].real() * u[i][j];
-      offset[p][i] = value + g.cwiseProduct(particular[i]).sum().real();
-      coefficient[p][i] = g.cwiseProduct(start_of[i] - particular[i]);
+      series[p].offset.push_back(value + g.cwiseProduct(particular[i]).sum().real());
+      series[p].coefficient.push_back(g.cwiseProduct(start_of[i] - particular[i]));
     }
   }
-  auto evaluate = [&](size_t p, size_t i, double h, double* d1, double* d2) {
-    const Eigen::VectorXcd terms =
-        coefficient[p][i].cwiseProduct(Eigen::VectorXcd((lambda * h).array().exp()));
-    if (d1) *d1 = terms.cwiseProduct(lambda).sum().real();
-    if (d2) *d2 = terms.cwiseProduct(lambda).cwiseProduct(lambda).sum().real();
-    return offset[p][i] + terms.sum().real();
-  };
-  auto locate = [&](double t) {
-    size_t i = 0;
-    while (i + 1 < intervals && t >= edges[i + 1]) ++i;
-    return i;
-  };
-  result.values.assign(probes.size(), {});
-  for (int s = 0; s < samples; ++s) {
-    const double t = period * s / samples;
-    const size_t i = locate(t);
-    result.times.push_back(t);
-    for (size_t p = 0; p < probes.size(); ++p)
-      result.values[p].push_back(evaluate(p, i, t - edges[i], nullptr, nullptr));
-  }
-  // Extremes: in every interval the best of its samples and ends, polished by Newton on p' = 0.
-  result.minimum.assign(probes.size(), 0.0);
-  result.maximum.assign(probes.size(), 0.0);
-  result.minimum_time.assign(probes.size(), 0.0);
-  result.maximum_time.assign(probes.size(), 0.0);
-  for (size_t p = 0; p < probes.size(); ++p)
-    for (double sign : {1.0, -1.0}) {
-      double best = -std::numeric_limits<double>::infinity(), best_t = 0.0;
-      for (size_t i = 0; i < intervals; ++i) {
-        const double length = edges[i + 1] - edges[i];
-        double h = 0.0, value = sign * evaluate(p, i, 0.0, nullptr, nullptr);
-        const double end = sign * evaluate(p, i, length, nullptr, nullptr);
-        if (end > value) value = end, h = length;
-        for (size_t s = 0; s < result.times.size(); ++s)
-          if (result.times[s] > edges[i] && result.times[s] < edges[i + 1] &&
-              sign * result.values[p][s] > value)
-            value = sign * result.values[p][s], h = result.times[s] - edges[i];
-        for (int iteration = 0; iteration < 30; ++iteration) {
-          double d1 = 0.0, d2 = 0.0;
-          evaluate(p, i, h, &d1, &d2);
-          if (d2 == 0.0) break;
-          const double next = std::clamp(h - d1 / d2, 0.0, length);
-          const double next_value = sign * evaluate(p, i, next, nullptr, nullptr);
-          if (!(next_value >= value)) break;  // Newton only where it climbs
-          const bool done = std::abs(next - h) <= 1e-15 * length;
-          h = next, value = next_value;
-          if (done) break;
-        }
-        if (value > best) best = value, best_t = edges[i] + h;
-      }
-      if (best_t >= period) best_t -= period;
-      (sign > 0 ? result.maximum : result.minimum)[p] = sign * best;
-      (sign > 0 ? result.maximum_time : result.minimum_time)[p] = best_t;
-    }
+  sample_periodic_series(lambda, edges, series, samples, result);
   return finish(Status::success());
 }
 

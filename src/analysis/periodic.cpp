@@ -11,6 +11,7 @@
 
 #include "displacement_form.hpp"
 #include "emnet/transient.hpp"
+#include "exponential_series.hpp"
 #include "state_space.hpp"
 #include "timed.hpp"
 
@@ -43,165 +44,19 @@ void fill_extremes(PeriodicResult& result, const Refine& refine) {
 
 }  // namespace
 
-struct PeriodicSolver::Impl {
-  explicit Impl(const System& reference)
-      : system(reference),
-        form(system),
-        space(form, characteristic_angular_frequency(system, 0.0)) {
-    Eigen::EigenSolver<Eigen::MatrixXd> solver(space.m());
-    if (solver.info() != Eigen::Success) throw std::runtime_error("eigen-decomposition failed");
-    lambda = solver.eigenvalues();
-    vectors = solver.eigenvectors();
-    vectors_lu.compute(vectors);
-    const double condition =
-        vectors.cwiseAbs().colwise().sum().maxCoeff() *
-        Eigen::MatrixXcd(vectors_lu.inverse()).cwiseAbs().colwise().sum().maxCoeff();
-    if (!(condition < 1e12))
-      throw std::runtime_error(
-          "the state matrix is too close to defective for the exact "
-          "periodic method (condition " +
-          std::to_string(condition) + "); use --method shooting");
-    // Poles at s = 0: the invariants of differentiated constraints (zero for every consistent
-    // state), or a free body when there are more of them than hidden constraints (solve()).
-    invariant.assign(static_cast<size_t>(lambda.size()), false);
-    for (Eigen::Index k = 0; k < lambda.size(); ++k)
-      if ((invariant[static_cast<size_t>(k)] =
-               std::abs(lambda[k]) < 1e-9 * lambda.cwiseAbs().maxCoeff()))
-        ++zero_poles;
-  }
-  std::vector<bool> invariant;
-  Eigen::Index zero_poles = 0;
-  // gᵀ·V of each probe seen so far (by name and terms), reused across solves.
-  mutable std::map<std::string, Eigen::RowVectorXcd> probe_modes;
-  System system;
-  DisplacementForm form;
-  LinearStateSpace space;
-  Eigen::VectorXcd lambda;
-  Eigen::MatrixXcd vectors;
-  Eigen::PartialPivLU<Eigen::MatrixXcd> vectors_lu;
-};
-
-PeriodicSolver::PeriodicSolver(const System& system) {
-  try {
-    impl_ = std::make_unique<Impl>(system);
-  } catch (const std::exception& e) {
-    status_ = Status::failure(e.what());
-  }
-}
-
-PeriodicSolver::~PeriodicSolver() = default;
-
-PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Probe>& probes,
-                                     double period, int samples) const {
-  Timed<PeriodicResult> timed;
-  PeriodicResult& result = timed.result;
-  result.method = "exact";
-  result.period = period;
-  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
-  if (!impl_) return finish(status_);
-  if (Status pieces = require_piecewise_constant(system); !pieces.ok) return finish(pieces);
-  if (system.size() != impl_->system.size() || system.is_nonlinear())
-    return finish(Status::failure("the network differs from the one the solver decomposed"));
-  const DisplacementForm& form = impl_->form;  // E, A and probes as for `system`
-  const LinearStateSpace& space = impl_->space;
-  const Eigen::VectorXcd& lambda = impl_->lambda;
-  const Eigen::Index nd = space.state_size();
-
-  // Constant intervals over one period, and the particular state ξ_p = −Λ⁻¹V⁻¹N·f of each.
+std::vector<double> constant_intervals(const System& system, double period) {
   std::vector<double> edges{0.0};
   for (double t : system.breakpoints(0.0, period))
     if (t < period * (1 - 1e-12)) edges.push_back(t);
   edges.push_back(period);
-  const size_t intervals = edges.size() - 1;
-  std::vector<Eigen::VectorXd> f(intervals);
-  std::vector<Eigen::VectorXcd> particular(intervals);
-  // Poles at s = 0 up to the number of hidden constraints are their invariants, which no drive
-  // excites: whatever forcing reaches them is rounding (it grows with V's condition: 1.1e-9 of
-  // the forcing's scale on the 100-segment fish fin). More zero poles than that mean a free body,
-  // which has no periodic state when the drive reaches it.
-  const bool free_body =
-      impl_->zero_poles > static_cast<Eigen::Index>(form.hidden_constraints().size());
-  for (size_t i = 0; i < intervals; ++i) {
-    f[i] = Eigen::VectorXd::Zero(form.size());  // this system's sources, as form.f would
-    f[i].head(system.size()) = system.b(0.5 * (edges[i] + edges[i + 1]));
-    const Eigen::VectorXcd modal_forcing =
-        impl_->vectors_lu.solve(space.forcing(f[i]).cast<Complex>());
-    particular[i] = Eigen::VectorXcd::Zero(nd);
-    const double forcing_scale = modal_forcing.cwiseAbs().maxCoeff();
-    for (Eigen::Index k = 0; k < nd; ++k) {
-      if (!impl_->invariant[static_cast<size_t>(k)]) {
-        particular[i][k] = -modal_forcing[k] / lambda[k];
-      } else if (free_body && std::abs(modal_forcing[k]) > 1e-9 * forcing_scale) {
-        return finish(
-            Status::failure("the network has a pole at s = 0 that the drive excites "
-                            "(a free body): no periodic state"));
-      }
-    }
-  }
-  // One period from ξ = 0 gives c; the periodic start is ξ₀ = c / (1 − e^{ΛT}).
-  Eigen::VectorXcd xi = Eigen::VectorXcd::Zero(nd);
-  for (size_t i = 0; i < intervals; ++i) {
-    const double h = edges[i + 1] - edges[i];
-    xi = particular[i] + ((lambda * h).array().exp() * (xi - particular[i]).array()).matrix();
-  }
-  for (Eigen::Index k = 0; k < nd; ++k) {
-    if (impl_->invariant[static_cast<size_t>(k)]) {
-      xi[k] = 0.0;  // a constraint's invariant: zero in every consistent state
-      continue;
-    }
-    const Complex growth = 1.0 - std::exp(lambda[k] * period);
-    if (std::abs(growth) < 1e-14)
-      return finish(
-          Status::failure("an undamped mode is in exact resonance with the drive: "
-                          "no periodic state"));
-    xi[k] /= growth;
-  }
-  std::vector<Eigen::VectorXcd> start_of(intervals);
-  for (size_t i = 0; i < intervals; ++i) {
-    start_of[i] = xi;
-    const double h = edges[i + 1] - edges[i];
-    xi = particular[i] + ((lambda * h).array().exp() * (xi - particular[i]).array()).matrix();
-  }
-  result.periodicity_residual = (xi - start_of[0]).norm() / std::max(start_of[0].norm(), 1e-300);
+  return edges;
+}
 
-  // Each probe is linear in (x, f): p = gᵀx + p(0, f). In modal coordinates, inside interval i,
-  // p(h) = p_i + Re Σ_k a_ik·e^{λ_k h} with a_ik = (gᵀV)_k·(ξ_i − ξ_p,i)_k.
-  Eigen::VectorXd u, up;
-  auto probe_at = [&](const Probe& probe, const Eigen::VectorXd& x, const Eigen::VectorXd& fi) {
-    space.full_state(x, fi, u, up);
-    return form.probe(probe, u, up);
-  };
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nd);
-  const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(form.size());
-  struct Series {
-    std::vector<double> offset;                 // p_i
-    std::vector<Eigen::VectorXcd> coefficient;  // a_i
-  };
-  std::vector<Series> series(probes.size());
-  for (size_t p = 0; p < probes.size(); ++p) {
-    // gᵀV depends on the probe and the decomposition only: computed once per solver.
-    std::string key = probes[p].name + "/" + std::to_string(probes[p].integrations);
-    for (const auto& [index, coefficient] : probes[p].terms)
-      key += "/" + std::to_string(index) + ":" + std::to_string(coefficient);
-    auto cached = impl_->probe_modes.find(key);
-    if (cached == impl_->probe_modes.end()) {
-      Eigen::VectorXd g(nd);
-      for (Eigen::Index k = 0; k < nd; ++k) {
-        Eigen::VectorXd unit = zero;
-        unit[k] = 1.0;
-        g[k] = probe_at(probes[p], unit, no_force);
-      }
-      cached =
-          impl_->probe_modes.emplace(key, g.transpose().cast<Complex>() * impl_->vectors).first;
-    }
-    const Eigen::RowVectorXcd& g_modes = cached->second;
-    for (size_t i = 0; i < intervals; ++i) {
-      const Eigen::VectorXd x_particular = (impl_->vectors * particular[i]).real();
-      series[p].offset.push_back(probe_at(probes[p], x_particular, f[i]));
-      series[p].coefficient.push_back(
-          g_modes.transpose().cwiseProduct(start_of[i] - particular[i]));
-    }
-  }
+void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
+                            const std::vector<ExponentialSeries>& series, int samples,
+                            PeriodicResult& result) {
+  const double period = edges.back();
+  const size_t intervals = edges.size() - 1;
   auto locate = [&](double t) {
     size_t i = 0;
     while (i + 1 < intervals && t >= edges[i + 1]) ++i;
@@ -224,8 +79,8 @@ PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Pro
   // edge, where the fast modes it excites have decayed. Measured: on the fish fin near its
   // resonance (ζ1 ≈ 0.015) Newton from the largest of 256 samples alone found a local maximum
   // 1.2e-5 below the global one, hidden between samples by a second mode's ripple.
-  std::vector<std::vector<Eigen::VectorXd>> curvature_terms(probes.size());
-  for (size_t p = 0; p < probes.size(); ++p)
+  std::vector<std::vector<Eigen::VectorXd>> curvature_terms(series.size());
+  for (size_t p = 0; p < series.size(); ++p)
     for (size_t i = 0; i < intervals; ++i)
       curvature_terms[p].push_back(
           series[p].coefficient[i].cwiseAbs().cwiseProduct(lambda.cwiseAbs2()));
@@ -233,7 +88,7 @@ PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Pro
   // Uniform samples: inside an interval e^{λ(h+Δ)} = e^{λh}·e^{λΔ}, one exponential per
   // interval and per sample step instead of one per sample and probe (relative rounding grows
   // like the number of samples, ~1e-14 for 256).
-  result.values.assign(probes.size(), {});
+  result.values.assign(series.size(), {});
   const double sample_step = period / samples;
   const Eigen::VectorXcd step_factor = (lambda * sample_step).array().exp();
   Eigen::VectorXcd e;
@@ -251,7 +106,7 @@ PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Pro
     current = i;
     current_h = h;
     result.times.push_back(t);
-    for (size_t p = 0; p < probes.size(); ++p)
+    for (size_t p = 0; p < series.size(); ++p)
       result.values[p].push_back(series[p].offset[i] +
                                  series[p].coefficient[i].cwiseProduct(e).sum().real());
   }
@@ -345,6 +200,161 @@ PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Pro
     if (t >= period) t -= period;
     return std::pair<double, double>(t, sign * best);
   });
+}
+
+struct PeriodicSolver::Impl {
+  explicit Impl(const System& reference)
+      : system(reference),
+        form(system),
+        space(form, characteristic_angular_frequency(system, 0.0)) {
+    Eigen::EigenSolver<Eigen::MatrixXd> solver(space.m());
+    if (solver.info() != Eigen::Success) throw std::runtime_error("eigen-decomposition failed");
+    lambda = solver.eigenvalues();
+    vectors = solver.eigenvectors();
+    vectors_lu.compute(vectors);
+    const double condition =
+        vectors.cwiseAbs().colwise().sum().maxCoeff() *
+        Eigen::MatrixXcd(vectors_lu.inverse()).cwiseAbs().colwise().sum().maxCoeff();
+    if (!(condition < 1e12))
+      throw std::runtime_error(
+          "the state matrix is too close to defective for the exact "
+          "periodic method (condition " +
+          std::to_string(condition) + "); use --method shooting");
+    // Poles at s = 0: the invariants of differentiated constraints (zero for every consistent
+    // state), or a free body when there are more of them than hidden constraints (solve()).
+    invariant.assign(static_cast<size_t>(lambda.size()), false);
+    for (Eigen::Index k = 0; k < lambda.size(); ++k)
+      if ((invariant[static_cast<size_t>(k)] =
+               std::abs(lambda[k]) < 1e-9 * lambda.cwiseAbs().maxCoeff()))
+        ++zero_poles;
+  }
+  std::vector<bool> invariant;
+  Eigen::Index zero_poles = 0;
+  // gᵀ·V of each probe seen so far (by name and terms), reused across solves.
+  mutable std::map<std::string, Eigen::RowVectorXcd> probe_modes;
+  System system;
+  DisplacementForm form;
+  LinearStateSpace space;
+  Eigen::VectorXcd lambda;
+  Eigen::MatrixXcd vectors;
+  Eigen::PartialPivLU<Eigen::MatrixXcd> vectors_lu;
+};
+
+PeriodicSolver::PeriodicSolver(const System& system) {
+  try {
+    impl_ = std::make_unique<Impl>(system);
+  } catch (const std::exception& e) {
+    status_ = Status::failure(e.what());
+  }
+}
+
+PeriodicSolver::~PeriodicSolver() = default;
+
+PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Probe>& probes,
+                                     double period, int samples) const {
+  Timed<PeriodicResult> timed;
+  PeriodicResult& result = timed.result;
+  result.method = "exact";
+  result.period = period;
+  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
+  if (!impl_) return finish(status_);
+  if (Status pieces = require_piecewise_constant(system); !pieces.ok) return finish(pieces);
+  if (system.size() != impl_->system.size() || system.is_nonlinear())
+    return finish(Status::failure("the network differs from the one the solver decomposed"));
+  const DisplacementForm& form = impl_->form;  // E, A and probes as for `system`
+  const LinearStateSpace& space = impl_->space;
+  const Eigen::VectorXcd& lambda = impl_->lambda;
+  const Eigen::Index nd = space.state_size();
+
+  // Constant intervals over one period, and the particular state ξ_p = −Λ⁻¹V⁻¹N·f of each.
+  const std::vector<double> edges = constant_intervals(system, period);
+  const size_t intervals = edges.size() - 1;
+  std::vector<Eigen::VectorXd> f(intervals);
+  std::vector<Eigen::VectorXcd> particular(intervals);
+  // Poles at s = 0 up to the number of hidden constraints are their invariants, which no drive
+  // excites: whatever forcing reaches them is rounding (it grows with V's condition: 1.1e-9 of
+  // the forcing's scale on the 100-segment fish fin). More zero poles than that mean a free body,
+  // which has no periodic state when the drive reaches it.
+  const bool free_body =
+      impl_->zero_poles > static_cast<Eigen::Index>(form.hidden_constraints().size());
+  for (size_t i = 0; i < intervals; ++i) {
+    f[i] = Eigen::VectorXd::Zero(form.size());  // this system's sources, as form.f would
+    f[i].head(system.size()) = system.b(0.5 * (edges[i] + edges[i + 1]));
+    const Eigen::VectorXcd modal_forcing =
+        impl_->vectors_lu.solve(space.forcing(f[i]).cast<Complex>());
+    particular[i] = Eigen::VectorXcd::Zero(nd);
+    const double forcing_scale = modal_forcing.cwiseAbs().maxCoeff();
+    for (Eigen::Index k = 0; k < nd; ++k) {
+      if (!impl_->invariant[static_cast<size_t>(k)]) {
+        particular[i][k] = -modal_forcing[k] / lambda[k];
+      } else if (free_body && std::abs(modal_forcing[k]) > 1e-9 * forcing_scale) {
+        return finish(
+            Status::failure("the network has a pole at s = 0 that the drive excites "
+                            "(a free body): no periodic state"));
+      }
+    }
+  }
+  // One period from ξ = 0 gives c; the periodic start is ξ₀ = c / (1 − e^{ΛT}).
+  Eigen::VectorXcd xi = Eigen::VectorXcd::Zero(nd);
+  for (size_t i = 0; i < intervals; ++i) {
+    const double h = edges[i + 1] - edges[i];
+    xi = particular[i] + ((lambda * h).array().exp() * (xi - particular[i]).array()).matrix();
+  }
+  for (Eigen::Index k = 0; k < nd; ++k) {
+    if (impl_->invariant[static_cast<size_t>(k)]) {
+      xi[k] = 0.0;  // a constraint's invariant: zero in every consistent state
+      continue;
+    }
+    const Complex growth = 1.0 - std::exp(lambda[k] * period);
+    if (std::abs(growth) < 1e-14)
+      return finish(
+          Status::failure("an undamped mode is in exact resonance with the drive: "
+                          "no periodic state"));
+    xi[k] /= growth;
+  }
+  std::vector<Eigen::VectorXcd> start_of(intervals);
+  for (size_t i = 0; i < intervals; ++i) {
+    start_of[i] = xi;
+    const double h = edges[i + 1] - edges[i];
+    xi = particular[i] + ((lambda * h).array().exp() * (xi - particular[i]).array()).matrix();
+  }
+  result.periodicity_residual = (xi - start_of[0]).norm() / std::max(start_of[0].norm(), 1e-300);
+
+  // Each probe is linear in (x, f): p = gᵀx + p(0, f). In modal coordinates, inside interval i,
+  // p(h) = p_i + Re Σ_k a_ik·e^{λ_k h} with a_ik = (gᵀV)_k·(ξ_i − ξ_p,i)_k.
+  Eigen::VectorXd u, up;
+  auto probe_at = [&](const Probe& probe, const Eigen::VectorXd& x, const Eigen::VectorXd& fi) {
+    space.full_state(x, fi, u, up);
+    return form.probe(probe, u, up);
+  };
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nd);
+  const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(form.size());
+  std::vector<ExponentialSeries> series(probes.size());
+  for (size_t p = 0; p < probes.size(); ++p) {
+    // gᵀV depends on the probe and the decomposition only: computed once per solver.
+    std::string key = probes[p].name + "/" + std::to_string(probes[p].integrations);
+    for (const auto& [index, coefficient] : probes[p].terms)
+      key += "/" + std::to_string(index) + ":" + std::to_string(coefficient);
+    auto cached = impl_->probe_modes.find(key);
+    if (cached == impl_->probe_modes.end()) {
+      Eigen::VectorXd g(nd);
+      for (Eigen::Index k = 0; k < nd; ++k) {
+        Eigen::VectorXd unit = zero;
+        unit[k] = 1.0;
+        g[k] = probe_at(probes[p], unit, no_force);
+      }
+      cached =
+          impl_->probe_modes.emplace(key, g.transpose().cast<Complex>() * impl_->vectors).first;
+    }
+    const Eigen::RowVectorXcd& g_modes = cached->second;
+    for (size_t i = 0; i < intervals; ++i) {
+      const Eigen::VectorXd x_particular = (impl_->vectors * particular[i]).real();
+      series[p].offset.push_back(probe_at(probes[p], x_particular, f[i]));
+      series[p].coefficient.push_back(
+          g_modes.transpose().cwiseProduct(start_of[i] - particular[i]));
+    }
+  }
+  sample_periodic_series(lambda, edges, series, samples, result);
   return finish(Status::success());
 }
 

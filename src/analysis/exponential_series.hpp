@@ -1,0 +1,31 @@
+// A probe of a linear network under piecewise-constant sources, in modal coordinates: inside
+// each constant interval a sum of exponentials. Shared by the exact periodic method
+// (PeriodicSolver) and the reduced one (ReducedPeriodicSolver), which differ only in how they
+// get the poles and the coefficients.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "emnet/network.hpp"
+#include "emnet/periodic.hpp"
+
+namespace emnet {
+
+// p(t) = offset[i] + Re Σ_k coefficient[i]_k·e^{λ_k·(t − edges[i])} for edges[i] ≤ t < edges[i+1].
+struct ExponentialSeries {
+  std::vector<double> offset;
+  std::vector<Eigen::VectorXcd> coefficient;
+};
+
+// 0, the switching instants of `system` inside (0, period), and period: its constant intervals.
+std::vector<double> constant_intervals(const System& system, double period);
+
+// Samples every series at `samples` uniform times over [0, edges.back()) into result.times and
+// result.values, and finds its global extremes into result.minimum, maximum and their times
+// (curvature-bounded search between the samples, then Newton: see periodic.hpp).
+void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
+                            const std::vector<ExponentialSeries>& series, int samples,
+                            PeriodicResult& result);
+
+}  // namespace emnet
