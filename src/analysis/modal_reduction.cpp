@@ -100,6 +100,14 @@ std::pair<Eigen::SparseMatrix<double>, Eigen::SparseMatrix<double>> expansion_ma
   return out;
 }
 
+// The largest |s| among the poles `modal` found (modes and real poles).
+double largest_pole(const ModalResult& modal) {
+  double largest = 0.0;
+  for (const auto* list : {&modal.modes, &modal.real_poles})
+    for (const Mode& m : *list) largest = std::max(largest, std::abs(m.pole));
+  return largest;
+}
+
 // s^e for e in {−1, 0, 1}.
 Complex power(Complex s, int e) {
   return e == 0 ? Complex(1.0) : (e > 0 ? s : 1.0 / s);
@@ -127,13 +135,11 @@ double cutoff_frequency(const ReductionOptions& options) {
 
 Complex ModalReduction::response(const Probe& probe, double omega, int input) const {
   const Complex s(0.0, omega);
-  Complex sum = 0.0;
+  Complex sum = correction_response(probe, omega, input);
   for (const auto& [index, coefficient] : probe.terms) {
     const int e = (mechanical[static_cast<size_t>(index)] ? 1 : 0) - probe.integrations;
     if (omega == 0.0 && e != 0) continue;  // the static limit, as run_ac at f = 0
-    Complex z = correction[static_cast<size_t>(input)][index];
-    if (!correction_series.empty())
-      z += series_part(correction_series[static_cast<size_t>(input)], s, index);
+    Complex z = 0.0;
     for (size_t k = 0; k < kept.size(); ++k) {
       const KeptPole& p = kept[k];
       const Complex residue = p.z_vector[index] * beta[k][static_cast<size_t>(input)];
@@ -210,9 +216,7 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
     modal = run_modes(system, operating_point, modal_options);
     if (!modal.status.ok) return finish(Status::failure("modes: " + modal.status.message));
     if (modal.complete) break;
-    double largest = 0.0;
-    for (const auto* list : {&modal.modes, &modal.real_poles})
-      for (const Mode& m : *list) largest = std::max(largest, std::abs(m.pole));
+    const double largest = largest_pole(modal);
     if (largest >= omega_c) break;
     // A request that did not converge has reached a cluster; a larger one would not either.
     if (!modal.note.empty() || 2 * count > n / 4) {
@@ -225,15 +229,14 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
     }
   }
   result.modal_method = modal.method;
+  double& largest_found = result.largest_found;
+  largest_found = largest_pole(modal);
   // Poles below f_c that were not found are neither kept nor bounded by the cut-off; the
   // truncated part is then matched to order m at s = 0, the lowest m with
   // r^(m+1)/(1 − r) ≤ tol, r = ω_band/|s| of the largest pole found (header).
   int& order = result.correction_order;
   if (options.series_correction && !result.all_found) {
-    double largest = 0.0;
-    for (const auto* list : {&modal.modes, &modal.real_poles})
-      for (const Mode& m : *list) largest = std::max(largest, std::abs(m.pole));
-    const double r = largest > 0.0 ? omega_band / largest : 1.0;
+    const double r = largest_found > 0.0 ? omega_band / largest_found : 1.0;
     order = 1;
     while (r < 1.0 && order < kMaxSeriesOrder && unfound_bound(r, order) > options.tolerance)
       ++order;
@@ -265,9 +268,6 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
   for (const Mode& m : modal.modes) candidates.push_back({&m, true});
   for (const Mode& m : modal.real_poles) candidates.push_back({&m, false});
   const Eigen::SparseMatrix<Complex> c_complex = system.C.cast<Complex>();
-  double& largest_found = result.largest_found;
-  for (const Candidate& c : candidates)
-    largest_found = std::max(largest_found, std::abs(c.mode->pole));
   auto truncate = [&](const Candidate& c) {
     ++result.truncated_poles;
     result.truncated.emplace_back(c.mode->pole, c.oscillatory);
@@ -389,8 +389,8 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
   }
   if (!result.all_found && largest_found > 0.0) {
     // Poles beyond the largest one found: bounded as undamped modes there.
-    const double r2 = std::pow(omega_band / largest_found, 2);
-    result.truncation_factor = std::max(result.truncation_factor, r2 < 1.0 ? r2 / (1.0 - r2) : 1.0);
+    result.truncation_factor =
+        std::max(result.truncation_factor, unfound_bound(omega_band / largest_found, 0));
   }
 
   // D = z_static − Σ_kept (kept terms at s = 0).
