@@ -76,4 +76,7 @@ double parse_quantity(const std::string& text, const Dimension& expected);
 // "-0.1 m", "4000 V", "0.5": a value with its SI unit, for messages.
 std::string format_quantity(double value, const Dimension& dimension);
 
+// One number through a printf format ("%.3g", "%.4g Hz"), for messages and notes.
+std::string format_number(const char* format, double value);
+
 }  // namespace emnet

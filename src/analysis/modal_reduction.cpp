@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <limits>
 #include <set>
 
+#include "emnet/units.hpp"
 #include "exponential_series.hpp"
 #include "left_eigenvector.hpp"
 #include "timed.hpp"
@@ -54,9 +54,7 @@ Complex series_part(const std::vector<Eigen::VectorXcd>& terms, Complex s, Eigen
 }
 
 std::string hertz(double value) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.4g Hz", value);
-  return buffer;
+  return format_number("%.4g Hz", value);
 }
 
 // The undamped bound r²/(1 − r²) (r = ω/|s| of the nearest pole not found) for a zeroth-order

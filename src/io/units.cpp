@@ -411,4 +411,10 @@ std::string format_quantity(double value, const Dimension& dimension) {
   return unit.empty() ? std::string(buffer) : std::string(buffer) + " " + unit;
 }
 
+std::string format_number(const char* format, double value) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
 }  // namespace emnet

@@ -112,12 +112,6 @@ double first_beam_resonance(const Scene& scene, const BeamSpec& beam) {
   return result.modes.front().frequency_hz;
 }
 
-std::string format_number(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
-
 // [environment]: Sader's added mass m_a and damping c_a per length (emnet/fluid_loading.hpp),
 // added to the beam's mass and viscous damping per length. Γ is taken at environment.frequency,
 // or else at the first undamped resonance of the loaded beam, found by the fixed point

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -13,6 +12,7 @@
 #include "emnet/analysis.hpp"
 #include "emnet/errors.hpp"
 #include "emnet/model.hpp"
+#include "emnet/units.hpp"
 
 namespace emnet {
 
@@ -27,12 +27,6 @@ constexpr int kStartSegmentsPerMode = 4;
 constexpr int kCountingSegments = 32;
 // Steps refined by the N⁻² prediction before bisection takes over.
 constexpr int kPredictedSteps = 3;
-
-std::string format_number(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
 
 }  // namespace
 
