@@ -1438,16 +1438,9 @@ std::string reduction_section(const Settings& settings) {
           5, 3.0);
       double error = NAN;
       if (reduced.status.ok && full.status.ok) {
-        error = 0.0;
-        for (size_t p = 0; p < probes.size(); ++p) {
-          double largest = 0.0, difference = 0.0;
-          for (size_t f = 0; f < grid.size(); ++f) {
-            largest = std::max(largest, std::abs(full.values[p][f]));
-            difference =
-                std::max(difference, std::abs(reduced.ac.values[p][f] - full.values[p][f]));
-          }
-          error = std::max(error, difference / largest);
-        }
+        const std::vector<double> errors =
+            emnet::errors_relative_to_peak(reduced.ac.values, full.values);
+        error = *std::max_element(errors.begin(), errors.end());
       }
       md << "| " << n << " | " << system.size() << " | " << format("%.0e", tolerance) << " | "
          << format("%.4g Hz", reduced.model.cutoff_hz) << " | " << reduced.model.kept_modes << " ("

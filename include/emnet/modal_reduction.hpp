@@ -175,6 +175,12 @@ struct AcReductionResult {
   double seconds = 0.0;
 };
 
+// Per probe p: max_f |values[p][f] − reference[p][f]| / max_f |reference[p][f]| (0 when both
+// are zero, 1 when only the reference is): the error measure of every reduction check.
+std::vector<double> errors_relative_to_peak(
+    const std::vector<std::vector<std::complex<double>>>& values,
+    const std::vector<std::vector<std::complex<double>>>& reference);
+
 // Reduced AC sweep of B_ac (System::b_ac) with its check against run_ac. options.band 0 means
 // the sweep's highest frequency.
 AcReductionResult run_ac_reduced(const System& system, const Eigen::VectorXd& operating_point,

@@ -438,6 +438,20 @@ std::vector<double> check_frequencies(const std::vector<double>& grid,
   return out;
 }
 
+std::vector<double> errors_relative_to_peak(const std::vector<std::vector<Complex>>& values,
+                                            const std::vector<std::vector<Complex>>& reference) {
+  std::vector<double> errors;
+  for (size_t p = 0; p < reference.size(); ++p) {
+    double largest = 0.0, difference = 0.0;
+    for (size_t f = 0; f < reference[p].size(); ++f) {
+      largest = std::max(largest, std::abs(reference[p][f]));
+      difference = std::max(difference, std::abs(values[p][f] - reference[p][f]));
+    }
+    errors.push_back(largest > 0.0 ? difference / largest : (difference > 0.0 ? 1.0 : 0.0));
+  }
+  return errors;
+}
+
 AcReductionResult run_ac_reduced(const System& system, const Eigen::VectorXd& operating_point,
                                  const std::vector<double>& frequencies,
                                  const std::vector<Probe>& probes, ReductionOptions options) {
@@ -476,23 +490,20 @@ AcReductionResult run_ac_reduced(const System& system, const Eigen::VectorXd& op
   const AcResult full = run_ac(system, operating_point, result.check_frequencies, probes);
   result.check_seconds = seconds_since(start);
   if (!full.status.ok) return finish(Status::failure("full model check: " + full.status.message));
-  result.probe_errors.assign(probes.size(), 0.0);
+  std::vector<std::vector<Complex>> reduced_at_checks(probes.size());
+  for (size_t p = 0; p < probes.size(); ++p)
+    for (double f : result.check_frequencies)
+      reduced_at_checks[p].push_back(result.model.response(probes[p], two_pi * f));
+  result.probe_errors = errors_relative_to_peak(reduced_at_checks, full.values);
+  // The a-priori estimate at the band's edge, or the sweep's if it reaches beyond it.
+  const double omega =
+      two_pi * std::max(options.band, frequencies.empty() ? 0.0
+                                                          : *std::max_element(frequencies.begin(),
+                                                                              frequencies.end()));
   for (size_t p = 0; p < probes.size(); ++p) {
-    double largest = 0.0, difference = 0.0;
-    for (size_t f = 0; f < result.check_frequencies.size(); ++f) {
-      largest = std::max(largest, std::abs(full.values[p][f]));
-      difference =
-          std::max(difference,
-                   std::abs(result.model.response(probes[p], two_pi * result.check_frequencies[f]) -
-                            full.values[p][f]));
-    }
-    result.probe_errors[p] = largest > 0.0 ? difference / largest : (difference > 0.0 ? 1.0 : 0.0);
     result.measured_error = std::max(result.measured_error, result.probe_errors[p]);
-    // At the band's edge, or the sweep's if it reaches beyond it.
-    const double omega =
-        two_pi * std::max(options.band, frequencies.empty() ? 0.0
-                                                            : *std::max_element(frequencies.begin(),
-                                                                                frequencies.end()));
+    double largest = 0.0;
+    for (const Complex& v : full.values[p]) largest = std::max(largest, std::abs(v));
     if (largest > 0.0)
       result.error_estimate =
           std::max(result.error_estimate,

@@ -46,16 +46,8 @@ Built build(const std::string& name, int segments, std::vector<std::string> over
 // max over probes of max_f |a − b| / max_f |b|.
 double worst_relative(const std::vector<std::vector<Complex>>& a,
                       const std::vector<std::vector<Complex>>& b) {
-  double worst = 0.0;
-  for (size_t p = 0; p < b.size(); ++p) {
-    double largest = 0.0, difference = 0.0;
-    for (size_t f = 0; f < b[p].size(); ++f) {
-      largest = std::max(largest, std::abs(b[p][f]));
-      difference = std::max(difference, std::abs(a[p][f] - b[p][f]));
-    }
-    worst = std::max(worst, difference / largest);
-  }
-  return worst;
+  const std::vector<double> errors = errors_relative_to_peak(a, b);
+  return *std::max_element(errors.begin(), errors.end());
 }
 
 // One mass m on a spring k and damper c to ground, unit force: X(s) = 1/(m·s² + c·s + k), one
