@@ -295,27 +295,37 @@ class Section {
     }
   }
 
+  // `node` (the value of key `name`, or an element of it that `what` names: "the upper end") as
+  // a quantity of `dimension`: a number, or a string "number unit".
+  double node_quantity(const toml::node& node, const std::string& name, const Dimension& dimension,
+                       const std::string& what = "") const {
+    const std::string subject = what.empty() ? "" : what + " ";
+    double value = 0.0;
+    if (const auto* integer = node.as_integer()) {
+      value = static_cast<double>(integer->get());
+    } else if (const auto* floating = node.as_floating_point()) {
+      value = floating->get();
+      if (!std::isfinite(value))
+        fail(name, subject + "must be finite, got " + format_number(value));
+    } else if (const auto* text = node.as_string()) {
+      try {
+        value = parse_quantity(text->get(), dimension);
+      } catch (const std::invalid_argument& error) {
+        fail(name, (what.empty() ? "" : what + ": ") + error.what());
+      }
+    } else {
+      const std::string example = dimension == dim::none ? "0.5" : "1 " + si_unit_symbol(dimension);
+      fail(name, subject + "must be a number or a string like '" + example + "', got " +
+                     describe_node(node));
+    }
+    return value;
+  }
+
   std::optional<double> optional_quantity(const std::string& name, const Dimension& dimension,
                                           Bound bound) const {
     const toml::node* node = find(name);
     if (node == nullptr) return std::nullopt;
-    double value = 0.0;
-    if (const auto* integer = node->as_integer()) {
-      value = static_cast<double>(integer->get());
-    } else if (const auto* floating = node->as_floating_point()) {
-      value = floating->get();
-      if (!std::isfinite(value)) fail(name, "must be finite, got " + format_number(value));
-    } else if (const auto* text = node->as_string()) {
-      try {
-        value = parse_quantity(text->get(), dimension);
-      } catch (const std::invalid_argument& error) {
-        fail(name, error.what());
-      }
-    } else {
-      const std::string example = dimension == dim::none ? "0.5" : "1 " + si_unit_symbol(dimension);
-      fail(name,
-           "must be a number or a string like '" + example + "', got " + describe_node(*node));
-    }
+    const double value = node_quantity(*node, name, dimension);
     if (bound == Bound::positive && !(value > 0.0)) {
       fail(name, "must be > 0, got " + format_quantity(value, dimension));
     }
@@ -861,24 +871,7 @@ void SceneReader::read_model(const toml::table& root, Scene& scene) const {
   const Section reader = section(root, "model");
   ModelSpec& model = scene.model;
   auto frequency_of = [&](const toml::node& node, const std::string& what) {
-    double value = 0.0;
-    if (const auto* integer = node.as_integer()) {
-      value = static_cast<double>(integer->get());
-    } else if (const auto* floating = node.as_floating_point()) {
-      value = floating->get();
-    } else if (const auto* text = node.as_string()) {
-      try {
-        value = parse_quantity(text->get(), dim::frequency);
-      } catch (const std::invalid_argument& error) {
-        reader.fail("band", what + ": " + error.what());
-      }
-    } else {
-      reader.fail("band",
-                  what + " must be a frequency such as \"130 Hz\", got " + describe_node(node));
-    }
-    if (!std::isfinite(value))
-      reader.fail("band", what + " must be finite, got " + format_number(value));
-    return value;
+    return reader.node_quantity(node, "band", dim::frequency, what);
   };
   if (const toml::node* band = reader.find("band")) {
     double from = 0.0, to = 0.0;
