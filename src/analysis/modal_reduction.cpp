@@ -583,26 +583,11 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& system, const std::vec
       particular[i][k] = -forcing / lambda[k];
     }
   }
-  auto advance = [&](Eigen::VectorXcd q, size_t i) {
-    const double h = edges[i + 1] - edges[i];
-    return Eigen::VectorXcd(particular[i] +
-                            ((lambda * h).array().exp() * (q - particular[i]).array()).matrix());
-  };
-  Eigen::VectorXcd q = Eigen::VectorXcd::Zero(modes);
-  for (size_t i = 0; i < intervals; ++i) q = advance(q, i);
-  for (size_t k = 0; k < modes; ++k) {
-    const Complex growth = 1.0 - std::exp(lambda[k] * period);
-    if (std::abs(growth) < 1e-14)
-      return finish(Status::failure(
-          "an undamped mode is in exact resonance with the drive: no periodic state"));
-    q[k] /= growth;
-  }
-  std::vector<Eigen::VectorXcd> start_of(intervals);
-  for (size_t i = 0; i < intervals; ++i) {
-    start_of[i] = q;
-    q = advance(q, i);
-  }
-  result.periodicity_residual = (q - start_of[0]).norm() / std::max(start_of[0].norm(), 1e-300);
+  std::vector<Eigen::VectorXcd> start_of;
+  if (Status periodic = periodic_interval_starts(lambda, edges, particular, {}, start_of,
+                                                 result.periodicity_residual);
+      !periodic.ok)
+    return finish(periodic);
 
   // Probe p in interval i at offset h: offset_pi + Re Σ_k a_pik·e^{λ_k h} (one pole of each
   // conjugate pair kept, its coefficient doubled).

@@ -52,6 +52,38 @@ std::vector<double> constant_intervals(const System& system, double period) {
   return edges;
 }
 
+Status periodic_interval_starts(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
+                                const std::vector<Eigen::VectorXcd>& particular,
+                                const std::vector<bool>& fixed_at_zero,
+                                std::vector<Eigen::VectorXcd>& start_of, double& residual) {
+  const size_t intervals = edges.size() - 1;
+  auto advance = [&](const Eigen::VectorXcd& xi, size_t i) {
+    const double h = edges[i + 1] - edges[i];
+    return Eigen::VectorXcd(particular[i] +
+                            ((lambda * h).array().exp() * (xi - particular[i]).array()).matrix());
+  };
+  Eigen::VectorXcd xi = Eigen::VectorXcd::Zero(lambda.size());
+  for (size_t i = 0; i < intervals; ++i) xi = advance(xi, i);
+  for (Eigen::Index k = 0; k < lambda.size(); ++k) {
+    if (static_cast<size_t>(k) < fixed_at_zero.size() && fixed_at_zero[static_cast<size_t>(k)]) {
+      xi[k] = 0.0;  // a constraint's invariant: zero in every consistent state
+      continue;
+    }
+    const Complex growth = 1.0 - std::exp(lambda[k] * edges.back());
+    if (std::abs(growth) < 1e-14)
+      return Status::failure(
+          "an undamped mode is in exact resonance with the drive: no periodic state");
+    xi[k] /= growth;
+  }
+  start_of.assign(intervals, {});
+  for (size_t i = 0; i < intervals; ++i) {
+    start_of[i] = xi;
+    xi = advance(xi, i);
+  }
+  residual = (xi - start_of[0]).norm() / std::max(start_of[0].norm(), 1e-300);
+  return Status::success();
+}
+
 void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
                             const std::vector<ExponentialSeries>& series, int samples,
                             PeriodicResult& result) {
@@ -294,31 +326,11 @@ PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Pro
       }
     }
   }
-  // One period from ξ = 0 gives c; the periodic start is ξ₀ = c / (1 − e^{ΛT}).
-  Eigen::VectorXcd xi = Eigen::VectorXcd::Zero(nd);
-  for (size_t i = 0; i < intervals; ++i) {
-    const double h = edges[i + 1] - edges[i];
-    xi = particular[i] + ((lambda * h).array().exp() * (xi - particular[i]).array()).matrix();
-  }
-  for (Eigen::Index k = 0; k < nd; ++k) {
-    if (impl_->invariant[static_cast<size_t>(k)]) {
-      xi[k] = 0.0;  // a constraint's invariant: zero in every consistent state
-      continue;
-    }
-    const Complex growth = 1.0 - std::exp(lambda[k] * period);
-    if (std::abs(growth) < 1e-14)
-      return finish(
-          Status::failure("an undamped mode is in exact resonance with the drive: "
-                          "no periodic state"));
-    xi[k] /= growth;
-  }
-  std::vector<Eigen::VectorXcd> start_of(intervals);
-  for (size_t i = 0; i < intervals; ++i) {
-    start_of[i] = xi;
-    const double h = edges[i + 1] - edges[i];
-    xi = particular[i] + ((lambda * h).array().exp() * (xi - particular[i]).array()).matrix();
-  }
-  result.periodicity_residual = (xi - start_of[0]).norm() / std::max(start_of[0].norm(), 1e-300);
+  std::vector<Eigen::VectorXcd> start_of;
+  if (Status periodic = periodic_interval_starts(lambda, edges, particular, impl_->invariant,
+                                                 start_of, result.periodicity_residual);
+      !periodic.ok)
+    return finish(periodic);
 
   // Each probe is linear in (x, f): p = gᵀx + p(0, f). In modal coordinates, inside interval i,
   // p(h) = p_i + Re Σ_k a_ik·e^{λ_k h} with a_ik = (gᵀV)_k·(ξ_i − ξ_p,i)_k.
