@@ -10,7 +10,8 @@
 // capacitor from the velocity node to ground); optional rotary inertia ρI·l lumped the same
 // way onto the rotation nodes. Damping: viscous damping to ground c·l (lumped like the mass)
 // and/or Kelvin–Voigt material damping τ, realised as a damper τ/n in parallel with every
-// compliance n, which gives exactly the damping matrix τ·K.
+// compliance n (the inductor's parallel conductance, stamped as τ times the rate of the
+// spring force: elements/inductor.hpp), which gives exactly the damping matrix τ·K.
 // Ends: clamped (v = Ω = 0), pinned (v = 0), sliding (Ω = 0), free: tied to ground or left open.
 #pragma once
 

@@ -1,6 +1,7 @@
 // Displacement form of the network DAE: see displacement_form.hpp.
 #include "displacement_form.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "emnet/analysis.hpp"
@@ -69,25 +70,45 @@ DisplacementForm::DisplacementForm(const System& system) : system_(system) {
   for (int col = 0; col < size_; ++col)
     differential_[static_cast<size_t>(col)] = e_.col(col).nonZeros() > 0;
 
-  // Hidden constraints: an integrated row all of whose unknowns are differential (a lever
-  // between nodes that all carry mass or Kelvin–Voigt damping) would make the DAE index 2.
-  // It is replaced by its time derivative; the start states (rest, static) satisfy the
-  // row itself, so the solution is the same.
-  Eigen::SparseMatrix<double, Eigen::RowMajor> a_rows = a_, e_rows = e_;
-  std::vector<Eigen::Triplet<double>> moved_e, kept_a;
-  bool any = false;
-  for (int row = 0; row < size_; ++row) {
-    bool hidden = divided_[static_cast<size_t>(row)] && e_rows.row(row).nonZeros() == 0 &&
-                  a_rows.row(row).nonZeros() > 0;
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a_rows, row); it && hidden;
-         ++it)
-      if (!differential_[static_cast<size_t>(it.col())]) hidden = false;
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a_rows, row); it; ++it)
-      (hidden ? moved_e : kept_a).emplace_back(row, it.col(), it.value());
-    any = any || hidden;
-    if (hidden) hidden_constraints_.push_back(row);
+  // Hidden constraints: an integrated row that ties differential unknowns together would make
+  // the DAE index 2. It is replaced by its time derivative; the start states (rest, static)
+  // satisfy the row itself, so the solution is the same. Such a row is
+  //   - one all of whose unknowns are differential (a lever between nodes that all carry
+  //     mass), or
+  //   - one that holds a differential through quantity (a spring whose damper enters its nodes
+  //     as τ times the spring force's rate, elements/inductor.hpp): that force is a state, and
+  //     the row fixes it from displacements.
+  // Differentiating a row makes its unknowns differential, which can make another row hidden,
+  // so this repeats until nothing changes.
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> a_rows = a_, e_rows = e_;
+  std::vector<bool> moved(static_cast<size_t>(size_), false);
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int row = 0; row < size_; ++row) {
+      if (!divided_[static_cast<size_t>(row)] || moved[static_cast<size_t>(row)]) continue;
+      if (a_rows.row(row).nonZeros() == 0 || e_rows.row(row).nonZeros() != 0) continue;
+      bool all_differential = true, holds_differential_force = false;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a_rows, row); it; ++it) {
+        const bool differential = differential_[static_cast<size_t>(it.col())];
+        const bool force = it.col() < n && !mechanical_[static_cast<size_t>(it.col())];
+        all_differential = all_differential && differential;
+        holds_differential_force = holds_differential_force || (differential && force);
+      }
+      if (!all_differential && !holds_differential_force) continue;
+      moved[static_cast<size_t>(row)] = true;
+      hidden_constraints_.push_back(row);
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a_rows, row); it; ++it)
+        differential_[static_cast<size_t>(it.col())] = true;
+      changed = true;
+    }
   }
-  if (any) {
+  if (!hidden_constraints_.empty()) {
+    std::sort(hidden_constraints_.begin(), hidden_constraints_.end());
+    std::vector<Eigen::Triplet<double>> moved_e, kept_a;
+    for (int row = 0; row < size_; ++row)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(a_rows, row); it; ++it)
+        (moved[static_cast<size_t>(row)] ? moved_e : kept_a)
+            .emplace_back(row, it.col(), it.value());
     for (int col = 0; col < size_; ++col)
       for (Eigen::SparseMatrix<double>::InnerIterator it(e_, col); it; ++it)
         moved_e.emplace_back(it.row(), col, it.value());

@@ -10,6 +10,11 @@ void Inductor::stamp(Stamper& s) const {
   s.g(j, a_, 1.0);
   s.g(j, b_, -1.0);
   s.c(j, j, -inductance_);
+  const double relaxation_time = parallel_conductance_ * inductance_;
+  if (relaxation_time != 0.0) {
+    s.c(a_, j, relaxation_time);
+    s.c(b_, j, -relaxation_time);
+  }
 }
 
 }  // namespace emnet

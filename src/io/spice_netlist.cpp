@@ -213,7 +213,7 @@ void DeckWriter::name_nodes() {
 }
 
 std::vector<Group> DeckWriter::groups() const {
-  static const std::regex segment_element("^(nR|nT|kvR|kvT|lever)([0-9]+)$");
+  static const std::regex segment_element("^(nR|nT|lever)([0-9]+)$");
   static const std::regex node_element("^(mass|damper|inertia)([0-9]+)$");
   static const std::regex load_element("^load([0-9]+)_.*$");
   std::vector<Group> list;
@@ -244,7 +244,7 @@ std::vector<Group> DeckWriter::groups() const {
                  "its force F returns as torques (l/2)*F into both rotation nodes"};
       if (tau > 0.0 && k + 1 < model_.beam.x.size())
         title.push_back(
-            "  kvR, kvT: Kelvin-Voigt dampers tau/n in parallel with each "
+            "  Kelvin-Voigt damping: a resistor n/tau (a damper tau/n) across each "
             "compliance, tau = " +
             number(tau) + " s");
     } else if (std::regex_match(name, match, node_element)) {
@@ -443,7 +443,9 @@ void DeckWriter::write_element(const Element& element) {
       return;
     }
     if (op_ && (mechanical(l->a()) || mechanical(l->b()))) {
-      // z_a − z_b = n·F: the compliance is a resistor n between displacement nodes.
+      // z_a − z_b = n·F: the compliance is a resistor n between displacement nodes (a damper
+      // across it carries no force at rest).
+      if (l->parallel_conductance() != 0.0) left_out_.push_back(name + " (its damper)");
       out << element_name('R', name) << " " << node(l->a()) << " " << node(l->b()) << " "
           << value(l->inductance(), name) << "\n";
       branch(0, "", 1.0);
@@ -453,6 +455,11 @@ void DeckWriter::write_element(const Element& element) {
     out << spice << " " << node(l->a()) << " " << node(l->b()) << " "
         << value(l->inductance(), name) << "\n";
     branch(0, spice, 1.0);
+    // Its parallel conductance as a resistor across it (the same equations; in an op deck it
+    // carries no force at rest and is left out above with the coil written as a resistor).
+    if (l->parallel_conductance() != 0.0)
+      out << element_name('R', name) << " " << node(l->a()) << " " << node(l->b()) << " "
+          << value(1.0 / l->parallel_conductance(), name) << "\n";
     return;
   }
   if (const auto* i = dynamic_cast<const CurrentSource*>(&element)) {

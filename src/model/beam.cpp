@@ -117,16 +117,11 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
     const NodeId middle =
         network.add_node("m" + id, Domain::translational,
                          "segment " + id + " branch between spring and lever [m/s]");
+    // Kelvin–Voigt: a damper τ/n across each compliance n, stamped as τ·(spring force)'.
     network.add<Inductor>("nR" + id, beam.angular_velocity[a], beam.angular_velocity[b],
-                          rotational_compliance, Domain::rotational);
+                          rotational_compliance, Domain::rotational, tau / rotational_compliance);
     network.add<Inductor>("nT" + id, beam.velocity[a], middle, translational_compliance,
-                          Domain::translational);
-    if (tau > 0.0) {
-      network.add<Conductance>("kvR" + id, beam.angular_velocity[a], beam.angular_velocity[b],
-                               tau / rotational_compliance);
-      network.add<Conductance>("kvT" + id, beam.velocity[a], middle,
-                               tau / translational_compliance);
-    }
+                          Domain::translational, tau / translational_compliance);
     network.add<Transformer>(
         "lever" + id, beam.velocity[b], middle,
         std::vector<Transformer::Port>{{beam.angular_velocity[a], ground, 0.5 * l},

@@ -52,7 +52,7 @@ struct EnergyProbes {
     size_t velocity;      // probe: v_to − v_from
   };
   std::vector<Drive> drives;
-  int dissipators = 0;  // conductances (dampers)
+  int dissipators = 0;  // conductances and dampers across springs
 };
 
 LinearTerms across_terms(NodeId plus, NodeId minus) {
@@ -82,6 +82,7 @@ EnergyProbes energy_probes(const Network& network, const System& system) {
     } else if (const auto* l = dynamic_cast<const Inductor*>(element.get())) {
       out.stores.push_back({add_probe("F_" + l->name(), {{system.branch_index(l->name()), 1.0}}, 0),
                             0.5 * l->inductance()});
+      if (l->parallel_conductance() != 0.0) ++out.dissipators;  // a damper across the spring
     } else if (const auto* s = dynamic_cast<const CurrentSource*>(element.get())) {
       const LinearTerms terms = across_terms(s->to(), s->from());
       const size_t x = add_probe("x_" + s->name(), terms, 1);
