@@ -97,15 +97,42 @@ std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y,
 
 // ---- modal -------------------------------------------------------------------------------
 //
-// Poles s of the pencil: det(G + J_g + s·C) = 0. Shift-invert: with A = (G + J_g + σC)⁻¹·C,
-// A·x = μ·x gives s = σ − 1/μ; the pencil's infinite eigenvalues (algebraic unknowns) map to
-// μ = 0 and drop out. Small systems: dense eigen-decomposition of A, every finite pole.
-// Large systems: implicitly restarted Arnoldi (Spectra) for the `count` poles nearest σ,
-// one sparse LU.
+// Poles s of the network, from its displacement form (src/analysis/displacement_form.hpp):
+// every mechanical across unknown written as s·(displacement), rows without an s⁰ part divided
+// by s, and a velocity unknown v = s·z for every node with mass, so that the pencil
+//     P(s) = A + s·E,    A = ∂F/∂u, E = ∂F/∂u' at the operating point,
+// is the static operator plus damping and inertia. Unlike the velocity form (G + J_g) + s·C it
+// has no pole at s = 0 for a statically indeterminate beam (a self-stress carries no motion),
+// and its rows relate forces to strains without differences of nearly equal velocities.
+// Shift-invert: with T = (Â + σÊ)⁻¹·Ê on the equilibrated pencil (equilibration.hpp),
+// T·x = μ·x gives s = σ − 1/μ; the pencil's infinite eigenvalues (algebraic unknowns) map to
+// μ = 0 and drop out. Small pencils: dense eigen-decomposition of T, every finite pole. Large
+// ones: implicitly restarted Arnoldi (Spectra) for the poles nearest σ, one sparse LU.
+//
+// Rigid-body motions (a free or sliding end, a pin without a spring) make A singular: s = 0 is a
+// pole, defective (displacement and velocity chain) when nothing damps the motion to ground. It
+// is found first, as the invariant subspace of T for μ = 1/σ at a small positive shift σ (block
+// shift-invert iteration, right and left), reported as rigid-body modes (displacement fields),
+// and projected out of T (the spectral projector along the other poles), so that rounding of a
+// Jordan block cannot pollute the elastic poles.
+//
+// Accuracy of each pole: a residual is a backward error; the pole's own error is the residual
+// times its condition. For each pole (a group of poles equal to within 1e-6, such as the two
+// DEAs' RC loops, is treated together) with right vectors X, left vectors Y (inverse iteration
+// on the adjoint pencil) and residuals R = Â·X + Ê·X·Λ evaluated in extended precision, the
+// first-order bound |δŝ| ≤ ‖Y‖₂·‖R‖_F·‖(Yᴴ·Ê·X)⁻¹‖₂ holds against the exact poles of the stored
+// pencil (Wilkinson; Tisseur, "Backward error and condition of polynomial eigenvalue
+// problems", Linear Algebra Appl. 309 (2000)). A pole whose bound cannot be formed (no left
+// vector, Yᴴ·Ê·X singular) or is not small (relative bound above 1e-3, where first order is no
+// longer a bound) is marked unbounded, with the reason.
 struct ModalOptions {
-  int count = 0;          // large systems: oscillatory poles wanted (0: the 10 lowest)
-  int dense_limit = 600;  // unknowns up to which the dense method is used
+  int count = 0;  // large pencils: oscillatory poles wanted (0: the 10 lowest)
+  // System unknowns up to which the dense method is used (every pole, O(n³)). Measured on the
+  // fish fin with the default request (tools/bench, "modes"): dense/Arnoldi time 0.22 at 36
+  // unknowns, 0.76 at 66, 2.1 at 126, 114 at 606, so the crossover lies near 80.
+  int dense_limit = 80;
   bool keep_vectors = true;
+  bool error_bounds = true;  // compute each pole's error bound (one complex LU per pole group)
 };
 
 struct Mode {
@@ -113,22 +140,33 @@ struct Mode {
   double frequency_hz = 0.0;          // |Im s| / 2π (damped)
   double natural_frequency_hz = 0.0;  // |s| / 2π
   double damping_ratio = 0.0;         // −Re s / |s|
-  // ‖(Ĝ + ŝĈ)·x̂‖ / ((‖Ĝ‖ + |ŝ|·‖Ĉ‖)·‖x̂‖) on the equilibrated pencil (unit-free).
+  // ‖(Â + ŝÊ)·x̂‖ / ((‖Â‖ + |ŝ|·‖Ê‖)·‖x̂‖) on the equilibrated pencil (unit-free): the backward
+  // error.
   double relative_residual = 0.0;
-  Eigen::VectorXcd vector;  // y-space eigenvector (across values are velocities)
+  // First-order bound on |δs| [1/s] (see above); valid when error_bounded. The frequency's error
+  // is at most pole_error/2π [Hz], the damping ratio's at most pole_error/|s|.
+  double pole_error = 0.0;
+  bool error_bounded = false;
+  std::string unbounded_reason;  // why not, when !error_bounded
+  Eigen::VectorXcd vector;       // y-space eigenvector (across values are velocities)
 };
 
 struct ModalResult {
   Status status;
   std::vector<Mode> modes;       // oscillatory poles (Im s > 0), sorted by frequency
   std::vector<Mode> real_poles;  // non-oscillatory poles (RC, overdamped), sorted by |s|
-  std::string method;            // "dense" or "arnoldi"
-  int unknowns = 0;
+  // Rigid-body motions (pole s = 0): displacement fields on the system's unknowns (m and rad on
+  // mechanical across unknowns, 0 elsewhere), an orthonormal basis, largest entry positive.
+  std::vector<Eigen::VectorXd> rigid_body_modes;
+  std::string method;   // "dense" or "arnoldi"
+  int unknowns = 0;     // of the system
+  int pencil_size = 0;  // of the displacement-form pencil
   double shift = 0.0;
   double seconds = 0.0;
-  bool complete = false;  // true when every finite pole was computed
-  std::string note;       // e.g. how many of the requested poles converged
-  long iterations = 0;    // Arnoldi restarts over all attempts (0 for dense)
+  double bound_seconds = 0.0;  // of that, the error bounds
+  bool complete = false;       // true when every finite pole was computed
+  std::string note;            // e.g. how many of the requested poles converged
+  long iterations = 0;         // Arnoldi restarts over all attempts (0 for dense)
 };
 
 ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,

@@ -48,11 +48,8 @@ Status make_consistent(const DisplacementForm& form, double source_time, Eigen::
     form.residual(source_time, trial_u, trial_up, residual);
     if (!residual.allFinite()) return Status::failure("the residual is not finite");
     // J_w: ∂F/∂u' on differential columns, ∂F/∂u on algebraic ones.
-    std::vector<Eigen::Triplet<double>> with_derivative, without;
-    form.jacobian(1.0, trial_u, trial_up, with_derivative);
-    form.jacobian(0.0, trial_u, trial_up, without);
-    const Eigen::SparseMatrix<double> d_u = from_triplets(n, without);
-    const Eigen::SparseMatrix<double> d_up = from_triplets(n, with_derivative) - d_u;
+    Eigen::SparseMatrix<double> d_u, d_up;
+    form.linearised(trial_u, trial_up, d_u, d_up);
     std::vector<Eigen::Triplet<double>> entries;
     for (int col = 0; col < n; ++col) {
       const Eigen::SparseMatrix<double>& source =

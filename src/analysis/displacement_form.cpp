@@ -8,7 +8,7 @@
 
 namespace emnet {
 
-DisplacementForm::DisplacementForm(const System& system) : system_(system) {
+DisplacementForm::DisplacementForm(const System& system, Use use) : system_(system) {
   const int n = system.size();
   const RowClassification rows = classify_rows(system, system.G);
   mechanical_ = rows.mechanical;
@@ -56,7 +56,7 @@ DisplacementForm::DisplacementForm(const System& system) : system_(system) {
       e_entries.emplace_back(velocity_of(col), col, -1.0);
     }
   for (const auto& term : system.source_terms)
-    if (divided_[static_cast<size_t>(term.row)])
+    if (use == Use::time_integration && divided_[static_cast<size_t>(term.row)])
       throw std::runtime_error("an across source drives the mechanical unknown '" +
                                system.unknowns[static_cast<size_t>(term.row)].name +
                                "' (only zero across sources, i.e. supports, are supported here)");
@@ -80,6 +80,7 @@ DisplacementForm::DisplacementForm(const System& system) : system_(system) {
   //     the row fixes it from displacements.
   // Differentiating a row makes its unknowns differential, which can make another row hidden,
   // so this repeats until nothing changes.
+  if (use == Use::eigenvalues) return;
   const Eigen::SparseMatrix<double, Eigen::RowMajor> a_rows = a_, e_rows = e_;
   std::vector<bool> moved(static_cast<size_t>(size_), false);
   for (bool changed = true; changed;) {
@@ -167,6 +168,29 @@ void DisplacementForm::jacobian(double cj, const Eigen::VectorXd& u, const Eigen
       else
         out.emplace_back(it.row(), col, cj * it.value());
     }
+}
+
+void DisplacementForm::linearised(const Eigen::VectorXd& u, const Eigen::VectorXd& up,
+                                  Eigen::SparseMatrix<double>& d_u,
+                                  Eigen::SparseMatrix<double>& d_up) const {
+  std::vector<Eigen::Triplet<double>> with_derivative, without;
+  jacobian(1.0, u, up, with_derivative);
+  jacobian(0.0, u, up, without);
+  d_u.resize(size_, size_);
+  d_u.setFromTriplets(without.begin(), without.end());
+  Eigen::SparseMatrix<double> sum(size_, size_);
+  sum.setFromTriplets(with_derivative.begin(), with_derivative.end());
+  d_up = sum - d_u;
+  d_up.prune(0.0);
+  d_u.makeCompressed();
+  d_up.makeCompressed();
+}
+
+Eigen::VectorXd DisplacementForm::from_rest(const Eigen::VectorXd& y) const {
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(size_);
+  for (int k = 0; k < system_.size(); ++k)
+    if (!mechanical_[static_cast<size_t>(k)]) u[k] = y[k];
+  return u;
 }
 
 Eigen::VectorXd DisplacementForm::from_static(const Eigen::VectorXd& z) const {

@@ -24,9 +24,17 @@ namespace emnet {
 
 class DisplacementForm {
  public:
+  // What the form is for.
+  //   time_integration: hidden constraints (integrated rows that tie differential unknowns
+  //     together, index 2) are each replaced by their derivative (index 1; the row itself is an
+  //     invariant of consistent states), and a source on an integrated row (a constant velocity:
+  //     no state at rest) is refused;
+  //   eigenvalues: the pencil E·s + A alone: hidden constraints are kept as they are (their
+  //     derivatives would add a spurious pole at s = 0 each) and sources do not matter.
+  enum class Use { time_integration, eigenvalues };
   // Throws std::runtime_error when the network cannot be written so (a mechanical across
   // source with a non-zero value, a mass in a compliance row).
-  explicit DisplacementForm(const System& system);
+  explicit DisplacementForm(const System& system, Use use = Use::time_integration);
 
   int size() const { return size_; }
   const System& system() const { return system_; }
@@ -51,6 +59,12 @@ class DisplacementForm {
   // ∂F/∂u + cj·∂F/∂u' as triplets (the nonlinear part at u, u').
   void jacobian(double cj, const Eigen::VectorXd& u, const Eigen::VectorXd& up,
                 std::vector<Eigen::Triplet<double>>& out) const;
+  // The linearisation at (u, u'): ∂F/∂u and ∂F/∂u' (for a linear network a() and e()).
+  void linearised(const Eigen::VectorXd& u, const Eigen::VectorXd& up,
+                  Eigen::SparseMatrix<double>& d_u, Eigen::SparseMatrix<double>& d_up) const;
+  // u of a state at rest given in the velocity form (velocities zero): y on the non-mechanical
+  // unknowns, zero displacements (the linearisation does not depend on them).
+  Eigen::VectorXd from_rest(const Eigen::VectorXd& y) const;
   // u from a static state z (velocities zero).
   Eigen::VectorXd from_static(const Eigen::VectorXd& z) const;
   // Value of a probe: deflections from z, velocities from v or z', voltages from z.

@@ -43,7 +43,7 @@ TEST(Gyrator, MassBehindGyratorIsAnInductor) {
     EXPECT_LT(std::abs(ac.values[0][i] - exact), 1e-12 * std::abs(exact));
   }
   const ModalResult modes = run_modes(system, Eigen::VectorXd::Zero(system.size()));
-  ASSERT_TRUE(modes.status.ok);
+  ASSERT_TRUE(modes.status.ok) << modes.status.message;
   ASSERT_EQ(modes.modes.size(), 1u);
   EXPECT_NEAR(modes.modes[0].frequency_hz, k / std::sqrt(m * c1) / (2 * M_PI),
               1e-10 * modes.modes[0].frequency_hz);
