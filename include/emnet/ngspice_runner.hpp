@@ -1,6 +1,6 @@
 // Runs a SPICE deck in ngspice and returns the vectors of its last analysis.
 //
-// Two backends (DESIGN §6: the ngspice runner of src/io):
+// Two backends:
 //
 //  * libngspice, in process: libngspice.so.0 is loaded at run time with dlopen (never linked
 //    at build time, so emnet starts and falls back when it is missing) and driven through its
@@ -18,6 +18,14 @@
 //    `ngspice -b -r RAWFILE DECK` in a private temporary directory, killed at the time limit;
 //    the rawfile (binary, or ASCII when SPICE_ASCIIRAWFILE is set) is parsed here.
 //
+// Bounds, whatever ngspice does: the time limit holds however much it writes (its output is
+// read in chunks of at most 64 KiB between looks at the clock); of its messages at most
+// `max_message_bytes` are kept: the first lines and the last ones, with one line saying how
+// much was left out between them (and the first error line among that); every line is cut at
+// 4096 bytes and its control characters are escaped ("\x1b") before it is stored, so no
+// message can drive the terminal it is printed on. The vectors the worker sends back are
+// accepted up to `max_result_bytes`.
+//
 // Both backends give the same vectors under the same names: ngspice's own vector names
 // ("out", "v1#branch", "time"); the rawfile's "v(out)" and "i(v1)" are renamed to those.
 // NgspiceResult::find also accepts the v(...)/i(...) spellings, in any letter case.
@@ -29,6 +37,8 @@
 #pragma once
 
 #include <complex>
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -53,6 +63,12 @@ struct NgspiceOptions {
   std::string program = "ngspice";
   // Run libngspice in this process instead of a forked worker (see the header comment).
   bool library_in_this_process = false;
+  // ngspice's messages kept, in bytes (each message's text and bookkeeping): the first three
+  // quarters for the first lines, the last quarter for the last ones (see the header comment).
+  std::size_t max_message_bytes = std::size_t{1} << 20;
+  // Largest result accepted, in bytes: the vectors the worker sends back; a larger one makes
+  // the run fail.
+  std::uint64_t max_result_bytes = std::uint64_t{1} << 29;
 };
 
 enum class NgspiceStream { out, err };

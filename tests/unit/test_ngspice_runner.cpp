@@ -7,17 +7,23 @@
 // program) must give a failure status with a clear message, never a hang or a crash of the
 // test process. Time bounds in these tests only guard against hangs; they measure nothing.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "cli_run.hpp"
 #include "emnet/ngspice_runner.hpp"
 
 namespace emnet {
@@ -388,6 +394,203 @@ TEST(NgspiceRunner, RawfileParserRefusesATruncatedFile) {
   plots.clear();
   EXPECT_FALSE(parse_ngspice_rawfile(bytes, plots, why));
   EXPECT_NE(why.find("truncated"), std::string::npos) << why;
+}
+
+// ---- bounds: output, time, processes, rawfile sizes, control characters ---------------------
+//
+// These drive stand-ins for ngspice: shell scripts written into the test's temporary directory
+// (the program backend runs them as `PROGRAM -b -r RAWFILE DECK`, so a script finds the
+// rawfile's path in $3) and a C stand-in for libngspice.
+
+// A stand-in "ngspice" program with the given shell-script body.
+std::string write_fake_program(const std::string& name, const std::string& body) {
+  const std::string path =
+      ::testing::TempDir() + "emnet_fake_" + name + "_" + std::to_string(::getpid());
+  std::ofstream(path) << "#!/bin/sh\n" << body;
+  ::chmod(path.c_str(), 0755);
+  return path;
+}
+
+// Shell lines that write an ASCII rawfile of the divider's operating point to $3.
+const char* const kWriteDividerRawfile = R"(cat > "$3" <<'RAW'
+Title: fake
+Date: today
+Plotname: Operating Point
+Flags: real
+No. Variables: 2
+No. Points: 1
+Variables:
+	0	v(out)	voltage
+	1	i(v1)	current
+Values:
+ 0	7.5e-01
+	-2.5e-04
+RAW
+)";
+
+NgspiceOptions program_options(const std::string& program, double timeout_seconds) {
+  NgspiceOptions options;
+  options.backend = NgspiceBackend::program;
+  options.program = program;
+  options.timeout_seconds = timeout_seconds;
+  return options;
+}
+
+// The memory the messages take as the log counts it: text plus one NgspiceMessage each.
+std::size_t message_bytes(const NgspiceResult& result) {
+  std::size_t bytes = 0;
+  for (const NgspiceMessage& message : result.messages)
+    bytes += message.text.size() + sizeof(NgspiceMessage);
+  return bytes;
+}
+
+// What the log may hold beyond max_message_bytes: the line that marks the left-out part and
+// the first error line among it, at most 4096 bytes of text that can grow 4× when every byte
+// is escaped, plus their bookkeeping: 20 KiB covers both.
+constexpr std::size_t kMessageLogSlackBytes = 20 * 1024;
+
+bool has_message_containing(const NgspiceResult& result, const std::string& text) {
+  for (const NgspiceMessage& message : result.messages)
+    if (message.text.find(text) != std::string::npos) return true;
+  return false;
+}
+
+// A program that prints 9 MB of lines (and a 2 MB line without a newline on standard error)
+// and then succeeds: its results are read, and of its output the first and last lines are
+// kept within max_message_bytes (1 MiB by default), with a line saying what was left out.
+TEST(NgspiceRunnerBounds, FloodOfProgramOutputIsCappedAndTheResultsStillRead) {
+  const std::string program = write_fake_program("flood_then_succeed",
+                                                 "seq -f 'flood line %.0f' 1 500000\n"
+                                                 "head -c 2000000 /dev/zero | tr '\\0' x >&2\n" +
+                                                     std::string(kWriteDividerRawfile));
+  const NgspiceOptions options = program_options(program, 20);
+  const NgspiceResult result = run_ngspice(kDividerDeck, options);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  EXPECT_EQ(vector_named(result, "out").real_values.at(0), 0.75);
+  EXPECT_LE(message_bytes(result), options.max_message_bytes + kMessageLogSlackBytes);
+  ASSERT_FALSE(result.messages.empty());
+  EXPECT_EQ(result.messages.front().text, "flood line 1");
+  EXPECT_TRUE(has_message_containing(result, "flood line 500000"));
+  EXPECT_TRUE(has_message_containing(result, "of ngspice's output left out here"));
+  // The 2 MB line: its first 4096 bytes, then how much of it was cut.
+  EXPECT_TRUE(has_message_containing(result, std::string(4096, 'x') + " [... 1995904 more bytes"));
+}
+
+// A program that floods its output without end: the time limit holds (the read loop looks at
+// the clock between bounded reads), and what is kept stays within max_message_bytes.
+TEST(NgspiceRunnerBounds, EndlessFloodOfProgramOutputIsStoppedAtTheTimeLimit) {
+  const NgspiceOptions options =
+      program_options(write_fake_program("endless_flood", "exec yes"), 1);
+  const NgspiceResult result = run_ngspice(kDividerDeck, options);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("timed out: still running after 1 s"), std::string::npos)
+      << result.status.message;
+  EXPECT_LE(message_bytes(result), options.max_message_bytes + kMessageLogSlackBytes);
+  EXPECT_TRUE(has_message_containing(result, "of ngspice's output left out here"));
+}
+
+// Control characters in ngspice's messages are escaped before they are stored: the warning
+// lines ngspice prints for this deck quote the line with its escape sequence and bell.
+TEST_P(NgspiceRunnerBackends, ControlCharactersInNgspicesMessagesAreEscaped) {
+  const NgspiceResult result =
+      run_ngspice("escape\nV1 in 0 DC 1\nR1 in out 1k zzz\x1b[2J\a\nC1 out 0 1u\n.op\n.end\n",
+                  GetParam().options);
+  EXPECT_FALSE(result.status.ok);
+  // A control character other than tab; the status message's own line breaks aside.
+  const auto has_control = [](const std::string& text, bool newline_allowed) {
+    return std::any_of(text.begin(), text.end(), [&](char c) {
+      const auto byte = static_cast<unsigned char>(c);
+      return (byte < 0x20 && c != '\t' && !(newline_allowed && c == '\n')) || byte == 0x7f;
+    });
+  };
+  for (const NgspiceMessage& message : result.messages)
+    EXPECT_FALSE(has_control(message.text, false)) << message.text;
+  EXPECT_FALSE(has_control(result.status.message, true)) << result.status.message;
+  EXPECT_TRUE(has_message_containing(result, "zzz\\x1b[2j\\x07")) << result.messages_text();
+}
+
+// A deck that makes ngspice print 40 000 warning lines (3 MB as messages): every backend
+// keeps the first and the last within max_message_bytes.
+TEST_P(NgspiceRunnerBackends, FloodOfNgspiceMessagesIsCapped) {
+  std::string deck = "many warnings\nV1 in 0 DC 1\n";
+  for (int k = 0; k < 20000; ++k)
+    deck += "R" + std::to_string(k) + " in 0 1k zzz" + std::to_string(k) + "\n";
+  deck += ".op\n.end\n";
+  const NgspiceResult result = run_ngspice(deck, GetParam().options);
+  EXPECT_LE(message_bytes(result), GetParam().options.max_message_bytes + kMessageLogSlackBytes);
+  EXPECT_TRUE(has_message_containing(result, "can't find model 'zzz0'"));
+  EXPECT_TRUE(has_message_containing(result, "of ngspice's output left out here"));
+  EXPECT_TRUE(has_message_containing(result, "r19999 in 0 1k zzz19999"));
+}
+
+// Results larger than max_result_bytes are refused: the worker's vectors by their record
+// lengths. (In this process the vectors are copied from ngspice's own memory, no untrusted
+// length is involved.)
+TEST(NgspiceRunnerBounds, ResultsLargerThanTheLimitAreRefused) {
+  for (const BackendCase& backend : backend_cases()) {
+    if (backend.options.backend != NgspiceBackend::library) continue;
+    if (backend.options.library_in_this_process) continue;
+    NgspiceOptions options = backend.options;
+    options.max_result_bytes =
+        500;  // the AC deck's results: 26 points of 2 complex vectors, 832 bytes
+    const NgspiceResult result = run_ngspice(kLowPassAcDeck, options);
+    EXPECT_FALSE(result.status.ok) << backend.name;
+    EXPECT_NE(result.status.message.find("max_result_bytes"), std::string::npos)
+        << backend.name << ": " << result.status.message;
+    EXPECT_TRUE(result.vectors.empty()) << backend.name;
+  }
+}
+
+// A stand-in libngspice whose ngSpice_Circ prints through the output callback a line with
+// control characters and 100 000 further lines, and writes 2 MB with control characters to
+// its standard output directly, then fails: the worker's messages and its own output are
+// bounded and escaped.
+std::string build_chatty_library() {
+  const std::string stem =
+      ::testing::TempDir() + "emnet_chatty_ngspice_" + std::to_string(::getpid());
+  const std::string source = stem + ".c", library = stem + ".so";
+  std::ofstream(source) << R"(#include <stdio.h>
+typedef int send_char(char*, int, void*);
+static send_char* print;
+int ngSpice_Init(send_char* a, void* b, void* c, void* d, void* e, void* f, void* g) {
+  print = a;
+  return 0;
+}
+int ngSpice_Command(char* command) { return 0; }
+int ngSpice_Circ(char** lines) {
+  char line[64];
+  print("stderr Error: chatty \033]0;title\007 \033[2J end", 0, 0);
+  for (int k = 0; k < 100000; ++k) {
+    snprintf(line, sizeof line, "stdout chatty line %d", k);
+    print(line, 0, 0);
+  }
+  for (int k = 0; k < 200000; ++k) fputs("raw\033[1m", stdout);
+  fflush(stdout);
+  return 1;
+}
+char** ngSpice_AllVecs(char* plot) { return 0; }
+void* ngGet_Vec_Info(char* name) { return 0; }
+)";
+  const std::string command = "cc -shared -fPIC -o '" + library + "' '" + source + "' 2>/dev/null";
+  return std::system(command.c_str()) == 0 ? library : std::string();
+}
+
+TEST(NgspiceRunnerBounds, LibraryMessagesInTheWorkerAreCappedAndEscaped) {
+  const std::string library = build_chatty_library();
+  if (library.empty()) GTEST_SKIP() << "no C compiler (cc) to build the chatty stand-in";
+  NgspiceOptions options;
+  options.library_names = {library};
+  options.backend = NgspiceBackend::library;
+  const NgspiceResult result = run_ngspice(kDividerDeck, options);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("Error: chatty \\x1b]0;title\\x07 \\x1b[2J end"),
+            std::string::npos)
+      << result.status.message;
+  EXPECT_LE(message_bytes(result), options.max_message_bytes + kMessageLogSlackBytes);
+  EXPECT_TRUE(has_message_containing(result, "chatty line 0"));
+  EXPECT_TRUE(has_message_containing(result, "raw\\x1b[1mraw"));
+  for (const NgspiceMessage& message : result.messages)
+    EXPECT_EQ(message.text.find('\x1b'), std::string::npos) << message.text;
 }
 
 }  // namespace
