@@ -15,16 +15,19 @@
 //    worker (no fork: for timing the library itself); the time limit is then kept with
 //    `bg_run` / `bg_halt`, and a crash of ngspice is a crash of emnet.
 //  * the ngspice program, as a subprocess, when libngspice cannot be loaded (or on request):
-//    `ngspice -b -r RAWFILE DECK` in a private temporary directory, killed at the time limit;
-//    the rawfile (binary, or ASCII when SPICE_ASCIIRAWFILE is set) is parsed here.
+//    `ngspice -b -r RAWFILE DECK` in a private temporary directory, under a supervisor that
+//    kills the program and everything it started (also a grandchild that left its process
+//    group and session) at the time limit (src/io/supervised_program.hpp); the rawfile
+//    (binary, or ASCII when SPICE_ASCIIRAWFILE is set) is parsed here.
 //
 // Bounds, whatever ngspice does: the time limit holds however much it writes (its output is
 // read in chunks of at most 64 KiB between looks at the clock); of its messages at most
 // `max_message_bytes` are kept: the first lines and the last ones, with one line saying how
 // much was left out between them (and the first error line among that); every line is cut at
 // 4096 bytes and its control characters are escaped ("\x1b") before it is stored, so no
-// message can drive the terminal it is printed on. The vectors the worker sends back are
-// accepted up to `max_result_bytes`.
+// message can drive the terminal it is printed on. Results are accepted up to
+// `max_result_bytes`: the rawfile's size (the program cannot write a larger file: it gets
+// SIGXFSZ) and the vectors the worker sends back.
 //
 // Both backends give the same vectors under the same names: ngspice's own vector names
 // ("out", "v1#branch", "time"); the rawfile's "v(out)" and "i(v1)" are renamed to those.
@@ -66,8 +69,8 @@ struct NgspiceOptions {
   // ngspice's messages kept, in bytes (each message's text and bookkeeping): the first three
   // quarters for the first lines, the last quarter for the last ones (see the header comment).
   std::size_t max_message_bytes = std::size_t{1} << 20;
-  // Largest result accepted, in bytes: the vectors the worker sends back; a larger one makes
-  // the run fail.
+  // Largest result accepted, in bytes: the program's rawfile (and any file it writes), the
+  // vectors the worker sends back; a larger one makes the run fail.
   std::uint64_t max_result_bytes = std::uint64_t{1} << 29;
 };
 

@@ -8,7 +8,7 @@
 //   every event to the sink of the run in progress and never throw);
 //   one deck through the library (shared by the worker and the in-this-process mode);
 //   the forked worker and its record stream;
-//   the ngspice program as a subprocess and the rawfile parser;
+//   the ngspice program as a subprocess (src/io/supervised_program.hpp) and the rawfile parser;
 //   run_ngspice, which picks the backend and falls back.
 //
 // The worker's record stream, child to parent, one record after another:
@@ -28,7 +28,6 @@
 #include <ngspice/sharedspice.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -57,8 +56,7 @@
 
 #include "posix_handles.hpp"
 #include "printable_text.hpp"
-
-extern char** environ;
+#include "supervised_program.hpp"
 
 namespace emnet {
 
@@ -1127,105 +1125,55 @@ BackendAttempt run_program(const std::vector<std::string>& lines, const NgspiceO
     for (const std::string& line : lines) deck << line << '\n';
     if (!deck.flush()) return fail_here("cannot write the deck to " + deck_path);
   }
-  Pipe out, err;
-  if (!open_pipe(out, why) || !open_pipe(err, why)) return fail_here(why);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawnattr_t attributes;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawnattr_init(&attributes);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, out.write_end.get(), STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, err.write_end.get(), STDERR_FILENO);
-  // Its own process group (killed as a whole at the time limit), default signal handling.
-  sigset_t no_signals, default_signals;
-  sigemptyset(&no_signals);
-  sigemptyset(&default_signals);
-  sigaddset(&default_signals, SIGPIPE);
-  sigaddset(&default_signals, SIGINT);
-  posix_spawnattr_setsigmask(&attributes, &no_signals);
-  posix_spawnattr_setsigdefault(&attributes, &default_signals);
-  posix_spawnattr_setpgroup(&attributes, 0);
-  posix_spawnattr_setflags(&attributes,
-                           POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-  std::vector<std::string> arguments = {options.program, "-b", "-r", rawfile_path, deck_path};
-  std::vector<char*> argument_pointers;
-  for (std::string& argument : arguments) argument_pointers.push_back(argument.data());
-  argument_pointers.push_back(nullptr);
-
-  std::fflush(nullptr);
-  const Clock::time_point start = Clock::now();
-  pid_t process_id = -1;
-  const int spawn_error = ::posix_spawnp(&process_id, options.program.c_str(), &actions,
-                                         &attributes, argument_pointers.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attributes);
-  if (spawn_error != 0) {
-    attempt.unavailable_reason =
-        "cannot run '" + printable_text(options.program) + "': " + errno_text(spawn_error);
-    return attempt;
-  }
-  ChildProcess program(process_id, /*leads_process_group=*/true);
-  out.write_end.reset();
-  err.write_end.reset();
-
   MessageLog log(options.max_message_bytes);
   LineCollector out_lines(NgspiceStream::out, log);
   LineCollector err_lines(NgspiceStream::err, log);
   bool printed_anything = false;
-  std::string chunk(kReadChunkBytes, '\0');
-  const double timeout = std::max(0.0, options.timeout_seconds);
-  bool timed_out = false;
-  while (out.read_end.is_open() || err.read_end.is_open()) {
-    const double remaining = timeout - seconds_since(start);
-    if (remaining <= 0) {
-      timed_out = true;
-      break;
-    }
-    pollfd descriptors[2] = {{out.read_end.get(), POLLIN, 0}, {err.read_end.get(), POLLIN, 0}};
-    const int ready =
-        ::poll(descriptors, 2, static_cast<int>(std::ceil(std::min(remaining, 1.0) * 1000)));
-    if (ready < 0 && errno != EINTR) break;
-    if (ready <= 0) continue;
-    // At most one chunk from each pipe per look at the clock.
-    const auto drain = [&](pollfd& descriptor, FileDescriptor& end, LineCollector& lines) {
-      if (!(descriptor.revents & (POLLIN | POLLHUP | POLLERR))) return;
-      const std::size_t count = read_chunk(end.get(), chunk.data(), chunk.size());
-      if (count == 0) {
-        end.reset();
-        return;
-      }
-      printed_anything = true;
-      lines.add(chunk.data(), count);
-    };
-    drain(descriptors[0], out.read_end, out_lines);
-    drain(descriptors[1], err.read_end, err_lines);
-  }
+  SupervisedProgramOptions program;
+  program.arguments = {options.program, "-b", "-r", rawfile_path, deck_path};
+  program.timeout_seconds = options.timeout_seconds;
+  program.file_size_limit = options.max_result_bytes;
+  const SupervisedProgramEnd end = run_supervised_program(
+      program, [&](ProgramStream stream, const char* data, std::size_t size) {
+        printed_anything = true;
+        (stream == ProgramStream::standard_output ? out_lines : err_lines).add(data, size);
+      });
   out_lines.finish();
   err_lines.finish();
   result.messages = log.messages();
-  timed_out = finish_or_kill(program, start, timeout, timed_out);
-  result.ngspice_seconds = seconds_since(start);
+  result.ngspice_seconds = end.seconds;
+
+  using How = SupervisedProgramEnd::How;
+  if (end.how == How::not_started) {
+    attempt.unavailable_reason =
+        "cannot run '" + printable_text(options.program) + "': " + errno_text(end.start_error);
+    return attempt;
+  }
+  if (end.how == How::failed) return fail_here("cannot run ngspice: " + end.problem);
   attempt.available = true;
   result.backend_used = NgspiceBackend::program;
   result.backend_description = "ngspice program as a subprocess";
 
-  const int status = program.status();
-  if (timed_out)
-    return fail_here("ngspice timed out: still running after " + format_seconds(timeout) +
-                     " s (timeout_seconds); the program was killed");
-  if (!program.reap_failed() && WIFSIGNALED(status))
-    return fail_here("ngspice crashed (" + signal_text(WTERMSIG(status)) + ") on the deck" +
+  if (end.how == How::timed_out)
+    return fail_here("ngspice timed out: still running after " +
+                     format_seconds(std::max(0.0, options.timeout_seconds)) +
+                     " s (timeout_seconds); the program and everything it started were killed");
+  if (end.how == How::signalled && end.signal_number == SIGXFSZ)
+    return fail_here("ngspice was stopped: a file it wrote (its rawfile) reached the limit of " +
+                     std::to_string(options.max_result_bytes) + " bytes (max_result_bytes)" +
                      error_excerpt(result.messages));
-  if (!program.reap_failed() && WIFEXITED(status) && WEXITSTATUS(status) != 0) {
-    if (WEXITSTATUS(status) == 127 && !printed_anything) {
+  if (end.how == How::signalled)
+    return fail_here("ngspice crashed (" + signal_text(end.signal_number) + ") on the deck" +
+                     error_excerpt(result.messages));
+  if (end.exit_status != 0) {
+    if (end.exit_status == 127 && !printed_anything) {
       attempt.available = false;
       attempt.unavailable_reason =
           "'" + printable_text(options.program) + "' could not be executed";
       return attempt;
     }
-    return fail_here("ngspice failed on the deck (exit status " +
-                     std::to_string(WEXITSTATUS(status)) + ")" + error_excerpt(result.messages));
+    return fail_here("ngspice failed on the deck (exit status " + std::to_string(end.exit_status) +
+                     ")" + error_excerpt(result.messages));
   }
   if (has_error_line(result.messages))
     return fail_here("ngspice failed on the deck" + error_excerpt(result.messages));

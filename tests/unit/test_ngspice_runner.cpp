@@ -489,6 +489,62 @@ TEST(NgspiceRunnerBounds, EndlessFloodOfProgramOutputIsStoppedAtTheTimeLimit) {
   EXPECT_TRUE(has_message_containing(result, "of ngspice's output left out here"));
 }
 
+// Whether the process `pid` is alive and runs `marker` in its command line (so that a pid
+// reused by another process does not count).
+bool process_runs(pid_t pid, const std::string& marker) {
+  std::ifstream command_line("/proc/" + std::to_string(pid) + "/cmdline");
+  std::string text((std::istreambuf_iterator<char>(command_line)),
+                   std::istreambuf_iterator<char>());
+  for (char& c : text)
+    if (c == '\0') c = ' ';
+  return text.find(marker) != std::string::npos;
+}
+
+// Runs a program that starts a grandchild which calls setsid (leaving the program's process
+// group and session), writes its pid to a file and sleeps; then the program runs `then`. The
+// run's result and the grandchild's pid (-1 when it did not start).
+struct GrandchildRun {
+  NgspiceResult result;
+  pid_t grandchild = -1;
+};
+GrandchildRun run_program_with_grandchild(const std::string& name, const std::string& then,
+                                          double timeout_seconds) {
+  const std::string pid_file =
+      ::testing::TempDir() + "emnet_grandchild_" + name + "_" + std::to_string(::getpid()) + ".pid";
+  std::remove(pid_file.c_str());
+  const std::string program = write_fake_program(
+      name, "setsid sh -c 'echo $$ > \"" + pid_file + ".new\"; mv \"" + pid_file + ".new\" \"" +
+                pid_file + "\"; exec sleep 1234' </dev/null >/dev/null 2>&1 &\n" +
+                "while [ ! -s '" + pid_file + "' ]; do sleep 0.01; done\n" + then);
+  GrandchildRun run;
+  run.result = run_ngspice(kDividerDeck, program_options(program, timeout_seconds));
+  std::ifstream(pid_file) >> run.grandchild;
+  return run;
+}
+
+TEST(NgspiceRunnerBounds, TimeoutKillsAGrandchildThatLeftTheProcessGroup) {
+  const GrandchildRun run =
+      run_program_with_grandchild("grandchild_timeout", "exec sleep 100\n", 2);
+  EXPECT_FALSE(run.result.status.ok);
+  EXPECT_NE(run.result.status.message.find("timed out"), std::string::npos)
+      << run.result.status.message;
+  ASSERT_GT(run.grandchild, 0) << "the grandchild did not start";
+  const bool survived = process_runs(run.grandchild, "sleep 1234");
+  EXPECT_FALSE(survived) << "grandchild " << run.grandchild << " outlived the timeout";
+  if (survived) ::kill(run.grandchild, SIGKILL);
+}
+
+// Also when the program ends by itself: nothing it started outlives the run.
+TEST(NgspiceRunnerBounds, NothingTheProgramStartedOutlivesIt) {
+  const GrandchildRun run = run_program_with_grandchild(
+      "grandchild_left_behind", std::string(kWriteDividerRawfile) + "exit 0\n", 10);
+  ASSERT_TRUE(run.result.status.ok) << run.result.status.message;
+  ASSERT_GT(run.grandchild, 0) << "the grandchild did not start";
+  const bool survived = process_runs(run.grandchild, "sleep 1234");
+  EXPECT_FALSE(survived) << "grandchild " << run.grandchild << " outlived the run";
+  if (survived) ::kill(run.grandchild, SIGKILL);
+}
+
 // Control characters in ngspice's messages are escaped before they are stored: the warning
 // lines ngspice prints for this deck quote the line with its escape sequence and bell.
 TEST_P(NgspiceRunnerBackends, ControlCharactersInNgspicesMessagesAreEscaped) {
@@ -524,11 +580,10 @@ TEST_P(NgspiceRunnerBackends, FloodOfNgspiceMessagesIsCapped) {
 }
 
 // Results larger than max_result_bytes are refused: the worker's vectors by their record
-// lengths. (In this process the vectors are copied from ngspice's own memory, no untrusted
-// length is involved.)
+// lengths, the program's rawfile by the file-size limit it runs under. (In this process the
+// vectors are copied from ngspice's own memory, no untrusted length is involved.)
 TEST(NgspiceRunnerBounds, ResultsLargerThanTheLimitAreRefused) {
   for (const BackendCase& backend : backend_cases()) {
-    if (backend.options.backend != NgspiceBackend::library) continue;
     if (backend.options.library_in_this_process) continue;
     NgspiceOptions options = backend.options;
     options.max_result_bytes =
