@@ -27,7 +27,9 @@
 // 4096 bytes and its control characters are escaped ("\x1b") before it is stored, so no
 // message can drive the terminal it is printed on. Results are accepted up to
 // `max_result_bytes`: the rawfile's size (the program cannot write a larger file: it gets
-// SIGXFSZ) and the vectors the worker sends back.
+// SIGXFSZ) and the vectors the worker sends back. A rawfile's header is checked against the
+// file's actual size before anything is allocated for it; a malformed or truncated rawfile
+// is a failed status, like any other failure of ngspice.
 //
 // Both backends give the same vectors under the same names: ngspice's own vector names
 // ("out", "v1#branch", "time"); the rawfile's "v(out)" and "i(v1)" are renamed to those.
@@ -118,7 +120,9 @@ struct NgspiceRawPlot {
   std::string title, plot_name, flags;
   std::vector<NgspiceVector> vectors;  // rawfile names ("v(out)"); the first is the scale
 };
-// Parses every plot of `bytes`; false with `why` on a malformed or truncated file.
+// Parses every plot of `bytes`; false with `why` on a malformed or truncated file. Each plot's
+// claimed size (points times variables) is checked against the bytes that follow its header
+// before anything is allocated for it, so memory stays of the order of `bytes.size()`.
 bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>& plots,
                            std::string& why);
 

@@ -28,6 +28,7 @@
 #include <ngspice/sharedspice.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -46,7 +47,6 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -1105,6 +1105,39 @@ BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
   return attempt;
 }
 
+// Reads the file at `path` into `bytes` when it holds at most `limit` bytes; a missing file
+// gives no bytes. The size is the file's own (fstat), never a claim inside it.
+bool read_file_bounded(const std::string& path, std::uint64_t limit, std::string& bytes,
+                       std::string& why) {
+  bytes.clear();
+  FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (!file.is_open()) {
+    if (errno == ENOENT) return true;
+    why = "cannot open the rawfile: " + errno_text(errno);
+    return false;
+  }
+  struct stat status {};
+  if (::fstat(file.get(), &status) != 0 || !S_ISREG(status.st_mode)) {
+    why = "the rawfile is not a regular file";
+    return false;
+  }
+  const auto size = static_cast<std::uint64_t>(status.st_size);
+  if (size > limit) {
+    why = "the rawfile is " + std::to_string(size) + " bytes, more than max_result_bytes (" +
+          std::to_string(limit) + ")";
+    return false;
+  }
+  bytes.resize(static_cast<std::size_t>(size));
+  std::size_t filled = 0;
+  while (filled < bytes.size()) {
+    const std::size_t count = read_chunk(file.get(), bytes.data() + filled, bytes.size() - filled);
+    if (count == 0) break;
+    filled += count;
+  }
+  bytes.resize(filled);
+  return true;
+}
+
 // ---- the ngspice program ------------------------------------------------------------------
 
 BackendAttempt run_program(const std::vector<std::string>& lines, const NgspiceOptions& options) {
@@ -1178,9 +1211,10 @@ BackendAttempt run_program(const std::vector<std::string>& lines, const NgspiceO
   if (has_error_line(result.messages))
     return fail_here("ngspice failed on the deck" + error_excerpt(result.messages));
 
-  std::ifstream rawfile(rawfile_path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(rawfile)),
-                          std::istreambuf_iterator<char>());
+  std::string bytes;
+  if (!read_file_bounded(rawfile_path, options.max_result_bytes, bytes, why))
+    return fail_here("ngspice wrote no readable results (" + why + ")" +
+                     error_excerpt(result.messages));
   std::vector<NgspiceRawPlot> plots;
   if (bytes.empty() || !parse_ngspice_rawfile(bytes, plots, why) || plots.empty())
     return fail_here(
@@ -1257,7 +1291,7 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
           std::istringstream fields(line);
           std::string number, name;
           if (!(fields >> number >> name)) {
-            why = "cannot read variable line '" + line + "'";
+            why = "cannot read variable line '" + printable_excerpt(line, 200) + "'";
             return false;
           }
           NgspiceVector vector;
@@ -1277,11 +1311,30 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
       if (plots.empty()) why = "no 'Binary:' or 'Values:' section";
       return !plots.empty();
     }
+    const std::string plot_label = "plot '" + printable_excerpt(plot.plot_name, 200) + "'";
     if (!have_variables || !have_points || plot.vectors.size() != variable_count) {
-      why = "plot '" + plot.plot_name + "' lacks its variable or point count";
+      why = plot_label + " lacks its variable or point count";
       return false;
     }
+    if (variable_count == 0) {
+      why = plot_label + " has no variables (not even its scale)";
+      return false;
+    }
+    // The header's claim against what the file holds, before anything is allocated: a binary
+    // value takes 8 bytes (16 complex), an ASCII one at least 2 (a digit and a newline, which
+    // the file's last value may lack).
     const bool complex = plot.flags.find("complex") != std::string::npos;
+    const std::size_t per_value =
+        binary ? (complex ? 2 * sizeof(double) : sizeof(double)) : std::size_t{2};
+    const std::size_t available = position <= bytes.size() ? bytes.size() - position : 0;
+    const std::size_t most_points = (available + (binary ? 0 : 1)) / per_value / variable_count;
+    if (point_count > most_points) {
+      why = plot_label + " is truncated: its header claims " + std::to_string(point_count) +
+            " points of " + std::to_string(variable_count) + " variables, the " +
+            std::to_string(available) + " bytes after it hold at most " +
+            std::to_string(most_points);
+      return false;
+    }
     for (NgspiceVector& vector : plot.vectors) {
       vector.is_complex = complex;
       if (complex)
@@ -1290,10 +1343,9 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
         vector.real_values.resize(point_count);
     }
     if (binary) {
-      const std::size_t per_value = complex ? 2 * sizeof(double) : sizeof(double);
-      const std::size_t needed = point_count * variable_count * per_value;
+      const std::size_t needed = point_count * variable_count * per_value;  // <= available
       if (bytes.size() - position < needed) {
-        why = "plot '" + plot.plot_name + "' is truncated";
+        why = plot_label + " is truncated";
         return false;
       }
       for (std::size_t point = 0; point < point_count; ++point)
@@ -1313,7 +1365,7 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
           std::string text;
           do {
             if (!next_line(text)) {
-              why = "plot '" + plot.plot_name + "' is truncated";
+              why = plot_label + " is truncated";
               return false;
             }
           } while (trimmed(text).empty());
@@ -1330,7 +1382,7 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
                   : parse_double(std::string_view(text).substr(0, comma), real) &&
                         parse_double(std::string_view(text).substr(comma + 1), imaginary);
           if (!ok) {
-            why = "cannot read value '" + text + "' in plot '" + plot.plot_name + "'";
+            why = "cannot read value '" + printable_excerpt(text, 200) + "' in " + plot_label;
             return false;
           }
           NgspiceVector& vector = plot.vectors[index];

@@ -545,6 +545,69 @@ TEST(NgspiceRunnerBounds, NothingTheProgramStartedOutlivesIt) {
   if (survived) ::kill(run.grandchild, SIGKILL);
 }
 
+// A rawfile header's claim is checked against the bytes that follow it before anything is
+// allocated: claims of 1e11 points (800 GB per vector), of a count that overflows 64 bits when
+// multiplied out, and of points without variables are refused as truncated or malformed,
+// never by an exception.
+TEST(NgspiceRunnerBounds, RawfileHeaderClaimingMoreThanTheFileHoldsIsRefused) {
+  const auto header = [](const std::string& points, const std::string& variables,
+                         const std::string& section) {
+    std::string text =
+        "Title: t\nDate: d\nPlotname: Operating Point\nFlags: real\nNo. Variables: " + variables +
+        "\nNo. Points: " + points + "\nVariables:\n";
+    if (variables != "0") text += "\t0\tv(a)\tvoltage\n\t1\ti(v1)\tcurrent\n";
+    return text + section;
+  };
+  const double values[2] = {0.75, -2.5e-4};
+  const std::string data(reinterpret_cast<const char*>(values), sizeof values);
+  for (const std::string& points : {"100000000000", "2305843009213693952"}) {
+    for (const std::string& section :
+         {"Binary:\n" + data, std::string("Values:\n 0\t0.75\n\t-2.5e-4\n")}) {
+      std::vector<NgspiceRawPlot> plots;
+      std::string why;
+      bool parsed = true;
+      EXPECT_NO_THROW(parsed = parse_ngspice_rawfile(header(points, "2", section), plots, why))
+          << points;
+      EXPECT_FALSE(parsed) << points;
+      EXPECT_NE(why.find("truncated: its header claims " + points + " points"), std::string::npos)
+          << why;
+    }
+  }
+  std::vector<NgspiceRawPlot> plots;
+  std::string why;
+  EXPECT_FALSE(parse_ngspice_rawfile(header("1000000000000000000", "0", "Binary:\n"), plots, why));
+  EXPECT_NE(why.find("has no variables"), std::string::npos) << why;
+}
+
+// A stand-in program writing a binary rawfile whose header claims $CLAIMED_POINTS points of
+// three variables, followed by 16 bytes.
+std::string write_lying_rawfile_program() {
+  return write_fake_program(
+      "lying_rawfile",
+      "printf 'Title: t\\nDate: d\\nPlotname: Operating Point\\nFlags: real\\nNo. Variables: "
+      "3\\nNo. Points: %s\\nVariables:\\n\\t0\\tv(a)\\tvoltage\\n\\t1\\tv(b)\\tvoltage\\n\\t2\\t"
+      "i(v1)\\tcurrent\\nBinary:\\n0123456789abcdef' \"$CLAIMED_POINTS\" > \"$3\"\n");
+}
+
+// At the command line a lying rawfile is ngspice's failure (exit 3), never an internal error
+// (exit 1, "std::bad_alloc"). 1e8 points (2.4 GB when allocated from the claim) runs under a
+// 1 GB address-space limit, so that allocating from the claim fails the test too.
+TEST(NgspiceRunnerBounds, LyingRawfileIsNgspicesFailureAtTheCommandLine) {
+  const std::string program = write_lying_rawfile_program();
+  for (const char* points : {"100000000", "100000000000"}) {
+    const auto run = emnet::testing::run_emnet(
+        "crosscheck " + std::string(EMNET_SOURCE_DIR) +
+            "/netlists/fishfin.toml --analysis op --backend program --timeout 10 "
+            "--ngspice-program " +
+            program,
+        "ulimit -v 1000000; CLAIMED_POINTS=" + std::string(points) + " ");
+    EXPECT_EQ(run.status, 3) << points << "\n" << run.err;
+    EXPECT_NE(run.err.find("is truncated: its header claims " + std::string(points) + " points"),
+              std::string::npos)
+        << run.err;
+  }
+}
+
 // Control characters in ngspice's messages are escaped before they are stored: the warning
 // lines ngspice prints for this deck quote the line with its escape sequence and bell.
 TEST_P(NgspiceRunnerBackends, ControlCharactersInNgspicesMessagesAreEscaped) {
