@@ -683,8 +683,8 @@ BackendAttempt run_library_in_this_process(const std::vector<std::string>& lines
   attempt.available = true;
   NgspiceResult& result = attempt.result;
   result.backend_used = NgspiceBackend::library;
-  result.backend_description =
-      "libngspice in-process (" + library->loaded_name() + ", in emnet's own process)";
+  result.backend_description = "libngspice in-process (" + printable_text(library->loaded_name()) +
+                               ", in emnet's own process)";
   if (library->busy) {
     result.status = Status::failure(
         "libngspice is still busy with an earlier deck that could not be stopped; run the "
@@ -1446,7 +1446,7 @@ NgspiceResult run_ngspice(const std::string& deck_text, const NgspiceOptions& op
                                  ? run_library_in_this_process(lines, options)
                                  : run_library_in_worker(lines, options);
     if (attempt.available) return finish(std::move(attempt.result));
-    library_reason = attempt.unavailable_reason;
+    library_reason = printable_text(attempt.unavailable_reason);  // dlerror's text, paths
     if (options.backend == NgspiceBackend::library) {
       result.status = Status::failure("libngspice could not be loaded (" + library_reason +
                                       "); install the Debian package libngspice0");

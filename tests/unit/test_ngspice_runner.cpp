@@ -628,6 +628,20 @@ TEST_P(NgspiceRunnerBackends, ControlCharactersInNgspicesMessagesAreEscaped) {
   EXPECT_TRUE(has_message_containing(result, "zzz\\x1b[2j\\x07")) << result.messages_text();
 }
 
+// A library name is the caller's, but the loader's message that quotes it reaches the terminal
+// too: escaped, in the worker and in this process.
+TEST(NgspiceRunnerBounds, LoaderMessagesAreEscaped) {
+  for (const BackendCase& backend : backend_cases()) {
+    if (backend.options.backend != NgspiceBackend::library) continue;
+    NgspiceOptions options = backend.options;
+    options.library_names = {"/nonexistent/\x1b[2Jlibngspice.so.0"};
+    const NgspiceResult result = run_ngspice(kDividerDeck, options);
+    EXPECT_FALSE(result.status.ok) << backend.name;
+    EXPECT_EQ(result.status.message.find('\x1b'), std::string::npos)
+        << backend.name << ": " << result.status.message;
+  }
+}
+
 // A deck that makes ngspice print 40 000 warning lines (3 MB as messages): every backend
 // keeps the first and the last within max_message_bytes.
 TEST_P(NgspiceRunnerBackends, FloodOfNgspiceMessagesIsCapped) {
