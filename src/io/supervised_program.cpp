@@ -288,8 +288,11 @@ bool find_program(const std::string& name, std::string& path, int& error) {
   }
 }
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
+// `seconds` as a duration of the clock, at most 1e9 s (30 years: no overflow of the clock's
+// 64-bit nanoseconds).
+Clock::duration clock_duration(double seconds) {
+  return std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(std::min(seconds, 1e9)));
 }
 
 // The supervisor as a handle: stopping it (closing the control socket) makes it kill the
@@ -311,9 +314,9 @@ class Supervisor {
   void stop() {
     control_.reset();
     if (!process_.running()) return;
-    const Clock::time_point start = Clock::now();
+    const Clock::time_point give_up = Clock::now() + clock_duration(kSupervisorGraceSeconds);
     while (!process_.try_wait()) {
-      if (seconds_since(start) > kSupervisorGraceSeconds) {
+      if (Clock::now() > give_up) {
         if (program_ > 0) ::kill(-program_, SIGKILL);
         process_.kill();
         process_.wait_blocking();
@@ -379,14 +382,14 @@ SupervisedProgramEnd run_supervised_program(
   supervisor_control.reset();
 
   // Read until the program's pipes and the supervisor's socket are closed or the time is up.
-  const double timeout = std::max(0.0, options.timeout_seconds);
+  const Clock::time_point deadline = start + clock_duration(std::max(0.0, options.timeout_seconds));
   std::string chunk(kChunkBytes, '\0');
   int report[2];
   std::size_t report_bytes = 0;
   bool reported_end = false;
   bool timed_out = false;
   while (out.read_end.is_open() || err.read_end.is_open() || supervisor.control() >= 0) {
-    const double remaining = timeout - seconds_since(start);
+    const double remaining = std::chrono::duration<double>(deadline - Clock::now()).count();
     if (remaining <= 0) {
       timed_out = true;
       break;
@@ -437,7 +440,7 @@ SupervisedProgramEnd run_supervised_program(
     }
   }
   supervisor.stop();  // at the time limit: kills the tree; else it has ended already
-  end.seconds = seconds_since(start);
+  end.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   if (timed_out) {
     end.how = SupervisedProgramEnd::How::timed_out;
     return end;
