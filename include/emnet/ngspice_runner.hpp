@@ -1,6 +1,6 @@
 // Runs a SPICE deck in ngspice and returns the vectors of its last analysis.
 //
-// Two backends (DESIGN §6: the ngspice runner of src/io):
+// Two backends:
 //
 //  * libngspice, in process: libngspice.so.0 is loaded at run time with dlopen (never linked
 //    at build time, so emnet starts and falls back when it is missing) and driven through its
@@ -15,8 +15,21 @@
 //    worker (no fork: for timing the library itself); the time limit is then kept with
 //    `bg_run` / `bg_halt`, and a crash of ngspice is a crash of emnet.
 //  * the ngspice program, as a subprocess, when libngspice cannot be loaded (or on request):
-//    `ngspice -b -r RAWFILE DECK` in a private temporary directory, killed at the time limit;
-//    the rawfile (binary, or ASCII when SPICE_ASCIIRAWFILE is set) is parsed here.
+//    `ngspice -b -r RAWFILE DECK` in a private temporary directory, under a supervisor that
+//    kills the program and everything it started (also a grandchild that left its process
+//    group and session) at the time limit (src/io/supervised_program.hpp); the rawfile
+//    (binary, or ASCII when SPICE_ASCIIRAWFILE is set) is parsed here.
+//
+// Bounds, whatever ngspice does: the time limit holds however much it writes (its output is
+// read in chunks of at most 64 KiB between looks at the clock); of its messages at most
+// `max_message_bytes` are kept: the first lines and the last ones, with one line saying how
+// much was left out between them (and the first error line among that); every line is cut at
+// 4096 bytes and its control characters are escaped ("\x1b") before it is stored, so no
+// message can drive the terminal it is printed on. Results are accepted up to
+// `max_result_bytes`: the rawfile's size (the program cannot write a larger file: it gets
+// SIGXFSZ) and the vectors the worker sends back. A rawfile's header is checked against the
+// file's actual size before anything is allocated for it; a malformed or truncated rawfile
+// is a failed status, like any other failure of ngspice.
 //
 // Both backends give the same vectors under the same names: ngspice's own vector names
 // ("out", "v1#branch", "time"); the rawfile's "v(out)" and "i(v1)" are renamed to those.
@@ -29,6 +42,8 @@
 #pragma once
 
 #include <complex>
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -53,6 +68,12 @@ struct NgspiceOptions {
   std::string program = "ngspice";
   // Run libngspice in this process instead of a forked worker (see the header comment).
   bool library_in_this_process = false;
+  // ngspice's messages kept, in bytes (each message's text and bookkeeping): the first three
+  // quarters for the first lines, the last quarter for the last ones (see the header comment).
+  std::size_t max_message_bytes = std::size_t{1} << 20;
+  // Largest result accepted, in bytes: the program's rawfile (and any file it writes), the
+  // vectors the worker sends back; a larger one makes the run fail.
+  std::uint64_t max_result_bytes = std::uint64_t{1} << 29;
 };
 
 enum class NgspiceStream { out, err };
@@ -99,7 +120,9 @@ struct NgspiceRawPlot {
   std::string title, plot_name, flags;
   std::vector<NgspiceVector> vectors;  // rawfile names ("v(out)"); the first is the scale
 };
-// Parses every plot of `bytes`; false with `why` on a malformed or truncated file.
+// Parses every plot of `bytes`; false with `why` on a malformed or truncated file. Each plot's
+// claimed size (points times variables) is checked against the bytes that follow its header
+// before anything is allocated for it, so memory stays of the order of `bytes.size()`.
 bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>& plots,
                            std::string& why);
 

@@ -1,13 +1,14 @@
 // The ngspice runner; see include/emnet/ngspice_runner.hpp for what it does and why.
 //
 // Layout of this file:
-//   POSIX handles (file descriptors, child processes, a temporary directory) in RAII wrappers;
+//   small helpers, a temporary directory, waiting for the worker;
+//   ngspice's messages in bounded memory (MessageLog, LineCollector);
 //   deck preparation and ngspice's error lines;
 //   the process's one libngspice (dlopen, dlsym, ngSpice_Init once, C callbacks that hand
 //   every event to the sink of the run in progress and never throw);
 //   one deck through the library (shared by the worker and the in-this-process mode);
 //   the forked worker and its record stream;
-//   the ngspice program as a subprocess and the rawfile parser;
+//   the ngspice program as a subprocess (src/io/supervised_program.hpp) and the rawfile parser;
 //   run_ngspice, which picks the backend and falls back.
 //
 // The worker's record stream, child to parent, one record after another:
@@ -15,8 +16,11 @@
 // with the payload of a vector record
 //   flags (1 byte: 1 scale, 2 complex) · name length (4 bytes) · name · count (8 bytes) ·
 //   count doubles (real) or count (real, imaginary) pairs
+// and of a message record
+//   bytes cut from the line (8 bytes) · the line's first bytes (at most kMaxLineBytes)
 // all in the machine's own byte order: both ends are the same program on the same machine,
-// and raw doubles carry every bit.
+// and raw doubles carry every bit. The parent checks each record's length against what its
+// tag may hold (a vector: what is left of max_result_bytes) before it keeps a byte of it.
 #include "emnet/ngspice_runner.hpp"
 
 #include <dlfcn.h>
@@ -24,7 +28,7 @@
 #include <ngspice/sharedspice.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -40,16 +44,19 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <system_error>
 #include <utility>
 
-extern char** environ;
+#include "posix_handles.hpp"
+#include "printable_text.hpp"
+#include "supervised_program.hpp"
 
 namespace emnet {
 
@@ -57,12 +64,15 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// A line of ngspice's output longer than this is cut (the rest counted, not kept).
+constexpr std::size_t kMaxLineBytes = 4096;
+// Memory of one message besides its text, counted against max_message_bytes.
+constexpr std::size_t kMessageOverheadBytes = sizeof(NgspiceMessage);
+// Reads from the worker: at most this much per wake-up.
+constexpr std::size_t kReadChunkBytes = 65536;
+
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string errno_text(int error_number) {
-  return std::generic_category().message(error_number);
 }
 
 std::string signal_text(int signal_number) {
@@ -87,116 +97,6 @@ std::string format_seconds(double seconds) {
   text << seconds;
   return text.str();
 }
-
-// ---- POSIX handles ------------------------------------------------------------------------
-
-class FileDescriptor {
- public:
-  FileDescriptor() = default;
-  explicit FileDescriptor(int descriptor) : descriptor_(descriptor) {}
-  FileDescriptor(FileDescriptor&& other) noexcept : descriptor_(other.release()) {}
-  FileDescriptor& operator=(FileDescriptor&& other) noexcept {
-    if (this != &other) reset(other.release());
-    return *this;
-  }
-  FileDescriptor(const FileDescriptor&) = delete;
-  FileDescriptor& operator=(const FileDescriptor&) = delete;
-  ~FileDescriptor() { reset(); }
-
-  int get() const { return descriptor_; }
-  bool is_open() const { return descriptor_ >= 0; }
-  int release() { return std::exchange(descriptor_, -1); }
-  void reset(int descriptor = -1) {
-    if (descriptor_ >= 0) ::close(descriptor_);
-    descriptor_ = descriptor;
-  }
-
- private:
-  int descriptor_ = -1;
-};
-
-struct Pipe {
-  FileDescriptor read_end, write_end;
-};
-
-// A pipe whose ends are closed in programs this process starts (O_CLOEXEC).
-bool open_pipe(Pipe& pipe, std::string& why) {
-  int ends[2];
-  if (::pipe2(ends, O_CLOEXEC) != 0) {
-    why = "cannot create a pipe: " + errno_text(errno);
-    return false;
-  }
-  pipe.read_end.reset(ends[0]);
-  pipe.write_end.reset(ends[1]);
-  return true;
-}
-
-// Writes all of `size` bytes, retrying after interruptions; false when the reader is gone.
-bool write_fully(int descriptor, const void* data, std::size_t size) {
-  const char* bytes = static_cast<const char*>(data);
-  while (size > 0) {
-    const ssize_t written = ::write(descriptor, bytes, size);
-    if (written < 0) {
-      if (errno == EINTR) continue;
-      return false;
-    }
-    bytes += written;
-    size -= static_cast<std::size_t>(written);
-  }
-  return true;
-}
-
-// A child process that is killed (SIGKILL, its whole process group when it leads one) and
-// reaped when this handle goes away without having reaped it.
-class ChildProcess {
- public:
-  ChildProcess() = default;
-  ChildProcess(pid_t process_id, bool leads_process_group)
-      : process_id_(process_id), leads_process_group_(leads_process_group) {}
-  ChildProcess(const ChildProcess&) = delete;
-  ChildProcess& operator=(const ChildProcess&) = delete;
-  ~ChildProcess() {
-    if (running()) {
-      kill();
-      wait_blocking();
-    }
-  }
-
-  bool running() const { return process_id_ > 0 && !reaped_; }
-  void kill() {
-    if (!running()) return;
-    if (leads_process_group_) ::kill(-process_id_, SIGKILL);
-    ::kill(process_id_, SIGKILL);
-  }
-  // True once the child has ended (its wait status in `status()`).
-  bool try_wait() { return reap(WNOHANG); }
-  void wait_blocking() { reap(0); }
-  int status() const { return wait_status_; }
-  bool reap_failed() const { return reap_failed_; }
-
- private:
-  bool reap(int flags) {
-    if (!running()) return reaped_;
-    for (;;) {
-      const pid_t result = ::waitpid(process_id_, &wait_status_, flags);
-      if (result == process_id_) {
-        reaped_ = true;
-        return true;
-      }
-      if (result == 0) return false;
-      if (errno == EINTR) continue;
-      // ECHILD: someone else reaped it (SIGCHLD ignored); its status is unknown.
-      reaped_ = true;
-      reap_failed_ = true;
-      return true;
-    }
-  }
-  pid_t process_id_ = -1;
-  bool leads_process_group_ = false;
-  bool reaped_ = false;
-  bool reap_failed_ = false;
-  int wait_status_ = 0;
-};
 
 // Waits for `child` until `timeout` seconds after `start` (not at all when `timed_out`
 // already), then kills it. Returns whether the time ran out.
@@ -238,60 +138,110 @@ class TemporaryDirectory {
   std::string path_;
 };
 
-// Reads what is available on `descriptor` into `buffer`; false at end of file or on error.
-bool read_available(int descriptor, std::string& buffer) {
-  char chunk[65536];
-  for (;;) {
-    const ssize_t count = ::read(descriptor, chunk, sizeof chunk);
-    if (count > 0) {
-      buffer.append(chunk, static_cast<std::size_t>(count));
-      return true;
-    }
-    if (count < 0 && errno == EINTR) continue;
-    return false;
-  }
-}
+// ---- ngspice's messages, in bounded memory ------------------------------------------------
 
-// Splits a stream's output into lines as it arrives, so that the lines of two streams keep
-// the order in which they came.
-class LineCollector {
+bool is_error_line(const NgspiceMessage& message);
+
+// The messages of one run in at most `byte_limit` bytes (each message's text plus
+// kMessageOverheadBytes): the first three quarters keep the first lines, the last quarter the
+// most recent ones. The lines that fall between are counted and left out, marked by one line
+// (on the error stream, so that status messages show it); the first error line among them is
+// kept after the mark, for the error checks and the status message. Every line is cut at
+// kMaxLineBytes and made printable (printable_text.hpp) before it is stored.
+class MessageLog {
  public:
-  LineCollector(NgspiceStream stream, std::vector<NgspiceMessage>& messages)
-      : stream_(stream), messages_(messages) {}
-  void add(const char* data, std::size_t size) {
-    pending_.append(data, size);
-    std::size_t begin = 0;
-    for (std::size_t end; (end = pending_.find('\n', begin)) != std::string::npos; begin = end + 1)
-      push(pending_.substr(begin, end - begin));
-    pending_.erase(0, begin);
+  explicit MessageLog(std::size_t byte_limit)
+      : head_limit_(byte_limit - byte_limit / 4), tail_limit_(byte_limit / 4) {}
+
+  // One line, without its newline; `bytes_cut`: bytes of it already left out by the caller.
+  void add(NgspiceStream stream, std::string_view line, std::uint64_t bytes_cut = 0) {
+    if (line.size() > kMaxLineBytes) {
+      bytes_cut += line.size() - kMaxLineBytes;
+      line = line.substr(0, kMaxLineBytes);
+    }
+    NgspiceMessage message{stream, printable_text(line)};
+    if (bytes_cut > 0)
+      message.text += " [... " + std::to_string(bytes_cut) + " more bytes of this line left out]";
+    const std::size_t cost = message.text.size() + kMessageOverheadBytes;
+    if (tail_.empty() && head_bytes_ + cost <= head_limit_) {
+      head_bytes_ += cost;
+      head_.push_back(std::move(message));
+      return;
+    }
+    tail_bytes_ += cost;
+    tail_.push_back(std::move(message));
+    while (!tail_.empty() && tail_bytes_ > tail_limit_) {
+      NgspiceMessage& oldest = tail_.front();
+      tail_bytes_ -= oldest.text.size() + kMessageOverheadBytes;
+      ++left_out_lines_;
+      left_out_bytes_ += oldest.text.size() + 1;
+      if (!first_left_out_error_ && is_error_line(oldest))
+        first_left_out_error_ = std::move(oldest);
+      tail_.pop_front();
+    }
   }
-  void finish() {
-    if (!pending_.empty()) push(std::exchange(pending_, std::string()));
+
+  std::vector<NgspiceMessage> messages() const {
+    std::vector<NgspiceMessage> all = head_;
+    if (left_out_lines_ > 0) {
+      all.push_back({NgspiceStream::err, "[... " + std::to_string(left_out_lines_) + " lines (" +
+                                             std::to_string(left_out_bytes_) +
+                                             " bytes) of ngspice's output left out here: at most " +
+                                             std::to_string(head_limit_ + tail_limit_) +
+                                             " bytes of it are kept (max_message_bytes) ...]"});
+      if (first_left_out_error_) all.push_back(*first_left_out_error_);
+    }
+    all.insert(all.end(), tail_.begin(), tail_.end());
+    return all;
   }
 
  private:
-  void push(std::string line) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    messages_.push_back({stream_, std::move(line)});
-  }
-  NgspiceStream stream_;
-  std::vector<NgspiceMessage>& messages_;
-  std::string pending_;
+  std::size_t head_limit_, tail_limit_;
+  std::size_t head_bytes_ = 0, tail_bytes_ = 0;
+  std::vector<NgspiceMessage> head_;
+  std::deque<NgspiceMessage> tail_;
+  std::uint64_t left_out_lines_ = 0, left_out_bytes_ = 0;
+  std::optional<NgspiceMessage> first_left_out_error_;
 };
 
-// Splits text output into lines; a last line without newline is kept.
-void append_lines(const std::string& text, NgspiceStream stream,
-                  std::vector<NgspiceMessage>& messages) {
-  std::size_t begin = 0;
-  while (begin < text.size()) {
-    std::size_t end = text.find('\n', begin);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(begin, end - begin);
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    messages.push_back({stream, std::move(line)});
-    begin = end + 1;
+// Splits a stream's output into lines as it arrives and hands each to a MessageLog, so that
+// the lines of two streams keep the order in which they came. Holds at most one line of
+// kMaxLineBytes (+1, for a carriage return before the newline); the rest of a longer line is
+// counted.
+class LineCollector {
+ public:
+  LineCollector(NgspiceStream stream, MessageLog& log) : stream_(stream), log_(log) {}
+  void add(const char* data, std::size_t size) {
+    const char* const end = data + size;
+    while (data < end) {
+      const char* newline =
+          static_cast<const char*>(std::memchr(data, '\n', static_cast<std::size_t>(end - data)));
+      const char* const stop = newline ? newline : end;
+      const std::size_t length = static_cast<std::size_t>(stop - data);
+      const std::size_t room = kMaxLineBytes + 1 - std::min(pending_.size(), kMaxLineBytes + 1);
+      pending_.append(data, std::min(room, length));
+      cut_ += length - std::min(room, length);
+      if (!newline) break;
+      push();
+      data = newline + 1;
+    }
   }
-}
+  void finish() {
+    if (!pending_.empty() || cut_ > 0) push();
+  }
+
+ private:
+  void push() {
+    if (cut_ == 0 && !pending_.empty() && pending_.back() == '\r') pending_.pop_back();
+    log_.add(stream_, pending_, cut_);
+    pending_.clear();
+    cut_ = 0;
+  }
+  NgspiceStream stream_;
+  MessageLog& log_;
+  std::string pending_;
+  std::uint64_t cut_ = 0;
+};
 
 // ---- the deck and ngspice's error lines -------------------------------------------------
 
@@ -693,20 +643,24 @@ LibraryRun run_deck_in_library(NgspiceLibrary& library, LibraryRunSink& sink,
 
 // ---- libngspice in this process -----------------------------------------------------------
 
+// Keeps the run's messages in a MessageLog (bounded, printable).
 class CollectingSink : public LibraryRunSink {
  public:
+  explicit CollectingSink(std::size_t max_message_bytes) : log_(max_message_bytes) {}
   void message(NgspiceStream stream, std::string text) noexcept override {
     try {
       std::lock_guard<std::mutex> lock(mutex);
-      messages.push_back({stream, std::move(text)});
+      log_.add(stream, text);
     } catch (...) {
     }
   }
   std::vector<NgspiceMessage> snapshot() {
     std::lock_guard<std::mutex> lock(mutex);
-    return messages;
+    return log_.messages();
   }
-  std::vector<NgspiceMessage> messages;
+
+ private:
+  MessageLog log_;
 };
 
 // What an attempt at a backend gave: `available` false means it could not be started at all
@@ -729,20 +683,20 @@ BackendAttempt run_library_in_this_process(const std::vector<std::string>& lines
   attempt.available = true;
   NgspiceResult& result = attempt.result;
   result.backend_used = NgspiceBackend::library;
-  result.backend_description =
-      "libngspice in-process (" + library->loaded_name() + ", in emnet's own process)";
+  result.backend_description = "libngspice in-process (" + printable_text(library->loaded_name()) +
+                               ", in emnet's own process)";
   if (library->busy) {
     result.status = Status::failure(
         "libngspice is still busy with an earlier deck that could not be stopped; run the "
         "deck in a worker (library_in_this_process = false)");
     return attempt;
   }
-  CollectingSink sink;
+  CollectingSink sink(options.max_message_bytes);
   current_sink.store(&sink);
   LibraryRun run = run_deck_in_library(*library, sink, lines, /*in_background=*/true,
                                        options.timeout_seconds, [&] { return sink.snapshot(); });
   if (!library->busy && !run.library_asked_to_be_detached) {
-    CollectingSink discard;  // clean-up chatter is not the deck's
+    CollectingSink discard(0);  // clean-up chatter is not the deck's
     current_sink.store(&discard);
     library->command("remcirc");
     library->command("destroy all");
@@ -787,6 +741,11 @@ class RecordWriter {
   std::mutex mutex_;
 };
 
+constexpr std::size_t kRecordHeaderBytes = 1 + sizeof(std::uint64_t);
+// The longest payload of a record of text (a library name or why it did not load; a status
+// message: at most 20 lines of ngspice's, each at most kMaxLineBytes made printable).
+constexpr std::size_t kMaxTextRecordBytes = std::size_t{1} << 20;
+
 template <class T>
 void append_raw(std::string& bytes, const T& value) {
   bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
@@ -808,6 +767,15 @@ std::string encode_vector(const NgspiceVector& vector) {
   return bytes;
 }
 
+// A message record's payload: the count of bytes cut, then at most kMaxLineBytes of the line.
+std::string encode_message(const std::string& text) {
+  std::string bytes;
+  const std::size_t kept = std::min(text.size(), kMaxLineBytes);
+  append_raw(bytes, static_cast<std::uint64_t>(text.size() - kept));
+  bytes.append(text, 0, kept);
+  return bytes;
+}
+
 template <class T>
 bool read_raw(const std::string& bytes, std::size_t& position, T& value) {
   if (bytes.size() - position < sizeof value) return false;
@@ -824,12 +792,13 @@ bool decode_vector(const std::string& bytes, NgspiceVector& vector) {
   if (!read_raw(bytes, position, flags) || !read_raw(bytes, position, name_length) ||
       bytes.size() - position < name_length)
     return false;
-  vector.name = bytes.substr(position, name_length);
+  vector.name = printable_text(std::string_view(bytes).substr(position, name_length));
   position += name_length;
   if (!read_raw(bytes, position, count)) return false;
   vector.is_scale = (flags & 1) != 0;
   vector.is_complex = (flags & 2) != 0;
   const std::size_t element = vector.is_complex ? sizeof(std::complex<double>) : sizeof(double);
+  // The count is checked against the payload's actual size before anything is allocated.
   if ((bytes.size() - position) / element != count || (bytes.size() - position) % element != 0)
     return false;
   if (vector.is_complex) {
@@ -842,14 +811,90 @@ bool decode_vector(const std::string& bytes, NgspiceVector& vector) {
   return true;
 }
 
+// The worker's records, decoded as they arrive: the buffer holds at most one record (and
+// one read), and each record's claimed length is checked against what its tag may hold before
+// any byte of it is kept; the vectors together may hold at most `result_byte_limit` bytes.
+class RecordReader {
+ public:
+  explicit RecordReader(std::uint64_t result_byte_limit)
+      : result_byte_limit_(result_byte_limit), result_bytes_left_(result_byte_limit) {}
+
+  // Adds bytes and calls `handle(tag, payload)` for each record they complete. False, with
+  // `problem()`, when a record breaks the rules; the stream is then unusable.
+  template <class Handle>
+  bool add(const char* data, std::size_t size, Handle&& handle) {
+    buffer_.append(data, size);
+    std::size_t position = 0;
+    bool ok = true;
+    while (buffer_.size() - position >= kRecordHeaderBytes) {
+      const auto tag = static_cast<RecordTag>(buffer_[position]);
+      std::uint64_t length;
+      std::memcpy(&length, buffer_.data() + position + 1, sizeof length);
+      if (!allowed(tag, length)) {
+        ok = false;
+        break;
+      }
+      if (buffer_.size() - position - kRecordHeaderBytes < length) break;
+      if (tag == RecordTag::vector) result_bytes_left_ -= length;
+      handle(tag, buffer_.substr(position + kRecordHeaderBytes, length));
+      position += kRecordHeaderBytes + length;
+    }
+    buffer_.erase(0, position);
+    return ok;
+  }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  bool allowed(RecordTag tag, std::uint64_t length) {
+    std::uint64_t limit = 0;
+    switch (tag) {
+      case RecordTag::message_out:
+      case RecordTag::message_err:
+        limit = sizeof(std::uint64_t) + kMaxLineBytes;
+        break;
+      case RecordTag::plot_name:
+        limit = kMaxLineBytes;
+        break;
+      case RecordTag::library_loaded:
+      case RecordTag::library_unavailable:
+      case RecordTag::status:
+        limit = kMaxTextRecordBytes + 1;
+        break;
+      case RecordTag::ngspice_seconds:
+        limit = sizeof(double);
+        break;
+      case RecordTag::vector:
+        if (length > result_bytes_left_) {
+          problem_ = "ngspice's results are larger than max_result_bytes (" +
+                     std::to_string(result_byte_limit_) + " bytes)";
+          return false;
+        }
+        return true;
+      default:
+        problem_ = "the ngspice worker sent a record of unknown kind " +
+                   std::to_string(static_cast<int>(tag));
+        return false;
+    }
+    if (length <= limit) return true;
+    problem_ = "the ngspice worker sent a record of kind " + std::to_string(static_cast<int>(tag)) +
+               " of " + std::to_string(length) + " bytes, more than the " + std::to_string(limit) +
+               " it may hold";
+    return false;
+  }
+  std::uint64_t result_byte_limit_, result_bytes_left_;
+  std::string buffer_;
+  std::string problem_;
+};
+
 // Collects like CollectingSink and also streams every message to the parent.
 class StreamingSink : public CollectingSink {
  public:
-  explicit StreamingSink(RecordWriter& writer) : writer_(writer) {}
+  StreamingSink(RecordWriter& writer, std::size_t max_message_bytes)
+      : CollectingSink(max_message_bytes), writer_(writer) {}
   void message(NgspiceStream stream, std::string text) noexcept override {
     try {
       writer_.write(stream == NgspiceStream::err ? RecordTag::message_err : RecordTag::message_out,
-                    text);
+                    encode_message(text));
     } catch (...) {
     }
     CollectingSink::message(stream, std::move(text));
@@ -858,6 +903,11 @@ class StreamingSink : public CollectingSink {
  private:
   RecordWriter& writer_;
 };
+
+// At most `limit` bytes of `text`, for a record of text.
+std::string cut_to(const std::string& text, std::size_t limit) {
+  return text.size() <= limit ? text : text.substr(0, limit);
+}
 
 // The worker's whole life, in the forked child. Never returns.
 [[noreturn]] void worker_main(int record_descriptor, int output_descriptor,
@@ -876,23 +926,24 @@ class StreamingSink : public CollectingSink {
     NgspiceLibrary* library =
         NgspiceLibrary::acquire(options.library_names, why, /*may_replace=*/true);
     if (!library) {
-      writer.write(RecordTag::library_unavailable, why);
+      writer.write(RecordTag::library_unavailable, cut_to(why, kMaxTextRecordBytes));
       ::_exit(0);
     }
-    writer.write(RecordTag::library_loaded, library->loaded_name());
-    StreamingSink sink(writer);
+    writer.write(RecordTag::library_loaded, cut_to(library->loaded_name(), kMaxTextRecordBytes));
+    StreamingSink sink(writer, options.max_message_bytes);
     current_sink.store(&sink);
     const LibraryRun run =
         run_deck_in_library(*library, sink, lines, /*in_background=*/false, options.timeout_seconds,
                             [&] { return sink.snapshot(); });
-    for (const std::string& name : run.plot_names) writer.write(RecordTag::plot_name, name);
+    for (const std::string& name : run.plot_names)
+      writer.write(RecordTag::plot_name, cut_to(name, kMaxLineBytes));
     for (const NgspiceVector& vector : run.vectors)
       writer.write(RecordTag::vector, encode_vector(vector));
     std::string seconds;
     append_raw(seconds, run.ngspice_seconds);
     writer.write(RecordTag::ngspice_seconds, seconds);
-    writer.write(RecordTag::status,
-                 std::string(1, run.status.ok ? '\1' : '\0') + run.status.message);
+    writer.write(RecordTag::status, std::string(1, run.status.ok ? '\1' : '\0') +
+                                        cut_to(run.status.message, kMaxTextRecordBytes));
   } catch (...) {
     ::_exit(3);
   }
@@ -927,60 +978,34 @@ BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
   records.write_end.reset();
   output.write_end.reset();
 
-  // Read both pipes until they close or the time is up.
-  std::string record_bytes, output_bytes;
-  const double timeout = std::max(0.0, options.timeout_seconds);
-  bool timed_out = false;
-  while (records.read_end.is_open() || output.read_end.is_open()) {
-    const double remaining = timeout - seconds_since(start);
-    if (remaining <= 0) {
-      timed_out = true;
-      break;
-    }
-    pollfd descriptors[2] = {{records.read_end.get(), POLLIN, 0},
-                             {output.read_end.get(), POLLIN, 0}};
-    const int ready =
-        ::poll(descriptors, 2, static_cast<int>(std::ceil(std::min(remaining, 1.0) * 1000)));
-    if (ready < 0 && errno != EINTR) break;
-    if (ready <= 0) continue;
-    if ((descriptors[0].revents & (POLLIN | POLLHUP | POLLERR)) &&
-        !read_available(records.read_end.get(), record_bytes))
-      records.read_end.reset();
-    if ((descriptors[1].revents & (POLLIN | POLLHUP | POLLERR)) &&
-        !read_available(output.read_end.get(), output_bytes))
-      output.read_end.reset();
-  }
-  // The pipes are closed: the worker is ending; give it the rest of the time to do so.
-  timed_out = finish_or_kill(worker, start, timeout, timed_out);
-  result.seconds = seconds_since(start);
-
-  // Decode the complete records; a crash may have cut the last one.
-  bool library_loaded = false, have_status = false;
-  std::size_t position = 0;
-  while (record_bytes.size() - position >= 9) {
-    const auto tag = static_cast<RecordTag>(record_bytes[position]);
-    std::uint64_t length;
-    std::memcpy(&length, record_bytes.data() + position + 1, sizeof length);
-    if (record_bytes.size() - position - 9 < length) break;
-    std::string payload = record_bytes.substr(position + 9, length);
-    position += 9 + length;
+  // The records and the worker's own output (as standard-error lines) in one bounded log,
+  // in the order they come.
+  MessageLog log(options.max_message_bytes);
+  LineCollector output_lines(NgspiceStream::err, log);
+  RecordReader reader(options.max_result_bytes);
+  bool library_loaded = false, library_unavailable = false, have_status = false;
+  const auto handle = [&](RecordTag tag, std::string payload) {
     switch (tag) {
       case RecordTag::message_out:
-      case RecordTag::message_err:
-        result.messages.push_back(
-            {tag == RecordTag::message_err ? NgspiceStream::err : NgspiceStream::out,
-             std::move(payload)});
+      case RecordTag::message_err: {
+        std::size_t position = 0;
+        std::uint64_t cut = 0;
+        if (!read_raw(payload, position, cut)) break;
+        log.add(tag == RecordTag::message_err ? NgspiceStream::err : NgspiceStream::out,
+                std::string_view(payload).substr(position), cut);
         break;
+      }
       case RecordTag::library_loaded:
         library_loaded = true;
         result.backend_description =
-            "libngspice in-process (" + payload + ", in a forked worker process)";
+            "libngspice in-process (" + printable_text(payload) + ", in a forked worker process)";
         break;
       case RecordTag::library_unavailable:
-        attempt.unavailable_reason = payload;
-        return attempt;
+        library_unavailable = true;
+        attempt.unavailable_reason = printable_text(payload);
+        break;
       case RecordTag::plot_name:
-        result.plot_names.push_back(std::move(payload));
+        result.plot_names.push_back(printable_text(payload));
         break;
       case RecordTag::vector: {
         NgspiceVector vector;
@@ -994,14 +1019,60 @@ BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
       case RecordTag::status:
         have_status = !payload.empty();
         if (have_status)
-          result.status = payload[0] ? Status::success() : Status::failure(payload.substr(1));
+          result.status =
+              payload[0] ? Status::success() : Status::failure(printable_text(payload.substr(1)));
         break;
     }
+  };
+
+  // Read both pipes until they close, the time is up or the records break the rules; each
+  // wake-up reads at most one chunk from each pipe.
+  std::string chunk(kReadChunkBytes, '\0');
+  const double timeout = std::max(0.0, options.timeout_seconds);
+  bool timed_out = false;
+  std::string record_problem;
+  while ((records.read_end.is_open() || output.read_end.is_open()) && record_problem.empty()) {
+    const double remaining = timeout - seconds_since(start);
+    if (remaining <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd descriptors[2] = {{records.read_end.get(), POLLIN, 0},
+                             {output.read_end.get(), POLLIN, 0}};
+    const int ready =
+        ::poll(descriptors, 2, static_cast<int>(std::ceil(std::min(remaining, 1.0) * 1000)));
+    if (ready < 0 && errno != EINTR) break;
+    if (ready <= 0) continue;
+    if (descriptors[0].revents & (POLLIN | POLLHUP | POLLERR)) {
+      const std::size_t count = read_chunk(records.read_end.get(), chunk.data(), chunk.size());
+      if (count == 0)
+        records.read_end.reset();
+      else if (!reader.add(chunk.data(), count, handle))
+        record_problem = reader.problem();
+    }
+    if (descriptors[1].revents & (POLLIN | POLLHUP | POLLERR)) {
+      const std::size_t count = read_chunk(output.read_end.get(), chunk.data(), chunk.size());
+      if (count == 0)
+        output.read_end.reset();
+      else
+        output_lines.add(chunk.data(), count);
+    }
   }
-  append_lines(output_bytes, NgspiceStream::err, result.messages);
+  output_lines.finish();
+  // The pipes are closed: the worker is ending; give it the rest of the time to do so. A
+  // worker whose records broke the rules is killed at once.
+  if (!record_problem.empty()) {
+    worker.kill();
+    worker.wait_blocking();
+  } else {
+    timed_out = finish_or_kill(worker, start, timeout, timed_out);
+  }
+  result.seconds = seconds_since(start);
+  result.messages = log.messages();
+  if (library_unavailable && record_problem.empty()) return attempt;
 
   const int status = worker.status();
-  const bool signalled = !worker.reap_failed() && WIFSIGNALED(status);
+  const bool signalled = !worker.reap_failed() && WIFSIGNALED(status) && record_problem.empty();
   if (!library_loaded && !timed_out && signalled) {
     attempt.unavailable_reason =
         "the worker died of " + signal_text(WTERMSIG(status)) + " while loading libngspice";
@@ -1016,6 +1087,9 @@ BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
     result.status =
         Status::failure("ngspice timed out: still running after " + format_seconds(timeout) +
                         " s (timeout_seconds); its worker process was killed");
+  } else if (!record_problem.empty()) {
+    result.vectors.clear();
+    result.status = Status::failure(record_problem + "; the worker process was killed");
   } else if (signalled) {
     result.vectors.clear();
     result.status = Status::failure("ngspice crashed (" + signal_text(WTERMSIG(status)) +
@@ -1029,6 +1103,39 @@ BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
   }
   if (result.ngspice_seconds == 0.0) result.ngspice_seconds = result.seconds;
   return attempt;
+}
+
+// Reads the file at `path` into `bytes` when it holds at most `limit` bytes; a missing file
+// gives no bytes. The size is the file's own (fstat), never a claim inside it.
+bool read_file_bounded(const std::string& path, std::uint64_t limit, std::string& bytes,
+                       std::string& why) {
+  bytes.clear();
+  FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (!file.is_open()) {
+    if (errno == ENOENT) return true;
+    why = "cannot open the rawfile: " + errno_text(errno);
+    return false;
+  }
+  struct stat status {};
+  if (::fstat(file.get(), &status) != 0 || !S_ISREG(status.st_mode)) {
+    why = "the rawfile is not a regular file";
+    return false;
+  }
+  const auto size = static_cast<std::uint64_t>(status.st_size);
+  if (size > limit) {
+    why = "the rawfile is " + std::to_string(size) + " bytes, more than max_result_bytes (" +
+          std::to_string(limit) + ")";
+    return false;
+  }
+  bytes.resize(static_cast<std::size_t>(size));
+  std::size_t filled = 0;
+  while (filled < bytes.size()) {
+    const std::size_t count = read_chunk(file.get(), bytes.data() + filled, bytes.size() - filled);
+    if (count == 0) break;
+    filled += count;
+  }
+  bytes.resize(filled);
+  return true;
 }
 
 // ---- the ngspice program ------------------------------------------------------------------
@@ -1051,112 +1158,74 @@ BackendAttempt run_program(const std::vector<std::string>& lines, const NgspiceO
     for (const std::string& line : lines) deck << line << '\n';
     if (!deck.flush()) return fail_here("cannot write the deck to " + deck_path);
   }
-  Pipe out, err;
-  if (!open_pipe(out, why) || !open_pipe(err, why)) return fail_here(why);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawnattr_t attributes;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawnattr_init(&attributes);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, out.write_end.get(), STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, err.write_end.get(), STDERR_FILENO);
-  // Its own process group (killed as a whole at the time limit), default signal handling.
-  sigset_t no_signals, default_signals;
-  sigemptyset(&no_signals);
-  sigemptyset(&default_signals);
-  sigaddset(&default_signals, SIGPIPE);
-  sigaddset(&default_signals, SIGINT);
-  posix_spawnattr_setsigmask(&attributes, &no_signals);
-  posix_spawnattr_setsigdefault(&attributes, &default_signals);
-  posix_spawnattr_setpgroup(&attributes, 0);
-  posix_spawnattr_setflags(&attributes,
-                           POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-  std::vector<std::string> arguments = {options.program, "-b", "-r", rawfile_path, deck_path};
-  std::vector<char*> argument_pointers;
-  for (std::string& argument : arguments) argument_pointers.push_back(argument.data());
-  argument_pointers.push_back(nullptr);
-
-  std::fflush(nullptr);
-  const Clock::time_point start = Clock::now();
-  pid_t process_id = -1;
-  const int spawn_error = ::posix_spawnp(&process_id, options.program.c_str(), &actions,
-                                         &attributes, argument_pointers.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attributes);
-  if (spawn_error != 0) {
-    attempt.unavailable_reason = "cannot run '" + options.program + "': " + errno_text(spawn_error);
-    return attempt;
-  }
-  ChildProcess program(process_id, /*leads_process_group=*/true);
-  out.write_end.reset();
-  err.write_end.reset();
-
-  LineCollector out_lines(NgspiceStream::out, result.messages);
-  LineCollector err_lines(NgspiceStream::err, result.messages);
+  MessageLog log(options.max_message_bytes);
+  LineCollector out_lines(NgspiceStream::out, log);
+  LineCollector err_lines(NgspiceStream::err, log);
   bool printed_anything = false;
-  const double timeout = std::max(0.0, options.timeout_seconds);
-  bool timed_out = false;
-  while (out.read_end.is_open() || err.read_end.is_open()) {
-    const double remaining = timeout - seconds_since(start);
-    if (remaining <= 0) {
-      timed_out = true;
-      break;
-    }
-    pollfd descriptors[2] = {{out.read_end.get(), POLLIN, 0}, {err.read_end.get(), POLLIN, 0}};
-    const int ready =
-        ::poll(descriptors, 2, static_cast<int>(std::ceil(std::min(remaining, 1.0) * 1000)));
-    if (ready < 0 && errno != EINTR) break;
-    if (ready <= 0) continue;
-    const auto drain = [&](pollfd& descriptor, FileDescriptor& end, LineCollector& lines) {
-      if (!(descriptor.revents & (POLLIN | POLLHUP | POLLERR))) return;
-      std::string chunk;
-      if (!read_available(end.get(), chunk)) end.reset();
-      printed_anything = printed_anything || !chunk.empty();
-      lines.add(chunk.data(), chunk.size());
-    };
-    drain(descriptors[0], out.read_end, out_lines);
-    drain(descriptors[1], err.read_end, err_lines);
-  }
+  SupervisedProgramOptions program;
+  program.arguments = {options.program, "-b", "-r", rawfile_path, deck_path};
+  program.timeout_seconds = options.timeout_seconds;
+  program.file_size_limit = options.max_result_bytes;
+  const SupervisedProgramEnd end = run_supervised_program(
+      program, [&](ProgramStream stream, const char* data, std::size_t size) {
+        printed_anything = true;
+        (stream == ProgramStream::standard_output ? out_lines : err_lines).add(data, size);
+      });
   out_lines.finish();
   err_lines.finish();
-  timed_out = finish_or_kill(program, start, timeout, timed_out);
-  result.ngspice_seconds = seconds_since(start);
+  result.messages = log.messages();
+  result.ngspice_seconds = end.seconds;
+
+  using How = SupervisedProgramEnd::How;
+  if (end.how == How::not_started) {
+    attempt.unavailable_reason =
+        "cannot run '" + printable_text(options.program) + "': " + errno_text(end.start_error);
+    return attempt;
+  }
+  if (end.how == How::failed) return fail_here("cannot run ngspice: " + end.problem);
   attempt.available = true;
   result.backend_used = NgspiceBackend::program;
   result.backend_description = "ngspice program as a subprocess";
 
-  const int status = program.status();
-  if (timed_out)
-    return fail_here("ngspice timed out: still running after " + format_seconds(timeout) +
-                     " s (timeout_seconds); the program was killed");
-  if (!program.reap_failed() && WIFSIGNALED(status))
-    return fail_here("ngspice crashed (" + signal_text(WTERMSIG(status)) + ") on the deck" +
+  if (end.how == How::timed_out)
+    return fail_here("ngspice timed out: still running after " +
+                     format_seconds(std::max(0.0, options.timeout_seconds)) +
+                     " s (timeout_seconds); the program and everything it started were killed");
+  if (end.how == How::signalled && end.signal_number == SIGXFSZ)
+    return fail_here("ngspice was stopped: a file it wrote (its rawfile) reached the limit of " +
+                     std::to_string(options.max_result_bytes) + " bytes (max_result_bytes)" +
                      error_excerpt(result.messages));
-  if (!program.reap_failed() && WIFEXITED(status) && WEXITSTATUS(status) != 0) {
-    if (WEXITSTATUS(status) == 127 && !printed_anything) {
+  if (end.how == How::signalled)
+    return fail_here("ngspice crashed (" + signal_text(end.signal_number) + ") on the deck" +
+                     error_excerpt(result.messages));
+  if (end.exit_status != 0) {
+    if (end.exit_status == 127 && !printed_anything) {
       attempt.available = false;
-      attempt.unavailable_reason = "'" + options.program + "' could not be executed";
+      attempt.unavailable_reason =
+          "'" + printable_text(options.program) + "' could not be executed";
       return attempt;
     }
-    return fail_here("ngspice failed on the deck (exit status " +
-                     std::to_string(WEXITSTATUS(status)) + ")" + error_excerpt(result.messages));
+    return fail_here("ngspice failed on the deck (exit status " + std::to_string(end.exit_status) +
+                     ")" + error_excerpt(result.messages));
   }
   if (has_error_line(result.messages))
     return fail_here("ngspice failed on the deck" + error_excerpt(result.messages));
 
-  std::ifstream rawfile(rawfile_path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(rawfile)),
-                          std::istreambuf_iterator<char>());
+  std::string bytes;
+  if (!read_file_bounded(rawfile_path, options.max_result_bytes, bytes, why))
+    return fail_here("ngspice wrote no readable results (" + why + ")" +
+                     error_excerpt(result.messages));
   std::vector<NgspiceRawPlot> plots;
   if (bytes.empty() || !parse_ngspice_rawfile(bytes, plots, why) || plots.empty())
     return fail_here(
         "ngspice wrote no readable results" +
         (bytes.empty() ? std::string(" (has the deck an analysis line?)") : " (" + why + ")") +
         error_excerpt(result.messages));
-  for (const NgspiceRawPlot& plot : plots) result.plot_names.push_back(plot.plot_name);
+  for (const NgspiceRawPlot& plot : plots)
+    result.plot_names.push_back(printable_text(plot.plot_name));
   result.vectors = std::move(plots.back().vectors);
-  for (NgspiceVector& vector : result.vectors) vector.name = vector_name_from_rawfile(vector.name);
+  for (NgspiceVector& vector : result.vectors)
+    vector.name = printable_text(vector_name_from_rawfile(vector.name));
   result.status = Status::success();
   return attempt;
 }
@@ -1222,7 +1291,7 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
           std::istringstream fields(line);
           std::string number, name;
           if (!(fields >> number >> name)) {
-            why = "cannot read variable line '" + line + "'";
+            why = "cannot read variable line '" + printable_excerpt(line, 200) + "'";
             return false;
           }
           NgspiceVector vector;
@@ -1242,11 +1311,30 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
       if (plots.empty()) why = "no 'Binary:' or 'Values:' section";
       return !plots.empty();
     }
+    const std::string plot_label = "plot '" + printable_excerpt(plot.plot_name, 200) + "'";
     if (!have_variables || !have_points || plot.vectors.size() != variable_count) {
-      why = "plot '" + plot.plot_name + "' lacks its variable or point count";
+      why = plot_label + " lacks its variable or point count";
       return false;
     }
+    if (variable_count == 0) {
+      why = plot_label + " has no variables (not even its scale)";
+      return false;
+    }
+    // The header's claim against what the file holds, before anything is allocated: a binary
+    // value takes 8 bytes (16 complex), an ASCII one at least 2 (a digit and a newline, which
+    // the file's last value may lack).
     const bool complex = plot.flags.find("complex") != std::string::npos;
+    const std::size_t per_value =
+        binary ? (complex ? 2 * sizeof(double) : sizeof(double)) : std::size_t{2};
+    const std::size_t available = position <= bytes.size() ? bytes.size() - position : 0;
+    const std::size_t most_points = (available + (binary ? 0 : 1)) / per_value / variable_count;
+    if (point_count > most_points) {
+      why = plot_label + " is truncated: its header claims " + std::to_string(point_count) +
+            " points of " + std::to_string(variable_count) + " variables, the " +
+            std::to_string(available) + " bytes after it hold at most " +
+            std::to_string(most_points);
+      return false;
+    }
     for (NgspiceVector& vector : plot.vectors) {
       vector.is_complex = complex;
       if (complex)
@@ -1255,10 +1343,9 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
         vector.real_values.resize(point_count);
     }
     if (binary) {
-      const std::size_t per_value = complex ? 2 * sizeof(double) : sizeof(double);
-      const std::size_t needed = point_count * variable_count * per_value;
+      const std::size_t needed = point_count * variable_count * per_value;  // <= available
       if (bytes.size() - position < needed) {
-        why = "plot '" + plot.plot_name + "' is truncated";
+        why = plot_label + " is truncated";
         return false;
       }
       for (std::size_t point = 0; point < point_count; ++point)
@@ -1278,7 +1365,7 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
           std::string text;
           do {
             if (!next_line(text)) {
-              why = "plot '" + plot.plot_name + "' is truncated";
+              why = plot_label + " is truncated";
               return false;
             }
           } while (trimmed(text).empty());
@@ -1295,7 +1382,7 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
                   : parse_double(std::string_view(text).substr(0, comma), real) &&
                         parse_double(std::string_view(text).substr(comma + 1), imaginary);
           if (!ok) {
-            why = "cannot read value '" + text + "' in plot '" + plot.plot_name + "'";
+            why = "cannot read value '" + printable_excerpt(text, 200) + "' in " + plot_label;
             return false;
           }
           NgspiceVector& vector = plot.vectors[index];
@@ -1359,7 +1446,7 @@ NgspiceResult run_ngspice(const std::string& deck_text, const NgspiceOptions& op
                                  ? run_library_in_this_process(lines, options)
                                  : run_library_in_worker(lines, options);
     if (attempt.available) return finish(std::move(attempt.result));
-    library_reason = attempt.unavailable_reason;
+    library_reason = printable_text(attempt.unavailable_reason);  // dlerror's text, paths
     if (options.backend == NgspiceBackend::library) {
       result.status = Status::failure("libngspice could not be loaded (" + library_reason +
                                       "); install the Debian package libngspice0");

@@ -7,17 +7,23 @@
 // program) must give a failure status with a clear message, never a hang or a crash of the
 // test process. Time bounds in these tests only guard against hangs; they measure nothing.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "cli_run.hpp"
 #include "emnet/ngspice_runner.hpp"
 
 namespace emnet {
@@ -388,6 +394,335 @@ TEST(NgspiceRunner, RawfileParserRefusesATruncatedFile) {
   plots.clear();
   EXPECT_FALSE(parse_ngspice_rawfile(bytes, plots, why));
   EXPECT_NE(why.find("truncated"), std::string::npos) << why;
+}
+
+// ---- bounds: output, time, processes, rawfile sizes, control characters ---------------------
+//
+// These drive stand-ins for ngspice: shell scripts written into the test's temporary directory
+// (the program backend runs them as `PROGRAM -b -r RAWFILE DECK`, so a script finds the
+// rawfile's path in $3) and a C stand-in for libngspice.
+
+// A stand-in "ngspice" program with the given shell-script body.
+std::string write_fake_program(const std::string& name, const std::string& body) {
+  const std::string path =
+      ::testing::TempDir() + "emnet_fake_" + name + "_" + std::to_string(::getpid());
+  std::ofstream(path) << "#!/bin/sh\n" << body;
+  ::chmod(path.c_str(), 0755);
+  return path;
+}
+
+// Shell lines that write an ASCII rawfile of the divider's operating point to $3.
+const char* const kWriteDividerRawfile = R"(cat > "$3" <<'RAW'
+Title: fake
+Date: today
+Plotname: Operating Point
+Flags: real
+No. Variables: 2
+No. Points: 1
+Variables:
+	0	v(out)	voltage
+	1	i(v1)	current
+Values:
+ 0	7.5e-01
+	-2.5e-04
+RAW
+)";
+
+NgspiceOptions program_options(const std::string& program, double timeout_seconds) {
+  NgspiceOptions options;
+  options.backend = NgspiceBackend::program;
+  options.program = program;
+  options.timeout_seconds = timeout_seconds;
+  return options;
+}
+
+// The memory the messages take as the log counts it: text plus one NgspiceMessage each.
+std::size_t message_bytes(const NgspiceResult& result) {
+  std::size_t bytes = 0;
+  for (const NgspiceMessage& message : result.messages)
+    bytes += message.text.size() + sizeof(NgspiceMessage);
+  return bytes;
+}
+
+// What the log may hold beyond max_message_bytes: the line that marks the left-out part and
+// the first error line among it, at most 4096 bytes of text that can grow 4× when every byte
+// is escaped, plus their bookkeeping: 20 KiB covers both.
+constexpr std::size_t kMessageLogSlackBytes = 20 * 1024;
+
+bool has_message_containing(const NgspiceResult& result, const std::string& text) {
+  for (const NgspiceMessage& message : result.messages)
+    if (message.text.find(text) != std::string::npos) return true;
+  return false;
+}
+
+// A program that prints 9 MB of lines (and a 2 MB line without a newline on standard error)
+// and then succeeds: its results are read, and of its output the first and last lines are
+// kept within max_message_bytes (1 MiB by default), with a line saying what was left out.
+TEST(NgspiceRunnerBounds, FloodOfProgramOutputIsCappedAndTheResultsStillRead) {
+  const std::string program = write_fake_program("flood_then_succeed",
+                                                 "seq -f 'flood line %.0f' 1 500000\n"
+                                                 "head -c 2000000 /dev/zero | tr '\\0' x >&2\n" +
+                                                     std::string(kWriteDividerRawfile));
+  const NgspiceOptions options = program_options(program, 20);
+  const NgspiceResult result = run_ngspice(kDividerDeck, options);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  EXPECT_EQ(vector_named(result, "out").real_values.at(0), 0.75);
+  EXPECT_LE(message_bytes(result), options.max_message_bytes + kMessageLogSlackBytes);
+  ASSERT_FALSE(result.messages.empty());
+  EXPECT_EQ(result.messages.front().text, "flood line 1");
+  EXPECT_TRUE(has_message_containing(result, "flood line 500000"));
+  EXPECT_TRUE(has_message_containing(result, "of ngspice's output left out here"));
+  // The 2 MB line: its first 4096 bytes, then how much of it was cut.
+  EXPECT_TRUE(has_message_containing(result, std::string(4096, 'x') + " [... 1995904 more bytes"));
+}
+
+// A program that floods its output without end: the time limit holds (the read loop looks at
+// the clock between bounded reads), and what is kept stays within max_message_bytes.
+TEST(NgspiceRunnerBounds, EndlessFloodOfProgramOutputIsStoppedAtTheTimeLimit) {
+  const NgspiceOptions options =
+      program_options(write_fake_program("endless_flood", "exec yes"), 1);
+  const NgspiceResult result = run_ngspice(kDividerDeck, options);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("timed out: still running after 1 s"), std::string::npos)
+      << result.status.message;
+  EXPECT_LE(message_bytes(result), options.max_message_bytes + kMessageLogSlackBytes);
+  EXPECT_TRUE(has_message_containing(result, "of ngspice's output left out here"));
+}
+
+// Whether the process `pid` is alive and runs `marker` in its command line (so that a pid
+// reused by another process does not count).
+bool process_runs(pid_t pid, const std::string& marker) {
+  std::ifstream command_line("/proc/" + std::to_string(pid) + "/cmdline");
+  std::string text((std::istreambuf_iterator<char>(command_line)),
+                   std::istreambuf_iterator<char>());
+  for (char& c : text)
+    if (c == '\0') c = ' ';
+  return text.find(marker) != std::string::npos;
+}
+
+// Runs a program that starts a grandchild which calls setsid (leaving the program's process
+// group and session), writes its pid to a file and sleeps; then the program runs `then`. The
+// run's result and the grandchild's pid (-1 when it did not start).
+struct GrandchildRun {
+  NgspiceResult result;
+  pid_t grandchild = -1;
+};
+GrandchildRun run_program_with_grandchild(const std::string& name, const std::string& then,
+                                          double timeout_seconds) {
+  const std::string pid_file =
+      ::testing::TempDir() + "emnet_grandchild_" + name + "_" + std::to_string(::getpid()) + ".pid";
+  std::remove(pid_file.c_str());
+  const std::string program = write_fake_program(
+      name, "setsid sh -c 'echo $$ > \"" + pid_file + ".new\"; mv \"" + pid_file + ".new\" \"" +
+                pid_file + "\"; exec sleep 1234' </dev/null >/dev/null 2>&1 &\n" +
+                "while [ ! -s '" + pid_file + "' ]; do sleep 0.01; done\n" + then);
+  GrandchildRun run;
+  run.result = run_ngspice(kDividerDeck, program_options(program, timeout_seconds));
+  std::ifstream(pid_file) >> run.grandchild;
+  return run;
+}
+
+TEST(NgspiceRunnerBounds, TimeoutKillsAGrandchildThatLeftTheProcessGroup) {
+  const GrandchildRun run =
+      run_program_with_grandchild("grandchild_timeout", "exec sleep 100\n", 2);
+  EXPECT_FALSE(run.result.status.ok);
+  EXPECT_NE(run.result.status.message.find("timed out"), std::string::npos)
+      << run.result.status.message;
+  ASSERT_GT(run.grandchild, 0) << "the grandchild did not start";
+  const bool survived = process_runs(run.grandchild, "sleep 1234");
+  EXPECT_FALSE(survived) << "grandchild " << run.grandchild << " outlived the timeout";
+  if (survived) ::kill(run.grandchild, SIGKILL);
+}
+
+// Also when the program ends by itself: nothing it started outlives the run.
+TEST(NgspiceRunnerBounds, NothingTheProgramStartedOutlivesIt) {
+  const GrandchildRun run = run_program_with_grandchild(
+      "grandchild_left_behind", std::string(kWriteDividerRawfile) + "exit 0\n", 10);
+  ASSERT_TRUE(run.result.status.ok) << run.result.status.message;
+  ASSERT_GT(run.grandchild, 0) << "the grandchild did not start";
+  const bool survived = process_runs(run.grandchild, "sleep 1234");
+  EXPECT_FALSE(survived) << "grandchild " << run.grandchild << " outlived the run";
+  if (survived) ::kill(run.grandchild, SIGKILL);
+}
+
+// A rawfile header's claim is checked against the bytes that follow it before anything is
+// allocated: claims of 1e11 points (800 GB per vector), of a count that overflows 64 bits when
+// multiplied out, and of points without variables are refused as truncated or malformed,
+// never by an exception.
+TEST(NgspiceRunnerBounds, RawfileHeaderClaimingMoreThanTheFileHoldsIsRefused) {
+  const auto header = [](const std::string& points, const std::string& variables,
+                         const std::string& section) {
+    std::string text =
+        "Title: t\nDate: d\nPlotname: Operating Point\nFlags: real\nNo. Variables: " + variables +
+        "\nNo. Points: " + points + "\nVariables:\n";
+    if (variables != "0") text += "\t0\tv(a)\tvoltage\n\t1\ti(v1)\tcurrent\n";
+    return text + section;
+  };
+  const double values[2] = {0.75, -2.5e-4};
+  const std::string data(reinterpret_cast<const char*>(values), sizeof values);
+  for (const std::string& points : {"100000000000", "2305843009213693952"}) {
+    for (const std::string& section :
+         {"Binary:\n" + data, std::string("Values:\n 0\t0.75\n\t-2.5e-4\n")}) {
+      std::vector<NgspiceRawPlot> plots;
+      std::string why;
+      bool parsed = true;
+      EXPECT_NO_THROW(parsed = parse_ngspice_rawfile(header(points, "2", section), plots, why))
+          << points;
+      EXPECT_FALSE(parsed) << points;
+      EXPECT_NE(why.find("truncated: its header claims " + points + " points"), std::string::npos)
+          << why;
+    }
+  }
+  std::vector<NgspiceRawPlot> plots;
+  std::string why;
+  EXPECT_FALSE(parse_ngspice_rawfile(header("1000000000000000000", "0", "Binary:\n"), plots, why));
+  EXPECT_NE(why.find("has no variables"), std::string::npos) << why;
+}
+
+// A stand-in program writing a binary rawfile whose header claims $CLAIMED_POINTS points of
+// three variables, followed by 16 bytes.
+std::string write_lying_rawfile_program() {
+  return write_fake_program(
+      "lying_rawfile",
+      "printf 'Title: t\\nDate: d\\nPlotname: Operating Point\\nFlags: real\\nNo. Variables: "
+      "3\\nNo. Points: %s\\nVariables:\\n\\t0\\tv(a)\\tvoltage\\n\\t1\\tv(b)\\tvoltage\\n\\t2\\t"
+      "i(v1)\\tcurrent\\nBinary:\\n0123456789abcdef' \"$CLAIMED_POINTS\" > \"$3\"\n");
+}
+
+// At the command line a lying rawfile is ngspice's failure (exit 3), never an internal error
+// (exit 1, "std::bad_alloc"). 1e8 points (2.4 GB when allocated from the claim) runs under a
+// 1 GB address-space limit, so that allocating from the claim fails the test too.
+TEST(NgspiceRunnerBounds, LyingRawfileIsNgspicesFailureAtTheCommandLine) {
+  const std::string program = write_lying_rawfile_program();
+  for (const char* points : {"100000000", "100000000000"}) {
+    const auto run = emnet::testing::run_emnet(
+        "crosscheck " + std::string(EMNET_SOURCE_DIR) +
+            "/netlists/fishfin.toml --analysis op --backend program --timeout 10 "
+            "--ngspice-program " +
+            program,
+        "ulimit -v 1000000; CLAIMED_POINTS=" + std::string(points) + " ");
+    EXPECT_EQ(run.status, 3) << points << "\n" << run.err;
+    EXPECT_NE(run.err.find("is truncated: its header claims " + std::string(points) + " points"),
+              std::string::npos)
+        << run.err;
+  }
+}
+
+// Control characters in ngspice's messages are escaped before they are stored: the warning
+// lines ngspice prints for this deck quote the line with its escape sequence and bell.
+TEST_P(NgspiceRunnerBackends, ControlCharactersInNgspicesMessagesAreEscaped) {
+  const NgspiceResult result =
+      run_ngspice("escape\nV1 in 0 DC 1\nR1 in out 1k zzz\x1b[2J\a\nC1 out 0 1u\n.op\n.end\n",
+                  GetParam().options);
+  EXPECT_FALSE(result.status.ok);
+  // A control character other than tab; the status message's own line breaks aside.
+  const auto has_control = [](const std::string& text, bool newline_allowed) {
+    return std::any_of(text.begin(), text.end(), [&](char c) {
+      const auto byte = static_cast<unsigned char>(c);
+      return (byte < 0x20 && c != '\t' && !(newline_allowed && c == '\n')) || byte == 0x7f;
+    });
+  };
+  for (const NgspiceMessage& message : result.messages)
+    EXPECT_FALSE(has_control(message.text, false)) << message.text;
+  EXPECT_FALSE(has_control(result.status.message, true)) << result.status.message;
+  EXPECT_TRUE(has_message_containing(result, "zzz\\x1b[2j\\x07")) << result.messages_text();
+}
+
+// A library name is the caller's, but the loader's message that quotes it reaches the terminal
+// too: escaped, in the worker and in this process.
+TEST(NgspiceRunnerBounds, LoaderMessagesAreEscaped) {
+  for (const BackendCase& backend : backend_cases()) {
+    if (backend.options.backend != NgspiceBackend::library) continue;
+    NgspiceOptions options = backend.options;
+    options.library_names = {"/nonexistent/\x1b[2Jlibngspice.so.0"};
+    const NgspiceResult result = run_ngspice(kDividerDeck, options);
+    EXPECT_FALSE(result.status.ok) << backend.name;
+    EXPECT_EQ(result.status.message.find('\x1b'), std::string::npos)
+        << backend.name << ": " << result.status.message;
+  }
+}
+
+// A deck that makes ngspice print 40 000 warning lines (3 MB as messages): every backend
+// keeps the first and the last within max_message_bytes.
+TEST_P(NgspiceRunnerBackends, FloodOfNgspiceMessagesIsCapped) {
+  std::string deck = "many warnings\nV1 in 0 DC 1\n";
+  for (int k = 0; k < 20000; ++k)
+    deck += "R" + std::to_string(k) + " in 0 1k zzz" + std::to_string(k) + "\n";
+  deck += ".op\n.end\n";
+  const NgspiceResult result = run_ngspice(deck, GetParam().options);
+  EXPECT_LE(message_bytes(result), GetParam().options.max_message_bytes + kMessageLogSlackBytes);
+  EXPECT_TRUE(has_message_containing(result, "can't find model 'zzz0'"));
+  EXPECT_TRUE(has_message_containing(result, "of ngspice's output left out here"));
+  EXPECT_TRUE(has_message_containing(result, "r19999 in 0 1k zzz19999"));
+}
+
+// Results larger than max_result_bytes are refused: the worker's vectors by their record
+// lengths, the program's rawfile by the file-size limit it runs under. (In this process the
+// vectors are copied from ngspice's own memory, no untrusted length is involved.)
+TEST(NgspiceRunnerBounds, ResultsLargerThanTheLimitAreRefused) {
+  for (const BackendCase& backend : backend_cases()) {
+    if (backend.options.library_in_this_process) continue;
+    NgspiceOptions options = backend.options;
+    options.max_result_bytes =
+        500;  // the AC deck's results: 26 points of 2 complex vectors, 832 bytes
+    const NgspiceResult result = run_ngspice(kLowPassAcDeck, options);
+    EXPECT_FALSE(result.status.ok) << backend.name;
+    EXPECT_NE(result.status.message.find("max_result_bytes"), std::string::npos)
+        << backend.name << ": " << result.status.message;
+    EXPECT_TRUE(result.vectors.empty()) << backend.name;
+  }
+}
+
+// A stand-in libngspice whose ngSpice_Circ prints through the output callback a line with
+// control characters and 100 000 further lines, and writes 2 MB with control characters to
+// its standard output directly, then fails: the worker's messages and its own output are
+// bounded and escaped.
+std::string build_chatty_library() {
+  const std::string stem =
+      ::testing::TempDir() + "emnet_chatty_ngspice_" + std::to_string(::getpid());
+  const std::string source = stem + ".c", library = stem + ".so";
+  std::ofstream(source) << R"(#include <stdio.h>
+typedef int send_char(char*, int, void*);
+static send_char* print;
+int ngSpice_Init(send_char* a, void* b, void* c, void* d, void* e, void* f, void* g) {
+  print = a;
+  return 0;
+}
+int ngSpice_Command(char* command) { return 0; }
+int ngSpice_Circ(char** lines) {
+  char line[64];
+  print("stderr Error: chatty \033]0;title\007 \033[2J end", 0, 0);
+  for (int k = 0; k < 100000; ++k) {
+    snprintf(line, sizeof line, "stdout chatty line %d", k);
+    print(line, 0, 0);
+  }
+  for (int k = 0; k < 200000; ++k) fputs("raw\033[1m", stdout);
+  fflush(stdout);
+  return 1;
+}
+char** ngSpice_AllVecs(char* plot) { return 0; }
+void* ngGet_Vec_Info(char* name) { return 0; }
+)";
+  const std::string command = "cc -shared -fPIC -o '" + library + "' '" + source + "' 2>/dev/null";
+  return std::system(command.c_str()) == 0 ? library : std::string();
+}
+
+TEST(NgspiceRunnerBounds, LibraryMessagesInTheWorkerAreCappedAndEscaped) {
+  const std::string library = build_chatty_library();
+  if (library.empty()) GTEST_SKIP() << "no C compiler (cc) to build the chatty stand-in";
+  NgspiceOptions options;
+  options.library_names = {library};
+  options.backend = NgspiceBackend::library;
+  const NgspiceResult result = run_ngspice(kDividerDeck, options);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("Error: chatty \\x1b]0;title\\x07 \\x1b[2J end"),
+            std::string::npos)
+      << result.status.message;
+  EXPECT_LE(message_bytes(result), options.max_message_bytes + kMessageLogSlackBytes);
+  EXPECT_TRUE(has_message_containing(result, "chatty line 0"));
+  EXPECT_TRUE(has_message_containing(result, "raw\\x1b[1mraw"));
+  for (const NgspiceMessage& message : result.messages)
+    EXPECT_EQ(message.text.find('\x1b'), std::string::npos) << message.text;
 }
 
 }  // namespace
