@@ -124,8 +124,17 @@ Model::AppliedFluidLoading apply_fluid_loading(const Scene& scene, BeamSpec& bea
   const EnvironmentSpec& environment = scene.environment;
   Model::AppliedFluidLoading applied;
   auto loading_at = [&](double frequency) {
-    return rectangular_beam_fluid_loading(environment.density, environment.dynamic_viscosity,
-                                          environment.width, frequency);
+    try {
+      return rectangular_beam_fluid_loading(environment.density, environment.dynamic_viscosity,
+                                            environment.width, frequency);
+    } catch (const std::invalid_argument& error) {
+      // Values each in range can still overflow the Reynolds number rho*omega*b^2/(4*eta).
+      throw InputError(scene.file, "environment",
+                       "the fluid loading at " + format_number("%.4g", frequency) +
+                           " Hz cannot be evaluated from environment.density, "
+                           "dynamic_viscosity and width: " +
+                           error.what());
+    }
   };
   std::string where;
   if (environment.frequency) {

@@ -1,6 +1,7 @@
 // Tests of the scene reader (emnet/scene_reader.hpp): valid scenes read to the right SI values,
 // `--set` overrides, and one test per kind of bad input, each checking that the InputError names
-// the file, the line (where there is one) and the key, and says what is wrong.
+// the file, the line (where there is one) and the key, and says what is wrong; the bounds on
+// every input (scene_limits) and bad input that only the model builder notices.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "emnet/analysis.hpp"
 #include "emnet/errors.hpp"
+#include "emnet/model.hpp"
 #include "emnet/scene.hpp"
 #include "emnet/scene_reader.hpp"
 
@@ -898,6 +901,43 @@ TEST(SceneReaderBounds, SceneFileAtMostTheSizeLimit) {
   expect_error(read_error(text + "\n"), kFileName, "",
                "the scene is 4194305 bytes; a scene may have at most 4194304 bytes (4 MiB)");
   std::filesystem::remove(path);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Through the model builder and the static solve, as tests/fuzz/fuzz_scene runs them: bad
+// input found there must come back as an InputError, whatever the layer that notices it.
+
+// The InputError that reading `text` and building its model throws; a failed expectation if
+// both succeed.
+std::optional<InputError> build_error(const std::string& text) {
+  try {
+    const Model model = build_model(read_scene_text(text, kFileName));
+    (void)solve_static(model.network.assemble());
+  } catch (const InputError& error) {
+    return error;
+  }
+  ADD_FAILURE() << "expected an InputError";
+  return std::nullopt;
+}
+
+TEST(SceneModelBounds, FluidLoadingWithAnOverflowingReynoldsNumber) {
+  // Each value is in range, but rho*omega*b^2/(4*eta) is not finite: this escaped the builder
+  // as std::invalid_argument ("internal error", exit 1).
+  for (const std::string& environment :
+       {std::string("density = \"1e300 kg/m^3\"\nwidth = \"1e200 m\"\n"),
+        std::string("dynamic_viscosity = \"1e-300 Pa*s\"\nwidth = \"1e200 m\"\n"),
+        std::string("density = \"1e300 kg/m^3\"\nwidth = \"1e200 m\"\nfrequency = \"1 Hz\"\n")}) {
+    const std::string text = kMinimalScene + "[environment]\nfluid = \"water\"\n" + environment;
+    const auto error = build_error(text);
+    ASSERT_TRUE(error.has_value()) << environment;
+    EXPECT_EQ(error->where(), kFileName);
+    EXPECT_EQ(error->key(), "environment");
+    EXPECT_NE(std::string(error->what())
+                  .find("cannot be evaluated from environment.density, dynamic_viscosity and "
+                        "width: hydrodynamic function: needs a finite Reynolds number > 0"),
+              std::string::npos)
+        << error->what();
+  }
 }
 
 }  // namespace
