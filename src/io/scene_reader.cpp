@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -332,6 +333,14 @@ class Section {
       const std::string example = dimension == dim::none ? "0.5" : "1 " + si_unit_symbol(dimension);
       fail(name, subject + "must be a number or a string like '" + example + "', got " +
                      describe_node(node));
+    }
+    // A subnormal value has lost its precision, and a length of one cut into segments
+    // underflows to zero.
+    if (value != 0.0 && std::abs(value) < std::numeric_limits<double>::min()) {
+      fail(name, subject + "must be 0 or at least " +
+                     format_quantity(std::numeric_limits<double>::min(), dimension) +
+                     " in magnitude (a normal floating-point number), got " +
+                     format_quantity(value, dimension));
     }
     return value;
   }

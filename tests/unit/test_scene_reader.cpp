@@ -940,5 +940,21 @@ TEST(SceneModelBounds, FluidLoadingWithAnOverflowingReynoldsNumber) {
   }
 }
 
+TEST(SceneModelBounds, SubnormalValuesAreRefused) {
+  // beam.length = 5e-324 m: L/N underflowed to 0 and the beam layout cast NaN to int
+  // (undefined behaviour, found by tests/fuzz/fuzz_scene).
+  const std::string text = replaced(kMinimalScene, "\"122.5 mm\"", "5e-324");
+  expect_error(read_error(text), at_line(text, "length ="), "beam.length",
+               "must be 0 or at least 2.225073859e-308 m in magnitude (a normal floating-point "
+               "number), got 4.940656458e-324 m");
+  // In a unit string too, after the conversion to SI (1e-300 pm = 1e-312 m).
+  const std::string in_units = replaced(kMinimalScene, "\"122.5 mm\"", "\"1e-300 pm\"");
+  expect_error(read_error(in_units), at_line(in_units, "length ="), "beam.length",
+               "must be 0 or at least 2.225073859e-308 m");
+  // The smallest normal length reads.
+  EXPECT_NO_THROW(read_scene_text(
+      replaced(kMinimalScene, "\"122.5 mm\"", "2.2250738585072014e-308"), kFileName));
+}
+
 }  // namespace
 }  // namespace emnet
