@@ -259,7 +259,7 @@ class StructureScan {
     }
   }
 
-  // One string, array, inline table or other run of value characters, at `depth`.
+  // One string, array, inline table or other value (a run of characters), at `depth`.
   void value_token(std::size_t depth) {
     const char character = peek();
     if (character == '"' || character == '\'') {
@@ -272,15 +272,18 @@ class StructureScan {
       inline_table(depth);
     } else if (is_non_ascii(character)) {
       non_ascii_outside_strings();
-    } else if (character == ']' || character == '}' || character == ',' || character == '=') {
+    } else if (character == ']' || character == '}' || character == ',') {
       advance();  // out of place: the parser reports it
     } else {
+      // A number, boolean or date: the parser reads it up to a value terminator (whitespace,
+      // ']', '}', ',' or '#'), asking of every character whether it is one, quotes and
+      // brackets included.
       while (true) {
         const char next = peek();
         if (next == '\0' || is_blank(next) || next == '\n' || next == '\r' || next == '#' ||
-            next == ',' || next == '[' || next == ']' || next == '{' || next == '}' ||
-            next == '"' || next == '\'' || next == '=' || is_non_ascii(next))
+            next == ',' || next == ']' || next == '}')
           break;
+        if (is_non_ascii(next)) non_ascii_outside_strings();
         advance();
       }
     }

@@ -710,6 +710,11 @@ TEST(SceneReaderBounds, InputsThatTomlReadsUnsafelyAreRefused) {
       {"[ac]\nfrom\xD0\x96= 1\n", "character U+0416 outside a string or comment"},
       {"[ac]\nfrom = 1 \xE3\x80\x81\n", "character U+3001 outside a string or comment"},
       {"[ac]\nfrom = [1, \xEF\xBC\x8C]\n", "character U+FF0C outside a string or comment"},
+      // Found by fuzz_scene past the first version of the scan, which took a quote inside a
+      // number for the start of a string: the parser reads on to a value terminator.
+      {"i = 1\"+Mb\xC2\xB5m!\\u00B5pamlp1pa", "character U+00B5 outside a string or comment"},
+      {"tion = 8+8888888888\"\xCE\xA9\xC2\xB5m\"\"\"[",
+       "character U+03A9 outside a string or comment"},
       {"[scene]\ndescription = \"\"\"a\\\xC2\xB5\"\"\"\n",
        "invalid escape sequence: '\\' followed by U+00B5"},
       {"[scene]\ndescription = \"\"\"a \\\n  \xC2\xB5m\"\"\"\n",
