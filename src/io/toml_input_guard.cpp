@@ -278,6 +278,7 @@ class StructureScan {
       // A number, boolean or date: the parser reads it up to a value terminator (whitespace,
       // ']', '}', ',' or '#'), asking of every character whether it is one, quotes and
       // brackets included.
+      const std::size_t begin = position_;
       while (true) {
         const char next = peek();
         if (next == '\0' || is_blank(next) || next == '\n' || next == '\r' || next == '#' ||
@@ -286,6 +287,23 @@ class StructureScan {
         if (is_non_ascii(next)) non_ascii_outside_strings();
         advance();
       }
+      check_date_time(text_.substr(begin, position_ - begin));
+    }
+  }
+
+  // parse_date_time() reads "YYYY-MM-DD", then 'T' or 't', then assumes (an assertion, an
+  // optimiser hint in Release) that a digit follows: "1979-05-27T:07" breaks that.
+  void check_date_time(std::string_view value) const {
+    auto digits = [&](std::size_t from, std::size_t count) {
+      for (std::size_t i = from; i < from + count; ++i)
+        if (i >= value.size() || value[i] < '0' || value[i] > '9') return false;
+      return true;
+    };
+    const bool date = digits(0, 4) && value.size() > 10 && value[4] == '-' && digits(5, 2) &&
+                      value[7] == '-' && digits(8, 2);
+    if (date && (value[10] == 'T' || value[10] == 't') && !digits(11, 1)) {
+      stop(line_, std::string(kNotToml) + "a date-time needs a time (HH:MM:SS) after '" +
+                      std::string(1, value[10]) + "'");
     }
   }
 

@@ -715,6 +715,9 @@ TEST(SceneReaderBounds, InputsThatTomlReadsUnsafelyAreRefused) {
       {"i = 1\"+Mb\xC2\xB5m!\\u00B5pamlp1pa", "character U+00B5 outside a string or comment"},
       {"tion = 8+8888888888\"\xCE\xA9\xC2\xB5m\"\"\"[",
        "character U+03A9 outside a string or comment"},
+      // parse_date_time() assumes a digit after the 'T' (found by fuzz_scene).
+      {"I = 1979-05-27T:07 32:00Z-\n", "a date-time needs a time (HH:MM:SS) after 'T'"},
+      {"I = 1979-05-27t[[07:32:00Z\n", "a date-time needs a time (HH:MM:SS) after 't'"},
       {"[scene]\ndescription = \"\"\"a\\\xC2\xB5\"\"\"\n",
        "invalid escape sequence: '\\' followed by U+00B5"},
       {"[scene]\ndescription = \"\"\"a \\\n  \xC2\xB5m\"\"\"\n",
@@ -981,6 +984,17 @@ TEST(SceneModelBounds, FuzzRegressionInputsAreRefusedOrBuilt) {
     }
   }
   EXPECT_GE(count, 10);
+}
+
+TEST(SceneReaderBounds, DateTimesPassTheScan) {
+  // Dates and times are valid TOML (the scene has no use for them: the reader says so).
+  for (const char* value : {"1979-05-27T07:32:00Z", "1979-05-27 07:32:00.5-07:00",
+                            "1979-05-27t07:32:00", "1979-05-27", "07:32:00"}) {
+    const std::string text = kMinimalScene + "[ac]\nscale = " + value + "\n";
+    const auto error = read_error(text);
+    ASSERT_TRUE(error.has_value()) << value;
+    EXPECT_EQ(error->key(), "ac.scale") << error->what();
+  }
 }
 
 }  // namespace
