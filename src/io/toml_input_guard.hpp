@@ -12,12 +12,14 @@
 //     Refused: more than scene_limits::tables_and_dotted_keys headers and dotted keys together.
 //   - is_non_ascii_horizontal_whitespace() reaches __builtin_unreachable for most code points in
 //     U+00A1..U+0499, U+2C5E..U+3057 and U+FB26..U+FEFE, and the parser asks it about every
-//     character outside strings, and in multi-line basic strings about the character after a
-//     backslash and the first one after a line-ending backslash. Refused: any non-ASCII
-//     character in those places (none of them is valid TOML there, except the last one).
-//   - parse_key() assumes (an assertion, an optimiser hint in Release) that a table header
-//     starts with a key character or a quote; "[=]" breaks that. Refused: a header or a key
-//     after '.' that does not start with one.
+//     character outside strings (a number, boolean or date up to its terminator, whatever
+//     quotes it holds), and in multi-line basic strings about the character after a backslash
+//     and the first one after a line-ending backslash. Refused: any non-ASCII character in
+//     those places (none of them is valid TOML there, except the last one).
+//   - parse_key() assumes (an assertion; with clang in Release, an optimiser hint) that a table
+//     header starts with a key character or a quote; "[=]" breaks that. Refused: a header or a
+//     key after '.' that does not start with one. parse_date_time() assumes a digit after a
+//     date's 'T': "1979-05-27T:07" breaks that. Refused: a date-time without one.
 // It also refuses invalid UTF-8, control characters other than tab, line feed and carriage
 // return, lines longer than scene_limits::line_bytes and keys longer than
 // scene_limits::key_bytes, and text longer than scene_limits::file_bytes. Everything it
@@ -26,7 +28,8 @@
 //
 // The scan follows TOML's lexical structure (strings, comments, keys, values, brackets) exactly
 // for valid TOML; on invalid TOML it may refuse where toml++ would report another error, but
-// it never lets through what toml++ would read unsafely before its own first error.
+// must not let through what toml++ would read unsafely before its own first error: fuzz_scene
+// (tests/fuzz) checks that with toml++'s assertions and the sanitizers on.
 #pragma once
 
 #include <cstddef>
