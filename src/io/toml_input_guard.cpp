@@ -318,6 +318,10 @@ class StructureScan {
         advance();
         return;
       }
+      // parse_value() assumes (an assertion) that an element does not start with a value
+      // terminator; the array checks for ']' and ',' before it, not for '}'.
+      if (character == '}')
+        stop(line_, std::string(kNotToml) + "'}' in an array, where a value, ',' or ']' belongs");
       if (character == ',' || character == '\n' || character == '\r') {
         advance();
       } else if (character == '#') {

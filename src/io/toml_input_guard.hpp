@@ -20,6 +20,8 @@
 //     header starts with a key character or a quote; "[=]" breaks that. Refused: a header or a
 //     key after '.' that does not start with one. parse_date_time() assumes a digit after a
 //     date's 'T': "1979-05-27T:07" breaks that. Refused: a date-time without one.
+//     parse_value() assumes that a value does not start with a terminator; in an array "[}"
+//     breaks that. Refused: '}' where an array element belongs.
 // It also refuses invalid UTF-8, control characters other than tab, line feed and carriage
 // return, lines longer than scene_limits::line_bytes and keys longer than
 // scene_limits::key_bytes, and text longer than scene_limits::file_bytes. Everything it

@@ -718,6 +718,9 @@ TEST(SceneReaderBounds, InputsThatTomlReadsUnsafelyAreRefused) {
       // parse_date_time() assumes a digit after the 'T' (found by fuzz_scene).
       {"I = 1979-05-27T:07 32:00Z-\n", "a date-time needs a time (HH:MM:SS) after 'T'"},
       {"I = 1979-05-27t[[07:32:00Z\n", "a date-time needs a time (HH:MM:SS) after 't'"},
+      // parse_value() assumes an element does not start with a terminator (found by fuzz_scene).
+      {"volt = [[[[}\n", "'}' in an array, where a value, ',' or ']' belongs"},
+      {"volt = [1, }\n", "'}' in an array"},
       {"[scene]\ndescription = \"\"\"a\\\xC2\xB5\"\"\"\n",
        "invalid escape sequence: '\\' followed by U+00B5"},
       {"[scene]\ndescription = \"\"\"a \\\n  \xC2\xB5m\"\"\"\n",
