@@ -288,6 +288,7 @@ class StructureScan {
         advance();
       }
       check_date_time(text_.substr(begin, position_ - begin));
+      check_date_space_time(text_.substr(begin, position_ - begin));
     }
   }
 
@@ -304,6 +305,28 @@ class StructureScan {
     if (date && (value[10] == 'T' || value[10] == 't') && !digits(11, 1)) {
       stop(line_, std::string(kNotToml) + "a date-time needs a time (HH:MM:SS) after '" +
                       std::string(1, value[10]) + "'");
+    }
+  }
+
+  // A date, a space and one digit: the parser takes it for the start of "YYYY-MM-DD HH:MM",
+  // reads the digit and then assumes (an assertion) that no value terminator follows:
+  // "1979-05-27 3#" breaks that. Its test, as it makes it: 10 characters other than '_', a
+  // digit first, only digits and '-', '-' at the 5th and the 8th.
+  void check_date_space_time(std::string_view value) const {
+    std::string characters;
+    for (const char character : value)
+      if (character != '_') characters += character;
+    if (characters.size() != 10 || characters[0] < '0' || characters[0] > '9' ||
+        characters[4] != '-' || characters[7] != '-')
+      return;
+    for (const char character : characters)
+      if (character != '-' && (character < '0' || character > '9')) return;
+    const char after = peek(2);
+    const bool terminator = is_blank(after) || after == '\n' || after == '\r' || after == '#' ||
+                            after == ',' || after == ']' || after == '}';
+    if (peek() == ' ' && peek(1) >= '0' && peek(1) <= '9' && terminator) {
+      stop(line_, std::string(kNotToml) + "a date, a space and a single digit (a date-time is " +
+                      "written YYYY-MM-DD HH:MM:SS)");
     }
   }
 

@@ -21,7 +21,8 @@
 //     key after '.' that does not start with one. parse_date_time() assumes a digit after a
 //     date's 'T': "1979-05-27T:07" breaks that. Refused: a date-time without one.
 //     parse_value() assumes that a value does not start with a terminator; in an array "[}"
-//     breaks that. Refused: '}' where an array element belongs.
+//     breaks that. Refused: '}' where an array element belongs. Its scan of "YYYY-MM-DD H"
+//     assumes that no terminator follows the H: "1979-05-27 3#" breaks that. Refused.
 // It also refuses invalid UTF-8, control characters other than tab, line feed and carriage
 // return, lines longer than scene_limits::line_bytes and keys longer than
 // scene_limits::key_bytes, and text longer than scene_limits::file_bytes. Everything it

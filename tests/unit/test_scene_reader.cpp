@@ -721,6 +721,8 @@ TEST(SceneReaderBounds, InputsThatTomlReadsUnsafelyAreRefused) {
       // parse_value() assumes an element does not start with a terminator (found by fuzz_scene).
       {"volt = [[[[}\n", "'}' in an array, where a value, ',' or ']' belongs"},
       {"volt = [1, }\n", "'}' in an array"},
+      {"I = 1979-05-27 3#33\n", "a date, a space and a single digit"},
+      {"I = [1979-05-27 3]\n", "a date, a space and a single digit"},
       {"[scene]\ndescription = \"\"\"a\\\xC2\xB5\"\"\"\n",
        "invalid escape sequence: '\\' followed by U+00B5"},
       {"[scene]\ndescription = \"\"\"a \\\n  \xC2\xB5m\"\"\"\n",
