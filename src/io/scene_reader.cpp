@@ -14,13 +14,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
-#include <sstream>
+#include <set>
 #include <stdexcept>
 #include <string_view>
 #include <utility>
 
 #include "emnet/units.hpp"
+#include "toml_input_guard.hpp"
 
 namespace emnet {
 namespace {
@@ -84,6 +86,14 @@ const TableSchema* find_table_schema(const std::string& name) {
   return nullptr;
 }
 
+// The most entries an array of tables may have (scene_limits); 0 for a plain table.
+std::size_t maximum_entries(const std::string& table_name) {
+  if (table_name == "dea") return scene_limits::deas;
+  if (table_name == "load") return scene_limits::loads;
+  if (table_name == "probe") return scene_limits::probes;
+  return 0;
+}
+
 bool schema_has_key(const TableSchema& table, const std::string& key) {
   return std::find(table.keys.begin(), table.keys.end(), key) != table.keys.end();
 }
@@ -138,6 +148,12 @@ std::string did_you_mean(const std::string& word, const std::vector<std::string>
   std::string best;
   std::size_t best_distance = allowed + 1;
   for (const std::string& candidate : candidates) {
+    // The distance is at least the difference in length: skip those too far to be close (and
+    // keep the cost of a long word linear).
+    const std::size_t length_difference = word.size() > candidate.size()
+                                              ? word.size() - candidate.size()
+                                              : candidate.size() - word.size();
+    if (length_difference > allowed) continue;
     const std::size_t distance = edit_distance(word, candidate);
     if (distance < best_distance) {
       best_distance = distance;
@@ -318,6 +334,14 @@ class Section {
       fail(name, subject + "must be a number or a string like '" + example + "', got " +
                      describe_node(node));
     }
+    // A subnormal value has lost its precision, and a length of one cut into segments
+    // underflows to zero.
+    if (value != 0.0 && std::abs(value) < std::numeric_limits<double>::min()) {
+      fail(name, subject + "must be 0 or at least " +
+                     format_quantity(std::numeric_limits<double>::min(), dimension) +
+                     " in magnitude (a normal floating-point number), got " +
+                     format_quantity(value, dimension));
+    }
     return value;
   }
 
@@ -368,7 +392,7 @@ class Section {
     return *text;
   }
 
-  // A name that reaches SPICE decks: letters, digits and '_'.
+  // A name that reaches SPICE decks: letters, digits and '_', at most scene_limits::name_bytes.
   std::string identifier(const std::string& name) const {
     const std::string text = string(name);
     if (!is_identifier(text)) {
@@ -376,6 +400,11 @@ class Section {
            "must be a non-empty name of letters, digits and '_' only (names are used in "
            "SPICE decks), got '" +
                text + "'");
+    }
+    if (text.size() > scene_limits::name_bytes) {
+      fail(name, "is " + std::to_string(text.size()) +
+                     " characters long; a name may have at most " +
+                     std::to_string(scene_limits::name_bytes));
     }
     return text;
   }
@@ -478,6 +507,12 @@ std::vector<SceneReader::Entry> SceneReader::entries(const toml::table& root,
   std::vector<Entry> result;
   const toml::array* array = root.get_as<toml::array>(table_name);
   if (array == nullptr) return result;
+  const std::size_t maximum = maximum_entries(table_name);
+  if (array->size() > maximum) {
+    locator_.fail(array, table_name,
+                  std::to_string(array->size()) + " [[" + table_name + "]] entries; a scene may " +
+                      "have at most " + std::to_string(maximum));
+  }
   for (std::size_t index = 0; index < array->size(); ++index) {
     const toml::node& element = (*array)[index];
     const std::string indexed = table_name + "[" + std::to_string(index) + "]";
@@ -590,13 +625,14 @@ void SceneReader::read_damping(const toml::table& root, DampingSpec& damping) co
 void SceneReader::read_deas(const toml::table& root, Scene& scene) const {
   const TableSchema& schema = *find_table_schema("dea");
   const double beam_length = scene.beam.length;
+  std::set<std::string> names;
   for (const Entry& entry : entries(root, "dea")) {
     const Section reader(locator_, entry.table, entry.prefix);
     reader.reject_unknown_keys(schema.keys);
     DeaSpec dea;
     dea.name = reader.identifier("name");
-    for (const DeaSpec& earlier : scene.deas) {
-      if (earlier.name == dea.name) reader.fail("name", "duplicate DEA name '" + dea.name + "'");
+    if (!names.insert(dea.name).second) {
+      reader.fail("name", "duplicate DEA name '" + dea.name + "'");
     }
     dea.from = reader.quantity("from", dim::length, Bound::any);
     dea.to = reader.quantity("to", dim::length, Bound::any);
@@ -640,6 +676,8 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
   // drive.deas: names of existing, distinct DEAs.
   std::vector<std::string> dea_names;
   for (const DeaSpec& dea : scene.deas) dea_names.push_back(dea.name);
+  const std::set<std::string> known_deas(dea_names.begin(), dea_names.end());
+  std::set<std::string> named_deas;
   if (const toml::node* deas_node = reader.find("deas")) {
     const toml::array* array = deas_node->as_array();
     if (array == nullptr) {
@@ -653,7 +691,7 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
                       "must list DEA names as strings, got " + describe_node(element));
       }
       const std::string dea_name = name->get();
-      if (std::find(dea_names.begin(), dea_names.end(), dea_name) == dea_names.end()) {
+      if (known_deas.count(dea_name) == 0) {
         const std::string defined = dea_names.empty()
                                         ? std::string("the scene defines no DEAs")
                                         : "the scene defines " + quoted_list(dea_names);
@@ -661,7 +699,7 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
             &element, reader.key("deas"),
             "unknown DEA '" + dea_name + "'" + did_you_mean(dea_name, dea_names) + "; " + defined);
       }
-      if (std::find(drive.deas.begin(), drive.deas.end(), dea_name) != drive.deas.end()) {
+      if (!named_deas.insert(dea_name).second) {
         locator_.fail(&element, reader.key("deas"), "names DEA '" + dea_name + "' twice");
       }
       drive.deas.push_back(dea_name);
@@ -761,15 +799,15 @@ void SceneReader::read_probes(const toml::table& root, Scene& scene) const {
   const TableSchema& schema = *find_table_schema("probe");
   std::vector<std::string> dea_names;
   for (const DeaSpec& dea : scene.deas) dea_names.push_back(dea.name);
+  const std::set<std::string> known_deas(dea_names.begin(), dea_names.end());
+  std::set<std::string> names;
   for (const Entry& entry : entries(root, "probe")) {
     const Section reader(locator_, entry.table, entry.prefix);
     reader.reject_unknown_keys(schema.keys);
     ProbeSpec probe;
     probe.name = reader.identifier("name");
-    for (const ProbeSpec& earlier : scene.probes) {
-      if (earlier.name == probe.name) {
-        reader.fail("name", "duplicate probe name '" + probe.name + "'");
-      }
+    if (!names.insert(probe.name).second) {
+      reader.fail("name", "duplicate probe name '" + probe.name + "'");
     }
     probe.quantity =
         reader.choice("quantity", std::vector<std::pair<std::string, ProbeQuantity>>{
@@ -787,7 +825,7 @@ void SceneReader::read_probes(const toml::table& root, Scene& scene) const {
         reader.fail("at", "is not used by probe quantity '" + quantity_name + "' (it names a DEA)");
       }
       probe.dea = reader.string("dea");
-      if (std::find(dea_names.begin(), dea_names.end(), probe.dea) == dea_names.end()) {
+      if (known_deas.count(probe.dea) == 0) {
         const std::string defined = dea_names.empty()
                                         ? std::string("the scene defines no DEAs")
                                         : "the scene defines " + quoted_list(dea_names);
@@ -948,6 +986,13 @@ void SceneReader::read_provenance_table(const toml::table& table, const std::str
       locator_.fail(&node, key,
                     "must start with one of " + quoted_list(sources) + ", got '" + value + "'");
     }
+    if (scene.provenance.size() >= scene_limits::provenance_entries &&
+        scene.provenance.count(entry) == 0) {
+      locator_.fail(&node, key,
+                    "more than " + std::to_string(scene_limits::provenance_entries) +
+                        " [provenance] entries; a scene may have at most " +
+                        std::to_string(scene_limits::provenance_entries));
+    }
     scene.provenance[entry] = value;
   }
 }
@@ -1101,8 +1146,14 @@ void SceneReader::apply_override(toml::table& root, const std::string& assignmen
     }
   }
 
-  // The value: a TOML value if it is one, else the text as a string.
-  const TomlParseOutcome parsed = parse_toml("value = " + text, kOverrideWhere);
+  // The value: a TOML value if it is one, else the text as a string. Text that the parser
+  // cannot read safely (toml_input_guard.hpp: "70 µm" unquoted, say) is not TOML either.
+  const std::string document = "value = " + text;
+  if (find_toml_input_problem(document)) {
+    target->insert_or_assign(target_key, text);
+    return;
+  }
+  const TomlParseOutcome parsed = parse_toml(document, kOverrideWhere);
   if (parsed.table && parsed.table->size() == 1 && parsed.table->contains("value")) {
     parsed.table->get("value")->visit(
         [&](const auto& value_node) { target->insert_or_assign(target_key, value_node); });
@@ -1116,6 +1167,15 @@ void SceneReader::apply_override(toml::table& root, const std::string& assignmen
 Scene read_scene_text(const std::string& text, const std::string& display_name,
                       const std::vector<std::string>& overrides) {
   const std::string name = display_name.empty() ? std::string("<scene>") : display_name;
+  if (const std::optional<TomlInputProblem> problem = find_toml_input_problem(text)) {
+    throw InputError(problem->line > 0 ? name + ":" + std::to_string(problem->line) : name, "",
+                     problem->message);
+  }
+  if (overrides.size() > scene_limits::overrides) {
+    throw InputError(kOverrideWhere, "",
+                     std::to_string(overrides.size()) + " overrides; at most " +
+                         std::to_string(scene_limits::overrides) + " may be given");
+  }
   TomlParseOutcome parsed = parse_toml(text, name);
   if (!parsed.table) {
     const std::string where = parsed.line > 0 ? name + ":" + std::to_string(parsed.line) : name;
@@ -1127,16 +1187,62 @@ Scene read_scene_text(const std::string& text, const std::string& display_name,
 }
 
 Scene read_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  return read_scene_text(read_scene_file(path), path, overrides);
+}
+
+std::string read_scene_file(const std::string& path) {
+  namespace fs = std::filesystem;
   std::error_code error;
-  if (std::filesystem::is_directory(path, error)) {
-    throw InputError(path, "", "cannot open file (it is a directory)");
+  const fs::file_status status = fs::status(path, error);
+  const char* kind = nullptr;
+  switch (status.type()) {
+    case fs::file_type::not_found:
+      throw InputError(path, "", "cannot open file");
+    case fs::file_type::directory:
+      throw InputError(path, "", "cannot open file (it is a directory)");
+    case fs::file_type::character:
+      kind = "a character device";
+      break;
+    case fs::file_type::block:
+      kind = "a block device";
+      break;
+    case fs::file_type::fifo:
+      kind = "a pipe";
+      break;
+    case fs::file_type::socket:
+      kind = "a socket";
+      break;
+    default:
+      break;
+  }
+  if (kind != nullptr) {
+    throw InputError(
+        path, "",
+        std::string("not a regular file (") + kind + "); a scene is read from a " + "regular file");
+  }
+  const std::string limit = "a scene file may have at most " +
+                            std::to_string(scene_limits::file_bytes) + " bytes (4 MiB)";
+  const std::uintmax_t size = fs::file_size(path, error);
+  if (!error && size > scene_limits::file_bytes) {
+    throw InputError(path, "", "the file is " + std::to_string(size) + " bytes; " + limit);
   }
   std::ifstream stream(path, std::ios::binary);
   if (!stream) throw InputError(path, "", "cannot open file");
-  std::ostringstream contents;
-  contents << stream.rdbuf();
+  // Read at most one byte past the limit, whatever the size said (the file may have grown).
+  std::string contents;
+  char buffer[65536];
+  while (contents.size() <= scene_limits::file_bytes) {
+    stream.read(buffer, sizeof buffer);
+    contents.append(buffer, static_cast<std::size_t>(stream.gcount()));
+    if (!stream) break;
+  }
   if (stream.bad()) throw InputError(path, "", "cannot read file");
-  return read_scene_text(contents.str(), path, overrides);
+  if (contents.size() > scene_limits::file_bytes) {
+    throw InputError(
+        path, "",
+        "the file is larger than " + std::to_string(scene_limits::file_bytes) + " bytes; " + limit);
+  }
+  return contents;
 }
 
 }  // namespace emnet

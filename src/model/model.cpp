@@ -36,6 +36,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <stdexcept>
 
 #include "emnet/analysis.hpp"
@@ -123,8 +124,17 @@ Model::AppliedFluidLoading apply_fluid_loading(const Scene& scene, BeamSpec& bea
   const EnvironmentSpec& environment = scene.environment;
   Model::AppliedFluidLoading applied;
   auto loading_at = [&](double frequency) {
-    return rectangular_beam_fluid_loading(environment.density, environment.dynamic_viscosity,
-                                          environment.width, frequency);
+    try {
+      return rectangular_beam_fluid_loading(environment.density, environment.dynamic_viscosity,
+                                            environment.width, frequency);
+    } catch (const std::invalid_argument& error) {
+      // Values each in range can still overflow the Reynolds number rho*omega*b^2/(4*eta).
+      throw InputError(scene.file, "environment",
+                       "the fluid loading at " + format_number("%.4g", frequency) +
+                           " Hz cannot be evaluated from environment.density, "
+                           "dynamic_viscosity and width: " +
+                           error.what());
+    }
   };
   std::string where;
   if (environment.frequency) {
@@ -259,6 +269,10 @@ AutomaticChoice choose_electrical_dynamics(const Scene& scene, bool electrical_p
   choice.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return choice;
 }
+
+// The probe `spec` on `model`'s beam and DEAs; `dea` is the DEA an electrical probe names
+// (nullptr when there is none of that name).
+Probe make_probe_on(const Model& model, const ProbeSpec& spec, const DeaLayout* dea);
 
 }  // namespace
 
@@ -414,7 +428,14 @@ Model build_model(const Scene& scene, bool electrical_probe_requested) {
         "single DEA at zero bias: the linearised (AC) response is zero; a V² drive acts at 0 "
         "and 2f");
 
-  for (const ProbeSpec& spec : scene.probes) model.probes.push_back(model.make_probe(spec));
+  // Each probe's DEA by name: one lookup per probe, not a scan of the DEAs.
+  std::map<std::string, const DeaLayout*> dea_by_name;
+  for (const DeaLayout& layout : model.deas) dea_by_name.emplace(layout.name, &layout);
+  for (const ProbeSpec& spec : scene.probes) {
+    const auto found = dea_by_name.find(spec.dea);
+    model.probes.push_back(
+        make_probe_on(model, spec, found == dea_by_name.end() ? nullptr : found->second));
+  }
   if (model.probes.empty()) {
     ProbeSpec tip;
     tip.name = "tip";
@@ -426,6 +447,14 @@ Model build_model(const Scene& scene, bool electrical_probe_requested) {
 }
 
 Probe Model::make_probe(const ProbeSpec& spec) const {
+  return make_probe_on(*this, spec, find_dea(deas, spec.dea));
+}
+
+namespace {
+
+Probe make_probe_on(const Model& model, const ProbeSpec& spec, const DeaLayout* dea) {
+  const BeamLayout& beam = model.beam;
+  const std::vector<AutomaticChoice>& automatic_choices = model.automatic_choices;
   Probe probe;
   probe.name = spec.name;
   probe.quantity = spec.quantity;
@@ -446,7 +475,6 @@ Probe Model::make_probe(const ProbeSpec& spec) const {
       break;
     case ProbeQuantity::dea_voltage:
     case ProbeQuantity::dea_current: {
-      const DeaLayout* dea = find_dea(deas, spec.dea);
       if (!dea) throw InputError("probe " + spec.name, "dea", "no DEA named '" + spec.dea + "'");
       if (dea->electrode_node == ground)
         throw InputError("probe " + spec.name, "dea",
@@ -472,6 +500,8 @@ Probe Model::make_probe(const ProbeSpec& spec) const {
   }
   return probe;
 }
+
+}  // namespace
 
 Probe Model::parse_probe(const std::string& text) const {
   for (const Probe& probe : probes)
