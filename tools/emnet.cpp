@@ -126,11 +126,17 @@ std::string drive_summary(const emnet::Scene& scene) {
     case emnet::DriveKind::antagonistic:
       out << " 0/" << si(drive.voltage, "V") << " square wave at " << si(drive.frequency, "Hz");
       break;
+    case emnet::DriveKind::switched:
+      out << " 0/" << si(drive.voltage, "V") << " square wave at " << si(drive.frequency, "Hz")
+          << " on DEA " << drive.deas[0];
+      break;
     case emnet::DriveKind::bias_differential:
       out << " V0 = " << si(drive.bias, "V") << ", v = " << si(drive.amplitude, "V");
       break;
     case emnet::DriveKind::single:
-      out << " V0 = " << si(drive.bias, "V") << ", v = " << si(drive.amplitude, "V");
+      out << " V0 + v*sin(2*pi*f*t), V0 = " << si(drive.bias, "V")
+          << ", v = " << si(drive.amplitude, "V") << ", f = " << si(drive.frequency, "Hz")
+          << " on DEA " << drive.deas[0];
       break;
     case emnet::DriveKind::none:
       break;
@@ -138,18 +144,40 @@ std::string drive_summary(const emnet::Scene& scene) {
   return out.str();
 }
 
-// What the AC input is, in words: printed with every AC result.
-std::string ac_input_description(const emnet::Scene& scene) {
+// What the AC input is, in words: printed with every AC result. `top_hz`: the sweep's highest
+// frequency, where the square-wave drives' omitted RC factor is largest.
+std::string ac_input_description(const emnet::Scene& scene, double top_hz) {
   std::ostringstream out;
   const auto& drive = scene.drive;
+  // The square-wave drives' force goes in directly; through the RC loops its fundamental would
+  // be 1/(1 + j*omega*tau) times it (src/model/model.cpp).
+  auto rc_loops = [&] {
+    const double tau = emnet::drive_time_constant(scene);
+    const std::complex<double> lag = 1.0 / std::complex<double>(1.0, 2 * pi * top_hz * tau);
+    out << " The DEAs' RC loops are not in this input, whatever drive.electrical_dynamics: "
+           "through them the force's fundamental would be 1/(1 + j*2*pi*f*tau) times it (exact "
+           "at duty 0.5; tau = "
+        << milliseconds(tau) << ": at " << si(top_hz, "Hz") << " " << format("%.6g", std::abs(lag))
+        << ", " << format("%.3g", std::arg(lag) * 180.0 / pi) << " deg).";
+  };
   switch (drive.kind) {
     case emnet::DriveKind::antagonistic:
       out << "AC input: the alternating part of the antagonistic square-wave drive: each DEA's "
              "force k_F*V^2/2 (V = "
           << si(drive.voltage, "V") << ") as a sinusoid, DEA " << drive.deas[0] << " and DEA "
           << drive.deas[1]
-          << " in antiphase (the square wave's +/- level; its fundamental is 4/pi times this). "
-             "Electrical dynamics of the DEAs do not enter this input.";
+          << " in antiphase (the square wave's +/- level; its fundamental is 4/pi times this); "
+             "exact, no linearisation: a 0/V voltage squares to a 0/k_F*V^2 force.";
+      rc_loops();
+      break;
+    case emnet::DriveKind::switched:
+      out << "AC input: the alternating part of the switched square-wave drive on DEA "
+          << drive.deas[0] << ": its force, a 0/k_F*V^2 square wave (V = " << si(drive.voltage, "V")
+          << "), is +/- k_F*V^2/2 about its mean k_F*V^2/2; the +/- level as a sinusoid (its "
+             "fundamental is 4/pi times this); exact, no linearisation: a 0/V voltage squares to "
+             "a 0/k_F*V^2 force. The mean is a static offset, not in this input. The network is "
+             "linearised at the static state (DEA on), which only the back-coupling sees.";
+      rc_loops();
       break;
     case emnet::DriveKind::bias_differential:
       out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << drive.deas[0]
@@ -158,7 +186,8 @@ std::string ac_input_description(const emnet::Scene& scene) {
       break;
     case emnet::DriveKind::single:
       out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << drive.deas[0]
-          << ", linearised about the bias V0 = " << si(drive.bias, "V") << ".";
+          << ", linearised about the bias V0 = " << si(drive.bias, "V")
+          << " (the force's part 2*k_F*V0*v; its DC and 2f parts, k_F*v^2/2 each, are left out).";
       break;
     case emnet::DriveKind::none:
       out << "AC input: the scene's loads, each with its value as amplitude.";
@@ -585,7 +614,7 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
   if (reduction && !reduction->tolerance_met)
     std::cerr << tolerance_warning(reduction->measured_error, reduction->model.tolerance) << "\n";
   const double total = seconds_since(start);
-  const std::string input = ac_input_description(p.model.scene);
+  const std::string input = ac_input_description(p.model.scene, spec.to);
 
   if (!options.csv.empty()) {
     std::vector<std::string> header{"frequency_hz"};
@@ -2046,6 +2075,7 @@ int main(int argc, char** argv) {
       "small-signal frequency response of the probes: magnitude and phase.\n"
       "The AC input depends on the scene's drive: antagonistic = the alternating part of the\n"
       "DEA forces (k_F*V^2/2 per DEA, in antiphase; x 4/pi for the square wave's fundamental);\n"
+      "switched = the same force level on its one DEA (the 0/k_F*V^2 square wave's +/- part);\n"
       "bias_differential = +v / -v about V0 on the two DEAs (linearised at V0);\n"
       "single = v about V0 on one DEA; none = the scene's loads with their values as amplitudes.");
   add_common(ac_command, options);

@@ -54,18 +54,29 @@ struct DeaSpec {
   bool back_coupling = false;          // dea[].back_coupling: i += V·dC/dt
 };
 
-enum class DriveKind { none, antagonistic, bias_differential, single };
+// drive.kind: what the DEAs are driven with (src/model/model.cpp builds the sources):
+//   antagonistic       0/V square wave on DEA A for the first `duty` of each period, on B for
+//                      the rest (keys deas = [A, B], voltage, frequency, duty, rise_time, overlap);
+//   switched           0/V square wave on one DEA, on for the first `duty` of each period
+//                      (deas = [A], voltage, frequency, duty, rise_time);
+//   bias_differential  V_A = V0 + v·sin(2πft), V_B = V0 − v·sin(2πft) (deas = [A, B], bias,
+//                      amplitude, frequency);
+//   single             V = V0 + v·sin(2πft) on one DEA (deas = [A], bias, amplitude, frequency);
+//   none               no DEA driven: the scene's loads only (frequency, if given, is only the
+//                      period of `tran --periods`).
+// drive.electrical_dynamics applies to every kind. The reader refuses a key the kind does not use.
+enum class DriveKind { none, antagonistic, bias_differential, single, switched };
 const char* drive_kind_name(DriveKind kind);
 
 struct DriveSpec {
   DriveKind kind = DriveKind::none;  // drive.kind
   std::vector<std::string> deas;     // drive.deas: [A, B] (antagonistic, bias_differential), [A]
-  double voltage = 0.0;              // drive.voltage [V]: switched level (antagonistic, single)
+  double voltage = 0.0;              // drive.voltage [V]: switched level (antagonistic, switched)
   double bias = 0.0;                 // drive.bias V0 [V] (bias_differential, single)
   double amplitude = 0.0;            // drive.amplitude v [V] (bias_differential, single)
   double frequency = 0.0;            // drive.frequency [Hz]: switching / sine frequency
-  double rise_time = 0.0;            // drive.rise_time [s]
-  double duty = 0.5;                 // drive.duty [-]: fraction of the period A is on
+  double rise_time = 0.0;            // drive.rise_time [s] (antagonistic, switched)
+  double duty = 0.5;  // drive.duty [-]: fraction of the period A is on (antagonistic, switched)
   // drive.overlap [s] (antagonistic): A stays on this long after B has switched on, both on
   // together; negative, a dead time: A switches off this long before B switches on.
   double overlap = 0.0;

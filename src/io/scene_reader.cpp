@@ -626,16 +626,69 @@ void SceneReader::read_deas(const toml::table& root, Scene& scene) const {
   }
 }
 
+// Which drive kinds use which [drive] key (drive.kind and drive.electrical_dynamics: all of
+// them); a key the scene's kind does not use is refused by name, with the kinds that use it.
+struct DriveKeyUse {
+  const char* key;
+  std::vector<DriveKind> kinds;
+};
+
+const std::vector<DriveKeyUse>& drive_key_uses() {
+  using K = DriveKind;
+  static const std::vector<DriveKeyUse> uses = {
+      {"deas", {K::antagonistic, K::switched, K::bias_differential, K::single}},
+      {"voltage", {K::antagonistic, K::switched}},
+      {"bias", {K::bias_differential, K::single}},
+      {"amplitude", {K::bias_differential, K::single}},
+      {"frequency", {K::none, K::antagonistic, K::switched, K::bias_differential, K::single}},
+      {"duty", {K::antagonistic, K::switched}},
+      {"rise_time", {K::antagonistic, K::switched}},
+      {"overlap", {K::antagonistic}},
+  };
+  return uses;
+}
+
+// "the 0/V square wave on DEA A, then on DEA B": what each kind is, for messages.
+const char* drive_kind_meaning(DriveKind kind) {
+  switch (kind) {
+    case DriveKind::none:
+      return "no DEA driven, the scene's loads only";
+    case DriveKind::antagonistic:
+      return "a 0/V square wave on DEA A, then on DEA B";
+    case DriveKind::switched:
+      return "a 0/V square wave on one DEA";
+    case DriveKind::bias_differential:
+      return "V_A,B = V0 +/- v*sin(2*pi*f*t)";
+    case DriveKind::single:
+      return "the sine V = V0 + v*sin(2*pi*f*t) on one DEA";
+  }
+  return "?";
+}
+
 void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
   const Section reader = section(root, "drive");
   DriveSpec& drive = scene.drive;
   const std::vector<std::pair<std::string, DriveKind>> kinds = {
       {"none", DriveKind::none},
       {"antagonistic", DriveKind::antagonistic},
+      {"switched", DriveKind::switched},
       {"bias_differential", DriveKind::bias_differential},
       {"single", DriveKind::single}};
   drive.kind = reader.optional_choice("kind", kinds).value_or(DriveKind::none);
   const std::string kind_name = drive_kind_name(drive.kind);
+  for (const DriveKeyUse& use : drive_key_uses()) {
+    if (!reader.has(use.key) ||
+        std::find(use.kinds.begin(), use.kinds.end(), drive.kind) != use.kinds.end())
+      continue;
+    std::vector<std::string> users;
+    for (DriveKind kind : use.kinds) users.push_back(drive_kind_name(kind));
+    std::string hint;
+    if (drive.kind == DriveKind::single && std::string(use.key) == "voltage")
+      hint = "; a 0/V square wave on one DEA is drive.kind = \"switched\"";
+    reader.fail(use.key, std::string("is not used by drive kind '") + kind_name + "' (" +
+                             drive_kind_meaning(drive.kind) + "); it is used by drive kind" +
+                             (users.size() == 1 ? " " : "s ") + quoted_list(users) + hint);
+  }
 
   // drive.deas: names of existing, distinct DEAs.
   std::vector<std::string> dea_names;
@@ -670,7 +723,7 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
   std::size_t needed_deas = 0;
   if (drive.kind == DriveKind::antagonistic || drive.kind == DriveKind::bias_differential) {
     needed_deas = 2;
-  } else if (drive.kind == DriveKind::single) {
+  } else if (drive.kind == DriveKind::single || drive.kind == DriveKind::switched) {
     needed_deas = 1;
   }
   if (drive.kind != DriveKind::none && drive.deas.size() != needed_deas) {
@@ -681,25 +734,15 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
                             std::to_string(drive.deas.size()));
   }
 
-  const std::optional<double> voltage =
-      reader.optional_quantity("voltage", dim::voltage, Bound::non_negative);
-  const std::optional<double> bias =
-      reader.optional_quantity("bias", dim::voltage, Bound::non_negative);
-  const std::optional<double> amplitude =
-      reader.optional_quantity("amplitude", dim::voltage, Bound::non_negative);
-  if (drive.kind == DriveKind::antagonistic && !voltage) reader.fail_missing("voltage");
-  if (drive.kind == DriveKind::bias_differential) {
-    if (!bias) reader.fail_missing("bias");
-    if (!amplitude) reader.fail_missing("amplitude");
+  // Levels: every key the kind uses is required (none has a default that could be meant).
+  const bool square_wave =
+      drive.kind == DriveKind::antagonistic || drive.kind == DriveKind::switched;
+  const bool sine = drive.kind == DriveKind::bias_differential || drive.kind == DriveKind::single;
+  if (square_wave) drive.voltage = reader.quantity("voltage", dim::voltage, Bound::non_negative);
+  if (sine) {
+    drive.bias = reader.quantity("bias", dim::voltage, Bound::non_negative);
+    drive.amplitude = reader.quantity("amplitude", dim::voltage, Bound::non_negative);
   }
-  if (drive.kind == DriveKind::single && !voltage && !bias && !amplitude) {
-    locator_.fail(nullptr, reader.key("voltage"),
-                  "missing: drive kind 'single' needs drive.voltage or drive.bias and "
-                  "drive.amplitude");
-  }
-  drive.voltage = voltage.value_or(0.0);
-  drive.bias = bias.value_or(0.0);
-  drive.amplitude = amplitude.value_or(0.0);
 
   const std::optional<double> frequency =
       reader.optional_quantity("frequency", dim::frequency, Bound::positive);
@@ -717,8 +760,6 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
     reader.fail("duty", "must be between 0 and 1 (exclusive), got " + format_number(drive.duty));
   }
   drive.overlap = reader.quantity_or("overlap", dim::time, Bound::any, 0.0);
-  if (drive.overlap != 0.0 && drive.kind != DriveKind::antagonistic)
-    reader.fail("overlap", "applies to the antagonistic drive only");
   if (frequency && drive.overlap != 0.0) {
     // A's on-time (duty·T + overlap) must stay inside (rise time, T − rise time).
     const double period = 1.0 / *frequency;
