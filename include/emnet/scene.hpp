@@ -38,6 +38,12 @@ struct DampingSpec {
   double effective_kelvin_voigt_time() const;
 };
 
+// Default dea[].breakdown_field: 80 V/µm, the dielectric breakdown strength in the data sheet
+// of WACKER ELASTOSIL Film 2030 (ASTM D 3755), the silicone film of the paper's DEAs. The data
+// sheet gives it for the film as supplied; the paper pre-stretches its film (to 51 µm), which
+// it says raises the breakdown strength, by how much it does not say.
+inline constexpr double kDefaultBreakdownField = 80e6;
+
 enum class Face { top, bottom };  // top = +w side; an energised DEA there bends toward −w
 
 struct DeaSpec {
@@ -52,6 +58,9 @@ struct DeaSpec {
   double electrode_width = 0.0;        // dea[].electrode_width [m]
   double electrode_resistance = 0.0;   // dea[].electrode_resistance [Ω]
   bool back_coupling = false;          // dea[].back_coupling: i += V·dC/dt
+  // dea[].breakdown_field [V/m]: the field V/d across the film above which a result is flagged
+  // as outside the model (emnet/validity.hpp); default kDefaultBreakdownField.
+  double breakdown_field = kDefaultBreakdownField;
 };
 
 // drive.kind: what the DEAs are driven with (src/model/model.cpp builds the sources):
@@ -133,6 +142,9 @@ struct ModelSpec {
   std::optional<double> band_from;  // model.band lower end [Hz]
   std::optional<double> band_to;    // model.band upper end [Hz]
   double tolerance = 1e-3;          // model.tolerance: relative accuracy of the band's resonances
+  // model.deflection_limit: the largest |deflection| a small-deflection linear beam is trusted
+  // with, as a fraction of beam.length; a result beyond it is flagged (emnet/validity.hpp).
+  double deflection_limit = 0.1;
 };
 
 // [environment]: the fluid around the beam (fluid loading, emnet/fluid_loading.hpp).

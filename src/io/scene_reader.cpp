@@ -58,7 +58,8 @@ const std::vector<TableSchema>& scene_schema() {
        true,
        false,
        {"name", "from", "to", "face", "lever_arm", "relative_permittivity", "dielectric_thickness",
-        "force_thickness", "electrode_width", "electrode_resistance", "back_coupling"}},
+        "force_thickness", "electrode_width", "electrode_resistance", "back_coupling",
+        "breakdown_field"}},
       {"drive",
        false,
        false,
@@ -71,7 +72,7 @@ const std::vector<TableSchema>& scene_schema() {
        false,
        false,
        {"fluid", "density", "dynamic_viscosity", "width", "frequency"}},
-      {"model", false, false, {"band", "tolerance"}},
+      {"model", false, false, {"band", "tolerance", "deflection_limit"}},
       {"provenance", false, true, {}},
   };
   return schema;
@@ -622,6 +623,9 @@ void SceneReader::read_deas(const toml::table& root, Scene& scene) const {
     dea.electrode_resistance =
         reader.quantity("electrode_resistance", dim::resistance, Bound::positive);
     dea.back_coupling = reader.optional_boolean("back_coupling").value_or(false);
+    // Default: the paper's film's data-sheet value (kDefaultBreakdownField, emnet/scene.hpp).
+    dea.breakdown_field = reader.quantity_or("breakdown_field", dim::electric_field,
+                                             Bound::positive, kDefaultBreakdownField);
     scene.deas.push_back(dea);
   }
 }
@@ -905,7 +909,8 @@ void SceneReader::read_environment(const toml::table& root, EnvironmentSpec& env
 }
 
 // [model]: band = "130 Hz" (from 0) or ["0 Hz", "130 Hz"], 0 <= from < to, finite;
-// tolerance in (0, 0.5) (a relative error of one half is no accuracy at all). The automatic
+// tolerance in (0, 0.5) (a relative error of one half is no accuracy at all); deflection_limit
+// in (0, 1], a fraction of the beam length (default 0.1). The automatic
 // choices need a band: from model.band, else from an [ac] table or the drive frequency
 // (band_of_interest in emnet/segment_selection.hpp); without any, "auto" is an error here.
 void SceneReader::read_model(const toml::table& root, Scene& scene) const {
@@ -941,6 +946,10 @@ void SceneReader::read_model(const toml::table& root, Scene& scene) const {
   if (!(model.tolerance > 0.0 && model.tolerance < 0.5))
     reader.fail("tolerance",
                 "must lie in (0, 0.5) (a relative error), got " + format_number(model.tolerance));
+  model.deflection_limit = reader.quantity_or("deflection_limit", dim::none, Bound::any, 0.1);
+  if (!(model.deflection_limit > 0.0 && model.deflection_limit <= 1.0))
+    reader.fail("deflection_limit", "must be > 0 and at most 1 (a fraction of beam.length), got " +
+                                        format_number(model.deflection_limit));
   const bool band_known = model.band_to || scene.ac.given || (scene.drive.kind != DriveKind::none);
   // (drive.electrical_dynamics = "auto" needs a band only with a drive, which brings one.)
   if (!band_known) {

@@ -685,5 +685,36 @@ TEST(SceneReaderError, SwitchedDriveNeedsOneDeaAndItsVoltage) {
   expect_error(read_error(no_voltage), kFileName, "drive.voltage", "missing (required)");
 }
 
+// ---------------------------------------------------------------------------------------------
+// Validity limits: model.deflection_limit (a fraction of the beam length) and
+// dea[].breakdown_field.
+
+TEST(SceneReader, ValidityLimitsDefaultAndRead) {
+  const Scene defaults = read_scene_text(kFullScene, kFileName);
+  EXPECT_DOUBLE_EQ(defaults.model.deflection_limit, 0.1);
+  EXPECT_DOUBLE_EQ(defaults.deas[0].breakdown_field, 80e6);  // 80 V/um, the film's data sheet
+  const std::string text = replaced(kFullScene, "back_coupling = true",
+                                    "back_coupling = true\nbreakdown_field = \"100 V/um\"") +
+                           "\n[model]\ndeflection_limit = 0.2\n";
+  const Scene scene = read_scene_text(text, kFileName);
+  EXPECT_DOUBLE_EQ(scene.model.deflection_limit, 0.2);
+  EXPECT_DOUBLE_EQ(scene.deas[0].breakdown_field, 80e6);
+  EXPECT_DOUBLE_EQ(scene.deas[1].breakdown_field, 100e6);
+  EXPECT_DOUBLE_EQ(read_scene_text(kFullScene, kFileName, {"dea.A.breakdown_field=60 kV/mm"})
+                       .deas[0]
+                       .breakdown_field,
+                   60e6);
+}
+
+TEST(SceneReaderError, ValidityLimitsOutOfRange) {
+  for (const char* bad : {"0", "1.5", "-0.1"})
+    expect_error(read_error(kFullScene, {std::string("model.deflection_limit=") + bad}), "--set",
+                 "model.deflection_limit", "must be > 0 and at most 1 (a fraction of beam.length)");
+  expect_error(read_error(kFullScene, {"dea.B.breakdown_field=0"}), "--set",
+               "dea[B].breakdown_field", "must be > 0");
+  expect_error(read_error(kFullScene, {"dea.B.breakdown_field=80 V"}), "--set",
+               "dea[B].breakdown_field", "expected an electric field (V/m)");
+}
+
 }  // namespace
 }  // namespace emnet
