@@ -2,8 +2,11 @@
 //
 // Exit status: 0 success; 2 bad input (scene file, override, option), with one message naming
 // the file, line and key; 3 numerical failure, with the reason (for crosscheck also: ngspice
-// missing, failing or timed out); 4 crosscheck: a difference exceeds its tolerance; 1 anything
-// else.
+// missing, failing or timed out); 4 crosscheck: a difference exceeds its tolerance; 5 computed
+// but outside the model's validity (a deflection above model.deflection_limit of the beam
+// length, or a DEA's field V/d above its breakdown field; emnet/validity.hpp): the result is
+// printed with a WARNING line on standard output and error and "validity" in --json; 1
+// anything else.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -29,6 +32,7 @@
 #include "emnet/spice_netlist.hpp"
 #include "emnet/transient.hpp"
 #include "emnet/units.hpp"
+#include "emnet/validity.hpp"
 
 namespace {
 
@@ -126,11 +130,17 @@ std::string drive_summary(const emnet::Scene& scene) {
     case emnet::DriveKind::antagonistic:
       out << " 0/" << si(drive.voltage, "V") << " square wave at " << si(drive.frequency, "Hz");
       break;
+    case emnet::DriveKind::switched:
+      out << " 0/" << si(drive.voltage, "V") << " square wave at " << si(drive.frequency, "Hz")
+          << " on DEA " << drive.deas[0];
+      break;
     case emnet::DriveKind::bias_differential:
       out << " V0 = " << si(drive.bias, "V") << ", v = " << si(drive.amplitude, "V");
       break;
     case emnet::DriveKind::single:
-      out << " V0 = " << si(drive.bias, "V") << ", v = " << si(drive.amplitude, "V");
+      out << " V0 + v*sin(2*pi*f*t), V0 = " << si(drive.bias, "V")
+          << ", v = " << si(drive.amplitude, "V") << ", f = " << si(drive.frequency, "Hz")
+          << " on DEA " << drive.deas[0];
       break;
     case emnet::DriveKind::none:
       break;
@@ -138,18 +148,40 @@ std::string drive_summary(const emnet::Scene& scene) {
   return out.str();
 }
 
-// What the AC input is, in words: printed with every AC result.
-std::string ac_input_description(const emnet::Scene& scene) {
+// What the AC input is, in words: printed with every AC result. `top_hz`: the sweep's highest
+// frequency, where the square-wave drives' omitted RC factor is largest.
+std::string ac_input_description(const emnet::Scene& scene, double top_hz) {
   std::ostringstream out;
   const auto& drive = scene.drive;
+  // The square-wave drives' force goes in directly; through the RC loops its fundamental would
+  // be 1/(1 + j*omega*tau) times it (src/model/model.cpp).
+  auto rc_loops = [&] {
+    const double tau = emnet::drive_time_constant(scene);
+    const std::complex<double> lag = 1.0 / std::complex<double>(1.0, 2 * pi * top_hz * tau);
+    out << " The DEAs' RC loops are not in this input, whatever drive.electrical_dynamics: "
+           "through them the force's fundamental would be 1/(1 + j*2*pi*f*tau) times it (exact "
+           "at duty 0.5; tau = "
+        << milliseconds(tau) << ": at " << si(top_hz, "Hz") << " " << format("%.6g", std::abs(lag))
+        << ", " << format("%.3g", std::arg(lag) * 180.0 / pi) << " deg).";
+  };
   switch (drive.kind) {
     case emnet::DriveKind::antagonistic:
       out << "AC input: the alternating part of the antagonistic square-wave drive: each DEA's "
              "force k_F*V^2/2 (V = "
           << si(drive.voltage, "V") << ") as a sinusoid, DEA " << drive.deas[0] << " and DEA "
           << drive.deas[1]
-          << " in antiphase (the square wave's +/- level; its fundamental is 4/pi times this). "
-             "Electrical dynamics of the DEAs do not enter this input.";
+          << " in antiphase (the square wave's +/- level; its fundamental is 4/pi times this); "
+             "exact, no linearisation: a 0/V voltage squares to a 0/k_F*V^2 force.";
+      rc_loops();
+      break;
+    case emnet::DriveKind::switched:
+      out << "AC input: the alternating part of the switched square-wave drive on DEA "
+          << drive.deas[0] << ": its force, a 0/k_F*V^2 square wave (V = " << si(drive.voltage, "V")
+          << "), is +/- k_F*V^2/2 about its mean k_F*V^2/2; the +/- level as a sinusoid (its "
+             "fundamental is 4/pi times this); exact, no linearisation: a 0/V voltage squares to "
+             "a 0/k_F*V^2 force. The mean is a static offset, not in this input. The network is "
+             "linearised at the static state (DEA on), which only the back-coupling sees.";
+      rc_loops();
       break;
     case emnet::DriveKind::bias_differential:
       out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << drive.deas[0]
@@ -158,7 +190,8 @@ std::string ac_input_description(const emnet::Scene& scene) {
       break;
     case emnet::DriveKind::single:
       out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << drive.deas[0]
-          << ", linearised about the bias V0 = " << si(drive.bias, "V") << ".";
+          << ", linearised about the bias V0 = " << si(drive.bias, "V")
+          << " (the force's part 2*k_F*V0*v; its DC and 2f parts, k_F*v^2/2 each, are left out).";
       break;
     case emnet::DriveKind::none:
       out << "AC input: the scene's loads, each with its value as amplitude.";
@@ -167,6 +200,39 @@ std::string ac_input_description(const emnet::Scene& scene) {
   if (drive.kind != emnet::DriveKind::none && !scene.loads.empty())
     out << " Plus the scene's loads, each with its value as amplitude.";
   return out.str();
+}
+
+// The validity checks of a result (emnet/validity.hpp): "validity" of --json; in text a line
+// with the largest values against their limits and a WARNING line per violation.
+Json validity_json(const emnet::Validity& validity) {
+  Json violations = Json::array();
+  for (const auto& v : validity.violations)
+    violations.push_back({{"check", emnet::validity_check_name(v.check)},
+                          {"subject", v.subject},
+                          {"key", v.key},
+                          {"value", v.value},
+                          {"limit", v.limit},
+                          {"message", v.message}});
+  return {{"status", validity.within() ? "within" : "OUTSIDE"},
+          {"summary", validity.summary},
+          {"deflection_fraction_of_limit", validity.deflection_fraction},
+          {"field_fraction_of_breakdown", validity.field_fraction},
+          {"violations", violations}};
+}
+
+std::string validity_warning(const emnet::ValidityViolation& violation) {
+  return "WARNING: outside the model's validity: " + violation.message;
+}
+
+void print_validity(const emnet::Validity& validity) {
+  std::cout << "validity: " << validity.summary << "\n";
+  for (const auto& v : validity.violations) std::cout << validity_warning(v) << "\n";
+}
+
+// The exit status of a computed result: 0, or 5 with the warnings on standard error.
+int validity_exit(const emnet::Validity& validity) {
+  for (const auto& v : validity.violations) std::cerr << "emnet: " << validity_warning(v) << "\n";
+  return validity.within() ? 0 : emnet::kExitOutsideValidity;
 }
 
 void print_header(const emnet::Model& model, const emnet::System& system) {
@@ -237,6 +303,14 @@ int run_static(const CommonOptions& options) {
   for (const auto& probe : probes)
     probe_values.push_back(
         finite(emnet::static_probe_value(p.system, p.rest, probe), "probe " + probe.name));
+  // Validity: the nodal deflections and the deflection probes, the sources at t = 0.
+  std::vector<emnet::DeflectionPeak> peaks{{"the beam's nodes", 0.0}};
+  for (const auto& row : rows) peaks[0].peak = std::max(peaks[0].peak, std::abs(row[1]));
+  for (size_t k = 0; k < probes.size(); ++k)
+    if (probes[k].quantity == emnet::ProbeQuantity::deflection)
+      peaks.push_back({probes[k].name, std::abs(probe_values[k])});
+  const emnet::Validity validity =
+      emnet::check_validity(p.model.scene, peaks, emnet::drive_voltages_at_start(p.model.scene));
   const double total = seconds_since(start);
   if (!options.csv.empty()) write_csv(options.csv, {"x_m", "deflection_m", "rotation_rad"}, rows);
   if (options.json) {
@@ -257,8 +331,9 @@ int run_static(const CommonOptions& options) {
                        {"newton_iterations", p.rest.newton_iterations},
                        {"discretisation", "exact at the nodes for any N (Hermite statics)"}};
     out["cost"] = {{"solve_seconds", p.rest.seconds}, {"total_seconds", total}};
+    out["validity"] = validity_json(validity);
     std::cout << out.dump(2) << "\n";
-    return 0;
+    return validity_exit(validity);
   }
   print_header(p.model, p.system);
   std::cout << "static state at rest (" << drive_summary(p.model.scene) << ", first half-period)\n"
@@ -274,7 +349,8 @@ int run_static(const CommonOptions& options) {
   for (size_t k = 0; k < probes.size(); ++k)
     std::printf("  %-10s %-40s %14.6e %s\n", probes[k].name.c_str(), probes[k].description.c_str(),
                 probe_values[k], probes[k].unit.c_str());
-  return 0;
+  print_validity(validity);
+  return validity_exit(validity);
 }
 
 // ---- modes ----------------------------------------------------------------------------
@@ -694,8 +770,20 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
     if (f >= spec.from && f <= spec.to) markers.push_back({f, "f = " + format("%.4f", f) + " Hz"});
   if (reduction && !reduction->tolerance_met)
     std::cerr << tolerance_warning(reduction->measured_error, reduction->model.tolerance) << "\n";
+  // Validity: each deflection probe's largest AC amplitude. Every drive's AC input has the
+  // scene's own amplitude (the square waves' force level, v, the loads' values), so these are
+  // deflection amplitudes; a switched drive's mean offset and a sine's 2f part are not added.
+  std::vector<emnet::DeflectionPeak> peaks;
+  for (size_t k = 0; k < probes.size(); ++k)
+    if (probes[k].quantity == emnet::ProbeQuantity::deflection) {
+      peaks.push_back({probes[k].name, 0.0});
+      for (const auto& v : result.values[k])
+        peaks.back().peak = std::max(peaks.back().peak, std::abs(v));
+    }
+  const emnet::Validity validity =
+      emnet::check_validity(p.model.scene, peaks, emnet::drive_peak_voltages(p.model.scene));
   const double total = seconds_since(start);
-  const std::string input = ac_input_description(p.model.scene);
+  const std::string input = ac_input_description(p.model.scene, spec.to);
 
   if (!options.csv.empty()) {
     std::vector<std::string> header{"frequency_hz"};
@@ -768,8 +856,9 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
                         {"check_seconds", r.check_seconds}}}});
       out["reduction"] = reduced;
     }
+    out["validity"] = validity_json(validity);
     std::cout << out.dump(2) << "\n";
-    return 0;
+    return validity_exit(validity);
   }
   print_header(p.model, p.system);
   std::cout << input << "\n"
@@ -838,7 +927,8 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
                 grid[best]);
   }
   if (!ac_options.plot.empty()) std::cout << "Bode plot written to " << ac_options.plot << "\n";
-  return 0;
+  print_validity(validity);
+  return validity_exit(validity);
 }
 
 // ---- tran -----------------------------------------------------------------------------
@@ -926,6 +1016,15 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
                                             ? emnet::run_transient_exact(system, probes, transient)
                                             : emnet::run_transient_ida(system, probes, transient);
   if (!result.status.ok) throw NumericalFailure("tran: " + result.status.message);
+  std::vector<emnet::DeflectionPeak> peaks;
+  for (size_t k = 0; k < probes.size(); ++k)
+    if (probes[k].quantity == emnet::ProbeQuantity::deflection) {
+      peaks.push_back({probes[k].name, 0.0});
+      for (double v : result.values[k])
+        peaks.back().peak = std::max(peaks.back().peak, std::abs(v));
+    }
+  const emnet::Validity validity =
+      emnet::check_validity(model.scene, peaks, emnet::drive_peak_voltages(model.scene));
   const double total = seconds_since(start);
   const std::string start_text =
       tran.start == "static"
@@ -982,8 +1081,9 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
                          {"convergence_failures", st.convergence_failures},
                          {"restarts", st.restarts}};
     out["cost"] = {{"integration_seconds", result.seconds}, {"total_seconds", total}};
+    out["validity"] = validity_json(validity);
     std::cout << out.dump(2) << "\n";
-    return 0;
+    return validity_exit(validity);
   }
   print_header(model, system);
   std::cout << "transient: " << result.method << ", " << tran.periods << " periods of "
@@ -1020,7 +1120,8 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
                 probes[k].unit.c_str());
   }
   if (!tran.plot.empty()) std::cout << "plot written to " << tran.plot << "\n";
-  return 0;
+  print_validity(validity);
+  return validity_exit(validity);
 }
 
 // ---- sweep-switching ------------------------------------------------------------------
@@ -1142,6 +1243,15 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
     frequencies.push_back(f);
     results.push_back(std::move(r));
   }
+  std::vector<emnet::DeflectionPeak> peaks;
+  for (size_t p = 0; p < probes.size(); ++p) {
+    peaks.push_back({probes[p].name, 0.0});
+    for (const auto& r : results)
+      peaks.back().peak =
+          std::max({peaks.back().peak, std::abs(r.minimum[p]), std::abs(r.maximum[p])});
+  }
+  const emnet::Validity validity =
+      emnet::check_validity(model.scene, peaks, emnet::drive_peak_voltages(model.scene));
   const double total = seconds_since(start);
   double solve_seconds = 0.0, worst_periodicity = 0.0;
   for (const auto& r : results) {
@@ -1283,8 +1393,9 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
                          check->full_build_seconds + n * check->full_solve_seconds}}}});
       out["reduction"] = reduced;
     }
+    out["validity"] = validity_json(validity);
     std::cout << out.dump(2) << "\n";
-    return 0;
+    return validity_exit(validity);
   }
   print_header(model, model.network.assemble());
   for (const auto& note : notes) std::cout << "note: " << note << "\n";
@@ -1349,7 +1460,8 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
                 results[best].minimum[main_probe] * 1e3, results[best].maximum[main_probe] * 1e3);
   for (const auto& m : markers) std::cout << "marker: " << m.label << "\n";
   if (!sweep.plot.empty()) std::cout << "plot written to " << sweep.plot << "\n";
-  return 0;
+  print_validity(validity);
+  return validity_exit(validity);
 }
 
 // ---- identify -------------------------------------------------------------------------
@@ -1526,6 +1638,13 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   }
   const double stiffness = fit.stiffness, frequency = fit.frequency;
   const int iterations = fit.iterations;
+  // Validity of the periodic peak --peak prints, at the drive's levels (--peak's voltage).
+  std::optional<emnet::Validity> validity;
+  if (peak) {
+    const emnet::Scene fitted_scene = load_scene(fitted);
+    validity = emnet::check_validity(fitted_scene, {{peak->probe, achieved_peak}},
+                                     emnet::drive_peak_voltages(fitted_scene));
+  }
   const double total = seconds_since(start);
   // The command that re-identifies the values, for the scene's [provenance].
   std::string command =
@@ -1549,9 +1668,10 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
       out["target_peak_m"] = peak->value;
       out["achieved_peak_m"] = achieved_peak;
       out["peak_rounds"] = peak_rounds;
+      out["validity"] = validity_json(*validity);
     }
     std::cout << out.dump(2) << "\n";
-    return 0;
+    return validity ? validity_exit(*validity) : 0;
   }
   std::printf(
       "identified beam.bending_stiffness = %.6e N*m^2: mode %d at %.9f Hz (target %.6g Hz), "
@@ -1567,7 +1687,8 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   std::printf("provenance:\n  \"beam.bending_stiffness\" = \"identified: %s\"\n", command.c_str());
   if (peak) std::printf("  \"damping.loss_factor\" = \"identified: %s\"\n", command.c_str());
   for (const auto& choice : automatic_choices) std::cout << "note: " << choice.reason << "\n";
-  return 0;
+  if (validity) print_validity(*validity);
+  return validity ? validity_exit(*validity) : 0;
 }
 
 // ---- mismatch ---------------------------------------------------------------------------
@@ -1648,6 +1769,13 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
       const auto extremes = periodic_extremes(changed, output, frequency, "--output");
       rows.push_back({c.label, c.key, x, extremes, asymmetry(extremes)});
     }
+  std::vector<emnet::DeflectionPeak> peaks{
+      {output, std::max(std::abs(nominal.first), std::abs(nominal.second))}};
+  for (const Row& row : rows)
+    peaks.push_back({output + " (" + row.label + " " + format("%+.3g", 100.0 * row.change) + " %)",
+                     std::max(std::abs(row.extremes.first), std::abs(row.extremes.second))});
+  const emnet::Validity validity =
+      emnet::check_validity(scene, peaks, emnet::drive_peak_voltages(scene));
   const double total = seconds_since(start);
   if (options.json) {
     Json out = {{"automatic_choices", automatic_choices_json(scene.automatic_choices)},
@@ -1663,8 +1791,9 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
                               {"right_m", rows[k].extremes.second},
                               {"asymmetry", rows[k].asymmetry},
                               {"asymmetry_per_unit_change", rows[k].asymmetry / cmd.change}});
+    out["validity"] = validity_json(validity);
     std::cout << out.dump(2) << "\n";
-    return 0;
+    return validity_exit(validity);
   }
   std::printf(
       "scene %s: left/right asymmetry of %s switched at %s, DEAs as ideal voltage-driven "
@@ -1684,7 +1813,8 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
     std::printf("%-28s %+7.1f%% %12.5f %12.5f %11.4f%% %15.5f%%\n", row.label.c_str(),
                 100.0 * row.change, row.extremes.first * 1e3, row.extremes.second * 1e3,
                 100.0 * row.asymmetry, row.asymmetry / cmd.change);
-  return 0;
+  print_validity(validity);
+  return validity_exit(validity);
 }
 
 // ---- sensitivity ------------------------------------------------------------------------
@@ -2127,6 +2257,11 @@ int main(int argc, char** argv) {
       "Euler-Bernoulli beams cut into N segments, driven by dielectric elastomer actuators, as\n"
       "Firestone (mobility) networks: force = current, velocity = voltage."};
   app.require_subcommand(1);
+  app.footer(
+      "Exit status: 0 success; 2 bad input; 3 numerical failure; 4 crosscheck: a difference\n"
+      "exceeds its tolerance; 5 computed but outside the model's validity (a deflection above\n"
+      "model.deflection_limit of the beam length, default 10 %, or a DEA's field V/d above\n"
+      "dea[].breakdown_field): printed with a WARNING and \"validity\" in --json.");
   CommonOptions options;
 
   auto* static_command = app.add_subcommand(
@@ -2156,6 +2291,7 @@ int main(int argc, char** argv) {
       "small-signal frequency response of the probes: magnitude and phase.\n"
       "The AC input depends on the scene's drive: antagonistic = the alternating part of the\n"
       "DEA forces (k_F*V^2/2 per DEA, in antiphase; x 4/pi for the square wave's fundamental);\n"
+      "switched = the same force level on its one DEA (the 0/k_F*V^2 square wave's +/- part);\n"
       "bias_differential = +v / -v about V0 on the two DEAs (linearised at V0);\n"
       "single = v about V0 on one DEA; none = the scene's loads with their values as amplitudes.");
   add_common(ac_command, options);

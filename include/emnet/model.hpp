@@ -23,6 +23,7 @@
 #include "emnet/fluid_loading.hpp"
 #include "emnet/network.hpp"
 #include "emnet/scene.hpp"
+#include "emnet/waveform.hpp"
 
 namespace emnet {
 
@@ -85,6 +86,20 @@ struct Model {
   // Parses "deflection@70mm", "velocity@0.1", "dea_current:A" or a probe name of the scene.
   Probe parse_probe(const std::string& text) const;
 };
+
+// What a drive applies to DEA `dea_name` (src/model/model.cpp says why): its source voltage
+// (constant 0 for a DEA the drive does not name) and, for the square-wave drives, the factor f
+// of its AC force input f·k_F·V² (±1/2; 0 for the sine drives, whose AC input is the source's
+// own amplitude v).
+struct DeaDrive {
+  Waveform voltage;
+  double ac_force_factor = 0.0;
+};
+DeaDrive dea_drive(const DriveSpec& drive, const std::string& dea_name);
+
+// The largest RC time constant R_e·C₀ [s] of the DEAs the drive names (0 when it names none);
+// `which`, when given, receives that DEA's name.
+double drive_time_constant(const Scene& scene, std::string* which = nullptr);
 
 // `electrical_probe_requested`: a probe outside the scene (the command line's --probe) asks for
 // dea_voltage or dea_current, which drive.electrical_dynamics = "auto" must then keep.

@@ -38,6 +38,12 @@ struct DampingSpec {
   double effective_kelvin_voigt_time() const;
 };
 
+// Default dea[].breakdown_field: 80 V/µm, the dielectric breakdown strength in the data sheet
+// of WACKER ELASTOSIL Film 2030 (ASTM D 3755), the silicone film of the paper's DEAs. The data
+// sheet gives it for the film as supplied; the paper pre-stretches its film (to 51 µm), which
+// it says raises the breakdown strength, by how much it does not say.
+inline constexpr double kDefaultBreakdownField = 80e6;
+
 enum class Face { top, bottom };  // top = +w side; an energised DEA there bends toward −w
 
 struct DeaSpec {
@@ -52,20 +58,34 @@ struct DeaSpec {
   double electrode_width = 0.0;        // dea[].electrode_width [m]
   double electrode_resistance = 0.0;   // dea[].electrode_resistance [Ω]
   bool back_coupling = false;          // dea[].back_coupling: i += V·dC/dt
+  // dea[].breakdown_field [V/m]: the field V/d across the film above which a result is flagged
+  // as outside the model (emnet/validity.hpp); default kDefaultBreakdownField.
+  double breakdown_field = kDefaultBreakdownField;
 };
 
-enum class DriveKind { none, antagonistic, bias_differential, single };
+// drive.kind: what the DEAs are driven with (src/model/model.cpp builds the sources):
+//   antagonistic       0/V square wave on DEA A for the first `duty` of each period, on B for
+//                      the rest (keys deas = [A, B], voltage, frequency, duty, rise_time, overlap);
+//   switched           0/V square wave on one DEA, on for the first `duty` of each period
+//                      (deas = [A], voltage, frequency, duty, rise_time);
+//   bias_differential  V_A = V0 + v·sin(2πft), V_B = V0 − v·sin(2πft) (deas = [A, B], bias,
+//                      amplitude, frequency);
+//   single             V = V0 + v·sin(2πft) on one DEA (deas = [A], bias, amplitude, frequency);
+//   none               no DEA driven: the scene's loads only (frequency, if given, is only the
+//                      period of `tran --periods`).
+// drive.electrical_dynamics applies to every kind. The reader refuses a key the kind does not use.
+enum class DriveKind { none, antagonistic, bias_differential, single, switched };
 const char* drive_kind_name(DriveKind kind);
 
 struct DriveSpec {
   DriveKind kind = DriveKind::none;  // drive.kind
   std::vector<std::string> deas;     // drive.deas: [A, B] (antagonistic, bias_differential), [A]
-  double voltage = 0.0;              // drive.voltage [V]: switched level (antagonistic, single)
+  double voltage = 0.0;              // drive.voltage [V]: switched level (antagonistic, switched)
   double bias = 0.0;                 // drive.bias V0 [V] (bias_differential, single)
   double amplitude = 0.0;            // drive.amplitude v [V] (bias_differential, single)
   double frequency = 0.0;            // drive.frequency [Hz]: switching / sine frequency
-  double rise_time = 0.0;            // drive.rise_time [s]
-  double duty = 0.5;                 // drive.duty [-]: fraction of the period A is on
+  double rise_time = 0.0;            // drive.rise_time [s] (antagonistic, switched)
+  double duty = 0.5;  // drive.duty [-]: fraction of the period A is on (antagonistic, switched)
   // drive.overlap [s] (antagonistic): A stays on this long after B has switched on, both on
   // together; negative, a dead time: A switches off this long before B switches on.
   double overlap = 0.0;
@@ -122,6 +142,9 @@ struct ModelSpec {
   std::optional<double> band_from;  // model.band lower end [Hz]
   std::optional<double> band_to;    // model.band upper end [Hz]
   double tolerance = 1e-3;          // model.tolerance: relative accuracy of the band's resonances
+  // model.deflection_limit: the largest |deflection| a small-deflection linear beam is trusted
+  // with, as a fraction of beam.length; a result beyond it is flagged (emnet/validity.hpp).
+  double deflection_limit = 0.1;
 };
 
 // [environment]: the fluid around the beam (fluid loading, emnet/fluid_loading.hpp).

@@ -40,6 +40,7 @@ inline constexpr Dimension power{1, 2, -3, 0};                     // W
 inline constexpr Dimension pressure{1, -1, -2, 0};                 // Pa
 inline constexpr Dimension charge{0, 0, 1, 1};                     // A*s
 inline constexpr Dimension voltage{1, 2, -3, -1};                  // V
+inline constexpr Dimension electric_field{1, 1, -3, -1};           // V/m
 inline constexpr Dimension resistance{1, 2, -3, -2};               // Ohm
 inline constexpr Dimension capacitance{-1, -2, 4, 2};              // F
 inline constexpr Dimension bending_stiffness{1, 3, -2, 0};         // N*m^2

@@ -63,7 +63,7 @@ std::vector<Slot> all_slots(Scene& scene) {
   }
   for (auto& dea : scene.deas)
     for (const Slot& slot : dea_slots(dea)) slots.push_back(slot);
-  if (scene.drive.kind == DriveKind::antagonistic)
+  if (scene.drive.kind == DriveKind::antagonistic || scene.drive.kind == DriveKind::switched)
     slots.push_back({&scene.drive.voltage, "drive.voltage", "V"});
   if (scene.drive.kind == DriveKind::bias_differential || scene.drive.kind == DriveKind::single)
     slots.push_back({&scene.drive.bias, "drive.bias", "V"});

@@ -39,6 +39,8 @@ const char* drive_kind_name(DriveKind kind) {
       return "bias_differential";
     case DriveKind::single:
       return "single";
+    case DriveKind::switched:
+      return "switched";
   }
   return "?";
 }

@@ -60,7 +60,8 @@ const std::vector<TableSchema>& scene_schema() {
        true,
        false,
        {"name", "from", "to", "face", "lever_arm", "relative_permittivity", "dielectric_thickness",
-        "force_thickness", "electrode_width", "electrode_resistance", "back_coupling"}},
+        "force_thickness", "electrode_width", "electrode_resistance", "back_coupling",
+        "breakdown_field"}},
       {"drive",
        false,
        false,
@@ -73,7 +74,7 @@ const std::vector<TableSchema>& scene_schema() {
        false,
        false,
        {"fluid", "density", "dynamic_viscosity", "width", "frequency"}},
-      {"model", false, false, {"band", "tolerance"}},
+      {"model", false, false, {"band", "tolerance", "deflection_limit"}},
       {"provenance", false, true, {}},
   };
   return schema;
@@ -658,8 +659,50 @@ void SceneReader::read_deas(const toml::table& root, Scene& scene) const {
     dea.electrode_resistance =
         reader.quantity("electrode_resistance", dim::resistance, Bound::positive);
     dea.back_coupling = reader.optional_boolean("back_coupling").value_or(false);
+    // Default: the paper's film's data-sheet value (kDefaultBreakdownField, emnet/scene.hpp).
+    dea.breakdown_field = reader.quantity_or("breakdown_field", dim::electric_field,
+                                             Bound::positive, kDefaultBreakdownField);
     scene.deas.push_back(dea);
   }
+}
+
+// Which drive kinds use which [drive] key (drive.kind and drive.electrical_dynamics: all of
+// them); a key the scene's kind does not use is refused by name, with the kinds that use it.
+struct DriveKeyUse {
+  const char* key;
+  std::vector<DriveKind> kinds;
+};
+
+const std::vector<DriveKeyUse>& drive_key_uses() {
+  using K = DriveKind;
+  static const std::vector<DriveKeyUse> uses = {
+      {"deas", {K::antagonistic, K::switched, K::bias_differential, K::single}},
+      {"voltage", {K::antagonistic, K::switched}},
+      {"bias", {K::bias_differential, K::single}},
+      {"amplitude", {K::bias_differential, K::single}},
+      {"frequency", {K::none, K::antagonistic, K::switched, K::bias_differential, K::single}},
+      {"duty", {K::antagonistic, K::switched}},
+      {"rise_time", {K::antagonistic, K::switched}},
+      {"overlap", {K::antagonistic}},
+  };
+  return uses;
+}
+
+// "the 0/V square wave on DEA A, then on DEA B": what each kind is, for messages.
+const char* drive_kind_meaning(DriveKind kind) {
+  switch (kind) {
+    case DriveKind::none:
+      return "no DEA driven, the scene's loads only";
+    case DriveKind::antagonistic:
+      return "a 0/V square wave on DEA A, then on DEA B";
+    case DriveKind::switched:
+      return "a 0/V square wave on one DEA";
+    case DriveKind::bias_differential:
+      return "V_A,B = V0 +/- v*sin(2*pi*f*t)";
+    case DriveKind::single:
+      return "the sine V = V0 + v*sin(2*pi*f*t) on one DEA";
+  }
+  return "?";
 }
 
 void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
@@ -668,10 +711,24 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
   const std::vector<std::pair<std::string, DriveKind>> kinds = {
       {"none", DriveKind::none},
       {"antagonistic", DriveKind::antagonistic},
+      {"switched", DriveKind::switched},
       {"bias_differential", DriveKind::bias_differential},
       {"single", DriveKind::single}};
   drive.kind = reader.optional_choice("kind", kinds).value_or(DriveKind::none);
   const std::string kind_name = drive_kind_name(drive.kind);
+  for (const DriveKeyUse& use : drive_key_uses()) {
+    if (!reader.has(use.key) ||
+        std::find(use.kinds.begin(), use.kinds.end(), drive.kind) != use.kinds.end())
+      continue;
+    std::vector<std::string> users;
+    for (DriveKind kind : use.kinds) users.push_back(drive_kind_name(kind));
+    std::string hint;
+    if (drive.kind == DriveKind::single && std::string(use.key) == "voltage")
+      hint = "; a 0/V square wave on one DEA is drive.kind = \"switched\"";
+    reader.fail(use.key, std::string("is not used by drive kind '") + kind_name + "' (" +
+                             drive_kind_meaning(drive.kind) + "); it is used by drive kind" +
+                             (users.size() == 1 ? " " : "s ") + quoted_list(users) + hint);
+  }
 
   // drive.deas: names of existing, distinct DEAs.
   std::vector<std::string> dea_names;
@@ -708,7 +765,7 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
   std::size_t needed_deas = 0;
   if (drive.kind == DriveKind::antagonistic || drive.kind == DriveKind::bias_differential) {
     needed_deas = 2;
-  } else if (drive.kind == DriveKind::single) {
+  } else if (drive.kind == DriveKind::single || drive.kind == DriveKind::switched) {
     needed_deas = 1;
   }
   if (drive.kind != DriveKind::none && drive.deas.size() != needed_deas) {
@@ -719,25 +776,15 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
                             std::to_string(drive.deas.size()));
   }
 
-  const std::optional<double> voltage =
-      reader.optional_quantity("voltage", dim::voltage, Bound::non_negative);
-  const std::optional<double> bias =
-      reader.optional_quantity("bias", dim::voltage, Bound::non_negative);
-  const std::optional<double> amplitude =
-      reader.optional_quantity("amplitude", dim::voltage, Bound::non_negative);
-  if (drive.kind == DriveKind::antagonistic && !voltage) reader.fail_missing("voltage");
-  if (drive.kind == DriveKind::bias_differential) {
-    if (!bias) reader.fail_missing("bias");
-    if (!amplitude) reader.fail_missing("amplitude");
+  // Levels: every key the kind uses is required (none has a default that could be meant).
+  const bool square_wave =
+      drive.kind == DriveKind::antagonistic || drive.kind == DriveKind::switched;
+  const bool sine = drive.kind == DriveKind::bias_differential || drive.kind == DriveKind::single;
+  if (square_wave) drive.voltage = reader.quantity("voltage", dim::voltage, Bound::non_negative);
+  if (sine) {
+    drive.bias = reader.quantity("bias", dim::voltage, Bound::non_negative);
+    drive.amplitude = reader.quantity("amplitude", dim::voltage, Bound::non_negative);
   }
-  if (drive.kind == DriveKind::single && !voltage && !bias && !amplitude) {
-    locator_.fail(nullptr, reader.key("voltage"),
-                  "missing: drive kind 'single' needs drive.voltage or drive.bias and "
-                  "drive.amplitude");
-  }
-  drive.voltage = voltage.value_or(0.0);
-  drive.bias = bias.value_or(0.0);
-  drive.amplitude = amplitude.value_or(0.0);
 
   const std::optional<double> frequency =
       reader.optional_quantity("frequency", dim::frequency, Bound::positive);
@@ -755,8 +802,6 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
     reader.fail("duty", "must be between 0 and 1 (exclusive), got " + format_number(drive.duty));
   }
   drive.overlap = reader.quantity_or("overlap", dim::time, Bound::any, 0.0);
-  if (drive.overlap != 0.0 && drive.kind != DriveKind::antagonistic)
-    reader.fail("overlap", "applies to the antagonistic drive only");
   if (frequency && drive.overlap != 0.0) {
     // A's on-time (duty·T + overlap) must stay inside (rise time, T − rise time).
     const double period = 1.0 / *frequency;
@@ -902,7 +947,8 @@ void SceneReader::read_environment(const toml::table& root, EnvironmentSpec& env
 }
 
 // [model]: band = "130 Hz" (from 0) or ["0 Hz", "130 Hz"], 0 <= from < to, finite;
-// tolerance in (0, 0.5) (a relative error of one half is no accuracy at all). The automatic
+// tolerance in (0, 0.5) (a relative error of one half is no accuracy at all); deflection_limit
+// in (0, 1], a fraction of the beam length (default 0.1). The automatic
 // choices need a band: from model.band, else from an [ac] table or the drive frequency
 // (band_of_interest in emnet/segment_selection.hpp); without any, "auto" is an error here.
 void SceneReader::read_model(const toml::table& root, Scene& scene) const {
@@ -938,6 +984,10 @@ void SceneReader::read_model(const toml::table& root, Scene& scene) const {
   if (!(model.tolerance > 0.0 && model.tolerance < 0.5))
     reader.fail("tolerance",
                 "must lie in (0, 0.5) (a relative error), got " + format_number(model.tolerance));
+  model.deflection_limit = reader.quantity_or("deflection_limit", dim::none, Bound::any, 0.1);
+  if (!(model.deflection_limit > 0.0 && model.deflection_limit <= 1.0))
+    reader.fail("deflection_limit", "must be > 0 and at most 1 (a fraction of beam.length), got " +
+                                        format_number(model.deflection_limit));
   const bool band_known = model.band_to || scene.ac.given || (scene.drive.kind != DriveKind::none);
   // (drive.electrical_dynamics = "auto" needs a band only with a drive, which brings one.)
   if (!band_known) {

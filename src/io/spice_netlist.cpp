@@ -695,24 +695,39 @@ void DeckWriter::write_header(std::ostringstream& out) const {
   const DriveSpec& drive = scene_.drive;
   std::string deas;
   for (const auto& d : drive.deas) deas += (deas.empty() ? "" : ", ") + d;
-  if (drive.kind == DriveKind::none)
+  if (drive.kind == DriveKind::none) {
     comment(out, "drive: none (the scene's loads only)");
-  else
+  } else {
+    // The keys the drive kind uses (the reader refuses the others).
+    const bool square_wave =
+        drive.kind == DriveKind::antagonistic || drive.kind == DriveKind::switched;
+    const std::string levels = square_wave ? "voltage " + number(drive.voltage) + " V"
+                                           : "bias " + number(drive.bias) + " V, amplitude " +
+                                                 number(drive.amplitude) + " V";
+    const std::string switching =
+        square_wave ? ", duty " + number(drive.duty) +
+                          (drive.overlap != 0.0 ? ", overlap " + number(drive.overlap) + " s"
+                                                : std::string()) +
+                          ", rise time " + number(drive.rise_time) + " s"
+                    : std::string();
     comment(out, std::string("drive: ") + drive_kind_name(drive.kind) +
-                     (deas.empty() ? std::string() : " on DEA " + deas) + ", voltage " +
-                     number(drive.voltage) + " V, bias " + number(drive.bias) + " V, amplitude " +
-                     number(drive.amplitude) + " V, frequency " + number(drive.frequency) +
-                     " Hz, duty " + number(drive.duty) +
-                     (drive.overlap != 0.0 ? ", overlap " + number(drive.overlap) + " s" : "") +
-                     ", rise time " + number(drive.rise_time) + " s, electrical dynamics " +
-                     (drive.electrical_dynamics ? "on" : "off"));
+                     (deas.empty() ? std::string() : " on DEA " + deas) + ", " + levels +
+                     ", frequency " + number(drive.frequency) + " Hz" + switching +
+                     ", electrical dynamics " + (drive.electrical_dynamics ? "on" : "off"));
+  }
   if (ac_) {
     switch (drive.kind) {
       case DriveKind::antagonistic:
         comment(out,
                 "AC input (as emnet ac): the alternating part of each DEA's force, "
                 "k_F*V^2/2, the two DEAs in antiphase; its square wave's fundamental is "
-                "4/pi times this");
+                "4/pi times this; applied as the force itself, not through the RC loops");
+        break;
+      case DriveKind::switched:
+        comment(out,
+                "AC input (as emnet ac): the alternating part of the DEA's 0/k_F*V^2 square-wave "
+                "force, k_F*V^2/2; its square wave's fundamental is 4/pi times this; applied as "
+                "the force itself, not through the RC loop");
         break;
       case DriveKind::bias_differential:
       case DriveKind::single:

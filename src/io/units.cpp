@@ -71,6 +71,7 @@ const NamedDimension kNamedDimensions[] = {
     {dim::pressure, "a pressure", "Pa"},
     {dim::charge, "a charge", "A*s"},
     {dim::voltage, "a voltage", "V"},
+    {dim::electric_field, "an electric field", "V/m"},
     {dim::resistance, "a resistance", "Ohm"},
     {dim::capacitance, "a capacitance", "F"},
     {dim::bending_stiffness, "a bending stiffness", "N*m^2"},

@@ -1,15 +1,29 @@
 // Scene → Network: beam, DEA patches with their electrical loop and drive, loads, probes.
 //
 // DEA electrical loop, per DEA X:  source s_X —[electrode resistance]— e_X —[C₀ + transducer]— 0
-// Drives (DESIGN §3):
+// Drives (dea_drive):
 //   antagonistic       A: 0/V square wave on for the first `duty` of each period, B the rest;
 //                      A's on-time lengthened by `overlap` (both on together; < 0: a dead time).
-//                      AC input: the alternating part of the DEA forces, amplitude k_F·V²/2 on
-//                      each DEA, A and B in antiphase (the square wave's ±level; its
-//                      fundamental is 4/π times this). Static / at rest: A on.
+//                      Static / at rest: A on (the sources at t = 0).
+//   switched           one DEA: 0/V square wave on for the first `duty` of each period (how a
+//                      unimorph is driven). Static / at rest: on.
 //   bias_differential  V_A = V₀ + v·sin(2πft), V_B = V₀ − v·sin(2πft); AC input: v on A, −v on
 //                      B, the network linearised at V₀ (moment exactly linear in v).
 //   single             V = V₀ + v·sin(2πft) on one DEA; AC input v, linearised at V₀.
+// AC input of the square-wave drives. A voltage switched between 0 and V is two-level, so its
+// square is V times itself: the force k_F·V(t)² = k_F·V·V(t) is exactly a 0/k_F·V² square wave,
+// linear in the switching function, with no linearisation about an operating voltage (which
+// at 0 V would give no force and at V twice the swing). Its alternating part, ±k_F·V²/2 about
+// the mean k_F·V²/2, is the AC input (one sinusoid of amplitude k_F·V²/2 per DEA; A and B in
+// antiphase for the antagonistic pair, whose means cancel); the response to the square wave's
+// fundamental is 4/π times the AC result. The input is this force applied directly, not
+// through the RC loops, whatever drive.electrical_dynamics: through a loop the capacitor
+// voltage is a first-order lag, and the force's fundamental is the same times 1/(1 + jωτ)
+// (exactly at duty 0.5 for τ ≪ T: the square of the lagged wave differs from V times it only
+// by equal pulses at both edges, which repeat every half period and have no fundamental); the
+// AC result leaves this factor out, (ωτ)²/2 in amplitude and ωτ in phase. The network is
+// linearised at the static state (the sources at t = 0), which matters only to the
+// back-coupling gyrator K = 2·k_F·U₀ of a DEA that asks for it.
 // A DEA not named by the drive has its source node tied to ground through its resistance.
 //
 // drive.electrical_dynamics = "auto": the RC loop (electrode resistance R_e, capacitance C₀)
@@ -234,20 +248,8 @@ AutomaticChoice choose_electrical_dynamics(const Scene& scene, bool electrical_p
     const BandOfInterest band = band_of_interest(scene, "drive.electrical_dynamics");
     choice.band_from_hz = band.from;
     choice.band_to_hz = band.to;
-    double tau = 0.0;
     std::string which;
-    for (const DeaSpec& spec : scene.deas) {
-      if (std::find(scene.drive.deas.begin(), scene.drive.deas.end(), spec.name) ==
-          scene.drive.deas.end())
-        continue;
-      const double capacitance =
-          dea_capacitance(spec.relative_permittivity, spec.dielectric_thickness,
-                          spec.electrode_width, spec.to - spec.from);
-      if (spec.electrode_resistance * capacitance > tau) {
-        tau = spec.electrode_resistance * capacitance;
-        which = spec.name;
-      }
-    }
+    const double tau = drive_time_constant(scene, &which);
     const double omega_tau = 2 * pi * band.to * tau;
     choice.estimated_error = omega_tau * omega_tau / 2;
     keep = choice.estimated_error > scene.model.tolerance;
@@ -259,10 +261,19 @@ AutomaticChoice choose_electrical_dynamics(const Scene& scene, bool electrical_p
                     format_number("%.3g", choice.estimated_error) + (keep ? " > " : " <= ") +
                     "model.tolerance " + format_number("%.3g", scene.model.tolerance) +
                     " (phase lag 2*pi*f_high*tau = " + format_number("%.3g", omega_tau) + " rad)";
-    if (scene.drive.kind == DriveKind::antagonistic && band.to < 3 * scene.drive.frequency)
+    const bool square_wave =
+        scene.drive.kind == DriveKind::antagonistic || scene.drive.kind == DriveKind::switched;
+    if (square_wave && band.to < 3 * scene.drive.frequency)
       choice.reason += "; the square wave's harmonics from 3f = " +
                        format_number("%.4g", 3 * scene.drive.frequency) +
                        " Hz lie above the band and are not counted";
+    // What the choice changes: the time-domain analyses and the electrical probes; the ac
+    // input of a square-wave drive is its force level applied directly, never through the loops.
+    if (square_wave)
+      choice.reason +=
+          "; it matters to tran, sweep-switching --method shooting and the DEA probes; ac's "
+          "input for this drive is the force k_F*V^2/2 applied directly, not through the RC "
+          "loops, so ac changes with this choice only through dea[].back_coupling";
   }
   choice.value = keep ? "true" : "false";
   choice.reason = "drive.electrical_dynamics = \"auto\": RC dynamics " + choice.reason;
@@ -275,6 +286,62 @@ AutomaticChoice choose_electrical_dynamics(const Scene& scene, bool electrical_p
 Probe make_probe_on(const Model& model, const ProbeSpec& spec, const DeaLayout* dea);
 
 }  // namespace
+
+DeaDrive dea_drive(const DriveSpec& drive, const std::string& dea_name) {
+  DeaDrive driven;
+  driven.voltage = Waveform::constant(0.0);
+  const auto& names = drive.deas;
+  const int role = names.empty()                                ? -1
+                   : dea_name == names[0]                       ? 0
+                   : (names.size() > 1 && dea_name == names[1]) ? 1
+                                                                : -1;
+  if (role < 0 || drive.kind == DriveKind::none) return driven;
+  const double period = 1.0 / drive.frequency;
+  Waveform& w = driven.voltage;
+  switch (drive.kind) {
+    case DriveKind::antagonistic:
+      w = role == 0
+              ? Waveform::square(0.0, drive.voltage, drive.frequency,
+                                 drive.duty + drive.overlap * drive.frequency, 0.0, drive.rise_time)
+              : Waveform::square(0.0, drive.voltage, drive.frequency, 1.0 - drive.duty,
+                                 drive.duty * period, drive.rise_time);
+      driven.ac_force_factor = role == 0 ? 0.5 : -0.5;  // × k_F·V²
+      break;
+    case DriveKind::switched:
+      w = Waveform::square(0.0, drive.voltage, drive.frequency, drive.duty, 0.0, drive.rise_time);
+      driven.ac_force_factor = 0.5;  // × k_F·V²: the force's ±level about its mean k_F·V²/2
+      break;
+    case DriveKind::bias_differential:
+    case DriveKind::single:
+      w.shape = Waveform::Shape::sine;
+      w.dc = drive.bias;
+      w.amplitude = role == 0 ? drive.amplitude : -drive.amplitude;
+      w.frequency = drive.frequency;
+      w.ac_magnitude = drive.amplitude;
+      w.ac_phase = role == 0 ? 0.0 : pi;
+      break;
+    case DriveKind::none:
+      break;
+  }
+  return driven;
+}
+
+double drive_time_constant(const Scene& scene, std::string* which) {
+  double tau = 0.0;
+  for (const DeaSpec& spec : scene.deas) {
+    if (std::find(scene.drive.deas.begin(), scene.drive.deas.end(), spec.name) ==
+        scene.drive.deas.end())
+      continue;
+    const double capacitance =
+        dea_capacitance(spec.relative_permittivity, spec.dielectric_thickness, spec.electrode_width,
+                        spec.to - spec.from);
+    if (spec.electrode_resistance * capacitance > tau) {
+      tau = spec.electrode_resistance * capacitance;
+      if (which) *which = spec.name;
+    }
+  }
+  return tau;
+}
 
 Model build_model(const Scene& scene, bool electrical_probe_requested) {
   Model model;
@@ -326,42 +393,7 @@ Model build_model(const Scene& scene, bool electrical_probe_requested) {
     ++load_index;
   }
 
-  // Which DEA gets which source waveform.
   const DriveSpec& drive = model.scene.drive;
-  auto drive_waveform = [&](const std::string& name, double& ac_force_factor) {
-    ac_force_factor = 0.0;
-    Waveform w = Waveform::constant(0.0);
-    const auto& names = drive.deas;
-    const int role = names.empty()                            ? -1
-                     : name == names[0]                       ? 0
-                     : (names.size() > 1 && name == names[1]) ? 1
-                                                              : -1;
-    if (role < 0 || drive.kind == DriveKind::none) return w;
-    const double period = 1.0 / drive.frequency;
-    switch (drive.kind) {
-      case DriveKind::antagonistic:
-        w = role == 0 ? Waveform::square(0.0, drive.voltage, drive.frequency,
-                                         drive.duty + drive.overlap * drive.frequency, 0.0,
-                                         drive.rise_time)
-                      : Waveform::square(0.0, drive.voltage, drive.frequency, 1.0 - drive.duty,
-                                         drive.duty * period, drive.rise_time);
-        ac_force_factor = role == 0 ? 0.5 : -0.5;  // × k_F·V²
-        break;
-      case DriveKind::bias_differential:
-      case DriveKind::single:
-        w.shape = Waveform::Shape::sine;
-        w.dc = drive.bias;
-        w.amplitude = role == 0 ? drive.amplitude : -drive.amplitude;
-        w.frequency = drive.frequency;
-        w.ac_magnitude = drive.amplitude;
-        w.ac_phase = role == 0 ? 0.0 : pi;
-        break;
-      case DriveKind::none:
-        break;
-    }
-    return w;
-  };
-
   for (const DeaSpec& spec : scene.deas) {
     DeaLayout layout;
     layout.name = spec.name;
@@ -378,9 +410,10 @@ Model build_model(const Scene& scene, bool electrical_probe_requested) {
       coupling.push_back({node, sign * spec.lever_arm * c});
     for (const auto& [node, c] : beam.slope_terms(spec.from))
       coupling.push_back({node, -sign * spec.lever_arm * c});
-    double ac_force_factor = 0.0;
-    const Waveform source = drive_waveform(spec.name, ac_force_factor);
-    const double ac_force = ac_force_factor * layout.force_constant * drive.voltage * drive.voltage;
+    const DeaDrive driven = dea_drive(drive, spec.name);
+    const Waveform& source = driven.voltage;
+    const double ac_force =
+        driven.ac_force_factor * layout.force_constant * drive.voltage * drive.voltage;
 
     if (!drive.electrical_dynamics) {
       // Ideal voltage-driven force F(t) = k_F·V(t)², entered as through sources along the

@@ -175,13 +175,15 @@ TEST(CliInput, UnknownOption) {
 }
 
 // Overrides reach the model: doubling the length of a tip-loaded cantilever multiplies the tip
-// deflection by 8 (w = FL³/3EI); reference closed form, 1e-9 relative.
+// deflection by 8 (w = FL³/3EI); reference closed form, 1e-9 relative. (The doubled beam
+// deflects 16.7 % of its length, past the default validity limit of 10 %; the limit is raised
+// here, the test is of the linear statics.)
 TEST(CliOverride, BeamKeysOverrideTheScene) {
   const std::string scene = std::string(EMNET_SOURCE_DIR) + "/netlists/cantilever.toml";
   const CliRun base = run("static " + scene + " --json");
   const CliRun longer = run("static " + scene +
                             " --json --set beam.length=1.0 --set load.0.at=1.0 "
-                            "--set probe.tip.at=1.0");
+                            "--set probe.tip.at=1.0 --set model.deflection_limit=0.2");
   ASSERT_EQ(base.status, 0) << base.err;
   ASSERT_EQ(longer.status, 0) << longer.err;
   auto tip = [](const CliRun& r) {

@@ -38,6 +38,22 @@ TEST(Crosscheck, FishFinPassesAgainstNgspice) {
     EXPECT_NE(run.out.find(analysis), std::string::npos) << analysis << "\n" << run.out;
 }
 
+// The switched drive (a 0/V square wave on DEA A alone; B undriven) in every deck: op (A on),
+// ac (its force level), tran (its PULSE source), all within the tolerances above.
+TEST(Crosscheck, SwitchedDrivePassesAgainstNgspice) {
+  if (!ngspice_available()) GTEST_SKIP() << "ngspice is not installed";
+  const auto run = emnet::testing::run_emnet(
+      "crosscheck " + source_path("netlists/fishfin.toml") +
+          " --set drive.kind=switched --set 'drive.deas=[\"A\"]' --timeout 60",
+      "timeout 120 ");
+  EXPECT_EQ(run.status, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("drive switched 0/4000 V square wave at 5 Hz on DEA A"), std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("crosscheck passed"), std::string::npos) << run.out;
+  for (const char* analysis : {"\nop ", "\nac ", "\nmodal ", "\ntran "})
+    EXPECT_NE(run.out.find(analysis), std::string::npos) << analysis << "\n" << run.out;
+}
+
 // The cantilever's step load from rest: ngspice stops with "timestep too small" at max steps
 // below ~T/1000 (README), so the default run (T/2000) must retry at max step T/200 and say so;
 // ngspice's own steps are far smaller there (its error control at reltol 1e-6 binds).

@@ -48,8 +48,11 @@ TEST(Identify, RecoversKnownStiffnessAndLossFactorFromSyntheticTargets) {
   const Json modes = run_json("modes " + scene("fishfin.toml") + known + " --count 1");
   ASSERT_FALSE(modes.is_null());
   const double f1 = modes["modes"][0]["frequency_hz"].get<double>();
-  const Json sweep = run_json("sweep-switching " + scene("fishfin.toml") + known + " --from " +
-                              number(f1) + " --to " + number(f1) + " --step 1");
+  // At its resonance this softer fin swings its tip by 21 % of its length, past the default
+  // validity limit (10 %); the test is of the fit, so the limit is raised for the sweep.
+  const Json sweep =
+      run_json("sweep-switching " + scene("fishfin.toml") + known + " --from " + number(f1) +
+               " --to " + number(f1) + " --step 1 --set model.deflection_limit=0.3");
   ASSERT_FALSE(sweep.is_null());
   double peak = 0.0;
   for (const auto& output : sweep["outputs"])

@@ -70,8 +70,11 @@ TEST(Mismatch, ForceMismatchesShiftTheSwingByTheStaticDeflectionOfOneDea) {
 
 TEST(Mismatch, OverlapIsADeadTimeOfTheLongerDuty) {
   const double period = 0.2, overlap = 0.01;  // 5 Hz, 10 ms
+  // The measured fin at resonance swings its tip by 18 % of its length, past the default
+  // validity limit (10 %): raised here, the test is of the drive's timing.
   auto extremes = [&](const std::string& settings) {
-    return run_json("sweep-switching " + kScene + " --from 5 --to 5 --step 1 " + settings);
+    return run_json("sweep-switching " + kScene +
+                    " --from 5 --to 5 --step 1 --set model.deflection_limit=0.2 " + settings);
   };
   const Json with_overlap = extremes("--set drive.overlap=" + std::to_string(overlap));
   const Json with_dead_time =

@@ -283,11 +283,12 @@ TEST(ModalReduction, AcCommandReportsErrorAndStatus) {
   EXPECT_GT(reduction.at("cutoff_hz").get<double>(), 10.0);
   // A tolerance the reduction cannot meet is said, not hidden: a band far below the sweep
   // (0.5 Hz: f_c = 15.8 Hz keeps mode 1 of the damped cantilever, modes 2 and 3 resonate in
-  // the 0.5–200 Hz sweep; measured 8e-3).
+  // the 0.5–200 Hz sweep; measured 8e-3). The lightly damped cantilever's resonant amplitude
+  // is 74 % of its length, far past the validity limit, which is lifted: not the subject here.
   const testing::CliRun low = testing::run_emnet(
       "ac " + scene_path("cantilever") +
       " --reduce --tolerance 1e-3 --band 0.5 --json --points 100 --set damping.loss_factor=0.02 "
-      "--set 'damping.loss_factor_frequency=5 Hz'");
+      "--set 'damping.loss_factor_frequency=5 Hz' --set model.deflection_limit=1");
   ASSERT_EQ(low.status, 0) << low.err;
   const auto low_json = nlohmann::json::parse(low.out);
   EXPECT_EQ(low_json.at("reduction").at("status"), "NOT MET");

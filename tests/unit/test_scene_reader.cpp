@@ -1002,5 +1002,123 @@ TEST(SceneReaderBounds, DateTimesPassTheScan) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Drives: each kind takes exactly its keys; a key it does not use is refused by name.
+
+// kFullScene's drive (antagonistic, A and B, 4 kV, 5 Hz, rise time 1 ms, duty 0.5) as `kind`
+// on `deas`, with `levels` in place of the voltage line; without the square wave's rise time
+// and duty unless `square_wave_keys`.
+std::string with_drive(const std::string& kind, const std::string& deas, const std::string& levels,
+                       bool square_wave_keys = true) {
+  std::string text = replaced(kFullScene, "kind = \"antagonistic\"", "kind = \"" + kind + "\"");
+  text = replaced(text, "deas = [\"A\", \"B\"]", "deas = " + deas);
+  if (!square_wave_keys) text = replaced(text, "rise_time = \"1 ms\"\nduty = 0.5\n", "");
+  return replaced(text, "voltage = \"4 kV\"", levels);
+}
+
+// The sine drive 'single' used to read drive.voltage and ignore it (0 V, zero deflection).
+TEST(SceneReaderError, SingleDriveRefusesVoltage) {
+  const std::string text = with_drive("single", "[\"A\"]", "voltage = \"4 kV\"", false);
+  expect_error(read_error(text), at_line(text, "voltage ="), "drive.voltage",
+               "is not used by drive kind 'single' (the sine V = V0 + v*sin(2*pi*f*t) on one "
+               "DEA); it is used by drive kinds 'antagonistic', 'switched'; a 0/V square wave on "
+               "one DEA is drive.kind = \"switched\"");
+}
+
+TEST(SceneReaderError, SingleDriveNeedsBiasAndAmplitude) {
+  const std::string no_amplitude = with_drive("single", "[\"A\"]", "bias = \"1 kV\"", false);
+  expect_error(read_error(no_amplitude), kFileName, "drive.amplitude", "missing (required)");
+  const std::string no_bias = with_drive("single", "[\"A\"]", "amplitude = \"1 kV\"", false);
+  expect_error(read_error(no_bias), kFileName, "drive.bias", "missing (required)");
+  const Scene sine = read_scene_text(
+      with_drive("single", "[\"A\"]", "bias = \"1 kV\"\namplitude = \"0.2 kV\"", false), kFileName);
+  EXPECT_EQ(sine.drive.kind, DriveKind::single);
+  EXPECT_DOUBLE_EQ(sine.drive.bias, 1000.0);
+  EXPECT_DOUBLE_EQ(sine.drive.amplitude, 200.0);
+}
+
+TEST(SceneReaderError, DriveKeysTheKindDoesNotUseAreRefused) {
+  struct Case {
+    std::string kind, deas, levels, key, used_by;
+    bool square_wave_keys = true;
+  };
+  const std::vector<Case> cases = {
+      {"antagonistic", "[\"A\", \"B\"]", "voltage = \"4 kV\"\nbias = \"1 kV\"", "bias",
+       "drive kinds 'bias_differential', 'single'"},
+      {"switched", "[\"A\"]", "voltage = \"4 kV\"\namplitude = \"1 kV\"", "amplitude",
+       "drive kinds 'bias_differential', 'single'"},
+      {"switched", "[\"A\"]", "voltage = \"4 kV\"\noverlap = \"1 ms\"", "overlap",
+       "drive kind 'antagonistic'"},
+      {"bias_differential", "[\"A\", \"B\"]", "bias = \"1 kV\"\namplitude = \"1 kV\"", "duty",
+       "drive kinds 'antagonistic', 'switched'"},
+      {"single", "[\"A\"]", "bias = \"1 kV\"\namplitude = \"1 kV\"\nrise_time = \"1 ms\"",
+       "rise_time", "drive kinds 'antagonistic', 'switched'", false},
+      {"none", "[\"A\"]", "", "deas",
+       "drive kinds 'antagonistic', 'switched', 'bias_differential', 'single'"},
+  };
+  for (const Case& c : cases) {
+    const std::string text = with_drive(c.kind, c.deas, c.levels, c.square_wave_keys);
+    const std::string line = c.key + " =";
+    expect_error(read_error(text), at_line(text, line), "drive." + c.key,
+                 "is not used by drive kind '" + c.kind + "' (");
+    expect_error(read_error(text), at_line(text, line), "drive." + c.key, "used by " + c.used_by);
+  }
+  // And from an override, named as such.
+  expect_error(read_error(kFullScene, {"drive.bias=1kV"}), "--set", "drive.bias",
+               "is not used by drive kind 'antagonistic'");
+}
+
+TEST(SceneReader, ReadsSwitchedDrive) {
+  const std::string text = replaced(with_drive("switched", "[\"B\"]", "voltage = \"3 kV\""),
+                                    "duty = 0.5", "duty = 0.25");
+  const Scene scene = read_scene_text(text, kFileName);
+  EXPECT_EQ(scene.drive.kind, DriveKind::switched);
+  EXPECT_STREQ(drive_kind_name(scene.drive.kind), "switched");
+  EXPECT_EQ(scene.drive.deas, (std::vector<std::string>{"B"}));
+  EXPECT_DOUBLE_EQ(scene.drive.voltage, 3000.0);
+  EXPECT_DOUBLE_EQ(scene.drive.frequency, 5.0);
+  EXPECT_DOUBLE_EQ(scene.drive.rise_time, 1e-3);
+  EXPECT_DOUBLE_EQ(scene.drive.duty, 0.25);
+}
+
+TEST(SceneReaderError, SwitchedDriveNeedsOneDeaAndItsVoltage) {
+  const std::string two = with_drive("switched", "[\"A\", \"B\"]", "voltage = \"3 kV\"");
+  expect_error(read_error(two), at_line(two, "deas ="), "drive.deas",
+               "drive kind 'switched' needs exactly 1 DEA name, got 2");
+  const std::string no_voltage = with_drive("switched", "[\"A\"]", "");
+  expect_error(read_error(no_voltage), kFileName, "drive.voltage", "missing (required)");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Validity limits: model.deflection_limit (a fraction of the beam length) and
+// dea[].breakdown_field.
+
+TEST(SceneReader, ValidityLimitsDefaultAndRead) {
+  const Scene defaults = read_scene_text(kFullScene, kFileName);
+  EXPECT_DOUBLE_EQ(defaults.model.deflection_limit, 0.1);
+  EXPECT_DOUBLE_EQ(defaults.deas[0].breakdown_field, 80e6);  // 80 V/um, the film's data sheet
+  const std::string text = replaced(kFullScene, "back_coupling = true",
+                                    "back_coupling = true\nbreakdown_field = \"100 V/um\"") +
+                           "\n[model]\ndeflection_limit = 0.2\n";
+  const Scene scene = read_scene_text(text, kFileName);
+  EXPECT_DOUBLE_EQ(scene.model.deflection_limit, 0.2);
+  EXPECT_DOUBLE_EQ(scene.deas[0].breakdown_field, 80e6);
+  EXPECT_DOUBLE_EQ(scene.deas[1].breakdown_field, 100e6);
+  EXPECT_DOUBLE_EQ(read_scene_text(kFullScene, kFileName, {"dea.A.breakdown_field=60 kV/mm"})
+                       .deas[0]
+                       .breakdown_field,
+                   60e6);
+}
+
+TEST(SceneReaderError, ValidityLimitsOutOfRange) {
+  for (const char* bad : {"0", "1.5", "-0.1"})
+    expect_error(read_error(kFullScene, {std::string("model.deflection_limit=") + bad}), "--set",
+                 "model.deflection_limit", "must be > 0 and at most 1 (a fraction of beam.length)");
+  expect_error(read_error(kFullScene, {"dea.B.breakdown_field=0"}), "--set",
+               "dea[B].breakdown_field", "must be > 0");
+  expect_error(read_error(kFullScene, {"dea.B.breakdown_field=80 V"}), "--set",
+               "dea[B].breakdown_field", "expected an electric field (V/m)");
+}
+
 }  // namespace
 }  // namespace emnet

@@ -1,0 +1,149 @@
+// The validity checks of computed results (emnet/validity.hpp explains the limits).
+#include "emnet/validity.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "emnet/model.hpp"
+#include "emnet/units.hpp"
+
+namespace emnet {
+
+namespace {
+
+// The largest |value| a waveform takes: its levels, its sine's crest, its points.
+double waveform_peak(const Waveform& w) {
+  switch (w.shape) {
+    case Waveform::Shape::dc:
+      return std::abs(w.dc);
+    case Waveform::Shape::pulse:
+      return std::max(std::abs(w.dc), std::abs(w.pulse_high));
+    case Waveform::Shape::sine:
+      return std::abs(w.dc) + std::abs(w.amplitude);
+    case Waveform::Shape::pwl: {
+      double peak = std::abs(w.dc);
+      for (const auto& point : w.points) peak = std::max(peak, std::abs(point.second));
+      return peak;
+    }
+  }
+  return 0.0;
+}
+
+template <typename Of>
+std::vector<DeaVoltage> driven_voltages(const Scene& scene, Of of) {
+  std::vector<DeaVoltage> voltages;
+  for (const DeaSpec& dea : scene.deas)
+    if (std::find(scene.drive.deas.begin(), scene.drive.deas.end(), dea.name) !=
+        scene.drive.deas.end())
+      voltages.push_back({dea.name, of(dea_drive(scene.drive, dea.name).voltage)});
+  return voltages;
+}
+
+std::string length_text(double metres) {
+  const double size = std::abs(metres);
+  if (size >= 1e3) return format_number("%.4g km", metres * 1e-3);
+  if (size >= 1.0) return format_number("%.4g m", metres);
+  if (size >= 1e-3) return format_number("%.4g mm", metres * 1e3);
+  return format_number("%.4g um", metres * 1e6);
+}
+
+// "10.7 % of L", "1943 times L": `fraction` of `whole`.
+std::string share(double fraction, const std::string& whole) {
+  return fraction >= 10.0 ? format_number("%.4g times ", fraction) + whole
+                          : format_number("%.3g %% of ", 100.0 * fraction) + whole;
+}
+
+std::string percent(double fraction) {
+  return format_number("%.3g %%", 100.0 * fraction);
+}
+
+}  // namespace
+
+const char* validity_check_name(ValidityCheck check) {
+  switch (check) {
+    case ValidityCheck::deflection:
+      return "deflection";
+    case ValidityCheck::electric_field:
+      return "electric_field";
+  }
+  return "?";
+}
+
+std::vector<DeaVoltage> drive_peak_voltages(const Scene& scene) {
+  return driven_voltages(scene, [](const Waveform& w) { return waveform_peak(w); });
+}
+
+std::vector<DeaVoltage> drive_voltages_at_start(const Scene& scene) {
+  return driven_voltages(scene, [](const Waveform& w) { return std::abs(w.value(0.0)); });
+}
+
+Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& deflections,
+                        const std::vector<DeaVoltage>& voltages) {
+  Validity validity;
+  const double length = scene.beam.length;
+  const double limit = scene.model.deflection_limit * length;
+  const DeflectionPeak* largest = nullptr;
+  for (const DeflectionPeak& deflection : deflections) {
+    if (!largest || deflection.peak > largest->peak) largest = &deflection;
+    if (!(deflection.peak > limit)) continue;
+    ValidityViolation violation;
+    violation.check = ValidityCheck::deflection;
+    violation.subject = deflection.output;
+    violation.key = "model.deflection_limit";
+    violation.value = deflection.peak;
+    violation.limit = limit;
+    violation.message = "|deflection| of " + deflection.output + " is " +
+                        length_text(deflection.peak) + ", " +
+                        share(deflection.peak / length, "beam.length " + length_text(length)) +
+                        "; a small-deflection linear beam is trusted with at most " +
+                        percent(scene.model.deflection_limit) + " (" + length_text(limit) +
+                        ", model.deflection_limit)";
+    validity.violations.push_back(violation);
+  }
+  std::string deflection_text = "no deflection computed";
+  if (largest) {
+    validity.deflection_fraction = largest->peak / limit;
+    deflection_text = "largest |deflection| " + length_text(largest->peak) + " (" +
+                      largest->output + ") = " + share(largest->peak / length, "L") + ", limit " +
+                      percent(scene.model.deflection_limit);
+  }
+
+  std::string field_text = "no DEA driven";
+  double worst_fraction = -1.0;
+  for (const DeaVoltage& voltage : voltages) {
+    const auto dea = std::find_if(scene.deas.begin(), scene.deas.end(),
+                                  [&](const DeaSpec& spec) { return spec.name == voltage.dea; });
+    if (dea == scene.deas.end())
+      throw std::invalid_argument("check_validity: no DEA named '" + voltage.dea + "'");
+    const double field = std::abs(voltage.voltage) / dea->dielectric_thickness;
+    const double fraction = field / dea->breakdown_field;
+    const std::string numbers = format_number("%.4g V", voltage.voltage) + " / " +
+                                length_text(dea->dielectric_thickness) + " = " +
+                                format_number("%.4g V/um", field * 1e-6);
+    if (fraction > worst_fraction) {
+      worst_fraction = fraction;
+      validity.field_fraction = fraction;
+      field_text = "largest field " + numbers + " (DEA " + dea->name +
+                   ") = " + share(fraction, "its breakdown field ") +
+                   format_number("%.4g V/um", dea->breakdown_field * 1e-6);
+    }
+    if (!(field > dea->breakdown_field)) continue;
+    ValidityViolation violation;
+    violation.check = ValidityCheck::electric_field;
+    violation.subject = dea->name;
+    violation.key = "dea[" + dea->name + "].breakdown_field";
+    violation.value = field;
+    violation.limit = dea->breakdown_field;
+    violation.message =
+        "electric field in DEA " + dea->name + " is " + numbers + ", above its breakdown field " +
+        format_number("%.4g V/um", dea->breakdown_field * 1e-6) + " (dea[" + dea->name +
+        "].breakdown_field): the film would break down, the DEA is no longer "
+        "a capacitor";
+    validity.violations.push_back(violation);
+  }
+  validity.summary = deflection_text + "; " + field_text;
+  return validity;
+}
+
+}  // namespace emnet
