@@ -48,6 +48,8 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
   result.values.assign(probes.size(), {});
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   using ComplexMatrix = Eigen::SparseMatrix<std::complex<double>>;
+  if (!keep_going(options.progress, 0, 0, "AC matrices: equilibration and KLU's symbolic analysis"))
+    return finish(cancelled_status());
   const Eigen::SparseMatrix<double> g_matrix = linearised_g(system, operating_point);
   const Eigen::VectorXcd rhs = system.b_ac();
   const double rhs_norm = rhs.norm();

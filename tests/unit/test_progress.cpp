@@ -52,17 +52,19 @@ TEST(ProgressHooks, AcReportsEveryFrequencyAndStopsWhenCancelled) {
   options.progress = &all;
   const AcResult full = run_ac(system, Eigen::VectorXd::Zero(system.size()), grid, {x}, options);
   ASSERT_TRUE(full.status.ok) << full.status.message;
-  ASSERT_EQ(all.reports.size(), grid.size());
-  EXPECT_EQ(all.reports[7].done, 7);
-  EXPECT_EQ(all.reports[7].total, 50);
-  EXPECT_EQ(all.reports[7].what, "AC frequencies");
+  ASSERT_EQ(all.reports.size(), grid.size() + 1);  // the set-up, then each frequency
+  EXPECT_EQ(all.reports[0].total, 0);
+  EXPECT_EQ(all.reports[8].done, 7);
+  EXPECT_EQ(all.reports[8].total, 50);
+  EXPECT_EQ(all.reports[8].what, "AC frequencies");
 
   RecordingProgress stopping(10);
   options.progress = &stopping;
   const AcResult cut = run_ac(system, Eigen::VectorXd::Zero(system.size()), grid, {x}, options);
   EXPECT_FALSE(cut.status.ok);
   EXPECT_EQ(cut.status.message, "cancelled");
-  EXPECT_EQ(stopping.reports.size(), 10u);  // stopped at the step after the 10th report
+  EXPECT_EQ(stopping.reports.size(), 10u);  // stopped at the 10th report
+  EXPECT_EQ(cut.values[0].size(), 8u);      // after 8 frequencies (one report is the set-up)
 }
 
 TEST(ProgressHooks, TransientsReportOutputTimesAndStopWhenCancelled) {
