@@ -55,6 +55,14 @@ inline CliRun run_emnet(const std::string& arguments, const std::string& prefix 
   return result;
 }
 
+// Whether this system gives pseudo-terminals (a container without /dev/ptmx does not).
+inline bool pseudo_terminals_available() {
+  const int master = posix_openpt(O_RDWR | O_NOCTTY);
+  if (master < 0) return false;
+  close(master);
+  return true;
+}
+
 // The emnet program as a child process whose standard error is read while it runs, through a
 // pipe or a pseudo-terminal (so that the program sees a terminal there), for the progress line
 // and Ctrl-C. Standard output goes to `stdout_path`. Every wait has a time limit; the destructor
