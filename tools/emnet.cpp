@@ -1,18 +1,24 @@
 // emnet command-line program: static, ac, modes, sensitivity and identify over one scene.
 //
 // Exit status: 0 success; 2 bad input (scene file, override, option), with one message naming
-// the file, line and key; 3 numerical failure, with the reason (for crosscheck also: ngspice
-// missing, failing or timed out); 4 crosscheck: a difference exceeds its tolerance; 5 computed
-// but outside the model's validity (a deflection above model.deflection_limit of the beam
-// length, or a DEA's field V/d above its breakdown field; emnet/validity.hpp): the result is
-// printed with a WARNING line on standard output and error and "validity" in --json; 1
-// anything else.
+// the file, line and key, or an output file (--csv, --plot, -o) or standard output that could
+// not be written (the result is printed first); 3 numerical failure, with the reason (for
+// crosscheck also: ngspice missing, failing or timed out); 4 crosscheck: a difference exceeds its
+// tolerance; 5 computed but outside the model's validity (a deflection above
+// model.deflection_limit of the beam length, or a DEA's field V/d above its breakdown field;
+// emnet/validity.hpp): the result is printed with a WARNING line on standard output and error
+// and "validity" in --json; 130 interrupted (Ctrl-C), no output file written; 1 anything else.
+//
+// Output files are written only after the result is computed and printed, each one completely or
+// not at all (emnet::OutputFile). Text from outside (names, titles, file names, tool messages)
+// reaches the terminal through emnet::terminal_text, control characters escaped.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <cstring>
 #include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -24,15 +30,19 @@
 #include "emnet/errors.hpp"
 #include "emnet/modal_reduction.hpp"
 #include "emnet/model.hpp"
+#include "emnet/output_file.hpp"
 #include "emnet/periodic.hpp"
 #include "emnet/plot.hpp"
+#include "emnet/progress.hpp"
 #include "emnet/scene_reader.hpp"
 #include "emnet/segment_selection.hpp"
 #include "emnet/sensitivity.hpp"
 #include "emnet/spice_netlist.hpp"
+#include "emnet/terminal_text.hpp"
 #include "emnet/transient.hpp"
 #include "emnet/units.hpp"
 #include "emnet/validity.hpp"
+#include "terminal_progress.hpp"
 
 namespace {
 
@@ -45,14 +55,61 @@ struct NumericalFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An output file (--csv, --plot, -o) that could not be written: exit status 2, reported after
+// the result.
+struct FileError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Ctrl-C: exit status 130, no output file written.
+struct Interrupted : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 struct CommonOptions {
   std::string scene_path;
-  int segments = 0;
+  std::optional<int> segments;
   std::vector<std::string> overrides;
   std::vector<std::string> probes;
   bool json = false;
   std::string csv;
+  bool progress = false, quiet = false;             // --progress, --quiet
+  emnet_cli::TerminalProgress* reporter = nullptr;  // set by main: the progress line, Ctrl-C
 };
+
+// --probe or --csv given to a command that has no use for it: refused, never ignored.
+void refuse_option(bool given, const std::string& option, const std::string& why) {
+  if (given) throw InputError(option, option, why);
+}
+
+emnet::Progress* progress_of(const CommonOptions& options) {
+  return options.reporter;
+}
+
+// A step of a command without counts, shown on the progress line.
+void show_phase(const CommonOptions& options, const std::string& what) {
+  if (options.reporter) options.reporter->phase(what);
+}
+
+// The progress line ends before the result (or a warning) is printed.
+void end_progress(const CommonOptions& options) {
+  if (options.reporter) options.reporter->finish();
+}
+
+void stop_if_interrupted() {
+  if (emnet_cli::InterruptHandler::interrupted()) throw Interrupted("interrupted");
+}
+
+// Text from outside (scene, override, tool output) as shown on the terminal.
+std::string shown(const std::string& text) {
+  return emnet::terminal_text(text);
+}
+
+// --json output: strings with invalid UTF-8 (a name given by --set) are shown with U+FFFD
+// instead of ending the program.
+std::string json_text(const nlohmann::ordered_json& json) {
+  return json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -72,16 +129,52 @@ std::string milliseconds(double seconds) {
   return seconds < 1.0 ? format("%.3g ms", seconds * 1e3) : format("%.3g s", seconds);
 }
 
+// Upper bound of the values a command stores and prints or writes (time steps × outputs, AC
+// points × probes, ...): 20 million doubles, 160 MB, which --json prints as several hundred MB
+// of text. Checked before computing, with the estimate and what to change.
+constexpr double kMaximumStoredValues = 2e7;
+
+// A size in bytes as it is read: "168 MB", "4 GB".
+std::string bytes_text(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, bytes < 1e9 ? "%.3g MB" : "%.3g GB",
+                bytes < 1e9 ? bytes / 1e6 : bytes / 1e9);
+  return text;
+}
+
+void check_stored_values(double values, const std::string& what, const std::string& option,
+                         const std::string& remedy) {
+  if (values <= kMaximumStoredValues) return;
+  char counts[96];
+  std::snprintf(counts, sizeof counts, " would store %.3g values (", values);
+  throw InputError(option, option,
+                   what + counts + bytes_text(8.0 * values) + " of doubles); at most " +
+                       format("%.0f", kMaximumStoredValues) + " values (" +
+                       bytes_text(8.0 * kMaximumStoredValues) +
+                       ") are stored (inclusive): " + remedy);
+}
+
 // Every printed result must be finite: a NaN is a numerical failure, never an output.
 double finite(double value, const std::string& what) {
   if (!std::isfinite(value)) throw NumericalFailure("non-finite result for " + what);
   return value;
 }
 
-emnet::Scene load_scene(const CommonOptions& options) {
+// --set overrides with --segments appended.
+std::vector<std::string> overrides_with_segments(const CommonOptions& options) {
   std::vector<std::string> overrides = options.overrides;
-  if (options.segments != 0)
-    overrides.push_back("beam.segments=" + std::to_string(options.segments));
+  if (options.segments) {
+    if (*options.segments < 1)
+      throw InputError(
+          "--segments", "--segments",
+          "must be >= 1 (a number of beam segments), got " + std::to_string(*options.segments));
+    overrides.push_back("beam.segments=" + std::to_string(*options.segments));
+  }
+  return overrides;
+}
+
+emnet::Scene load_scene(const CommonOptions& options) {
+  const std::vector<std::string> overrides = overrides_with_segments(options);
   emnet::Scene scene = emnet::read_scene(options.scene_path, overrides);
   // beam.segments = "auto": chosen once here, so that every model a command builds from the
   // scene (sweeps, fits, finite differences) has the same N; the choice travels with the scene.
@@ -168,15 +261,15 @@ std::string ac_input_description(const emnet::Scene& scene, double top_hz) {
     case emnet::DriveKind::antagonistic:
       out << "AC input: the alternating part of the antagonistic square-wave drive: each DEA's "
              "force k_F*V^2/2 (V = "
-          << si(drive.voltage, "V") << ") as a sinusoid, DEA " << drive.deas[0] << " and DEA "
-          << drive.deas[1]
+          << si(drive.voltage, "V") << ") as a sinusoid, DEA " << shown(drive.deas[0])
+          << " and DEA " << shown(drive.deas[1])
           << " in antiphase (the square wave's +/- level; its fundamental is 4/pi times this); "
              "exact, no linearisation: a 0/V voltage squares to a 0/k_F*V^2 force.";
       rc_loops();
       break;
     case emnet::DriveKind::switched:
       out << "AC input: the alternating part of the switched square-wave drive on DEA "
-          << drive.deas[0] << ": its force, a 0/k_F*V^2 square wave (V = " << si(drive.voltage, "V")
+          << shown(drive.deas[0]) << ": its force, a 0/k_F*V^2 square wave (V = " << si(drive.voltage, "V")
           << "), is +/- k_F*V^2/2 about its mean k_F*V^2/2; the +/- level as a sinusoid (its "
              "fundamental is 4/pi times this); exact, no linearisation: a 0/V voltage squares to "
              "a 0/k_F*V^2 force. The mean is a static offset, not in this input. The network is "
@@ -184,12 +277,13 @@ std::string ac_input_description(const emnet::Scene& scene, double top_hz) {
       rc_loops();
       break;
     case emnet::DriveKind::bias_differential:
-      out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << drive.deas[0]
-          << " and -v on DEA " << drive.deas[1] << " about the bias V0 = " << si(drive.bias, "V")
+      out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << shown(drive.deas[0])
+          << " and -v on DEA " << shown(drive.deas[1])
+          << " about the bias V0 = " << si(drive.bias, "V")
           << "; the network linearised at V0 (the moment is exactly linear in v).";
       break;
     case emnet::DriveKind::single:
-      out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << drive.deas[0]
+      out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << shown(drive.deas[0])
           << ", linearised about the bias V0 = " << si(drive.bias, "V")
           << " (the force's part 2*k_F*V0*v; its DC and 2f parts, k_F*v^2/2 each, are left out).";
       break;
@@ -237,27 +331,58 @@ int validity_exit(const emnet::Validity& validity) {
 
 void print_header(const emnet::Model& model, const emnet::System& system) {
   const auto& scene = model.scene;
-  std::cout << "scene " << scene.name << " (" << scene.file << "): " << scene.beam.segments
-            << " segments, L = " << si(scene.beam.length, "m")
+  std::cout << "scene " << shown(scene.name) << " (" << shown(scene.file)
+            << "): " << scene.beam.segments << " segments, L = " << si(scene.beam.length, "m")
             << ", EI = " << si(scene.beam.bending_stiffness, "N*m^2")
             << ", rhoA = " << si(scene.beam.mass_per_length, "kg/m") << ", " << scene.deas.size()
             << " DEA(s), " << drive_summary(scene) << "\n"
             << "network: " << model.network.nodes().size() << " nodes, "
             << model.network.elements().size() << " elements, " << system.size() << " unknowns\n";
-  for (const auto& note : model.notes) std::cout << "note: " << note << "\n";
+  for (const auto& note : model.notes) std::cout << "note: " << shown(note) << "\n";
+}
+
+// A CSV file of `count` rows, row i filled by fill_row(i, row), written completely or not at
+// all; FileError when it cannot be. The rows are formatted as they are written, not stored.
+template <class FillRow>
+void write_csv_rows(const std::string& path, const std::vector<std::string>& header, size_t count,
+                    const FillRow& fill_row) {
+  stop_if_interrupted();
+  emnet::OutputFile out(path);
+  // A header field with a comma, quote or line break is quoted (RFC 4180).
+  auto field = [](const std::string& text) {
+    if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+    std::string quoted = "\"";
+    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+  };
+  std::string line;
+  for (size_t k = 0; k < header.size(); ++k) line += (k ? "," : "") + field(header[k]);
+  out.write(line + "\n");
+  char number[32];
+  std::vector<double> row;
+  for (size_t i = 0; i < count; ++i) {
+    row.clear();
+    fill_row(i, row);
+    line.clear();
+    for (size_t k = 0; k < row.size(); ++k) {
+      std::snprintf(number, sizeof number, "%s%.12g", k ? "," : "", row[k]);
+      line += number;
+    }
+    out.write(line + "\n");
+  }
+  if (const emnet::Status status = out.commit(); !status.ok)
+    throw FileError("--csv: " + status.message);
 }
 
 void write_csv(const std::string& path, const std::vector<std::string>& header,
                const std::vector<std::vector<double>>& rows) {
-  std::ofstream out(path);
-  if (!out) throw InputError("--csv", path, "cannot write file");
-  for (size_t k = 0; k < header.size(); ++k) out << (k ? "," : "") << header[k];
-  out << "\n";
-  out.precision(12);
-  for (const auto& row : rows) {
-    for (size_t k = 0; k < row.size(); ++k) out << (k ? "," : "") << row[k];
-    out << "\n";
-  }
+  write_csv_rows(path, header, rows.size(),
+                 [&](size_t i, std::vector<double>& row) { row = rows[i]; });
+}
+
+// A plot's Status as a FileError (gnuplot missing or failing is no numerical failure).
+void check_plot(const emnet::Status& status) {
+  if (!status.ok) throw FileError("--plot: " + status.message);
 }
 
 struct Prepared {
@@ -269,10 +394,16 @@ struct Prepared {
 // Builds the model and its operating point. A linear network without a static state (a free
 // body) can still be analysed dynamically: its operating point is then zero, as said in a note;
 // `static` itself requires the static state.
-Prepared prepare(const CommonOptions& options, bool require_static = false) {
-  Prepared p{emnet::build_model(load_scene(options), electrical_probe_requested(options)), {}, {}};
+Prepared prepare(const CommonOptions& options, bool require_static = false,
+                 std::optional<emnet::Scene> scene = std::nullopt) {
+  if (!scene) scene = load_scene(options);
+  show_phase(options, "building the network");
+  Prepared p{emnet::build_model(*scene, electrical_probe_requested(options)), {}, {}};
   p.system = p.model.network.assemble();
-  p.rest = emnet::solve_static(p.system);
+  emnet::StaticOptions static_options;
+  static_options.progress = progress_of(options);
+  p.rest = emnet::solve_static(p.system, static_options);
+  stop_if_interrupted();
   if (!p.rest.status.ok) {
     if (require_static || p.system.is_nonlinear())
       throw NumericalFailure("static operating point: " + p.rest.status.message);
@@ -312,7 +443,10 @@ int run_static(const CommonOptions& options) {
   const emnet::Validity validity =
       emnet::check_validity(p.model.scene, peaks, emnet::drive_voltages_at_start(p.model.scene));
   const double total = seconds_since(start);
-  if (!options.csv.empty()) write_csv(options.csv, {"x_m", "deflection_m", "rotation_rad"}, rows);
+  end_progress(options);
+  auto write_files = [&] {
+    if (!options.csv.empty()) write_csv(options.csv, {"x_m", "deflection_m", "rotation_rad"}, rows);
+  };
   if (options.json) {
     Json out;
     out["scene"] = p.model.scene.name;
@@ -332,7 +466,8 @@ int run_static(const CommonOptions& options) {
                        {"discretisation", "exact at the nodes for any N (Hermite statics)"}};
     out["cost"] = {{"solve_seconds", p.rest.seconds}, {"total_seconds", total}};
     out["validity"] = validity_json(validity);
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
+    write_files();
     return validity_exit(validity);
   }
   print_header(p.model, p.system);
@@ -344,12 +479,14 @@ int run_static(const CommonOptions& options) {
             << "\n\n";
   std::printf("%8s %12s %16s %16s\n", "node", "x [mm]", "deflection [m]", "rotation [rad]");
   for (size_t k = 0; k < rows.size(); ++k)
-    std::printf("%8zu %12.4f %16.6e %16.6e\n", k, rows[k][0] * 1e3, rows[k][1], rows[k][2]);
+    std::printf("%8zu %12.6g %16.6e %16.6e\n", k, rows[k][0] * 1e3, rows[k][1], rows[k][2]);
   if (!probes.empty()) std::cout << "\nprobes:\n";
   for (size_t k = 0; k < probes.size(); ++k)
-    std::printf("  %-10s %-40s %14.6e %s\n", probes[k].name.c_str(), probes[k].description.c_str(),
-                probe_values[k], probes[k].unit.c_str());
+    std::printf("  %-10s %-40s %14.6e %s\n", shown(probes[k].name).c_str(),
+                shown(probes[k].description).c_str(), probe_values[k],
+                shown(probes[k].unit).c_str());
   print_validity(validity);
+  write_files();
   return validity_exit(validity);
 }
 
@@ -486,7 +623,9 @@ int run_modes_command(const CommonOptions& options, const ModesOptions& modes_op
     rigid_names.push_back(rigid_body_motion_name(p.model, motion));
   if (rigid_names.size() > 1) rigid_names = {"translation and rotation (a free body)"};
 
-  if (!options.csv.empty()) {
+  end_progress(options);
+  auto write_files = [&] {
+    if (options.csv.empty()) return;
     std::vector<std::vector<double>> rows;
     for (size_t k = 0; k < modes.size(); ++k)
       rows.push_back({static_cast<double>(k + 1), modes[k].frequency_hz, modes[k].damping_ratio,
@@ -496,7 +635,7 @@ int run_modes_command(const CommonOptions& options, const ModesOptions& modes_op
               {"mode", "frequency_hz", "damping_ratio", "natural_frequency_hz", "pole_real",
                "pole_imag", "frequency_error_bound_hz", "error_bounded"},
               rows);
-  }
+  };
   if (options.json) {
     Json out;
     out["scene"] = p.model.scene.name;
@@ -562,7 +701,7 @@ int run_modes_command(const CommonOptions& options, const ModesOptions& modes_op
                    {"error_estimate_seconds", estimate_seconds},
                    {"total_seconds", total}};
     if (!unbounded.empty()) out["status"] = "NOT BOUNDED";
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
   } else {
     print_header(p.model, p.system);
     std::cout << "modes: " << result.method
@@ -631,23 +770,25 @@ int run_modes_command(const CommonOptions& options, const ModesOptions& modes_op
       for (size_t k = 0; k < modes.size(); ++k)
         for (const auto& probe : probes) {
           const auto value = mode_probe_value(p.model, modes[k], probe);
-          std::printf("  mode %zu  %-10s %-36s %+.6g %+.6g %s\n", k + 1, probe.name.c_str(),
-                      probe.description.c_str(), value.real(), value.imag(), probe.unit.c_str());
+          std::printf("  mode %zu  %-10s %-36s %+.6g %+.6g %s\n", k + 1, shown(probe.name).c_str(),
+                      shown(probe.description).c_str(), value.real(), value.imag(),
+                      shown(probe.unit).c_str());
         }
     }
   }
-  if (!unbounded.empty()) {
+  if (!unbounded.empty()) {  // refused: no output file
     std::string message = "modes: the error of these modes cannot be bounded:";
     for (const auto& line : unbounded) message += "\n  " + line;
     throw NumericalFailure(message);
   }
+  write_files();
   return 0;
 }
 
 // ---- ac -------------------------------------------------------------------------------
 
 struct AcOptions {
-  std::optional<double> from, to;
+  std::string from, to;  // as given; parsed by checked_ac_spec
   std::optional<int> points;
   std::string scale;
   std::string plot;
@@ -673,6 +814,62 @@ double parse_frequency(const std::string& text, const std::string& option) {
   } catch (const std::exception&) {
     throw InputError(option, option, "expected a frequency in Hz, got '" + text + "'");
   }
+}
+
+// Frequencies an AC sweep (or deck) may have: 1 to 1000000, inclusive.
+constexpr int kMaximumAcPoints = 1000000;
+
+// The AC sweep of the scene's [ac] table with --from, --to, --points and --scale applied
+// (ac and netlist --analysis ac): one frequency (--points 1, --to equal to --from or not
+// given) or an increasing range.
+emnet::AcSpec checked_ac_spec(emnet::AcSpec spec, const std::string& from_text,
+                              const std::string& to_text, std::optional<int> points,
+                              const std::string& scale) {
+  if (!from_text.empty()) spec.from = parse_frequency(from_text, "--from");
+  if (!to_text.empty()) spec.to = parse_frequency(to_text, "--to");
+  if (points) spec.points = *points;
+  if (!scale.empty()) spec.log = scale == "log";
+  if (spec.points < 1 || spec.points > kMaximumAcPoints)
+    throw InputError("--points", "--points",
+                     "must be from 1 to " + std::to_string(kMaximumAcPoints) +
+                         " (inclusive), got " + std::to_string(spec.points));
+  if (spec.from < 0.0) throw InputError("--from", "--from", "must be >= 0 Hz");
+  if (spec.points == 1) {
+    if (to_text.empty()) spec.to = spec.from;
+    if (spec.to != spec.from)
+      throw InputError("--to", "--to",
+                       "one frequency (--points 1) needs --to equal to --from, or no --to");
+  } else if (!(spec.to > spec.from)) {
+    throw InputError("--to", "--to",
+                     "must be > --from for a sweep of --points >= 2 (equal to it with --points 1)");
+  }
+  if (spec.log && !(spec.from > 0.0))
+    throw InputError("--from", "--from", "a log sweep needs --from > 0 Hz");
+  return spec;
+}
+
+// Why the scene gives the AC analysis no input (B_ac = 0), in its own terms.
+std::string no_ac_input_reason(const emnet::Scene& scene) {
+  const auto& drive = scene.drive;
+  std::string why;
+  switch (drive.kind) {
+    case emnet::DriveKind::none:
+      why = "drive.kind = \"none\"";
+      break;
+    case emnet::DriveKind::antagonistic:
+      why = "the antagonistic drive at drive.voltage = " + si(drive.voltage, "V");
+      break;
+    case emnet::DriveKind::bias_differential:
+    case emnet::DriveKind::single:
+      why = "drive.kind = \"" + std::string(emnet::drive_kind_name(drive.kind)) +
+            "\" with drive.bias = " + si(drive.bias, "V") +
+            " and drive.amplitude = " + si(drive.amplitude, "V") +
+            " (at a bias of 0 V a V^2 force has no part linear in v: it acts at 0 and 2f)";
+      break;
+  }
+  return "nothing excites the AC analysis: " + why +
+         (scene.loads.empty() ? " and no [[load]]" : " and loads of zero value") +
+         ", so every response would be zero; set a drive with a small-signal part or a load";
 }
 
 // The fields a reduced model reports in --json, for ac and sweep-switching alike.
@@ -718,35 +915,39 @@ std::string tolerance_warning(double measured, double tolerance) {
          "note says poles below the cut-off were not found, or run without --reduce.";
 }
 
-int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
-                   const std::string& from_text, const std::string& to_text) {
+int run_ac_command(const CommonOptions& options, const AcOptions& ac_options) {
   const auto start = std::chrono::steady_clock::now();
-  Prepared p = prepare(options);
-  emnet::AcSpec spec = p.model.scene.ac;
-  if (!from_text.empty()) spec.from = parse_frequency(from_text, "--from");
-  if (!to_text.empty()) spec.to = parse_frequency(to_text, "--to");
-  if (ac_options.points) spec.points = *ac_options.points;
-  if (!ac_options.scale.empty()) spec.log = ac_options.scale == "log";
-  if (spec.from < 0.0) throw InputError("--from", "--from", "must be >= 0 Hz");
-  if (!(spec.to > spec.from)) throw InputError("--to", "--to", "must be greater than --from");
-  if (spec.log && spec.from <= 0.0)
-    throw InputError("--from", "--from", "a log sweep needs --from > 0");
-  if (spec.points < 2 || spec.points > 1000000)
-    throw InputError("--points", "--points", "must be between 2 and 1000000");
+  if (!ac_options.reduce && (!ac_options.tolerance.empty() || !ac_options.band.empty()))
+    throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
+  emnet::Scene scene = load_scene(options);
+  const emnet::AcSpec spec = checked_ac_spec(scene.ac, ac_options.from, ac_options.to,
+                                             ac_options.points, ac_options.scale);
+  // The scene's probes, or a tip probe when it has none, unless --probe names them.
+  const size_t probe_count =
+      options.probes.empty() ? std::max<size_t>(1, scene.probes.size()) : options.probes.size();
+  check_stored_values(static_cast<double>(spec.points) * (2.0 * probe_count + 1.0),
+                      "the AC sweep of " + std::to_string(spec.points) + " frequencies x " +
+                          std::to_string(probe_count) + " complex probes",
+                      "--points", "lower --points or give fewer --probe");
+  Prepared p = prepare(options, false, std::move(scene));
   const auto probes = selected_probes(p.model, options);
+  if (p.system.b_ac().norm() == 0.0)
+    throw InputError(p.model.scene.file, "drive.kind", no_ac_input_reason(p.model.scene));
   const auto grid = emnet::frequency_grid(spec.from, spec.to, spec.points, spec.log);
   std::optional<emnet::AcReductionResult> reduction;
   if (ac_options.reduce) {
     const emnet::ReductionOptions reduction_settings = reduction_options(
         ac_options.tolerance, ac_options.band, spec.to, p.model.scene.model.tolerance);
+    show_phase(options, "modal reduction and its check");
     reduction =
         emnet::run_ac_reduced(p.system, p.rest.operating_point, grid, probes, reduction_settings);
     if (!reduction->status.ok) throw NumericalFailure("ac --reduce: " + reduction->status.message);
-  } else if (!ac_options.tolerance.empty() || !ac_options.band.empty()) {
-    throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
   }
+  emnet::AcOptions sweep_options;
+  sweep_options.progress = progress_of(options);
   const emnet::AcResult result =
-      reduction ? reduction->ac : emnet::run_ac(p.system, p.rest.operating_point, grid, probes);
+      reduction ? reduction->ac
+                : emnet::run_ac(p.system, p.rest.operating_point, grid, probes, sweep_options);
   if (!result.status.ok) throw NumericalFailure("ac: " + result.status.message);
   for (const auto& series : result.values)
     for (const auto& v : series) finite(std::abs(v), "an AC response");
@@ -762,12 +963,14 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
     emnet::ModalOptions modal_options;
     modal_options.keep_vectors = false;
     if (p.system.size() > modal_options.dense_limit) modal_options.count = 10;
+    show_phase(options, "modes for the resonance markers");
     const auto modes = emnet::run_modes(p.system, p.rest.operating_point, modal_options);
     if (modes.status.ok)
       for (const auto& mode : modes.modes) resonances.push_back(mode.frequency_hz);
   }
   for (double f : resonances)
-    if (f >= spec.from && f <= spec.to) markers.push_back({f, "f = " + format("%.4f", f) + " Hz"});
+    if (f >= spec.from && f <= spec.to) markers.push_back({f, "f = " + format("%.6g", f) + " Hz"});
+  end_progress(options);
   if (reduction && !reduction->tolerance_met)
     std::cerr << tolerance_warning(reduction->measured_error, reduction->model.tolerance) << "\n";
   // Validity: each deflection probe's largest AC amplitude. Every drive's AC input has the
@@ -785,33 +988,32 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
   const double total = seconds_since(start);
   const std::string input = ac_input_description(p.model.scene, spec.to);
 
-  if (!options.csv.empty()) {
-    std::vector<std::string> header{"frequency_hz"};
-    for (const auto& probe : probes) {
-      header.push_back(probe.name + "_magnitude_" + probe.unit);
-      header.push_back(probe.name + "_phase_deg");
-    }
-    std::vector<std::vector<double>> rows;
-    for (size_t f = 0; f < grid.size(); ++f) {
-      std::vector<double> row{grid[f]};
-      for (size_t k = 0; k < probes.size(); ++k) {
-        row.push_back(std::abs(result.values[k][f]));
-        row.push_back(std::arg(result.values[k][f]) * 180.0 / pi);
+  auto write_files = [&] {
+    if (!options.csv.empty()) {
+      std::vector<std::string> header{"frequency_hz"};
+      for (const auto& probe : probes) {
+        header.push_back(probe.name + "_magnitude_" + probe.unit);
+        header.push_back(probe.name + "_phase_deg");
       }
-      rows.push_back(row);
+      write_csv_rows(options.csv, header, grid.size(), [&](size_t f, auto& row) {
+        row.push_back(grid[f]);
+        for (size_t k = 0; k < probes.size(); ++k) {
+          row.push_back(std::abs(result.values[k][f]));
+          row.push_back(std::arg(result.values[k][f]) * 180.0 / pi);
+        }
+      });
     }
-    write_csv(options.csv, header, rows);
-  }
-  if (!ac_options.plot.empty()) {
-    std::vector<emnet::BodeSeries> series;
-    for (size_t k = 0; k < probes.size(); ++k)
-      series.push_back(
-          {probes[k].name + ": " + probes[k].description, probes[k].unit, result.values[k]});
-    const auto status =
-        emnet::write_bode_plot(ac_options.plot, p.model.scene.name + ": small-signal response",
-                               grid, series, markers, spec.log);
-    if (!status.ok) throw NumericalFailure("plot: " + status.message);
-  }
+    if (!ac_options.plot.empty()) {
+      std::vector<emnet::BodeSeries> series;
+      for (size_t k = 0; k < probes.size(); ++k)
+        series.push_back(
+            {probes[k].name + ": " + probes[k].description, probes[k].unit, result.values[k]});
+      stop_if_interrupted();
+      check_plot(emnet::write_bode_plot(ac_options.plot,
+                                        p.model.scene.name + ": small-signal response", grid,
+                                        series, markers, spec.log));
+    }
+  };
   if (options.json) {
     Json out;
     out["scene"] = p.model.scene.name;
@@ -857,7 +1059,8 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
       out["reduction"] = reduced;
     }
     out["validity"] = validity_json(validity);
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
+    write_files();
     return validity_exit(validity);
   }
   print_header(p.model, p.system);
@@ -908,8 +1111,8 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
   std::cout << "\n";
   std::printf("%14s", "f [Hz]");
   for (const auto& probe : probes)
-    std::printf(" %16s %11s", ("|" + probe.name + "| [" + probe.unit + "]").c_str(),
-                (probe.name + " [deg]").c_str());
+    std::printf(" %16s %11s", shown("|" + probe.name + "| [" + probe.unit + "]").c_str(),
+                shown(probe.name + " [deg]").c_str());
   std::printf("\n");
   for (size_t f = 0; f < grid.size(); ++f) {
     std::printf("%14.6g", grid[f]);
@@ -922,11 +1125,13 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
     size_t best = 0;
     for (size_t f = 0; f < grid.size(); ++f)
       if (std::abs(result.values[k][f]) > std::abs(result.values[k][best])) best = f;
-    std::printf("peak of %s: %.6e %s at %.6g Hz (grid spacing limits this to +/- half a step)\n",
-                probes[k].name.c_str(), std::abs(result.values[k][best]), probes[k].unit.c_str(),
-                grid[best]);
+    std::printf("peak of %s: %.6e %s at %.7g Hz (grid spacing limits this to +/- half a step)\n",
+                shown(probes[k].name).c_str(), std::abs(result.values[k][best]),
+                shown(probes[k].unit).c_str(), grid[best]);
   }
-  if (!ac_options.plot.empty()) std::cout << "Bode plot written to " << ac_options.plot << "\n";
+  write_files();
+  if (!ac_options.plot.empty())
+    std::cout << "Bode plot written to " << shown(ac_options.plot) << "\n";
   print_validity(validity);
   return validity_exit(validity);
 }
@@ -934,7 +1139,7 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options,
 // ---- tran -----------------------------------------------------------------------------
 
 struct TranOptions {
-  double switching = 0.0;  // Hz; 0: the scene's drive.frequency
+  std::optional<double> switching;  // Hz; default: the scene's drive.frequency
   double periods = 10.0;
   double rtol = 1e-6;
   double max_step = 0.0;
@@ -975,32 +1180,97 @@ std::vector<emnet::Probe> transient_probes(const emnet::Model& model) {
   return probes;
 }
 
+// The outputs of tran and sweep-switching: with --probe those, each an output name of
+// transient_probes (dx4, u_A, ...) or any probe of parse_probe; else transient_probes.
+std::vector<emnet::Probe> transient_outputs(const emnet::Model& model,
+                                            const CommonOptions& options) {
+  std::vector<emnet::Probe> outputs = transient_probes(model);
+  if (options.probes.empty()) return outputs;
+  std::vector<emnet::Probe> probes;
+  for (const auto& text : options.probes) {
+    const auto named = std::find_if(outputs.begin(), outputs.end(),
+                                    [&](const emnet::Probe& probe) { return probe.name == text; });
+    probes.push_back(named != outputs.end() ? *named : model.parse_probe(text));
+  }
+  return probes;
+}
+
+// The outputs a --plot draws, on one axis: the deflections by default; with --probe every probe,
+// which must then share a unit (refused before computing otherwise). Deflections in mm.
+struct PlottedOutputs {
+  std::vector<size_t> indices;
+  double scale = 1.0;
+  std::string unit, axis_label;
+};
+
+PlottedOutputs plotted_outputs(const std::vector<emnet::Probe>& probes,
+                               const CommonOptions& options, const std::string& quantity) {
+  PlottedOutputs plotted;
+  for (size_t k = 0; k < probes.size(); ++k)
+    if (!options.probes.empty() || probes[k].unit == "m") plotted.indices.push_back(k);
+  if (plotted.indices.empty()) return plotted;
+  const emnet::Probe& first = probes[plotted.indices.front()];
+  for (size_t k : plotted.indices)
+    if (probes[k].unit != first.unit)
+      throw InputError("--plot", "--probe",
+                       "a plot has one axis, but probe '" + probes[k].name + "' is in " +
+                           probes[k].unit + " and '" + first.name + "' in " + first.unit +
+                           ": plot probes of one unit per run (--csv and --json take any mix)");
+  plotted.unit = first.unit;
+  if (first.unit == "m") {
+    plotted.scale = 1e3;
+    plotted.axis_label = quantity + "deflection [mm]";
+  } else {
+    plotted.axis_label = quantity + "value [" + first.unit + "]";
+  }
+  return plotted;
+}
+
 int run_tran_command(CommonOptions options, const TranOptions& tran) {
   const auto start = std::chrono::steady_clock::now();
-  if (tran.switching != 0.0) {
-    if (!(tran.switching > 0.0) || !std::isfinite(tran.switching))
-      throw InputError("--switching", "--switching", "must be a positive frequency in Hz");
-    options.overrides.push_back("drive.frequency=" + format("%.17g", tran.switching));
+  if (tran.switching) {
+    if (!(*tran.switching > 0.0) || !std::isfinite(*tran.switching))
+      throw InputError("--switching", "--switching", "must be a positive frequency in Hz (> 0)");
+    options.overrides.push_back("drive.frequency=" + format("%.17g", *tran.switching));
   }
   if (!(tran.periods > 0.0) || tran.periods > 1e6)
-    throw InputError("--periods", "--periods", "must be > 0 and at most 1e6");
+    throw InputError("--periods", "--periods", "must be > 0 and at most 1e6 (inclusive)");
   if (!(tran.rtol >= 1e-13 && tran.rtol < 1.0))
     throw InputError("--rtol", "--rtol",
-                     "must be at least 1e-13 (below that, double-precision rounding of the "
-                     "residual exceeds the tolerance) and below 1");
+                     "must be >= 1e-13 (below that, double-precision rounding of the "
+                     "residual exceeds the tolerance) and < 1");
   if (!(tran.atol >= 0.0) || !std::isfinite(tran.atol))
     throw InputError("--atol", "--atol", "must be >= 0");
   if (!(tran.max_step >= 0.0) || !std::isfinite(tran.max_step))
     throw InputError("--max-step", "--max-step", "must be >= 0 (0: no limit)");
   if (tran.points_per_period < 2 || tran.points_per_period > 100000)
-    throw InputError("--points-per-period", "--points-per-period", "must be between 2 and 100000");
+    throw InputError("--points-per-period", "--points-per-period",
+                     "must be from 2 to 100000 (inclusive)");
+  show_phase(options, "building the network");
   const emnet::Model model =
       emnet::build_model(load_scene(options), electrical_probe_requested(options));
   const emnet::System system = model.network.assemble();
   const double frequency = model.scene.drive.frequency;
   if (!(frequency > 0.0))
     throw InputError(model.scene.file, "drive.frequency",
-                     "a transient needs a drive with a frequency (or --switching)");
+                     "a transient needs a drive with a frequency > 0 (or --switching)");
+  if (tran.method == "exact" && system.is_nonlinear())
+    throw InputError("--method", "--method",
+                     "the exact method needs a linear network, and this scene's DEAs have their "
+                     "electrical model (nonlinear); add --set drive.electrical_dynamics=false for "
+                     "ideal voltage-driven DEAs, or use --method ida");
+  const auto probes = transient_outputs(model, options);
+  const PlottedOutputs plotted =
+      tran.plot.empty() ? PlottedOutputs{} : plotted_outputs(probes, options, "");
+  const double count = std::round(tran.periods * tran.points_per_period);
+  if (count < 1.0)
+    throw InputError("--periods", "--periods",
+                     "--periods x --points-per-period must be >= 0.5, for at least one output "
+                     "step after t = 0");
+  check_stored_values((count + 1.0) * (probes.size() + 1.0),
+                      format("%.0f", count + 1.0) + " output times x (" +
+                          std::to_string(probes.size()) + " outputs + the time)",
+                      "--periods", "lower --periods or --points-per-period, or give fewer --probe");
   const double period = 1.0 / frequency;
   emnet::TransientOptions transient;
   transient.end_time = tran.periods * period;
@@ -1008,10 +1278,11 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   transient.absolute_tolerance = tran.atol;
   transient.max_step = tran.max_step;
   transient.start = tran.start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
-  const long count = std::lround(tran.periods * tran.points_per_period);
-  for (long k = 0; k <= count; ++k)
-    transient.output_times.push_back(transient.end_time * static_cast<double>(k) / count);
-  const auto probes = transient_probes(model);
+  transient.progress = progress_of(options);
+  const long outputs = static_cast<long>(count);
+  transient.output_times.reserve(static_cast<size_t>(outputs) + 1);
+  for (long k = 0; k <= outputs; ++k)
+    transient.output_times.push_back(transient.end_time * static_cast<double>(k) / outputs);
   const emnet::TransientResult result = tran.method == "exact"
                                             ? emnet::run_transient_exact(system, probes, transient)
                                             : emnet::run_transient_ida(system, probes, transient);
@@ -1026,36 +1297,37 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   const emnet::Validity validity =
       emnet::check_validity(model.scene, peaks, emnet::drive_peak_voltages(model.scene));
   const double total = seconds_since(start);
+  end_progress(options);
   const std::string start_text =
       tran.start == "static"
           ? "the static state under the drive's first half-period"
           : "at rest (every unknown zero before t = 0; the drive switches on at t = 0)";
 
-  if (!options.csv.empty()) {
-    std::vector<std::string> header{"time_s"};
-    for (const auto& probe : probes) header.push_back(probe.name + "_" + probe.unit);
-    std::vector<std::vector<double>> rows;
-    for (size_t i = 0; i < result.times.size(); ++i) {
-      std::vector<double> row{result.times[i]};
-      for (const auto& series : result.values) row.push_back(series[i]);
-      rows.push_back(row);
+  auto write_files = [&] {
+    if (!options.csv.empty()) {
+      std::vector<std::string> header{"time_s"};
+      for (const auto& probe : probes) header.push_back(probe.name + "_" + probe.unit);
+      write_csv_rows(options.csv, header, result.times.size(), [&](size_t i, auto& row) {
+        row.push_back(result.times[i]);
+        for (const auto& series : result.values) row.push_back(series[i]);
+      });
     }
-    write_csv(options.csv, header, rows);
-  }
-  if (!tran.plot.empty()) {
-    std::vector<emnet::LineSeries> series;
-    for (size_t k = 0; k < probes.size(); ++k) {
-      if (probes[k].unit != "m") continue;
-      emnet::LineSeries line{
-          probes[k].name + " (" + probes[k].description + ") [mm]", result.times, {}};
-      for (double v : result.values[k]) line.y.push_back(v * 1e3);
-      series.push_back(line);
+    if (!tran.plot.empty()) {
+      std::vector<emnet::LineSeries> series;
+      for (size_t k : plotted.indices) {
+        emnet::LineSeries line{probes[k].name + " (" + probes[k].description + ") [" +
+                                   (plotted.unit == "m" ? "mm" : plotted.unit) + "]",
+                               result.times,
+                               {}};
+        for (double v : result.values[k]) line.y.push_back(v * plotted.scale);
+        series.push_back(line);
+      }
+      stop_if_interrupted();
+      check_plot(emnet::write_line_plot(
+          tran.plot, model.scene.name + ": " + drive_summary(model.scene) + ", " + result.method,
+          "time [s]", plotted.axis_label, series));
     }
-    const auto status = emnet::write_line_plot(
-        tran.plot, model.scene.name + ": " + drive_summary(model.scene) + ", " + result.method,
-        "time [s]", "deflection [mm]", series);
-    if (!status.ok) throw NumericalFailure("plot: " + status.message);
-  }
+  };
   const auto& st = result.statistics;
   if (options.json) {
     Json out;
@@ -1082,14 +1354,15 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
                          {"restarts", st.restarts}};
     out["cost"] = {{"integration_seconds", result.seconds}, {"total_seconds", total}};
     out["validity"] = validity_json(validity);
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
+    write_files();
     return validity_exit(validity);
   }
   print_header(model, system);
-  std::cout << "transient: " << result.method << ", " << tran.periods << " periods of "
-            << si(frequency, "Hz") << " (" << si(transient.end_time, "s") << "), start "
-            << start_text << "\n";
-  if (result.method == "ida")
+  std::cout << "transient: " << shown(result.method) << ", " << format("%.6g", tran.periods)
+            << " periods of " << si(frequency, "Hz") << " (" << si(transient.end_time, "s")
+            << "), start " << start_text << "\n";
+  if (result.method.rfind("ida", 0) == 0)
     std::cout << "accuracy: IDA (BDF) rtol " << format("%.1e", tran.rtol)
               << (tran.atol > 0 ? ", atol " + format("%.1e", tran.atol)
                                 : ", atol scaled per unknown")
@@ -1105,21 +1378,22 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
             << milliseconds(total) << "\n\n";
   std::printf("%12s", "t [s]");
   for (const auto& probe : probes)
-    std::printf(" %14s", (probe.name + " [" + probe.unit + "]").c_str());
+    std::printf(" %14s", shown(probe.name + " [" + probe.unit + "]").c_str());
   std::printf("\n");
   const size_t stride = std::max<size_t>(1, result.times.size() / 200);
   for (size_t i = 0; i < result.times.size(); i += stride) {
-    std::printf("%12.6f", result.times[i]);
+    std::printf("%12.7g", result.times[i]);
     for (const auto& series : result.values) std::printf(" %14.6e", series[i]);
     std::printf("\n");
   }
   if (stride > 1) std::printf("(every %zu-th output shown; --csv writes all)\n", stride);
   for (size_t k = 0; k < probes.size(); ++k) {
     const auto [low, high] = std::minmax_element(result.values[k].begin(), result.values[k].end());
-    std::printf("range of %-6s %14.6e .. %14.6e %s\n", probes[k].name.c_str(), *low, *high,
-                probes[k].unit.c_str());
+    std::printf("range of %-6s %14.6e .. %14.6e %s\n", shown(probes[k].name).c_str(), *low, *high,
+                shown(probes[k].unit).c_str());
   }
-  if (!tran.plot.empty()) std::cout << "plot written to " << tran.plot << "\n";
+  write_files();
+  if (!tran.plot.empty()) std::cout << "plot written to " << shown(tran.plot) << "\n";
   print_validity(validity);
   return validity_exit(validity);
 }
@@ -1163,88 +1437,157 @@ void check_overlap_fits(const emnet::Scene& scene, double frequency_hz, const st
                          si(period, "s") + " at " + si(frequency_hz, "Hz") + " (" + where + ")");
 }
 
+// Memory of the exact periodic method's dense eigen-decomposition of the state matrix, measured
+// on the fish fin: 31 MB at 306 unknowns, 104 MB at 606, 393 MB at 1206, 1.47 GB at 2406, about
+// 254 bytes per unknown squared (complex eigenvectors, their LU and inverse, work space); its
+// time grows as the cube (44 s at 1206 unknowns, 237 s at 2406 on this project's machine).
+constexpr double kPeriodicDenseBytesPerUnknown2 = 256.0;
+constexpr double kPeriodicDenseMemoryLimit = 4e9;  // bytes
+
+void check_periodic_decomposition_size(int unknowns, const std::string& option) {
+  const double bytes = kPeriodicDenseBytesPerUnknown2 * unknowns * static_cast<double>(unknowns);
+  if (bytes <= kPeriodicDenseMemoryLimit) return;
+  throw InputError(option, option,
+                   "the exact periodic method decomposes a dense matrix of the network's " +
+                       std::to_string(unknowns) + " unknowns: about " +
+                       format("%.3g", bytes / 1e9) +
+                       " GB (256 bytes per unknown squared), where at most " +
+                       format("%.0f", kPeriodicDenseMemoryLimit / 1e9) +
+                       " GB is allowed (inclusive); use fewer --segments or --method shooting");
+}
+
 int run_sweep_command(CommonOptions options, SweepOptions sweep) {
   const auto start = std::chrono::steady_clock::now();
   if (!(sweep.from > 0.0) || !(sweep.to >= sweep.from) || !(sweep.step > 0.0) ||
       !std::isfinite(sweep.to))
     throw InputError("--from/--to/--step", "--step",
                      "need 0 < from <= to and step > 0 (frequencies in Hz)");
-  const long count = std::lround(std::floor((sweep.to - sweep.from) / sweep.step + 1e-9)) + 1;
-  if (count > 100000) throw InputError("--step", "--step", "more than 100000 frequencies");
+  const double frequency_count = std::floor((sweep.to - sweep.from) / sweep.step + 1e-9) + 1.0;
+  if (!(frequency_count <= 100000))
+    throw InputError("--step", "--step",
+                     "gives " + format("%.6g", frequency_count) +
+                         " frequencies; at most 100000 (inclusive) are swept");
+  const long count = static_cast<long>(frequency_count);
   if (sweep.samples == 0) sweep.samples = sweep.method == "shooting" ? 256 : 64;
   if (sweep.samples < 8 || sweep.samples > 1000000)
-    throw InputError("--samples", "--samples", "must be between 8 and 1000000");
+    throw InputError("--samples", "--samples", "must be from 8 to 1000000 (inclusive)");
+  if (sweep.reduce && sweep.method != "exact")
+    throw InputError("--reduce", "--method", "--reduce replaces the exact method, not shooting");
+  if (!sweep.reduce && (!sweep.tolerance.empty() || !sweep.band.empty()))
+    throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
+  show_phase(options, "building the network");
   // The exact method needs a linear network: DEAs as ideal voltage-driven forces.
   emnet::Model model = emnet::build_model(load_scene(options), electrical_probe_requested(options));
   std::vector<std::string> notes;
-  if (sweep.method == "exact" && model.network.assemble().is_nonlinear()) {
-    double tau = 0.0;
-    for (const auto& dea : model.deas)
-      tau = std::max(tau, dea.electrode_resistance * dea.capacitance);
-    notes.push_back("exact method: DEAs as ideal voltage-driven forces (their RC time constant " +
-                    si(tau, "s") + " is " + format("%.2g", tau * sweep.to) +
-                    " of the shortest period); --method shooting integrates the full model");
-    options.overrides.push_back("drive.electrical_dynamics=false");
-    model = emnet::build_model(load_scene(options), electrical_probe_requested(options));
+  if (sweep.method == "exact") {
+    for (const auto& text : options.probes)
+      if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0)
+        throw InputError("--probe", text,
+                         "the exact periodic method models the DEAs as ideal voltage-driven "
+                         "forces, without the RC loop whose voltage and current this probe asks "
+                         "for; use --method shooting");
+    if (model.network.assemble().is_nonlinear()) {
+      double tau = 0.0;
+      for (const auto& dea : model.deas)
+        tau = std::max(tau, dea.electrode_resistance * dea.capacitance);
+      notes.push_back("exact method: DEAs as ideal voltage-driven forces (their RC time constant " +
+                      si(tau, "s") + " is " + format("%.2g", tau * sweep.to) +
+                      " of the shortest period); --method shooting integrates the full model");
+      options.overrides.push_back("drive.electrical_dynamics=false");
+      model = emnet::build_model(load_scene(options), electrical_probe_requested(options));
+    }
   }
+  // The default outputs: the deflections; with --probe, every probe given.
   std::vector<emnet::Probe> probes;
-  for (const auto& probe : transient_probes(model))
-    if (probe.unit == "m") probes.push_back(probe);
+  for (const auto& probe : transient_outputs(model, options))
+    if (!options.probes.empty() || probe.unit == "m") probes.push_back(probe);
+  if (sweep.reduce)
+    for (const auto& probe : probes)
+      if (probe.quantity != emnet::ProbeQuantity::deflection &&
+          probe.quantity != emnet::ProbeQuantity::rotation)
+        throw InputError("--probe", probe.name,
+                         "--reduce takes deflections and rotations only: a velocity of the "
+                         "reduced model would need the derivative of the square wave's "
+                         "feed-through; run without --reduce");
+  if (probes.empty())
+    throw InputError(model.scene.file, "probe", "the scene has no deflection output");
+  const PlottedOutputs plotted =
+      sweep.plot.empty() ? PlottedOutputs{} : plotted_outputs(probes, options, "peak ");
+  check_stored_values(static_cast<double>(count) * (2.0 * probes.size() + 1.0),
+                      std::to_string(count) + " frequencies x " + std::to_string(probes.size()) +
+                          " outputs x 2 extremes",
+                      "--step", "raise --step or give fewer --probe");
+  if (sweep.method == "exact" && !sweep.reduce)
+    check_periodic_decomposition_size(model.network.assemble().size(), "--segments");
   std::unique_ptr<emnet::PeriodicSolver> solver;
   std::unique_ptr<emnet::ReducedPeriodicSolver> reduced;
   std::optional<PeriodicReductionCheck> check;
   emnet::ReductionOptions reduction_settings;
   if (sweep.reduce) {
-    if (sweep.method != "exact")
-      throw InputError("--reduce", "--method", "--reduce replaces the exact method, not shooting");
     reduction_settings =
         reduction_options(sweep.tolerance, sweep.band, sweep.to, model.scene.model.tolerance);
     check.emplace();
-  } else if (!sweep.tolerance.empty() || !sweep.band.empty()) {
-    throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
   }
   std::vector<double> frequencies;
+  // Per frequency only the extremes are kept (the samples of one period are dropped).
   std::vector<emnet::PeriodicResult> results;
   const emnet::Scene base_scene = load_scene(options);  // read once; only the frequency varies
   if (!(base_scene.drive.rise_time < 0.5 / sweep.to))
     throw InputError(base_scene.file, "drive.rise_time",
-                     "must be shorter than half the shortest period of the sweep (" +
-                         si(0.5 / sweep.to, "s") + " at --to " + si(sweep.to, "Hz") + ")");
+                     "must be < half the shortest period of the sweep (" + si(0.5 / sweep.to, "s") +
+                         " at --to " + si(sweep.to, "Hz") + ")");
   check_overlap_fits(base_scene, sweep.to, "--to");
-  for (long k = 0; k < count; ++k) {
-    const double f = sweep.from + sweep.step * static_cast<double>(k);
+  auto system_at = [&](double f) {
     emnet::Scene at = base_scene;
     at.drive.frequency = f;
-    const emnet::Model m = emnet::build_model(at);
-    const emnet::System system = m.network.assemble();
+    return emnet::build_model(at).network.assemble();
+  };
+  // The reduced periodic state at frequency f (the sweep and its check).
+  auto reduced_at = [&](const emnet::System& system, double f) {
+    if (!reduced) {
+      show_phase(options, "modal reduction (" + std::to_string(system.size()) + " unknowns)");
+      const auto build_start = std::chrono::steady_clock::now();
+      reduced = std::make_unique<emnet::ReducedPeriodicSolver>(system, reduction_settings);
+      check->build_seconds = seconds_since(build_start);
+      if (!reduced->reduction().status.ok)
+        throw NumericalFailure("sweep-switching --reduce: " + reduced->reduction().status.message);
+    }
+    return reduced->solve(system, probes, 1.0 / f, sweep.samples);
+  };
+  for (long k = 0; k < count; ++k) {
+    const double f = sweep.from + sweep.step * static_cast<double>(k);
+    const emnet::System system = system_at(f);
+    if (sweep.method == "exact" && !sweep.reduce && !solver) {
+      show_phase(options, "eigen-decomposition of the state matrix (" +
+                              std::to_string(system.size()) +
+                              " unknowns, dense; one step, no estimate inside it)");
+      solver = std::make_unique<emnet::PeriodicSolver>(system);
+    }
+    if (!keep_going(progress_of(options), k, count, "switching frequencies"))
+      throw Interrupted("interrupted");
     emnet::PeriodicResult r;
     if (sweep.reduce) {
-      if (!reduced) {
-        const auto build_start = std::chrono::steady_clock::now();
-        reduced = std::make_unique<emnet::ReducedPeriodicSolver>(system, reduction_settings);
-        check->build_seconds = seconds_since(build_start);
-        if (!reduced->reduction().status.ok)
-          throw NumericalFailure("sweep-switching --reduce: " +
-                                 reduced->reduction().status.message);
-      }
-      r = reduced->solve(system, probes, 1.0 / f, sweep.samples);
+      r = reduced_at(system, f);
     } else if (sweep.method == "exact") {
-      if (!solver) solver = std::make_unique<emnet::PeriodicSolver>(system);
       r = solver->solve(system, probes, 1.0 / f, sweep.samples);
     } else {
-      r = emnet::run_periodic_shooting(system, probes, 1.0 / f, sweep.rtol, sweep.samples);
+      r = emnet::run_periodic_shooting(system, probes, 1.0 / f, sweep.rtol, sweep.samples,
+                                       progress_of(options));
     }
     if (!r.status.ok)
       throw NumericalFailure("sweep-switching at " + si(f, "Hz") + ": " + r.status.message);
     for (size_t p = 0; p < probes.size(); ++p) {
-      finite(r.minimum[p], "a peak deflection");
-      finite(r.maximum[p], "a peak deflection");
+      finite(r.minimum[p], "a peak of " + probes[p].name);
+      finite(r.maximum[p], "a peak of " + probes[p].name);
     }
+    r.times = {};
+    r.values = {};
     frequencies.push_back(f);
     results.push_back(std::move(r));
   }
   std::vector<emnet::DeflectionPeak> peaks;
   for (size_t p = 0; p < probes.size(); ++p) {
+    if (probes[p].quantity != emnet::ProbeQuantity::deflection) continue;
     peaks.push_back({probes[p].name, 0.0});
     for (const auto& r : results)
       peaks.back().peak =
@@ -1252,7 +1595,6 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
   }
   const emnet::Validity validity =
       emnet::check_validity(model.scene, peaks, emnet::drive_peak_voltages(model.scene));
-  const double total = seconds_since(start);
   double solve_seconds = 0.0, worst_periodicity = 0.0;
   for (const auto& r : results) {
     solve_seconds += r.seconds;
@@ -1260,24 +1602,24 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
   }
   // The resonance of the sweep: the frequency of the largest peak-to-peak at the last probe
   // (dx4 or the tip), and the network's first mode.
-  const size_t main_probe = probes.empty() ? 0 : probes.size() - 1;
+  const size_t main_probe = probes.size() - 1;
   size_t best = 0;
   for (size_t k = 0; k < results.size(); ++k)
     if (results[k].maximum[main_probe] - results[k].minimum[main_probe] >
         results[best].maximum[main_probe] - results[best].minimum[main_probe])
       best = k;
   if (check && !results.empty()) {
-    // The full exact method at the first, the largest-swing and the last frequency.
+    // The full exact method at the first, the largest-swing and the last frequency, against the
+    // reduced solution there (solved again: the sweep keeps no samples).
+    show_phase(options, "checking the reduction against the full exact method");
     check->model = reduced->reduction();
     std::vector<size_t> picked{0, best, results.size() - 1};
     std::sort(picked.begin(), picked.end());
     picked.erase(std::unique(picked.begin(), picked.end()), picked.end());
     std::unique_ptr<emnet::PeriodicSolver> full;
     for (size_t k : picked) {
-      emnet::Scene at = base_scene;
-      at.drive.frequency = frequencies[k];
-      const emnet::Model m = emnet::build_model(at);
-      const emnet::System system = m.network.assemble();
+      stop_if_interrupted();
+      const emnet::System system = system_at(frequencies[k]);
       if (!full) {
         const auto build_start = std::chrono::steady_clock::now();
         full = std::make_unique<emnet::PeriodicSolver>(system);
@@ -1288,25 +1630,28 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
       if (!exact.status.ok)
         throw NumericalFailure("sweep-switching --reduce check at " + si(frequencies[k], "Hz") +
                                ": " + exact.status.message);
+      const emnet::PeriodicResult again = reduced_at(system, frequencies[k]);
+      if (!again.status.ok)
+        throw NumericalFailure("sweep-switching --reduce at " + si(frequencies[k], "Hz") + ": " +
+                               again.status.message);
       // Per frequency: the fastest check solve (the first also fills per-probe caches).
       check->full_solve_seconds = check->full_solve_seconds > 0.0
                                       ? std::min(check->full_solve_seconds, exact.seconds)
                                       : exact.seconds;
       check->reduced_solve_seconds =
           check->reduced_solve_seconds > 0.0
-              ? std::min(check->reduced_solve_seconds, results[k].seconds)
-              : results[k].seconds;
-      const double error = emnet::periodic_difference(results[k], exact);
+              ? std::min({check->reduced_solve_seconds, results[k].seconds, again.seconds})
+              : std::min(results[k].seconds, again.seconds);
+      const double error = emnet::periodic_difference(again, exact);
       check->frequencies.push_back(frequencies[k]);
       check->errors.push_back(error);
       check->measured_error = std::max(check->measured_error, error);
     }
     check->tolerance_met = check->measured_error <= reduction_settings.tolerance;
-    if (!check->tolerance_met)
-      std::cerr << tolerance_warning(check->measured_error, reduction_settings.tolerance) << "\n";
   }
   std::vector<emnet::PlotMarker> markers;
   {
+    show_phase(options, "modes for the resonance marker");
     const emnet::System system = model.network.assemble();
     const emnet::StaticResult rest = emnet::solve_static(system);
     emnet::ModalOptions modal;
@@ -1315,47 +1660,53 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
     const auto modes = emnet::run_modes(system, rest.operating_point, modal);
     if (modes.status.ok && !modes.modes.empty())
       markers.push_back({modes.modes[0].frequency_hz,
-                         "f1 = " + format("%.4f", modes.modes[0].frequency_hz) + " Hz"});
+                         "f1 = " + format("%.6g", modes.modes[0].frequency_hz) + " Hz"});
   }
   if (!results.empty())
     markers.push_back(
-        {frequencies[best], "sweep peak " + format("%.2f", frequencies[best]) + " Hz"});
+        {frequencies[best], "sweep peak " + format("%.6g", frequencies[best]) + " Hz"});
+  const double total = seconds_since(start);
+  end_progress(options);
+  if (check && !check->tolerance_met)
+    std::cerr << tolerance_warning(check->measured_error, reduction_settings.tolerance) << "\n";
 
-  if (!options.csv.empty()) {
-    std::vector<std::string> header{"switching_frequency_hz"};
-    for (const auto& probe : probes) {
-      header.push_back(probe.name + "_left_m");
-      header.push_back(probe.name + "_right_m");
-    }
-    std::vector<std::vector<double>> rows;
-    for (size_t k = 0; k < results.size(); ++k) {
-      std::vector<double> row{frequencies[k]};
-      for (size_t p = 0; p < probes.size(); ++p) {
-        row.push_back(results[k].minimum[p]);
-        row.push_back(results[k].maximum[p]);
+  auto write_files = [&] {
+    if (!options.csv.empty()) {
+      std::vector<std::string> header{"switching_frequency_hz"};
+      for (const auto& probe : probes) {
+        header.push_back(probe.name + "_left_" + probe.unit);
+        header.push_back(probe.name + "_right_" + probe.unit);
       }
-      rows.push_back(row);
+      write_csv_rows(options.csv, header, results.size(), [&](size_t k, auto& row) {
+        row.push_back(frequencies[k]);
+        for (size_t p = 0; p < probes.size(); ++p) {
+          row.push_back(results[k].minimum[p]);
+          row.push_back(results[k].maximum[p]);
+        }
+      });
     }
-    write_csv(options.csv, header, rows);
-  }
-  if (!sweep.plot.empty()) {
-    std::vector<emnet::LineSeries> series;
-    for (size_t p = 0; p < probes.size(); ++p) {
-      emnet::LineSeries left{probes[p].name + " left (negative) [mm]", frequencies, {}};
-      emnet::LineSeries right{probes[p].name + " right (positive) [mm]", frequencies, {}};
-      for (const auto& r : results) {
-        left.y.push_back(r.minimum[p] * 1e3);
-        right.y.push_back(r.maximum[p] * 1e3);
+    if (!sweep.plot.empty()) {
+      const std::string unit = plotted.unit == "m" ? "mm" : plotted.unit;
+      std::vector<emnet::LineSeries> series;
+      for (size_t p : plotted.indices) {
+        emnet::LineSeries left{probes[p].name + " left (negative) [" + unit + "]", frequencies, {}};
+        emnet::LineSeries right{
+            probes[p].name + " right (positive) [" + unit + "]", frequencies, {}};
+        for (const auto& r : results) {
+          left.y.push_back(r.minimum[p] * plotted.scale);
+          right.y.push_back(r.maximum[p] * plotted.scale);
+        }
+        series.push_back(left);
+        series.push_back(right);
       }
-      series.push_back(left);
-      series.push_back(right);
+      stop_if_interrupted();
+      check_plot(emnet::write_line_plot(
+          sweep.plot,
+          model.scene.name + ": periodic steady-state peak " +
+              (plotted.unit == "m" ? "deflection" : "values") + " vs switching frequency",
+          "switching frequency [Hz]", plotted.axis_label, series, markers));
     }
-    const auto status = emnet::write_line_plot(
-        sweep.plot,
-        model.scene.name + ": periodic steady-state peak deflection vs switching frequency",
-        "switching frequency [Hz]", "peak deflection [mm]", series, markers);
-    if (!status.ok) throw NumericalFailure("plot: " + status.message);
-  }
+  };
   if (options.json) {
     Json out;
     out["scene"] = model.scene.name;
@@ -1394,11 +1745,12 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
       out["reduction"] = reduced;
     }
     out["validity"] = validity_json(validity);
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
+    write_files();
     return validity_exit(validity);
   }
   print_header(model, model.network.assemble());
-  for (const auto& note : notes) std::cout << "note: " << note << "\n";
+  for (const auto& note : notes) std::cout << "note: " << shown(note) << "\n";
   std::cout << "periodic steady state, " << (sweep.reduce ? "reduced" : sweep.method)
             << (sweep.reduce ? " (modal coordinates of the kept modes, closed-form periodic state, "
                                "global extremes: bounded search, then Newton)"
@@ -1444,22 +1796,36 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
               << "\n";
   }
   std::cout << "\n";
+  // Deflections in mm when every output is one (as the default outputs are); else each output in
+  // its own unit, named in its column.
+  bool all_deflections = true;
+  for (const auto& probe : probes) all_deflections &= probe.unit == "m";
+  auto column_unit = [&](const emnet::Probe& probe) {
+    return all_deflections ? std::string() : " [" + probe.unit + "]";
+  };
+  auto in_table = [&](double value) { return all_deflections ? value * 1e3 : value; };
   std::printf("%10s", "f [Hz]");
   for (const auto& probe : probes)
-    std::printf(" %12s %12s", (probe.name + " left").c_str(), (probe.name + " right").c_str());
-  std::printf("   [mm]\n");
+    std::printf(" %12s %12s", shown(probe.name + " left" + column_unit(probe)).c_str(),
+                shown(probe.name + " right" + column_unit(probe)).c_str());
+  std::printf(all_deflections ? "   [mm]\n" : "\n");
   for (size_t k = 0; k < results.size(); ++k) {
-    std::printf("%10.4f", frequencies[k]);
+    std::printf("%10.7g", frequencies[k]);
     for (size_t p = 0; p < probes.size(); ++p)
-      std::printf(" %12.5f %12.5f", results[k].minimum[p] * 1e3, results[k].maximum[p] * 1e3);
+      std::printf(" %12.6g %12.6g", in_table(results[k].minimum[p]),
+                  in_table(results[k].maximum[p]));
     std::printf("\n");
   }
-  if (!results.empty())
-    std::printf("largest swing of %s at %.4g Hz: %.5f mm left, %.5f mm right\n",
-                probes[main_probe].name.c_str(), frequencies[best],
-                results[best].minimum[main_probe] * 1e3, results[best].maximum[main_probe] * 1e3);
+  if (!results.empty()) {
+    const std::string unit = all_deflections ? "mm" : probes[main_probe].unit;
+    std::printf("largest swing of %s at %.7g Hz: %.6g %s left, %.6g %s right\n",
+                shown(probes[main_probe].name).c_str(), frequencies[best],
+                in_table(results[best].minimum[main_probe]), shown(unit).c_str(),
+                in_table(results[best].maximum[main_probe]), shown(unit).c_str());
+  }
   for (const auto& m : markers) std::cout << "marker: " << m.label << "\n";
-  if (!sweep.plot.empty()) std::cout << "plot written to " << sweep.plot << "\n";
+  write_files();
+  if (!sweep.plot.empty()) std::cout << "plot written to " << shown(sweep.plot) << "\n";
   print_validity(validity);
   return validity_exit(validity);
 }
@@ -1484,12 +1850,16 @@ struct PeakTarget {
 
 StiffnessFit fit_stiffness(const CommonOptions& options, double target_hz, int mode_number) {
   CommonOptions trial = options;
+  trial.reporter = nullptr;  // the iterations are the step shown, not each model they build
   double stiffness = load_scene(options).beam.bending_stiffness;
   double frequency = 0.0;
   int iterations = 0;
   // Undamped frequencies scale as √EI exactly; damping and the electrical poles make the
   // update a fixed-point iteration, which converges in a few steps.
   for (iterations = 1; iterations <= 30; ++iterations) {
+    if (!keep_going(progress_of(options), iterations - 1, 30,
+                    "bending stiffness: fixed-point iterations (30 at most)"))
+      throw Interrupted("interrupted");
     trial.overrides = options.overrides;
     char value[64];
     std::snprintf(value, sizeof value, "%.17g", stiffness);
@@ -1540,6 +1910,7 @@ std::pair<double, double> periodic_extremes(emnet::Scene scene, const std::strin
   scene.drive.frequency = frequency_hz;
   const emnet::Model model = emnet::build_model(scene);
   const emnet::System system = model.network.assemble();
+  check_periodic_decomposition_size(system.size(), "--segments");
   std::vector<emnet::Probe> probes;
   for (const auto& probe : transient_probes(model))
     if (probe.name == probe_name) probes.push_back(probe);
@@ -1566,8 +1937,13 @@ double periodic_peak(const CommonOptions& options, const std::string& probe_name
 int run_identify(const CommonOptions& options, double target_hz, int mode_number,
                  const std::string& peak_text) {
   const auto start = std::chrono::steady_clock::now();
+  refuse_option(!options.probes.empty(), "--probe",
+                "identify has no probe outputs: it fits to --resonance, and with --peak "
+                "NAME=VALUE to the peak of output NAME");
+  refuse_option(!options.csv.empty(), "--csv",
+                "identify prints the fitted values (or --json), not a CSV table");
   if (!(target_hz > 0.0) || !std::isfinite(target_hz))
-    throw InputError("--resonance", "--resonance", "must be a positive frequency in Hz");
+    throw InputError("--resonance", "--resonance", "must be a positive frequency in Hz (> 0)");
   if (mode_number < 1) throw InputError("--mode", "--mode", "must be >= 1");
   // Only parameters the scene marks as identified or assumed are fitted: a value taken from the
   // paper or a data sheet is a given, not an unknown.
@@ -1614,7 +1990,12 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
     for (peak_rounds = 1; peak_rounds <= 10; ++peak_rounds) {
       // The peak falls monotonically with the loss factor: bisection in log η over [1e-5, 2].
       double low = 1e-5, high = 2.0;
+      int bisection_step = 0;
       auto peak_at = [&](double eta) {
+        if (!keep_going(progress_of(options), bisection_step++, 82,
+                        "loss factor: round " + std::to_string(peak_rounds) +
+                            " (10 at most), bisection steps (82 at most)"))
+          throw Interrupted("interrupted");
         return periodic_peak(with(eta, fit.stiffness), peak->probe, target_hz);
       };
       if (peak_at(low) < peak->value || peak_at(high) > peak->value)
@@ -1646,6 +2027,7 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
                                      emnet::drive_peak_voltages(fitted_scene));
   }
   const double total = seconds_since(start);
+  end_progress(options);
   // The command that re-identifies the values, for the scene's [provenance].
   std::string command =
       "emnet identify " + options.scene_path + " --resonance " + format("%.6g", target_hz);
@@ -1670,23 +2052,26 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
       out["peak_rounds"] = peak_rounds;
       out["validity"] = validity_json(*validity);
     }
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
     return validity ? validity_exit(*validity) : 0;
   }
   std::printf(
-      "identified beam.bending_stiffness = %.6e N*m^2: mode %d at %.9f Hz (target %.6g Hz), "
+      "identified beam.bending_stiffness = %.6e N*m^2: mode %d at %.10g Hz (target %.6g Hz), "
       "%d iteration(s), %s\n",
       stiffness, mode_number, frequency, target_hz, iterations, milliseconds(total).c_str());
   if (peak)
     std::printf(
         "identified damping.loss_factor = %.6e: periodic peak of %s at %.6g Hz = %.6e m "
         "(target %.6g m; DEAs as ideal voltage-driven forces), %d round(s)\n",
-        loss_factor, peak->probe.c_str(), target_hz, achieved_peak, peak->value, peak_rounds);
+        loss_factor, shown(peak->probe).c_str(), target_hz, achieved_peak, peak->value,
+        peak_rounds);
   std::printf("scene lines:\n  bending_stiffness = \"%.6e N*m^2\"\n", stiffness);
   if (peak) std::printf("  loss_factor = %.6e\n", loss_factor);
-  std::printf("provenance:\n  \"beam.bending_stiffness\" = \"identified: %s\"\n", command.c_str());
-  if (peak) std::printf("  \"damping.loss_factor\" = \"identified: %s\"\n", command.c_str());
-  for (const auto& choice : automatic_choices) std::cout << "note: " << choice.reason << "\n";
+  std::printf("provenance:\n  \"beam.bending_stiffness\" = \"identified: %s\"\n",
+              shown(command).c_str());
+  if (peak) std::printf("  \"damping.loss_factor\" = \"identified: %s\"\n", shown(command).c_str());
+  for (const auto& choice : automatic_choices)
+    std::cout << "note: " << shown(choice.reason) << "\n";
   if (validity) print_validity(*validity);
   return validity ? validity_exit(*validity) : 0;
 }
@@ -1704,23 +2089,29 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
 // symmetric square wave: a static offset that the resonance does not amplify.
 
 struct MismatchOptions {
-  double frequency = 0.0;  // 0: the scene's drive.frequency
-  std::string output;      // "": the last deflection output (dx4 on the fish fin)
+  std::optional<double> frequency;  // default: the scene's drive.frequency
+  std::string output;               // "": the last deflection output (dx4 on the fish fin)
   double change = 0.05;
 };
 
 int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cmd) {
   const auto start = std::chrono::steady_clock::now();
+  refuse_option(!options.probes.empty(), "--probe",
+                "mismatch compares one deflection output: name it with --output");
+  refuse_option(!options.csv.empty(), "--csv",
+                "mismatch prints its table (or --json), not a CSV file");
   const emnet::Scene scene = load_scene(options);
   if (scene.drive.kind != emnet::DriveKind::antagonistic || scene.drive.deas.size() != 2)
     throw InputError(scene.file, "drive.kind",
                      "mismatch needs the antagonistic drive of two DEAs (drive.kind = "
                      "\"antagonistic\", drive.deas = [A, B])");
   if (!(cmd.change > 0.0 && cmd.change < 0.5))
-    throw InputError("--change", "--change", "must be between 0 and 0.5 (a fraction)");
-  const double frequency = cmd.frequency > 0.0 ? cmd.frequency : scene.drive.frequency;
+    throw InputError("--change", "--change", "must be > 0 and < 0.5 (a fraction)");
+  const double frequency = cmd.frequency.value_or(scene.drive.frequency);
   if (!(frequency > 0.0) || !std::isfinite(frequency))
-    throw InputError("--frequency", "--frequency", "must be a positive frequency in Hz");
+    throw InputError(cmd.frequency ? "--frequency" : scene.file,
+                     cmd.frequency ? "--frequency" : "drive.frequency",
+                     "must be a positive frequency in Hz (> 0)");
   std::string output = cmd.output;
   if (output.empty()) {
     const emnet::Model model = emnet::build_model(scene);
@@ -1754,6 +2145,9 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
     const double left = std::abs(extremes.first), right = extremes.second;
     return (left - right) / (0.5 * (left + right));
   };
+  const long solves = 1 + 2 * static_cast<long>(cases.size());
+  if (!keep_going(progress_of(options), 0, solves, "periodic solves"))
+    throw Interrupted("interrupted");
   const auto nominal = periodic_extremes(scene, output, frequency, "--output");
   struct Row {
     std::string label, key;
@@ -1766,6 +2160,9 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
     for (const double x : {-cmd.change, cmd.change}) {
       emnet::Scene changed = scene;
       c.apply(changed, x);
+      if (!keep_going(progress_of(options), static_cast<long>(rows.size()) + 1, solves,
+                      "periodic solves"))
+        throw Interrupted("interrupted");
       const auto extremes = periodic_extremes(changed, output, frequency, "--output");
       rows.push_back({c.label, c.key, x, extremes, asymmetry(extremes)});
     }
@@ -1777,6 +2174,7 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
   const emnet::Validity validity =
       emnet::check_validity(scene, peaks, emnet::drive_peak_voltages(scene));
   const double total = seconds_since(start);
+  end_progress(options);
   if (options.json) {
     Json out = {{"automatic_choices", automatic_choices_json(scene.automatic_choices)},
                 {"output", output},
@@ -1792,25 +2190,26 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
                               {"asymmetry", rows[k].asymmetry},
                               {"asymmetry_per_unit_change", rows[k].asymmetry / cmd.change}});
     out["validity"] = validity_json(validity);
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
     return validity_exit(validity);
   }
   std::printf(
       "scene %s: left/right asymmetry of %s switched at %s, DEAs as ideal voltage-driven "
       "forces\n",
-      scene.name.c_str(), output.c_str(), si(frequency, "Hz").c_str());
+      shown(scene.name).c_str(), shown(output).c_str(), si(frequency, "Hz").c_str());
   std::printf("asymmetry = (|left| - right) / mean, > 0: larger to the left (negative) side\n");
   std::printf("accuracy: exact periodic states, extremes to 1e-11 of the peak\n");
   std::printf("cost: %d periodic solves, total %s\n", static_cast<int>(rows.size()) + 1,
               milliseconds(total).c_str());
-  for (const auto& choice : scene.automatic_choices) std::cout << "note: " << choice.reason << "\n";
+  for (const auto& choice : scene.automatic_choices)
+    std::cout << "note: " << shown(choice.reason) << "\n";
   std::printf("\n");
   std::printf("%-28s %8s %12s %12s %12s %16s\n", "mismatch", "change", "left [mm]", "right [mm]",
               "asymmetry", "per 1 % change");
-  std::printf("%-28s %8s %12.5f %12.5f %11.4f%% %16s\n", "none", "", nominal.first * 1e3,
+  std::printf("%-28s %8s %12.6g %12.6g %11.4f%% %16s\n", "none", "", nominal.first * 1e3,
               nominal.second * 1e3, 100.0 * asymmetry(nominal), "");
   for (const Row& row : rows)  // asymmetry [%] per 1 % of change = asymmetry / |change|
-    std::printf("%-28s %+7.1f%% %12.5f %12.5f %11.4f%% %15.5f%%\n", row.label.c_str(),
+    std::printf("%-28s %+7.1f%% %12.6g %12.6g %11.4f%% %15.6g%%\n", shown(row.label).c_str(),
                 100.0 * row.change, row.extremes.first * 1e3, row.extremes.second * 1e3,
                 100.0 * row.asymmetry, row.asymmetry / cmd.change);
   print_validity(validity);
@@ -1831,11 +2230,16 @@ struct SensitivityCommandOptions {
 
 int run_sensitivity_command(const CommonOptions& options, const SensitivityCommandOptions& cmd) {
   const auto start = std::chrono::steady_clock::now();
+  refuse_option(!options.probes.empty(), "--probe",
+                "sensitivity differentiates resonance frequencies, not probe outputs");
+  refuse_option(!options.csv.empty(), "--csv",
+                "sensitivity prints its table (or --json), not a CSV file");
   if (cmd.modes < 1) throw InputError("--modes", "--modes", "must be >= 1");
   const emnet::Scene scene = load_scene(options);
   emnet::SensitivityOptions sensitivity_options;
   sensitivity_options.modes = cmd.modes;
   sensitivity_options.check = cmd.check;
+  sensitivity_options.progress = progress_of(options);
   const emnet::SensitivityResult result =
       emnet::run_sensitivity(scene, cmd.parameters, sensitivity_options);
   if (!result.status.ok) throw NumericalFailure("sensitivity: " + result.status.message);
@@ -1845,6 +2249,7 @@ int run_sensitivity_command(const CommonOptions& options, const SensitivityComma
       finite(mode.normalised, "the normalised sensitivity to " + parameter.parameter.key);
     }
   const double total = seconds_since(start);
+  end_progress(options);
   const auto& modes = result.modes;
   if (options.json) {
     Json out;
@@ -1882,15 +2287,16 @@ int run_sensitivity_command(const CommonOptions& options, const SensitivityComma
     out["cost"] = {{"sensitivity_seconds", result.seconds - result.check_seconds},
                    {"check_seconds", result.check_seconds},
                    {"total_seconds", total}};
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
     return 0;
   }
-  std::cout << "scene " << scene.name << " (" << scene.file << "): " << scene.beam.segments
-            << " segments\n";
-  for (const auto& choice : scene.automatic_choices) std::cout << "note: " << choice.reason << "\n";
+  std::cout << "scene " << shown(scene.name) << " (" << shown(scene.file)
+            << "): " << scene.beam.segments << " segments\n";
+  for (const auto& choice : scene.automatic_choices)
+    std::cout << "note: " << shown(choice.reason) << "\n";
   std::cout << "modes:";
   for (size_t k = 0; k < modes.size(); ++k)
-    std::printf(" f%zu = %.6f Hz (natural %.6f Hz)%s", k + 1, modes[k].frequency_hz,
+    std::printf(" f%zu = %.7g Hz (natural %.7g Hz)%s", k + 1, modes[k].frequency_hz,
                 modes[k].natural_frequency_hz, k + 1 < modes.size() ? "," : "\n");
   std::cout << "method: first-order eigenvalue perturbation, ds/dp = -y^H (dG/dp + s dC/dp) x / "
                "(y^H C x), matrices differenced at p(1 +/- 1e-6); left-vector residual "
@@ -1910,12 +2316,12 @@ int run_sensitivity_command(const CommonOptions& options, const SensitivityComma
   }
   std::printf("\n");
   for (const auto& parameter : result.parameters) {
-    std::printf("%-32s %13.6g %-6s", parameter.parameter.key.c_str(), parameter.parameter.value,
-                parameter.parameter.unit.c_str());
+    std::printf("%-32s %13.6g %-6s", shown(parameter.parameter.key).c_str(),
+                parameter.parameter.value, shown(parameter.parameter.unit).c_str());
     for (const auto& s : parameter.modes) {
       // |S| below 1e-12 is rounding of an exact zero (a parameter the modes do not see).
       const bool zero = std::abs(s.normalised) < 1e-12;
-      std::printf(" %13.5g %+9.5f", zero ? 0.0 : s.frequency_derivative, zero ? 0.0 : s.normalised);
+      std::printf(" %13.5g %+9.6g", zero ? 0.0 : s.frequency_derivative, zero ? 0.0 : s.normalised);
       if (cmd.check) std::printf(" %8.1e (%8.1e)", s.check_difference, s.check_error_estimate);
     }
     std::printf("\n");
@@ -1941,7 +2347,7 @@ struct NetlistOptions {
   std::optional<int> points;
   std::string scale;
   // tran, as `emnet tran`
-  double switching = 0.0;
+  std::optional<double> switching;  // default: the scene's drive.frequency
   double periods = 10.0;
   std::string start = "rest";
   int points_per_period = 100;
@@ -1961,42 +2367,29 @@ int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
                                                        : emnet::SpiceAnalysis::op;
   deck_options.control = netlist.control;
   if (deck_options.analysis == emnet::SpiceAnalysis::tran) {
-    if (netlist.switching != 0.0) {
-      if (!(netlist.switching > 0.0) || !std::isfinite(netlist.switching))
-        throw InputError("--switching", "--switching", "must be a positive frequency in Hz");
-      options.overrides.push_back("drive.frequency=" + format("%.17g", netlist.switching));
+    if (netlist.switching) {
+      if (!(*netlist.switching > 0.0) || !std::isfinite(*netlist.switching))
+        throw InputError("--switching", "--switching", "must be a positive frequency in Hz (> 0)");
+      options.overrides.push_back("drive.frequency=" + format("%.17g", *netlist.switching));
     }
     if (!(netlist.periods > 0.0) || netlist.periods > 1e6)
-      throw InputError("--periods", "--periods", "must be > 0 and at most 1e6");
+      throw InputError("--periods", "--periods", "must be > 0 and at most 1e6 (inclusive)");
     if (netlist.points_per_period < 2 || netlist.points_per_period > 100000)
       throw InputError("--points-per-period", "--points-per-period",
-                       "must be between 2 and 100000");
+                       "must be from 2 to 100000 (inclusive)");
     if (!(netlist.reltol > 0.0 && netlist.reltol < 1.0))
-      throw InputError("--reltol", "--reltol", "must be between 0 and 1");
+      throw InputError("--reltol", "--reltol", "must be > 0 and < 1");
     if (!(netlist.max_step >= 0.0) || !std::isfinite(netlist.max_step))
       throw InputError("--max-step", "--max-step", "must be >= 0 s");
   }
-  std::vector<std::string> shown_overrides = options.overrides;
-  if (options.segments != 0)
-    shown_overrides.push_back("beam.segments=" + std::to_string(options.segments));
-  const emnet::Model model =
-      emnet::build_model(load_scene(options), electrical_probe_requested(options));
+  const std::vector<std::string> shown_overrides = overrides_with_segments(options);
+  emnet::Scene scene = load_scene(options);
+  if (deck_options.analysis == emnet::SpiceAnalysis::ac)
+    deck_options.ac = checked_ac_spec(scene.ac, netlist.from_text, netlist.to_text, netlist.points,
+                                      netlist.scale);
+  const emnet::Model model = emnet::build_model(scene, electrical_probe_requested(options));
   deck_options.overrides = shown_overrides;
   if (!options.probes.empty()) deck_options.outputs = selected_probes(model, options);
-  if (deck_options.analysis == emnet::SpiceAnalysis::ac) {
-    emnet::AcSpec spec = model.scene.ac;
-    if (!netlist.from_text.empty()) spec.from = parse_frequency(netlist.from_text, "--from");
-    if (!netlist.to_text.empty()) spec.to = parse_frequency(netlist.to_text, "--to");
-    if (netlist.points) spec.points = *netlist.points;
-    if (!netlist.scale.empty()) spec.log = netlist.scale == "log";
-    if (spec.from < 0.0) throw InputError("--from", "--from", "must be >= 0 Hz");
-    if (!(spec.to > spec.from)) throw InputError("--to", "--to", "must be greater than --from");
-    if (spec.log && spec.from <= 0.0)
-      throw InputError("--from", "--from", "a log sweep needs --from > 0");
-    if (spec.points < 2 || spec.points > 1000000)
-      throw InputError("--points", "--points", "must be between 2 and 1000000");
-    deck_options.ac = spec;
-  }
   if (deck_options.analysis == emnet::SpiceAnalysis::tran) {
     const double frequency = model.scene.drive.frequency;
     if (!(frequency > 0.0))
@@ -2011,16 +2404,28 @@ int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
         netlist.start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
   }
   const emnet::SpiceDeck deck = emnet::write_spice_deck(model, deck_options);
+  // What the deck asks ngspice to store: every output at every output step (or frequency).
+  const double deck_outputs = static_cast<double>(deck.outputs.size()) + 1.0;
+  if (deck_options.analysis == emnet::SpiceAnalysis::tran)
+    check_stored_values(
+        (std::round(netlist.periods * netlist.points_per_period) + 1.0) * deck_outputs,
+        "the deck's transient (" + format("%.6g", netlist.periods) + " periods x " +
+            std::to_string(netlist.points_per_period) + " output steps, " +
+            std::to_string(deck.outputs.size()) + " outputs) in ngspice",
+        "--periods", "lower --periods or --points-per-period, or give fewer --probe");
+  if (deck_options.analysis == emnet::SpiceAnalysis::ac)
+    check_stored_values(deck_options.ac->points * 2.0 * deck_outputs,
+                        "the deck's AC sweep (" + std::to_string(deck_options.ac->points) +
+                            " frequencies, " + std::to_string(deck.outputs.size()) +
+                            " complex outputs) in ngspice",
+                        "--points", "lower --points or give fewer --probe");
   if (netlist.output.empty()) {
     std::cout << deck.text;
     return 0;
   }
-  {
-    std::ofstream out(netlist.output);
-    if (!out) throw InputError("-o", netlist.output, "cannot write file");
-    out << deck.text;
-    if (!out) throw InputError("-o", netlist.output, "cannot write file");
-  }
+  stop_if_interrupted();
+  if (const emnet::Status status = emnet::write_output_file(netlist.output, deck.text); !status.ok)
+    throw FileError("-o: " + status.message);
   if (options.json) {
     const emnet::System system = model.network.assemble();
     Json out;
@@ -2039,12 +2444,12 @@ int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
                                 {"unit", o.unit},
                                 {"description", o.description}});
     out["notes"] = deck.notes;
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
     return 0;
   }
   std::cout << "SPICE deck (" << emnet::spice_analysis_name(deck.analysis) << ") written to "
-            << netlist.output << ": " << deck.outputs.size() << " outputs\n";
-  for (const auto& note : deck.notes) std::cout << "note: " << note << "\n";
+            << shown(netlist.output) << ": " << deck.outputs.size() << " outputs\n";
+  for (const auto& note : deck.notes) std::cout << "note: " << shown(note) << "\n";
   return 0;
 }
 
@@ -2110,7 +2515,7 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
   if (!options.probes.empty())
     throw InputError("--probe", "--probe", "crosscheck compares every output of the decks");
   if (!(cross.timeout > 0.0) || cross.timeout > 86400.0)
-    throw InputError("--timeout", "--timeout", "must be > 0 s and at most 86400 s");
+    throw InputError("--timeout", "--timeout", "must be > 0 s and at most 86400 s (inclusive)");
   emnet::CrosscheckOptions check;
   check.analyses = emnet::parse_crosscheck_analyses(cross.analyses, "--analysis");
   check.ngspice.timeout_seconds = cross.timeout;
@@ -2122,13 +2527,14 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
   check.tran_periods = cross.periods;
   check.tran_reltol = cross.reltol;
   check.tran_points_per_period = cross.points_per_period;
-  check.overrides = options.overrides;
-  if (options.segments != 0)
-    check.overrides.push_back("beam.segments=" + std::to_string(options.segments));
+  check.overrides = overrides_with_segments(options);
   const emnet::Model model =
       emnet::build_model(load_scene(options), electrical_probe_requested(options));
+  show_phase(options, "ngspice and emnet analyses");
   const emnet::CrosscheckReport report = emnet::run_crosscheck(model, check);
+  stop_if_interrupted();
   const double total = seconds_since(start);
+  end_progress(options);
   const bool pass = report.all_pass();
   if (options.json) {
     Json out;
@@ -2158,23 +2564,23 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
                                 {"emnet_what", t.emnet_what}});
     out["notes"] = report.notes;
     out["total_seconds"] = total;
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
   } else {
     const emnet::System system = model.network.assemble();
     print_header(model, system);
-    std::cout << "ngspice backend: " << (report.backend.empty() ? "(none ran)" : report.backend)
-              << "\n\n";
+    std::cout << "ngspice backend: "
+              << (report.backend.empty() ? "(none ran)" : shown(report.backend)) << "\n\n";
     std::printf("%-6s %-38s %11s %10s %-4s  %s\n", "", "quantity", "largest", "tolerance", "",
                 "where");
     for (const auto& row : report.rows)
       std::printf("%-6s %-38s %11.3e %10.1e %-4s  %s\n",
-                  emnet::crosscheck_analysis_name(row.analysis), row.quantity.c_str(),
+                  emnet::crosscheck_analysis_name(row.analysis), shown(row.quantity).c_str(),
                   row.largest_difference, row.tolerance, row.pass ? "pass" : "FAIL",
-                  row.where.c_str());
+                  shown(row.where).c_str());
     std::cout << "\ndifferences relative to:\n";
     for (const auto& row : report.rows)
-      std::cout << "  " << emnet::crosscheck_analysis_name(row.analysis) << " " << row.quantity
-                << ": " << row.basis << "\n";
+      std::cout << "  " << emnet::crosscheck_analysis_name(row.analysis) << " "
+                << shown(row.quantity) << ": " << shown(row.basis) << "\n";
     if (!report.timings.empty()) {
       std::cout << "\nwall time, same run:\n";
       std::printf("%-6s %12s %12s %12s  %s\n", "", "ngspice", "(+ start)", "emnet", "emnet did");
@@ -2182,13 +2588,14 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
         std::printf("%-6s %12s %12s %12s  %s\n", emnet::crosscheck_analysis_name(t.analysis),
                     milliseconds(t.ngspice_seconds).c_str(),
                     milliseconds(t.ngspice_total_seconds).c_str(),
-                    milliseconds(t.emnet_seconds).c_str(), t.emnet_what.c_str());
+                    milliseconds(t.emnet_seconds).c_str(), shown(t.emnet_what).c_str());
     }
-    for (const auto& note : report.notes) std::cout << "note: " << note << "\n";
+    for (const auto& note : report.notes) std::cout << "note: " << shown(note) << "\n";
     std::cout << "total " << milliseconds(total) << "\n";
   }
   if (!report.status.ok) {
-    std::cerr << "emnet: crosscheck failed: " << report.status.message << "\n";
+    std::cerr << "emnet: crosscheck failed: " << emnet::terminal_lines(report.status.message)
+              << "\n";
     return 3;
   }
   if (!pass) {
@@ -2234,7 +2641,7 @@ void add_common(CLI::App* command, CommonOptions& options) {
   command->add_option("scene", options.scene_path, "scene file (TOML), e.g. netlists/fishfin.toml")
       ->required();
   command->add_option("--segments", options.segments,
-                      "number of beam segments (same as --set beam.segments=N)");
+                      "number of beam segments, >= 1 (same as --set beam.segments=N)");
   command
       ->add_option("--set", options.overrides,
                    "override a scene key: --set beam.length=0.2 or --set \"drive.voltage=3 kV\"")
@@ -2247,6 +2654,14 @@ void add_common(CLI::App* command, CommonOptions& options) {
       ->allow_extra_args(false);
   command->add_flag("--json", options.json, "print machine-readable JSON instead of tables");
   command->add_option("--csv", options.csv, "also write the result table to this CSV file");
+  auto* progress = command->add_flag(
+      "--progress", options.progress,
+      "show progress on standard error also when it is not a terminal (a line per step "
+      "and per second)");
+  command
+      ->add_flag("--quiet", options.quiet,
+                 "no progress line (by default shown on a terminal for runs over a second)")
+      ->excludes(progress);
 }
 
 }  // namespace
@@ -2284,8 +2699,6 @@ int main(int argc, char** argv) {
                           "skip the N/2N discretisation error estimate");
 
   AcOptions ac_options;
-  std::string from_text, to_text;
-  int points = -1;
   auto* ac_command = app.add_subcommand(
       "ac",
       "small-signal frequency response of the probes: magnitude and phase.\n"
@@ -2295,9 +2708,12 @@ int main(int argc, char** argv) {
       "bias_differential = +v / -v about V0 on the two DEAs (linearised at V0);\n"
       "single = v about V0 on one DEA; none = the scene's loads with their values as amplitudes.");
   add_common(ac_command, options);
-  ac_command->add_option("--from", from_text, "start frequency [Hz] (default: scene ac.from)");
-  ac_command->add_option("--to", to_text, "stop frequency [Hz] (default: scene ac.to)");
-  ac_command->add_option("--points", points, "number of frequencies (default: scene ac.points)");
+  ac_command->add_option("--from", ac_options.from,
+                         "start frequency [Hz] (default: scene ac.from)");
+  ac_command->add_option("--to", ac_options.to,
+                         "stop frequency [Hz] (default: scene ac.to; with --points 1: --from)");
+  ac_command->add_option("--points", ac_options.points,
+                         "number of frequencies, 1 to 1000000 (default: scene ac.points)");
   ac_command->add_option("--scale", ac_options.scale, "lin or log")
       ->check(CLI::IsMember({"lin", "log"}));
   ac_command->add_option("--plot", ac_options.plot,
@@ -2423,6 +2839,21 @@ int main(int argc, char** argv) {
   CLI::App* crosscheck_command = nullptr;
   add_crosscheck_command(app, options, crosscheck_options, crosscheck_command);
 
+  // An unknown command would otherwise be taken for a scene file ("A subcommand is required").
+  std::vector<std::string> command_names;
+  std::string commands;
+  for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    command_names.push_back(command->get_name());
+    commands += (commands.empty() ? "" : ", ") + command->get_name();
+  }
+  if (argc < 2 || (argv[1][0] != '-' && std::find(command_names.begin(), command_names.end(),
+                                                  argv[1]) == command_names.end())) {
+    std::cerr << "emnet: error: "
+              << (argc < 2 ? std::string("a command is required")
+                           : "unknown command '" + shown(argv[1]) + "'")
+              << "; the commands are " << commands << " (see emnet --help)\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -2434,27 +2865,62 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  // Ctrl-C sets a flag that the analyses poll (terminal_progress.hpp); the progress line
+  // goes to standard error. `modes` and `crosscheck` poll neither (their analyses have no
+  // steps to stop at, ngspice runs on its own), so Ctrl-C keeps its default there: it ends the
+  // program at once (an output file is renamed into place only when complete).
+  std::optional<emnet_cli::InterruptHandler> interrupt_handler;
+  if (!*modes_command && !*crosscheck_command) interrupt_handler.emplace();
+  using Mode = emnet_cli::TerminalProgress::Mode;
+  emnet_cli::TerminalProgress reporter("emnet " + app.get_subcommands().front()->get_name(),
+                                       options.quiet || *modes_command ? Mode::quiet
+                                       : options.progress              ? Mode::forced
+                                                                       : Mode::automatic);
+  options.reporter = &reporter;
+  // One message for a failure: after the progress line, control characters escaped; an
+  // interruption wins over the failure it caused.
+  auto failed = [&](int status, const std::string& kind, const std::string& what) {
+    reporter.finish();
+    if (emnet_cli::InterruptHandler::interrupted()) {
+      std::cerr << "emnet: interrupted (Ctrl-C): stopped, no output file written\n";
+      return 130;
+    }
+    std::cerr << "emnet: " << kind << ": "
+              << (status == 2 ? emnet::terminal_text(what) : emnet::terminal_lines(what)) << "\n";
+    return status;
+  };
+  int status = 1;
   try {
-    if (points != -1) ac_options.points = points;
-    if (*static_command) return run_static(options);
-    if (*modes_command) return run_modes_command(options, modes_options);
-    if (*ac_command) return run_ac_command(options, ac_options, from_text, to_text);
-    if (*identify_command) return run_identify(options, target_hz, mode_number, peak_text);
-    if (*tran_command) return run_tran_command(options, tran_options);
-    if (*sweep_command) return run_sweep_command(options, sweep_options);
-    if (*sensitivity_command) return run_sensitivity_command(options, sensitivity_options);
-    if (*mismatch_command) return run_mismatch_command(options, mismatch_options);
-    if (*netlist_command) return run_netlist_command(options, netlist_options);
-    if (*crosscheck_command) return run_crosscheck_command(options, crosscheck_options);
+    if (*static_command) status = run_static(options);
+    if (*modes_command) status = run_modes_command(options, modes_options);
+    if (*ac_command) status = run_ac_command(options, ac_options);
+    if (*identify_command) status = run_identify(options, target_hz, mode_number, peak_text);
+    if (*tran_command) status = run_tran_command(options, tran_options);
+    if (*sweep_command) status = run_sweep_command(options, sweep_options);
+    if (*sensitivity_command) status = run_sensitivity_command(options, sensitivity_options);
+    if (*mismatch_command) status = run_mismatch_command(options, mismatch_options);
+    if (*netlist_command) status = run_netlist_command(options, netlist_options);
+    if (*crosscheck_command) status = run_crosscheck_command(options, crosscheck_options);
   } catch (const InputError& e) {
-    std::cerr << "emnet: error: " << e.what() << "\n";
-    return 2;
+    status = failed(2, "error", e.what());
+  } catch (const FileError& e) {
+    status = failed(2, "error", e.what());
+  } catch (const Interrupted& e) {
+    status = failed(130, "interrupted", e.what());
   } catch (const NumericalFailure& e) {
-    std::cerr << "emnet: numerical failure: " << e.what() << "\n";
-    return 3;
+    status = failed(3, "numerical failure", e.what());
   } catch (const std::exception& e) {
-    std::cerr << "emnet: internal error: " << e.what() << "\n";
-    return 1;
+    status = failed(1, "internal error", e.what());
   }
-  return 1;
+  reporter.finish();
+  // The result printed is output too: a full disk or a closed file behind standard output is
+  // an error, not a silent loss.
+  std::cout.flush();
+  const bool lost = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+  if (lost) {
+    std::cerr << "emnet: error: cannot write the result to standard output ("
+              << std::strerror(errno) << ")\n";
+    return status == 0 ? 2 : status;
+  }
+  return status;
 }

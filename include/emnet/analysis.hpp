@@ -12,8 +12,18 @@
 #include "emnet/errors.hpp"
 #include "emnet/model.hpp"
 #include "emnet/network.hpp"
+#include "emnet/progress.hpp"
 
 namespace emnet {
+
+// A linear solve whose relative residual ‖A·x − b‖/‖b‖ is above this, or not finite, has not
+// solved its system: the analyses return a failed Status then (static, AC, the exact periodic
+// state), never a result. Rounding of the equilibrated systems is 1e-16..1e-13; 1e-8 leaves
+// room for ill-conditioned but meaningful networks and none for a garbage answer.
+inline constexpr double kResidualLimit = 1e-8;
+// The failed Status for `residual` of `what` above kResidualLimit or not finite; success
+// otherwise.
+Status check_residual(double residual, const std::string& what);
 
 // ---- static / operating point -----------------------------------------------------------
 //
@@ -27,13 +37,14 @@ namespace emnet {
 struct StaticOptions {
   double tolerance = 1e-12;  // Newton: relative step size
   int max_iterations = 50;
+  Progress* progress = nullptr;  // a report per Newton iteration; cancelled: Status "cancelled"
 };
 
 struct StaticResult {
   Status status;
   Eigen::VectorXd state;            // z, see above
   Eigen::VectorXd operating_point;  // y at rest: velocities 0, everything else from z
-  double relative_residual = 0.0;   // ‖K·z + g − b‖ / ‖b‖
+  double relative_residual = 0.0;   // ‖K·z + g − b‖ / ‖b‖ (above kResidualLimit: failed)
   int newton_iterations = 0;
   double seconds = 0.0;
 };
@@ -81,6 +92,10 @@ Eigen::SparseMatrix<double> linearised_g(const System& system, const Eigen::Vect
 // is the static response to B_ac (the limit of V/(jω)).
 std::vector<double> frequency_grid(double from, double to, int points, bool log);
 
+struct AcOptions {
+  Progress* progress = nullptr;  // one report per frequency; cancelled: Status "cancelled"
+};
+
 struct AcResult {
   Status status;
   std::vector<double> frequencies;                        // Hz
@@ -91,8 +106,10 @@ struct AcResult {
   double seconds = 0.0;
 };
 
+// A relative residual above kResidualLimit at any frequency is a failed Status naming it.
 AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
-                const std::vector<double>& frequencies, const std::vector<Probe>& probes);
+                const std::vector<double>& frequencies, const std::vector<Probe>& probes,
+                const AcOptions& options = {});
 std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y, double omega);
 
 // ---- modal -------------------------------------------------------------------------------

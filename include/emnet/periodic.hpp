@@ -23,6 +23,7 @@
 #include "emnet/errors.hpp"
 #include "emnet/model.hpp"
 #include "emnet/network.hpp"
+#include "emnet/progress.hpp"
 
 namespace emnet {
 
@@ -34,7 +35,7 @@ struct PeriodicResult {
   std::vector<double> minimum_time, maximum_time;  // where, in [0, T)
   std::vector<double> times;                       // samples over one period
   std::vector<std::vector<double>> values;         // [probe][sample]
-  double periodicity_residual = 0.0;  // ‖x(T) − x(0)‖ / ‖x(0)‖ of the solution
+  double periodicity_residual = 0.0;  // ‖x(T) − x(0)‖ / ‖x(0)‖; above 1e-8: failed
   int newton_iterations = 0;          // shooting
   double seconds = 0.0;
 };
@@ -54,8 +55,11 @@ class PeriodicSolver {
   Status status_;
 };
 
-// Shooting with IDA at relative tolerance `rtol`.
+// Shooting with IDA at relative tolerance `rtol`. `progress` is for cancellation only (Status
+// "cancelled"): the one-period IDA runs of a solve do not report, a sweep over frequencies does.
+// A periodicity residual ‖x(T) − x(0)‖/‖x(0)‖ above kResidualLimit (analysis.hpp) is a failure.
 PeriodicResult run_periodic_shooting(const System& system, const std::vector<Probe>& probes,
-                                     double period, double rtol = 1e-9, int samples = 256);
+                                     double period, double rtol = 1e-9, int samples = 256,
+                                     const Progress* progress = nullptr);
 
 }  // namespace emnet

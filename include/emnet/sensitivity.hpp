@@ -38,6 +38,7 @@
 
 #include "emnet/analysis.hpp"
 #include "emnet/errors.hpp"
+#include "emnet/progress.hpp"
 #include "emnet/scene.hpp"
 
 namespace emnet {
@@ -64,6 +65,7 @@ struct SensitivityOptions {
   double matrix_relative_step = 1e-6;  // δ of the matrices' central difference
   bool check = false;                  // also difference the poles themselves
   double check_relative_step = 1e-4;   // h of that check (and 2h for its error estimate)
+  Progress* progress = nullptr;        // one report per parameter; cancelled: Status "cancelled"
 };
 
 struct ModeSensitivity {

@@ -17,6 +17,7 @@
 #include "emnet/errors.hpp"
 #include "emnet/model.hpp"
 #include "emnet/network.hpp"
+#include "emnet/progress.hpp"
 
 namespace emnet {
 
@@ -35,6 +36,9 @@ struct TransientOptions {
   // IDA only: start from this displacement-form state instead (its differential components;
   // the algebraic ones are made consistent). Used by shooting.
   std::optional<Eigen::VectorXd> initial_state;
+  // One report per output time; when cancelled, the run stops at the next output time (IDA: or
+  // the next return of its solver) with Status "cancelled".
+  Progress* progress = nullptr;
 };
 
 struct IntegratorStatistics {
@@ -67,7 +71,8 @@ TransientResult run_transient_ida(const System& system, const std::vector<Probe>
 std::vector<double> interval_ends(const System& system, double end_time);
 
 // Exact solution for a linear network whose sources are piecewise constant (zero rise time):
-// a matrix exponential per constant interval. Fails (status) for other networks.
+// a matrix exponential per constant interval. Fails (status) for other networks, and when an
+// output is not finite.
 TransientResult run_transient_exact(const System& system, const std::vector<Probe>& probes,
                                     const TransientOptions& options);
 

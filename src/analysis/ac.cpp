@@ -2,6 +2,7 @@
 // circuit matrices) with the symbolic analysis done once for the sweep.
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "complex_klu.hpp"
 #include "emnet/analysis.hpp"
@@ -12,7 +13,13 @@ namespace emnet {
 
 namespace {
 constexpr double two_pi = 6.283185307179586476925286766559;
+
+std::string hz(double f) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.9g Hz", f);
+  return text;
 }
+}  // namespace
 
 std::vector<double> frequency_grid(double from, double to, int points, bool log) {
   std::vector<double> grid;
@@ -33,13 +40,16 @@ std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y,
 }
 
 AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
-                const std::vector<double>& frequencies, const std::vector<Probe>& probes) {
+                const std::vector<double>& frequencies, const std::vector<Probe>& probes,
+                const AcOptions& options) {
   Timed<AcResult> timed;
   AcResult& result = timed.result;
   result.frequencies = frequencies;
   result.values.assign(probes.size(), {});
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   using ComplexMatrix = Eigen::SparseMatrix<std::complex<double>>;
+  if (!keep_going(options.progress, 0, 0, "AC matrices: equilibration and KLU's symbolic analysis"))
+    return finish(cancelled_status());
   const Eigen::SparseMatrix<double> g_matrix = linearised_g(system, operating_point);
   const Eigen::VectorXcd rhs = system.b_ac();
   const double rhs_norm = rhs.norm();
@@ -69,7 +79,11 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
   double pivoted_residual = -1.0;  // none yet: the first frequency searches pivots
 
   std::unique_ptr<StaticOperator> static_operator;
-  for (double f : frequencies) {
+  for (size_t step = 0; step < frequencies.size(); ++step) {
+    if (!keep_going(options.progress, static_cast<long>(step),
+                    static_cast<long>(frequencies.size()), "AC frequencies"))
+      return finish(cancelled_status());
+    const double f = frequencies[step];
     const double omega = two_pi * f;
     Eigen::VectorXcd y;
     if (omega == 0.0) {
@@ -80,6 +94,12 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
       if (static_operator->excites_divided_rows(rhs))
         return finish(Status::failure("at f = 0: a source drives a constant velocity"));
       if (!static_operator->solve(rhs, z, why)) return finish(Status::failure("at f = 0: " + why));
+      const double residual =
+          (static_operator->matrix().cast<std::complex<double>>() * z - rhs).norm() / rhs_norm;
+      result.max_relative_residual = std::max(result.max_relative_residual, residual);
+      if (Status accurate = check_residual(residual, "the AC solve at f = 0 (static limit)");
+          !accurate.ok)
+        return finish(accurate);
       for (size_t p = 0; p < probes.size(); ++p) {
         std::complex<double> sum = 0.0;
         for (const auto& [index, coefficient] : probes[p].terms) {
@@ -99,14 +119,13 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
     for (bool pivoting : {false, true}) {
       if (!lu.factor(matrix, pivoting)) {
         if (!pivoting) continue;
-        return finish(Status::failure("the AC matrix is singular at f = " + std::to_string(f) +
-                                      " Hz (an undamped pole exactly on the grid?)"));
+        return finish(Status::failure("the AC matrix is singular at f = " + hz(f) +
+                                      " (an undamped pole exactly on the grid?)"));
       }
       y = scaled_rhs;
       if (!lu.solve(y) || !y.allFinite()) {
         if (!pivoting) continue;
-        return finish(Status::failure(
-            "the AC solve gave non-finite values at f = " + std::to_string(f) + " Hz"));
+        return finish(Status::failure("the AC solve gave non-finite values at f = " + hz(f)));
       }
       residual = (matrix * y - scaled_rhs).norm() / scaled_rhs_norm;
       if (pivoting) {
@@ -117,6 +136,8 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
       if (residual <= std::max(1e-13, 4 * pivoted_residual)) break;
     }
     result.max_relative_residual = std::max(result.max_relative_residual, residual);
+    if (Status accurate = check_residual(residual, "the AC solve at f = " + hz(f)); !accurate.ok)
+      return finish(accurate);
     y = scaling.column.cast<std::complex<double>>().cwiseProduct(y);
     for (size_t p = 0; p < probes.size(); ++p)
       result.values[p].push_back(probe_phasor(probes[p], y, omega));

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "displacement_form.hpp"
+#include "emnet/analysis.hpp"
 #include "emnet/transient.hpp"
 #include "exponential_series.hpp"
 #include "state_space.hpp"
@@ -81,7 +82,7 @@ Status periodic_interval_starts(const Eigen::VectorXcd& lambda, const std::vecto
     xi = advance(xi, i);
   }
   residual = (xi - start_of[0]).norm() / std::max(start_of[0].norm(), 1e-300);
-  return Status::success();
+  return check_residual(residual, "periodic state x(T) = x(0)");
 }
 
 void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
@@ -371,7 +372,8 @@ PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Pro
 }
 
 PeriodicResult run_periodic_shooting(const System& system, const std::vector<Probe>& probes,
-                                     double period, double rtol, int samples) {
+                                     double period, double rtol, int samples,
+                                     const Progress* progress) {
   Timed<PeriodicResult> timed;
   PeriodicResult& result = timed.result;
   result.method = "shooting";
@@ -402,9 +404,11 @@ PeriodicResult run_periodic_shooting(const System& system, const std::vector<Pro
       basis = svd.matrixV().rightCols(nd - rank);
     }
     const Eigen::Index nv = basis.cols();
+    CancellationOnly cancellation(progress);
     TransientOptions options;
     options.end_time = period;
     options.relative_tolerance = rtol;
+    options.progress = &cancellation;
     auto one_period = [&](const Eigen::VectorXd& x0, Eigen::VectorXd& x_end) {
       options.initial_state = Eigen::VectorXd::Zero(form.size());
       for (Eigen::Index k = 0; k < nd; ++k)
@@ -443,6 +447,9 @@ PeriodicResult run_periodic_shooting(const System& system, const std::vector<Pro
     for (Eigen::Index k = 0; k < nd; ++k)
       (*options.initial_state)[state[static_cast<size_t>(k)]] = x[k];
     for (int s = 0; s < samples; ++s) options.output_times.push_back(period * s / samples);
+    if (Status periodic = check_residual(result.periodicity_residual, "shooting: x(T) = x(0)");
+        !periodic.ok)
+      return finish(periodic);
     const TransientResult run = run_transient_ida(system, probes, options);
     if (!run.status.ok) return finish(run.status);
     result.times = run.times;

@@ -230,8 +230,15 @@ SensitivityResult run_sensitivity(const Scene& scene, const std::vector<std::str
     denominators.push_back(denominator);
   }
 
+  if (Status accurate = check_residual(result.left_vector_residual, "left eigenvector");
+      !accurate.ok)
+    return finish(accurate);
+
   double check_seconds = 0.0;
   for (const SceneParameter& parameter : parameters) {
+    if (!keep_going(options.progress, static_cast<long>(result.parameters.size()),
+                    static_cast<long>(parameters.size()), "parameters"))
+      return finish(cancelled_status());
     ParameterSensitivity entry{parameter, {}};
     const double p = parameter.value;
     const double h = options.matrix_relative_step * std::abs(p);

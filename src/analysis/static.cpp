@@ -2,6 +2,7 @@
 // See include/emnet/analysis.hpp for the method.
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "emnet/analysis.hpp"
 #include "timed.hpp"
@@ -29,6 +30,18 @@ Eigen::VectorXd rest_state(const Eigen::VectorXd& z, const std::vector<bool>& me
 }
 
 }  // namespace
+
+Status check_residual(double residual, const std::string& what) {
+  static_assert(kResidualLimit == 1e-8, "the message below names the limit");
+  if (residual <= kResidualLimit) return Status::success();
+  char value[32];
+  std::snprintf(value, sizeof value, "%.3g", residual);
+  return Status::failure(
+      what + ": relative residual " +
+      (std::isfinite(residual) ? std::string(value) : "not finite (" + std::string(value) + ")") +
+      ", where at most 1e-8 is accepted: the solve did not solve its system "
+      "(values beyond double precision, or a singular network)");
+}
 
 Eigen::SparseMatrix<double> linearised_g(const System& system, const Eigen::VectorXd& y) {
   if (!system.is_nonlinear()) return system.G;
@@ -133,6 +146,11 @@ StaticResult solve_static(const System& system, const StaticOptions& options) {
   };
   const double b_norm = b.norm();
   for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
+    // Newton's count is not known ahead (2-5 iterations usually): no total, no estimate.
+    if (!keep_going(options.progress, 0, 0,
+                    "static state (" + std::to_string(n) + " unknowns), Newton iteration " +
+                        std::to_string(iteration)))
+      return finish(cancelled_status());
     result.newton_iterations = iteration;
     const Eigen::VectorXd r = residual(z);
     Eigen::VectorXd step;
@@ -167,7 +185,7 @@ StaticResult solve_static(const System& system, const StaticOptions& options) {
   result.operating_point = rest_state(z, linear.mechanical());
   const double r_norm = residual(z).norm();
   result.relative_residual = b_norm > 0.0 ? r_norm / b_norm : r_norm;
-  return finish(Status::success());
+  return finish(check_residual(result.relative_residual, "static solve"));
 }
 
 double static_probe_value(const System& system, const StaticResult& result, const Probe& probe) {

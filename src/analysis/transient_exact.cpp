@@ -3,6 +3,7 @@
 // output time. Rounding is the only error.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "displacement_form.hpp"
 #include "emnet/analysis.hpp"
@@ -56,6 +57,8 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
     std::vector<double> outputs = options.output_times;
     std::sort(outputs.begin(), outputs.end());
     size_t next_output = 0;
+    result.times.reserve(outputs.size());
+    for (auto& series : result.values) series.reserve(outputs.size());
     double t = 0.0;
     Eigen::VectorXd u, up;
     // Outputs: each probe is linear in (x, f), p = gᵀ·x + c(f), so with M's eigen-basis an
@@ -107,13 +110,23 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
           }
         }
         ++next_output;
+        if (!keep_going(options.progress, static_cast<long>(next_output),
+                        static_cast<long>(outputs.size()), "output times"))
+          return finish(cancelled_status());
       }
+      if (cancel_requested(options.progress)) return finish(cancelled_status());
       const auto& p = cache.get(stop - t);
       x = space.project(space.advance(p, x, nf), f);
       ++result.statistics.restarts;
       t = stop;
     }
     result.statistics.steps = static_cast<long>(cache.size());  // distinct exponentials
+    for (const auto& series : result.values)
+      for (double v : series)
+        if (!std::isfinite(v))
+          return finish(Status::failure(
+              "an output is not finite (values beyond double precision: check the scene's "
+              "magnitudes)"));
     return finish(Status::success());
   } catch (const std::exception& e) {
     return finish(Status::failure(std::string("exact transient: ") + e.what()));

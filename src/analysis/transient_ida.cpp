@@ -218,6 +218,8 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
     std::vector<double> outputs = options.output_times;
     std::sort(outputs.begin(), outputs.end());
     size_t next_output = 0;
+    result.times.reserve(outputs.size());
+    for (auto& series : result.values) series.reserve(outputs.size());
     auto record = [&](double t) {
       const Eigen::Map<const Eigen::VectorXd> u(yy.data(), n), up(yp.data(), n);
       result.times.push_back(t);
@@ -288,6 +290,11 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
           record(t);
           ++next_output;
         }
+        if (!keep_going(options.progress, static_cast<long>(next_output),
+                        static_cast<long>(outputs.size()), "output times")) {
+          accumulate_statistics();
+          return finish(cancelled_status());
+        }
         if (t >= stop || flag == IDA_TSTOP_RETURN) break;
       }
       t = stop;
@@ -308,7 +315,7 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
 TransientResult run_transient_ida(const System& system, const std::vector<Probe>& probes,
                                   const TransientOptions& options) {
   TransientResult result = integrate(system, probes, options, false);
-  if (result.status.ok) return result;
+  if (result.status.ok || cancel_requested(options.progress)) return result;
   // A fast algebraic transient (a 1 ns RC loop beside a 0.2 s period) can pin the step size
   // through the algebraic unknowns' error test. They follow the differential unknowns exactly,
   // so a second attempt leaves them out of the error test, and says so.

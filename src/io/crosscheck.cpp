@@ -8,11 +8,11 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <sstream>
 
 #include "emnet/analysis.hpp"
+#include "emnet/output_file.hpp"
 #include "emnet/spice_netlist.hpp"
 #include "emnet/transient.hpp"
 
@@ -138,9 +138,8 @@ class Crosscheck {
       const std::string path = options_.keep_decks_directory + "/" +
                                spice_identifier(model_.scene.name) + "-crosscheck-" + label +
                                ".cir";
-      std::ofstream out(path);
-      out << deck.text;
-      if (!out) throw InputError("--keep-decks", path, "cannot write file");
+      if (const Status written = write_output_file(path, deck.text); !written.ok)
+        throw InputError("--keep-decks", path, written.message);
     }
     NgspiceResult result = run_ngspice(deck.text, options_.ngspice);
     if (!result.status.ok && !failure_allowed) {

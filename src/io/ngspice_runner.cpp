@@ -55,7 +55,7 @@
 #include <utility>
 
 #include "posix_handles.hpp"
-#include "printable_text.hpp"
+#include "emnet/terminal_text.hpp"
 #include "supervised_program.hpp"
 
 namespace emnet {
@@ -147,7 +147,7 @@ bool is_error_line(const NgspiceMessage& message);
 // most recent ones. The lines that fall between are counted and left out, marked by one line
 // (on the error stream, so that status messages show it); the first error line among them is
 // kept after the mark, for the error checks and the status message. Every line is cut at
-// kMaxLineBytes and made printable (printable_text.hpp) before it is stored.
+// kMaxLineBytes and made printable (emnet/terminal_text.hpp) before it is stored.
 class MessageLog {
  public:
   explicit MessageLog(std::size_t byte_limit)
@@ -159,7 +159,7 @@ class MessageLog {
       bytes_cut += line.size() - kMaxLineBytes;
       line = line.substr(0, kMaxLineBytes);
     }
-    NgspiceMessage message{stream, printable_text(line)};
+    NgspiceMessage message{stream, terminal_text(line)};
     if (bytes_cut > 0)
       message.text += " [... " + std::to_string(bytes_cut) + " more bytes of this line left out]";
     const std::size_t cost = message.text.size() + kMessageOverheadBytes;
@@ -683,7 +683,7 @@ BackendAttempt run_library_in_this_process(const std::vector<std::string>& lines
   attempt.available = true;
   NgspiceResult& result = attempt.result;
   result.backend_used = NgspiceBackend::library;
-  result.backend_description = "libngspice in-process (" + printable_text(library->loaded_name()) +
+  result.backend_description = "libngspice in-process (" + terminal_text(library->loaded_name()) +
                                ", in emnet's own process)";
   if (library->busy) {
     result.status = Status::failure(
@@ -792,7 +792,7 @@ bool decode_vector(const std::string& bytes, NgspiceVector& vector) {
   if (!read_raw(bytes, position, flags) || !read_raw(bytes, position, name_length) ||
       bytes.size() - position < name_length)
     return false;
-  vector.name = printable_text(std::string_view(bytes).substr(position, name_length));
+  vector.name = terminal_text(std::string_view(bytes).substr(position, name_length));
   position += name_length;
   if (!read_raw(bytes, position, count)) return false;
   vector.is_scale = (flags & 1) != 0;
@@ -998,14 +998,14 @@ BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
       case RecordTag::library_loaded:
         library_loaded = true;
         result.backend_description =
-            "libngspice in-process (" + printable_text(payload) + ", in a forked worker process)";
+            "libngspice in-process (" + terminal_text(payload) + ", in a forked worker process)";
         break;
       case RecordTag::library_unavailable:
         library_unavailable = true;
-        attempt.unavailable_reason = printable_text(payload);
+        attempt.unavailable_reason = terminal_text(payload);
         break;
       case RecordTag::plot_name:
-        result.plot_names.push_back(printable_text(payload));
+        result.plot_names.push_back(terminal_text(payload));
         break;
       case RecordTag::vector: {
         NgspiceVector vector;
@@ -1020,7 +1020,7 @@ BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
         have_status = !payload.empty();
         if (have_status)
           result.status =
-              payload[0] ? Status::success() : Status::failure(printable_text(payload.substr(1)));
+              payload[0] ? Status::success() : Status::failure(terminal_text(payload.substr(1)));
         break;
     }
   };
@@ -1179,7 +1179,7 @@ BackendAttempt run_program(const std::vector<std::string>& lines, const NgspiceO
   using How = SupervisedProgramEnd::How;
   if (end.how == How::not_started) {
     attempt.unavailable_reason =
-        "cannot run '" + printable_text(options.program) + "': " + errno_text(end.start_error);
+        "cannot run '" + terminal_text(options.program) + "': " + errno_text(end.start_error);
     return attempt;
   }
   if (end.how == How::failed) return fail_here("cannot run ngspice: " + end.problem);
@@ -1202,7 +1202,7 @@ BackendAttempt run_program(const std::vector<std::string>& lines, const NgspiceO
     if (end.exit_status == 127 && !printed_anything) {
       attempt.available = false;
       attempt.unavailable_reason =
-          "'" + printable_text(options.program) + "' could not be executed";
+          "'" + terminal_text(options.program) + "' could not be executed";
       return attempt;
     }
     return fail_here("ngspice failed on the deck (exit status " + std::to_string(end.exit_status) +
@@ -1222,10 +1222,10 @@ BackendAttempt run_program(const std::vector<std::string>& lines, const NgspiceO
         (bytes.empty() ? std::string(" (has the deck an analysis line?)") : " (" + why + ")") +
         error_excerpt(result.messages));
   for (const NgspiceRawPlot& plot : plots)
-    result.plot_names.push_back(printable_text(plot.plot_name));
+    result.plot_names.push_back(terminal_text(plot.plot_name));
   result.vectors = std::move(plots.back().vectors);
   for (NgspiceVector& vector : result.vectors)
-    vector.name = printable_text(vector_name_from_rawfile(vector.name));
+    vector.name = terminal_text(vector_name_from_rawfile(vector.name));
   result.status = Status::success();
   return attempt;
 }
@@ -1291,7 +1291,7 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
           std::istringstream fields(line);
           std::string number, name;
           if (!(fields >> number >> name)) {
-            why = "cannot read variable line '" + printable_excerpt(line, 200) + "'";
+            why = "cannot read variable line '" + terminal_excerpt(line, 200) + "'";
             return false;
           }
           NgspiceVector vector;
@@ -1311,7 +1311,7 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
       if (plots.empty()) why = "no 'Binary:' or 'Values:' section";
       return !plots.empty();
     }
-    const std::string plot_label = "plot '" + printable_excerpt(plot.plot_name, 200) + "'";
+    const std::string plot_label = "plot '" + terminal_excerpt(plot.plot_name, 200) + "'";
     if (!have_variables || !have_points || plot.vectors.size() != variable_count) {
       why = plot_label + " lacks its variable or point count";
       return false;
@@ -1382,7 +1382,7 @@ bool parse_ngspice_rawfile(const std::string& bytes, std::vector<NgspiceRawPlot>
                   : parse_double(std::string_view(text).substr(0, comma), real) &&
                         parse_double(std::string_view(text).substr(comma + 1), imaginary);
           if (!ok) {
-            why = "cannot read value '" + printable_excerpt(text, 200) + "' in " + plot_label;
+            why = "cannot read value '" + terminal_excerpt(text, 200) + "' in " + plot_label;
             return false;
           }
           NgspiceVector& vector = plot.vectors[index];
@@ -1446,7 +1446,7 @@ NgspiceResult run_ngspice(const std::string& deck_text, const NgspiceOptions& op
                                  ? run_library_in_this_process(lines, options)
                                  : run_library_in_worker(lines, options);
     if (attempt.available) return finish(std::move(attempt.result));
-    library_reason = printable_text(attempt.unavailable_reason);  // dlerror's text, paths
+    library_reason = terminal_text(attempt.unavailable_reason);  // dlerror's text, paths
     if (options.backend == NgspiceBackend::library) {
       result.status = Status::failure("libngspice could not be loaded (" + library_reason +
                                       "); install the Debian package libngspice0");

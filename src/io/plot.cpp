@@ -1,11 +1,14 @@
 // Plot writer: writes the plotted numbers (path + ".dat") and a gnuplot script (path + ".gp")
-// beside the image, then runs gnuplot on the script under a time limit; see
-// include/emnet/plot.hpp.
+// beside the image, then runs gnuplot under a time limit; see include/emnet/plot.hpp.
 //
-// gnuplot is started through /bin/sh as
-//   cd 'DIRECTORY' && exec timeout -k 5 60 gnuplot -d 'NAME.gp' </dev/null 2>&1
+// Data and script are written completely or not at all (emnet::OutputFile), and so is the
+// image: gnuplot runs a hidden copy of the script whose only difference is its output, a
+// temporary image beside the real one, which is renamed onto the image when gnuplot has
+// succeeded and written a non-empty file; a failure leaves the previous image, if any, never a
+// half-written one. gnuplot is started through /bin/sh as
+//   cd 'DIRECTORY' && exec timeout -k 5 60 gnuplot -d '.NAME.gp.PID.run' </dev/null 2>&1
 // with every argument in shell single quotes, so a path cannot inject a shell command; the
-// script itself names its files relative to its directory, so it can be re-run from there.
+// script names its files relative to its directory, so the saved one can be re-run from there.
 // Every text from the caller goes into the script as a single-quoted gnuplot string (no
 // backslash, backquote or macro expansion happens inside those) with control characters
 // replaced by spaces and quotes doubled, and is drawn with `noenhanced` so '_', '^', '@', '{'
@@ -13,6 +16,7 @@
 #include "emnet/plot.hpp"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -20,13 +24,14 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <locale>
 #include <sstream>
 #include <string>
 #include <system_error>
 #include <vector>
+
+#include "emnet/output_file.hpp"
 
 namespace emnet {
 
@@ -122,25 +127,32 @@ std::string number_text(double value) {
   return out.str();
 }
 
-// An output stream for a data or script file, in the classic locale.
-Status open_for_writing(const std::string& path, std::ofstream& stream) {
-  stream.open(path, std::ios::out | std::ios::trunc);
-  if (!stream) {
-    std::error_code error(errno, std::generic_category());
-    return Status::failure("cannot write '" + path + "': " + error.message());
-  }
+// A text stream for a data file or script, in the classic locale.
+std::ostringstream classic_stream() {
+  std::ostringstream stream;
   stream.imbue(std::locale::classic());
-  return Status::success();
+  return stream;
 }
 
-Status close_after_writing(const std::string& path, std::ofstream& stream) {
-  stream.close();
-  if (!stream) return Status::failure("error while writing '" + path + "'");
-  return Status::success();
-}
+// A file that is removed when this goes out of scope (the script gnuplot runs, a temporary
+// image not renamed into place).
+class RemovedAtExit {
+ public:
+  explicit RemovedAtExit(std::string path) : path_(std::move(path)) {}
+  ~RemovedAtExit() {
+    std::error_code ignored;
+    std::filesystem::remove(path_, ignored);
+  }
+  RemovedAtExit(const RemovedAtExit&) = delete;
+  RemovedAtExit& operator=(const RemovedAtExit&) = delete;
+  const std::string& path() const { return path_; }
 
-// Terminal and output lines of a script; `height` in pixels.
-std::string terminal_lines(const PlotFiles& files, int width, int height) {
+ private:
+  std::string path_;
+};
+
+// Terminal line of a script; `height` in pixels. The output line follows it (`set output`).
+std::string gnuplot_terminal_line(const PlotFiles& files, int width, int height) {
   std::ostringstream out;
   if (files.format == ImageFormat::png) {
     out << "set terminal pngcairo size " << width << "," << height
@@ -149,7 +161,6 @@ std::string terminal_lines(const PlotFiles& files, int width, int height) {
     out << "set terminal svg size " << width << "," << height
         << " dynamic enhanced font 'Sans,11' background rgb 'white'\n";
   }
-  out << "set output " << gnuplot_string(files.image_name) << "\n";
   return out.str();
 }
 
@@ -177,28 +188,43 @@ std::string last_lines(const std::string& output, size_t count) {
   return text;
 }
 
-// Runs gnuplot on the script under a time limit and checks that it wrote a non-empty image.
-Status run_gnuplot(const PlotFiles& files, const std::string& image_path);
+// Runs gnuplot on the script `script_name` (in the image's directory) under a time limit and
+// checks that it wrote a non-empty `image_path`.
+Status run_gnuplot(const PlotFiles& files, const std::string& script_name,
+                   const std::string& image_path);
 
-// Writes the gnuplot script beside the image and runs it.
-Status write_script_and_run(const PlotFiles& files, const std::string& script,
-                            const std::string& image_path) {
-  std::ofstream script_file;
-  if (Status status = open_for_writing(files.script_path, script_file); !status.ok) return status;
-  script_file << script;
-  if (Status status = close_after_writing(files.script_path, script_file); !status.ok) {
+// Writes the gnuplot script (`preamble`, the output line, `body`) beside the image, then runs a
+// copy of it that draws into a temporary image and renames that onto the image.
+Status write_script_and_run(const PlotFiles& files, const std::string& preamble,
+                            const std::string& body, const std::string& image_path) {
+  if (Status status =
+          write_output_file(files.script_path, preamble + "set output " +
+                                                   gnuplot_string(files.image_name) + "\n" + body);
+      !status.ok)
     return status;
+  const std::string unique = std::to_string(::getpid());
+  const std::string run_name = "." + files.script_name + "." + unique + ".run";
+  const std::string image_name = "." + files.image_name + "." + unique + ".drawing";
+  const RemovedAtExit run_script((files.directory / run_name).string());
+  const RemovedAtExit drawing((files.directory / image_name).string());
+  if (Status status = write_output_file(
+          run_script.path(), preamble + "set output " + gnuplot_string(image_name) + "\n" + body);
+      !status.ok)
+    return status;
+  if (Status status = run_gnuplot(files, run_name, drawing.path()); !status.ok) return status;
+  if (std::rename(drawing.path().c_str(), image_path.c_str()) != 0) {
+    std::error_code error(errno, std::generic_category());
+    return Status::failure("cannot write '" + image_path + "': " + error.message());
   }
-  return run_gnuplot(files, image_path);
+  return Status::success();
 }
 
-Status run_gnuplot(const PlotFiles& files, const std::string& image_path) {
+Status run_gnuplot(const PlotFiles& files, const std::string& script_name,
+                   const std::string& image_path) {
   std::error_code ignored;
-  std::filesystem::remove(image_path, ignored);  // so a stale image is never taken for a new one
-
   const std::string command = "cd " + shell_word(files.directory.string()) +
                               " && exec timeout -k 5 " + std::to_string(kGnuplotTimeLimitSeconds) +
-                              " gnuplot -d " + shell_word(files.script_name) + " </dev/null 2>&1";
+                              " gnuplot -d " + shell_word(script_name) + " </dev/null 2>&1";
   std::FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) {
     return Status::failure("cannot start gnuplot (through /bin/sh) for '" + files.script_path +
@@ -237,7 +263,8 @@ Status run_gnuplot(const PlotFiles& files, const std::string& image_path) {
   }
   const auto size = std::filesystem::file_size(image_path, ignored);
   if (ignored || size == 0) {
-    return Status::failure("gnuplot ran but did not write '" + image_path + "'" + output_note);
+    return Status::failure("gnuplot ran but did not write the image for '" + files.script_path +
+                           "'" + output_note);
   }
   return Status::success();
 }
@@ -371,8 +398,7 @@ Status write_bode_plot(const std::string& path, const std::string& title,
     }
   }
 
-  std::ofstream data;
-  if (Status status = open_for_writing(files.data_path, data); !status.ok) return status;
+  std::ostringstream data = classic_stream();
   data << "# " << one_line(title) << "\n# frequency [Hz]";
   for (const auto& one : series) {
     data << " | |" << one_line(one.label) << "| [" << one_line(one.unit) << "] | phase of "
@@ -386,7 +412,7 @@ Status write_bode_plot(const std::string& path, const std::string& title,
     }
     data << '\n';
   }
-  if (Status status = close_after_writing(files.data_path, data); !status.ok) return status;
+  if (Status status = write_output_file(files.data_path, data.str()); !status.ok) return status;
 
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
   for (size_t f : rows) {
@@ -411,10 +437,10 @@ Status write_bode_plot(const std::string& path, const std::string& title,
   const double panel_height = (legend.panel_top - kBottom - kGap) / 2.0;
   const double magnitude_bottom = kBottom + panel_height + kGap;
 
-  std::ostringstream script;
-  script.imbue(std::locale::classic());
-  script << script_header(files, "Bode plot", title) << terminal_lines(files, kWidthPx, kHeightPx)
-         << "set datafile missing 'NaN'\n"
+  const std::string preamble =
+      script_header(files, "Bode plot", title) + gnuplot_terminal_line(files, kWidthPx, kHeightPx);
+  std::ostringstream script = classic_stream();
+  script << "set datafile missing 'NaN'\n"
          << "set multiplot title " << gnuplot_string(title) << " font ',13' noenhanced\n"
          << "set lmargin at screen 0.10\nset rmargin at screen 0.97\n"
          << "set xrange " << range_text(x_lo, x_hi) << "\n"
@@ -456,7 +482,7 @@ Status write_bode_plot(const std::string& path, const std::string& title,
   }
   script << "\n\nunset multiplot\n";
 
-  return write_script_and_run(files, script.str(), path);
+  return write_script_and_run(files, preamble, script.str(), path);
 }
 
 Status write_line_plot(const std::string& path, const std::string& title,
@@ -477,8 +503,7 @@ Status write_line_plot(const std::string& path, const std::string& title,
   // One data block per series (gnuplot `index k`), separated by two blank lines.
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
   bool any_point = false;
-  std::ofstream data;
-  if (Status status = open_for_writing(files.data_path, data); !status.ok) return status;
+  std::ostringstream data = classic_stream();
   data << "# " << one_line(title) << "\n# columns: " << one_line(x_label) << " | "
        << one_line(y_label)
        << "; one block per series (gnuplot index 0, 1, ...); NaN: missing point\n";
@@ -497,17 +522,17 @@ Status write_line_plot(const std::string& path, const std::string& title,
     }
     if (one.x.empty()) data << "NaN NaN\n";  // keeps the block, so the indices stay in step
   }
-  if (Status status = close_after_writing(files.data_path, data); !status.ok) return status;
+  if (Status status = write_output_file(files.data_path, data.str()); !status.ok) return status;
 
   std::vector<std::string> legend_entries;
   for (const auto& one : series) legend_entries.push_back(one.label);
   constexpr int kWidthPx = 1000, kHeightPx = 650;
   const LegendLayout legend = legend_layout(legend_entries, kWidthPx, kHeightPx);
 
-  std::ostringstream script;
-  script.imbue(std::locale::classic());
-  script << script_header(files, "Line plot", title) << terminal_lines(files, kWidthPx, kHeightPx)
-         << "set datafile missing 'NaN'\n"
+  const std::string preamble =
+      script_header(files, "Line plot", title) + gnuplot_terminal_line(files, kWidthPx, kHeightPx);
+  std::ostringstream script = classic_stream();
+  script << "set datafile missing 'NaN'\n"
          << "set multiplot title " << gnuplot_string(title) << " font ',13' noenhanced\n"
          << "set lmargin at screen 0.09\nset rmargin at screen 0.97\n"
          << "set tmargin at screen " << number_text(legend.panel_top)
@@ -526,7 +551,7 @@ Status write_line_plot(const std::string& path, const std::string& title,
   }
   script << "\n\nunset multiplot\n";
 
-  return write_script_and_run(files, script.str(), path);
+  return write_script_and_run(files, preamble, script.str(), path);
 }
 
 }  // namespace emnet

@@ -767,7 +767,7 @@ void DeckWriter::write_analysis(std::ostringstream& out) {
       break;
     case SpiceAnalysis::ac: {
       const AcSpec spec = options_.ac.value_or(scene_.ac);
-      if (spec.log) {
+      if (spec.log && spec.points > 1) {  // one frequency: `.ac lin 1 f f`, no decades
         const double decades = std::log10(spec.to / spec.from);
         const int per_decade =
             std::max(1, static_cast<int>(std::lround((spec.points - 1) / decades)));
@@ -836,9 +836,12 @@ SpiceDeck DeckWriter::write() {
     throw InputError("tran", "edge fraction", "must be between 0 and 0.5");
   if (ac_) {
     const AcSpec spec = options_.ac.value_or(scene_.ac);
-    if (!(spec.from >= 0.0) || !(spec.to > spec.from) || spec.points < 2 ||
+    const bool one_frequency = spec.points == 1 && spec.to == spec.from;
+    if (!(spec.from >= 0.0) || !(one_frequency || (spec.to > spec.from && spec.points >= 2)) ||
         (spec.log && !(spec.from > 0.0)))
-      throw InputError("ac", "sweep", "needs 0 <= from < to, points >= 2, from > 0 when log");
+      throw InputError("ac", "sweep",
+                       "needs 0 <= from < to and points >= 2, or points = 1 and from = to; "
+                       "from > 0 when log");
   }
   deck_.analysis = options_.analysis;
   deck_.unknowns.assign(system_.unknowns.size(), {});

@@ -238,4 +238,107 @@ TEST(CliModes, DenseFindsThePolesBeyondTheRelaxationCluster) {
   EXPECT_NE(refused.err.find("--dense"), std::string::npos) << refused.err;
 }
 
+// ---- command line: commands, bounds, one-frequency AC -------------------------------------
+
+TEST(CliCommandLine, UnknownCommandIsNamedWithTheCommands) {
+  const CliRun r = run("frobnicate " + scene_with("", "", "unknown_command"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("unknown command 'frobnicate'"), std::string::npos) << r.err;
+  for (const char* command : {"static", "modes", "ac", "tran", "sweep-switching", "crosscheck"})
+    EXPECT_NE(r.err.find(command), std::string::npos) << command << ": " << r.err;
+}
+
+// 0 is not "not given": --segments 0, --switching 0 and --frequency 0 are refused.
+TEST(CliCommandLine, ZeroIsNotAbsent) {
+  const auto path = scene_with("", "", "zero_options");
+  const CliRun segments = run("static " + path + " --segments 0");
+  EXPECT_EQ(segments.status, 2) << segments.out;
+  EXPECT_NE(segments.err.find("--segments"), std::string::npos) << segments.err;
+  EXPECT_NE(segments.err.find(">= 1"), std::string::npos) << segments.err;
+  const CliRun switching = run("tran " + path + " --switching 0 --periods 1");
+  EXPECT_EQ(switching.status, 2) << switching.out;
+  EXPECT_NE(switching.err.find("--switching"), std::string::npos) << switching.err;
+  const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+  const CliRun frequency = run("mismatch " + fin + " --frequency 0");
+  EXPECT_EQ(frequency.status, 2) << frequency.out;
+  EXPECT_NE(frequency.err.find("--frequency"), std::string::npos) << frequency.err;
+}
+
+// Every numeric bound says whether it is inclusive.
+TEST(CliCommandLine, BoundsSayTheyAreInclusive) {
+  const auto path = scene_with("", "", "bounds");
+  for (const std::string& arguments :
+       {"ac " + path + " --points 0", "ac " + path + " --points 2000000",
+        "tran " + path + " --points-per-period 1", "tran " + path + " --periods 2e6",
+        "sweep-switching " + path + " --samples 4", "sweep-switching " + path + " --step 1e-6",
+        "netlist " + path + " --analysis tran --points-per-period 1"}) {
+    const CliRun r = run(arguments);
+    EXPECT_EQ(r.status, 2) << arguments;
+    EXPECT_NE(r.err.find("inclusive"), std::string::npos) << arguments << ": " << r.err;
+  }
+}
+
+// Nothing to excite (no drive, no load): bad input, naming the scene and its drive.
+TEST(CliCommandLine, AcWithoutInputIsBadInput) {
+  const auto path = scene_with("kind = \"single\"", "kind = \"none\"", "no_ac_input");
+  const CliRun r = run("ac " + path + " --points 5");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("drive"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(path), std::string::npos) << r.err;
+}
+
+// --points 1: one frequency. Reference: the same frequency in a two-point sweep (the same
+// solve; agreement to rounding, 1e-12 relative).
+TEST(CliCommandLine, OneFrequencyAc) {
+  const auto path = scene_with("", "", "one_frequency");
+  const CliRun one = run("ac " + path + " --from 7 --to 7 --points 1 --json");
+  const CliRun two = run("ac " + path + " --from 7 --to 9 --points 2 --json");
+  ASSERT_EQ(one.status, 0) << one.err;
+  ASSERT_EQ(two.status, 0) << two.err;
+  const auto a = nlohmann::json::parse(one.out), b = nlohmann::json::parse(two.out);
+  ASSERT_EQ(a["frequencies_hz"].size(), 1u);
+  EXPECT_EQ(a["frequencies_hz"][0].get<double>(), 7.0);
+  const double reference = b["probes"][0]["magnitude"][0];
+  EXPECT_NEAR(a["probes"][0]["magnitude"][0].get<double>(), reference, 1e-12 * reference);
+  const CliRun log = run("ac " + path + " --from 7 --points 1 --scale log");
+  EXPECT_EQ(log.status, 0) << log.err;
+  const CliRun deck = run("netlist " + path + " --analysis ac --from 7 --points 1 --scale log");
+  EXPECT_EQ(deck.status, 0) << deck.err;
+  EXPECT_NE(deck.out.find(".ac lin 1 7 7"), std::string::npos) << deck.out;
+}
+
+// ---- numbers: residuals and formats --------------------------------------------------------
+
+// A relative residual above 1e-8 or not finite is a numerical failure (exit 3), never printed
+// as a result ("relative residual inf" with exit 0 before). EI = 1e-300 N·m²: a normal number
+// (1e-308, subnormal, is refused by the reader as bad input) whose compliances overflow.
+TEST(CliNumbers, UnsolvedSystemsAreNumericalFailures) {
+  const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+  const std::string ideal = " --set drive.electrical_dynamics=false";
+  for (const std::string& arguments :
+       {"static " + fin + " --set beam.bending_stiffness=1e-300",
+        "static " + fin + " --set \"drive.voltage=1e308\"",
+        "ac " + fin + " --points 5 --set beam.bending_stiffness=1e-300" + ideal,
+        "tran " + fin + " --periods 1 --method exact --set \"drive.voltage=1e308\"" + ideal,
+        "static " + std::string(EMNET_SOURCE_DIR) +
+            "/netlists/cantilever.toml --set beam.length=1e10 --set load.0.at=1e10 --set "
+            "probe.tip.at=1e10"}) {
+    const CliRun r = run(arguments);
+    EXPECT_EQ(r.status, 3) << arguments << ": " << r.err;
+    EXPECT_FALSE(prints_non_finite(r.out)) << arguments;
+  }
+}
+
+// No fixed-point format for an unbounded quantity: times of 1e19 s are printed as 2.5e+19, not
+// as 26 digits.
+TEST(CliNumbers, LargeValuesArePrintedInExponentForm) {
+  const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+  const CliRun r = run("tran " + fin +
+                       " --switching 1e-20 --periods 1 --points-per-period 4 --method exact "
+                       "--set drive.electrical_dynamics=false");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(std::regex_search(r.out, std::regex("[0-9]{18,}"))) << r.out;
+  EXPECT_NE(r.out.find("2.5e+19"), std::string::npos) << r.out;
+}
+
 }  // namespace

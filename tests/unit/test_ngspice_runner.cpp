@@ -625,7 +625,7 @@ TEST_P(NgspiceRunnerBackends, ControlCharactersInNgspicesMessagesAreEscaped) {
   for (const NgspiceMessage& message : result.messages)
     EXPECT_FALSE(has_control(message.text, false)) << message.text;
   EXPECT_FALSE(has_control(result.status.message, true)) << result.status.message;
-  EXPECT_TRUE(has_message_containing(result, "zzz\\x1b[2j\\x07")) << result.messages_text();
+  EXPECT_TRUE(has_message_containing(result, "zzz\\e[2j\\x07")) << result.messages_text();
 }
 
 // A library name is the caller's, but the loader's message that quotes it reaches the terminal
@@ -715,12 +715,12 @@ TEST(NgspiceRunnerBounds, LibraryMessagesInTheWorkerAreCappedAndEscaped) {
   options.backend = NgspiceBackend::library;
   const NgspiceResult result = run_ngspice(kDividerDeck, options);
   EXPECT_FALSE(result.status.ok);
-  EXPECT_NE(result.status.message.find("Error: chatty \\x1b]0;title\\x07 \\x1b[2J end"),
+  EXPECT_NE(result.status.message.find("Error: chatty \\e]0;title\\x07 \\e[2J end"),
             std::string::npos)
       << result.status.message;
   EXPECT_LE(message_bytes(result), options.max_message_bytes + kMessageLogSlackBytes);
   EXPECT_TRUE(has_message_containing(result, "chatty line 0"));
-  EXPECT_TRUE(has_message_containing(result, "raw\\x1b[1mraw"));
+  EXPECT_TRUE(has_message_containing(result, "raw\\e[1mraw"));
   for (const NgspiceMessage& message : result.messages)
     EXPECT_EQ(message.text.find('\x1b'), std::string::npos) << message.text;
 }

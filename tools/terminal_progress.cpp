@@ -1,0 +1,170 @@
+// Progress line on standard error and Ctrl-C for the command line; see terminal_progress.hpp.
+#include "terminal_progress.hpp"
+
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "emnet/terminal_text.hpp"
+
+namespace emnet_cli {
+
+namespace {
+
+std::atomic<bool> interrupt_received{false};
+static_assert(std::atomic<bool>::is_always_lock_free,
+              "a signal handler may only set a lock-free flag");
+
+extern "C" void on_interrupt(int) {
+  interrupt_received.store(true);
+}
+
+// A duration as it is read: "3.1 s", "4 min 05 s", "2 h 13 min".
+std::string duration_text(double seconds) {
+  char text[48];
+  if (seconds < 10.0) {
+    std::snprintf(text, sizeof text, "%.1f s", seconds);
+  } else if (seconds < 60.0) {
+    std::snprintf(text, sizeof text, "%.0f s", seconds);
+  } else if (seconds < 3600.0) {
+    const long whole = static_cast<long>(seconds);
+    std::snprintf(text, sizeof text, "%ld min %02ld s", whole / 60, whole % 60);
+  } else {
+    const long minutes = static_cast<long>(seconds / 60.0);
+    std::snprintf(text, sizeof text, "%ld h %02ld min", minutes / 60, minutes % 60);
+  }
+  return text;
+}
+
+void write_stderr(const std::string& text) {
+  size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t n = ::write(STDERR_FILENO, text.data() + written, text.size() - written);
+    if (n <= 0) return;  // nothing to be done about a lost progress line
+    written += static_cast<size_t>(n);
+  }
+}
+
+size_t terminal_width() {
+  struct winsize size {};
+  if (::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) return size.ws_col;
+  return 80;
+}
+
+}  // namespace
+
+std::string progress_line(const std::string& command, const std::string& what, long done,
+                          long total, double elapsed, double step_seconds, long step_done,
+                          bool interrupted) {
+  std::string text = command + ": ";
+  if (interrupted) return text + "interrupted, stopping (Ctrl-C again: at once)";
+  text += emnet::terminal_text(what);
+  if (total > 0) {
+    char counts[96];
+    std::snprintf(counts, sizeof counts, " %ld/%ld (%.1f %%)", done, total,
+                  100.0 * static_cast<double>(done) / static_cast<double>(total));
+    text += counts;
+  }
+  text += ", " + duration_text(elapsed);
+  if (total > 0 && step_done > 0 && step_seconds >= 0.2) {
+    const double left = step_seconds * static_cast<double>(total - done) / step_done;
+    text += ", about " + duration_text(left) + " left";
+  }
+  return text;
+}
+
+InterruptHandler::InterruptHandler() {
+  struct sigaction action {};
+  action.sa_handler = on_interrupt;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;  // a second Ctrl-C: the default action, the program ends
+  if (::sigaction(SIGINT, nullptr, &previous_) != 0) return;
+  if (previous_.sa_handler == SIG_IGN) return;  // started with SIGINT ignored: keep it so
+  installed_ = ::sigaction(SIGINT, &action, nullptr) == 0;
+}
+
+InterruptHandler::~InterruptHandler() {
+  if (installed_) ::sigaction(SIGINT, &previous_, nullptr);
+}
+
+bool InterruptHandler::interrupted() {
+  return interrupt_received.load();
+}
+
+TerminalProgress::TerminalProgress(std::string command, Mode mode)
+    : command_(std::move(command)), mode_(mode), terminal_(::isatty(STDERR_FILENO) == 1) {
+  const bool shown = mode_ == Mode::forced || (mode_ == Mode::automatic && terminal_);
+  if (shown) printer_ = std::thread([this] { print_loop(); });
+}
+
+TerminalProgress::~TerminalProgress() {
+  finish();
+}
+
+void TerminalProgress::report(long done, long total, std::string_view what) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (stopping_) return;
+  const bool new_step = what != what_;
+  if (new_step || done < done_) {
+    what_.assign(what.data(), what.size());
+    step_start_ = Clock::now();
+    step_start_done_ = done;
+  }
+  done_ = done;
+  total_ = total;
+  any_report_ = true;
+  if (new_step && mode_ == Mode::forced) wake_.notify_one();  // --progress: a line per step
+}
+
+void TerminalProgress::finish() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (stopping_) return;
+    stopping_ = true;
+  }
+  wake_.notify_one();
+  if (printer_.joinable()) printer_.join();
+}
+
+void TerminalProgress::print_loop() {
+  const auto first_delay = std::chrono::seconds(1);
+  const auto interval =
+      terminal_ ? std::chrono::milliseconds(250) : std::chrono::milliseconds(1000);
+  std::unique_lock<std::mutex> lock(mutex_);
+  Clock::time_point last_print{};
+  bool printed = false;
+  std::string printed_step;
+  while (!stopping_) {
+    wake_.wait_for(lock, std::chrono::milliseconds(100));
+    if (stopping_ || !any_report_) continue;
+    const Clock::time_point now = Clock::now();
+    const bool forced = mode_ == Mode::forced;
+    const bool due = printed ? now - last_print >= interval || (forced && what_ != printed_step)
+                             : forced || now - start_ >= first_delay;
+    if (!due) continue;
+    printed_step = what_;
+    std::string text = progress_line(command_, what_, done_, total_,
+                                     std::chrono::duration<double>(now - start_).count(),
+                                     std::chrono::duration<double>(now - step_start_).count(),
+                                     done_ - step_start_done_, InterruptHandler::interrupted());
+    if (terminal_) {
+      const size_t width = terminal_width();
+      if (text.size() >= width) text.resize(width - 1);  // a wrapped line cannot be rewritten
+      const size_t previous = shown_width_;
+      shown_width_ = text.size();
+      if (previous > text.size()) text.append(previous - text.size(), ' ');
+      text = "\r" + text;
+    } else {
+      text += "\n";
+    }
+    lock.unlock();
+    write_stderr(text);
+    lock.lock();
+    last_print = now;
+    printed = true;
+  }
+  if (terminal_ && shown_width_ > 0) write_stderr("\r" + std::string(shown_width_, ' ') + "\r");
+}
+
+}  // namespace emnet_cli

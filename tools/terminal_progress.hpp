@@ -1,0 +1,94 @@
+// The command line's side of emnet::Progress (include/emnet/progress.hpp): a progress line on
+// standard error and Ctrl-C.
+//
+// The analyses report each step (done, total, what); a thread of this reporter prints the
+// latest state at its own rate, so a step costs one mutex lock and printing never slows the
+// loop down. On a terminal the line is rewritten in place (carriage return, cut to the
+// terminal's width) four times a second, from one second after the start, so commands that
+// take less than a second print nothing; the line is cleared before the result is printed.
+// `--progress` prints also when standard error is not a terminal: a line when a step begins and
+// one a second; `--quiet` prints nothing. A line says what is being done, how far it is, the
+// time so far and the estimated time left (the current step's rate since it began):
+//   emnet ac: AC frequencies 1234/50000 (2.5 %), 3.1 s, about 2 min left
+// A step without counts (a dense eigen-decomposition) shows its time so far only.
+//
+// Ctrl-C: InterruptHandler installs a SIGINT handler that only sets an atomic flag, which
+// cancelled() returns: the analysis stops at its next step with the Status "cancelled" and the
+// command exits with status 130 without writing any output file. The handler is reset after the
+// first signal, so a second Ctrl-C ends the program at once (during a step that cannot stop,
+// such as an eigen-decomposition). A SIGINT that was ignored when the program started (a
+// background job) stays ignored.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <csignal>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <thread>
+
+#include "emnet/progress.hpp"
+
+namespace emnet_cli {
+
+class InterruptHandler {
+ public:
+  InterruptHandler();
+  ~InterruptHandler();  // restores the previous SIGINT disposition
+  InterruptHandler(const InterruptHandler&) = delete;
+  InterruptHandler& operator=(const InterruptHandler&) = delete;
+  // True once SIGINT was received.
+  static bool interrupted();
+
+ private:
+  struct sigaction previous_ {};
+  bool installed_ = false;
+};
+
+// The text of a progress line, without the carriage return: `elapsed` seconds since the command
+// started; `step_seconds` and `step_done` since the current step (`what`) began, for the
+// estimate of the time left (shown once the step has run 0.2 s and done something).
+std::string progress_line(const std::string& command, const std::string& what, long done,
+                          long total, double elapsed, double step_seconds, long step_done,
+                          bool interrupted);
+
+class TerminalProgress : public emnet::Progress {
+ public:
+  enum class Mode { automatic, forced, quiet };
+  // `command` names the line ("emnet ac: ...").
+  TerminalProgress(std::string command, Mode mode);
+  ~TerminalProgress() override;  // finish()
+  TerminalProgress(const TerminalProgress&) = delete;
+  TerminalProgress& operator=(const TerminalProgress&) = delete;
+
+  void report(long done, long total, std::string_view what) override;
+  bool cancelled() const override { return InterruptHandler::interrupted(); }
+  // A step without counts.
+  void phase(std::string_view what) { report(0, 0, what); }
+  // Stops printing and clears the line (on a terminal); for the result or a message to follow.
+  // Later reports are ignored.
+  void finish();
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void print_loop();
+
+  const std::string command_;
+  const Mode mode_;
+  const bool terminal_;
+  const Clock::time_point start_ = Clock::now();
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stopping_ = false;
+  bool any_report_ = false;
+  long done_ = 0, total_ = 0;
+  std::string what_;
+  Clock::time_point step_start_ = start_;
+  long step_start_done_ = 0;
+  size_t shown_width_ = 0;  // characters of the line on the terminal now
+  std::thread printer_;
+};
+
+}  // namespace emnet_cli
