@@ -269,7 +269,8 @@ std::string ac_input_description(const emnet::Scene& scene, double top_hz) {
       break;
     case emnet::DriveKind::switched:
       out << "AC input: the alternating part of the switched square-wave drive on DEA "
-          << shown(drive.deas[0]) << ": its force, a 0/k_F*V^2 square wave (V = " << si(drive.voltage, "V")
+          << shown(drive.deas[0])
+          << ": its force, a 0/k_F*V^2 square wave (V = " << si(drive.voltage, "V")
           << "), is +/- k_F*V^2/2 about its mean k_F*V^2/2; the +/- level as a sinusoid (its "
              "fundamental is 4/pi times this); exact, no linearisation: a 0/V voltage squares to "
              "a 0/k_F*V^2 force. The mean is a static offset, not in this input. The network is "
@@ -583,6 +584,7 @@ int run_modes_command(const CommonOptions& options, const ModesOptions& modes_op
   emnet::ModalOptions modal_options;
   modal_options.count = modes_options.count;
   modal_options.keep_vectors = true;
+  modal_options.progress = progress_of(options);
   if (modes_options.dense) {
     if (p.system.size() > kDenseModesLimit)
       throw InputError("--dense", "--dense",
@@ -593,6 +595,7 @@ int run_modes_command(const CommonOptions& options, const ModesOptions& modes_op
   }
   const emnet::ModalResult result =
       emnet::run_modes(p.system, p.rest.operating_point, modal_options);
+  stop_if_interrupted();
   if (!result.status.ok) throw NumericalFailure("modes: " + result.status.message);
   std::vector<emnet::Mode> modes = result.modes;
   if (modes_options.count > 0 && static_cast<int>(modes.size()) > modes_options.count)
@@ -2866,16 +2869,16 @@ int main(int argc, char** argv) {
   }
 
   // Ctrl-C sets a flag that the analyses poll (terminal_progress.hpp); the progress line
-  // goes to standard error. `modes` and `crosscheck` poll neither (their analyses have no
-  // steps to stop at, ngspice runs on its own), so Ctrl-C keeps its default there: it ends the
-  // program at once (an output file is renamed into place only when complete).
+  // goes to standard error. `crosscheck` polls none (ngspice runs on its own), so Ctrl-C keeps
+  // its default there: it ends the program at once (an output file is renamed into place only
+  // when complete).
   std::optional<emnet_cli::InterruptHandler> interrupt_handler;
-  if (!*modes_command && !*crosscheck_command) interrupt_handler.emplace();
+  if (!*crosscheck_command) interrupt_handler.emplace();
   using Mode = emnet_cli::TerminalProgress::Mode;
   emnet_cli::TerminalProgress reporter("emnet " + app.get_subcommands().front()->get_name(),
-                                       options.quiet || *modes_command ? Mode::quiet
-                                       : options.progress              ? Mode::forced
-                                                                       : Mode::automatic);
+                                       options.quiet      ? Mode::quiet
+                                       : options.progress ? Mode::forced
+                                                          : Mode::automatic);
   options.reporter = &reporter;
   // One message for a failure: after the progress line, control characters escaped; an
   // interruption wins over the failure it caused.

@@ -149,7 +149,11 @@ struct ModalOptions {
   // unknowns, 0.76 at 66, 2.1 at 126, 114 at 606, so the crossover lies near 80.
   int dense_limit = 80;
   bool keep_vectors = true;
-  bool error_bounds = true;  // compute each pole's error bound (one complex LU per pole group)
+  bool error_bounds = true;  // compute each pole's error bound (from the transposed pencil)
+  // Reports each phase (equilibration, factorisation, rigid-body space, eigenvalues, left
+  // vectors, bounds) and, inside the Arnoldi iterations, the operator applications; cancelled,
+  // the analysis stops at the next phase or application with cancelled_status().
+  Progress* progress = nullptr;
 };
 
 struct Mode {

@@ -41,12 +41,15 @@ constexpr double kRigidShift = 1e-2;
 // x ↦ (I − Π)·(Â + σÊ)⁻¹·Ê·x for Spectra, Π = V·Lᵀ the rigid-body projector (none: no columns);
 // `transposed`: x ↦ (I − Πᵀ')·(Â + σÊ)⁻ᵀ·Êᵀ·x, the same for the transposed pencil, whose
 // eigenvectors are the left vectors.
+// Thrown out of Spectra by the operator when the analysis is cancelled.
+struct ModalCancelled {};
+
 class ShiftInvertOperator {
  public:
   using Scalar = double;
   ShiftInvertOperator(Lu& lu, const Eigen::SparseMatrix<double>& e, const Eigen::MatrixXd& right,
-                      const Eigen::MatrixXd& left, bool transposed)
-      : lu_(lu), e_(e), right_(right), left_(left), transposed_(transposed) {
+                      const Eigen::MatrixXd& left, bool transposed, Progress* progress)
+      : lu_(lu), e_(e), right_(right), left_(left), transposed_(transposed), progress_(progress) {
     if (transposed_) e_transposed_ = e.transpose();
   }
   Eigen::Index rows() const { return e_.rows(); }
@@ -59,6 +62,11 @@ class ShiftInvertOperator {
     else
       y = lu_.solve(e_ * x);
     if (right_.cols() > 0) y -= right_ * (left_.transpose() * y);
+    ++applications_;
+    if (!keep_going(progress_, applications_, 0,
+                    transposed_ ? "modal analysis: Arnoldi, left vectors (solves)"
+                                : "modal analysis: Arnoldi (solves)"))
+      throw ModalCancelled{};
   }
 
  private:
@@ -68,6 +76,8 @@ class ShiftInvertOperator {
   const Eigen::MatrixXd& right_;
   const Eigen::MatrixXd& left_;
   bool transposed_;
+  Progress* progress_;
+  mutable long applications_ = 0;
 };
 
 struct Eigenpairs {
@@ -166,6 +176,10 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
   }
   const int n = form->size();
   result.pencil_size = n;
+  auto phase = [&](long step, const char* what) {
+    return keep_going(options.progress, step, 6, what);
+  };
+  if (!phase(0, "modal analysis: equilibration")) return finish(cancelled_status());
   Eigen::SparseMatrix<double> a_matrix, e_matrix;
   form->linearised(form->from_rest(operating_point), Eigen::VectorXd::Zero(n), a_matrix, e_matrix);
   // Everything below works on the equilibrated pencil (Â, Ê) with poles ŝ = s/ω₀, so that
@@ -180,6 +194,7 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
 
   // Shift σ̂ = 0 unless Â is singular there: then rigid-body motions have the pole s = 0; they
   // are found by rank-revealing QR and projected out, at the small positive shift kRigidShift.
+  if (!phase(1, "modal analysis: sparse LU")) return finish(cancelled_status());
   Lu lu;
   auto factorise = [&](double sigma) {
     Eigen::SparseMatrix<double> shifted = a_hat + sigma * e_hat;
@@ -195,6 +210,8 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
     if (!factorise(sigma_hat))
       return finish(Status::failure(
           "the pencil is singular for every shift (the network has no well-defined dynamics)"));
+    if (!phase(2, "modal analysis: rigid-body motions (sparse QR)"))
+      return finish(cancelled_status());
     rigid = rigid_body_space(a_hat, e_hat);
     if (!rigid.failure.empty())
       return finish(Status::failure("rigid-body motions: " + rigid.failure));
@@ -202,6 +219,7 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
   }
   result.shift = sigma_hat * omega0;
 
+  if (!phase(3, "modal analysis: eigenvalues")) return finish(cancelled_status());
   Eigenpairs right_pairs, left_pairs;
   const bool dense = system.size() <= options.dense_limit || options.count >= n - 2;
   std::string why;
@@ -231,7 +249,7 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
     const int wanted_modes = options.count > 0 ? options.count : 10;
     int nev = std::min(2 * std::min(wanted_modes, 3), n - 3);  // grows by doubling
     const bool has_rigid_space = rigid.right.cols() > 0;
-    auto run = [&](ShiftInvertOperator& op, Eigenpairs& out) -> Eigen::Index {
+    auto arnoldi = [&](ShiftInvertOperator& op, Eigenpairs& out) -> Eigen::Index {
       const int ncv = std::min(n - 1, std::max(2 * nev + 1, 20));
       Spectra::GenEigsSolver<ShiftInvertOperator> eigs(op, nev, ncv);
       if (has_rigid_space) {
@@ -259,9 +277,19 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
       }
       return converged;
     };
-    ShiftInvertOperator op(lu, e_hat, rigid.right, rigid.projector_left, false);
+    bool cancelled = false;
+    auto run = [&](ShiftInvertOperator& op, Eigenpairs& out) -> Eigen::Index {
+      try {
+        return arnoldi(op, out);
+      } catch (const ModalCancelled&) {
+        cancelled = true;
+        return -1;
+      }
+    };
+    ShiftInvertOperator op(lu, e_hat, rigid.right, rigid.projector_left, false, options.progress);
     for (int attempt = 0;; ++attempt) {
       const Eigen::Index converged = run(op, right_pairs);
+      if (cancelled) return finish(cancelled_status());
       if (converged == 0)
         return finish(Status::failure(
             "shift-invert Arnoldi converged to no pole in " + std::to_string(result.iterations) +
@@ -285,11 +313,15 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
       nev = std::min(n - 3, std::max(2 * nev, real + 2 * wanted_modes));
     }
     if (options.error_bounds) {
-      ShiftInvertOperator transposed(lu, e_hat, rigid.left, rigid.transposed_projector_left, true);
+      ShiftInvertOperator transposed(lu, e_hat, rigid.left, rigid.transposed_projector_left, true,
+                                     options.progress);
+      if (!phase(4, "modal analysis: left vectors")) return finish(cancelled_status());
       run(transposed, left_pairs);
+      if (cancelled) return finish(cancelled_status());
     }
   }
 
+  if (!phase(5, "modal analysis: error bounds")) return finish(cancelled_status());
   std::vector<PoleEstimate> poles = poles_of(right_pairs, sigma_hat);
   span_repeated_poles(a_hat, e_hat, poles);
   if (options.error_bounds) {

@@ -54,8 +54,8 @@
 #include <system_error>
 #include <utility>
 
-#include "posix_handles.hpp"
 #include "emnet/terminal_text.hpp"
+#include "posix_handles.hpp"
 #include "supervised_program.hpp"
 
 namespace emnet {
@@ -1201,8 +1201,7 @@ BackendAttempt run_program(const std::vector<std::string>& lines, const NgspiceO
   if (end.exit_status != 0) {
     if (end.exit_status == 127 && !printed_anything) {
       attempt.available = false;
-      attempt.unavailable_reason =
-          "'" + terminal_text(options.program) + "' could not be executed";
+      attempt.unavailable_reason = "'" + terminal_text(options.program) + "' could not be executed";
       return attempt;
     }
     return fail_here("ngspice failed on the deck (exit status " + std::to_string(end.exit_status) +

@@ -85,6 +85,24 @@ TEST_F(CliProgress, InterruptLeavesNoOutputFile) {
   EXPECT_EQ(entries(), 1u);  // stdout.txt only
 }
 
+// modes shows its phases (it was silent: 25 s at 100 000 segments) and stops at Ctrl-C too: the
+// interrupt is sent when the Arnoldi iterations report their first solve, on a fin of 100 000
+// segments (the run would take tens of seconds), and no CSV is written.
+TEST_F(CliProgress, ModesShowsItsPhasesAndStopsAtInterrupt) {
+  EmnetChild child({"modes", fin, "--segments", "100000", "--count", "3", "--no-error-estimate",
+                    "--progress", "--csv", path("modes.csv")},
+                   false, path("stdout.txt"));
+  ASSERT_TRUE(child.started());
+  ASSERT_TRUE(child.wait_for_error_text("emnet modes: modal analysis: Arnoldi (solves)", 120.0))
+      << child.error_output();
+  EXPECT_NE(child.error_output().find("modal analysis: sparse LU"), std::string::npos)
+      << child.error_output();
+  child.send(SIGINT);
+  EXPECT_EQ(child.wait(60.0), 130) << child.error_output();
+  EXPECT_FALSE(fs::exists(path("modes.csv")));
+  EXPECT_EQ(contents("stdout.txt"), "");
+}
+
 // On a terminal the line appears by itself (after a second) and is rewritten in place by
 // carriage returns; with --quiet nothing appears. The quiet run is watched for 3 s, longer than
 // the second after which the line would appear, then interrupted.
