@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cli_run.hpp"
+#include "test_directory.hpp"
 
 namespace {
 
@@ -25,29 +26,9 @@ using emnet::testing::run_emnet;
 
 const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
 
-// A fresh directory per test and process (CTest runs tests in parallel processes).
-class CliFiles : public ::testing::Test {
+class CliFiles : public emnet::testing::TestDirectory {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    directory_ = fs::path(::testing::TempDir()) /
-                 ("emnet_cli_" + std::string(test->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(directory_, ignored);
-  }
-  std::string path(const std::string& name) const { return (directory_ / name).string(); }
-  std::vector<std::string> names() const {
-    std::vector<std::string> found;
-    for (const auto& entry : fs::directory_iterator(directory_))
-      found.push_back(entry.path().filename().string());
-    std::sort(found.begin(), found.end());
-    return found;
-  }
-  fs::path directory_;
+  CliFiles() : TestDirectory("emnet_cli_") {}
 };
 
 std::string contents(const std::string& path) {

@@ -16,6 +16,7 @@
 
 #include "cli_run.hpp"
 #include "terminal_progress.hpp"
+#include "test_directory.hpp"
 
 namespace {
 
@@ -28,33 +29,14 @@ const std::vector<std::string> long_sweep = {"sweep-switching", fin,     "--from
                                              "--step",          "0.0001"};  // 60001 frequencies
 const std::string progress_text = "emnet sweep-switching: switching frequencies ";
 
-class CliProgress : public ::testing::Test {
+class CliProgress : public emnet::testing::TestDirectory {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    directory_ = fs::path(::testing::TempDir()) /
-                 ("emnet_progress_" + std::string(test->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(directory_, ignored);
-  }
-  std::string path(const std::string& name) const { return (directory_ / name).string(); }
+  CliProgress() : TestDirectory("emnet_progress_") {}
   std::vector<std::string> with(std::vector<std::string> arguments,
                                 const std::vector<std::string>& more) const {
     arguments.insert(arguments.end(), more.begin(), more.end());
     return arguments;
   }
-  std::string contents(const std::string& name) const {
-    std::ifstream in(path(name));
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  }
-  size_t entries() const {
-    return static_cast<size_t>(std::distance(fs::directory_iterator(directory_), {}));
-  }
-  fs::path directory_;
 };
 
 // --progress prints also into a pipe, a line when a step begins and one a second: the line

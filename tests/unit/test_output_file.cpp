@@ -15,29 +15,15 @@
 #include <string>
 
 #include "emnet/output_file.hpp"
+#include "test_directory.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-class OutputFileTest : public ::testing::Test {
+class OutputFileTest : public emnet::testing::TestDirectory {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    directory_ = fs::path(::testing::TempDir()) /
-                 ("emnet_output_" + std::string(test->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(directory_, ignored);
-  }
-  std::string path(const std::string& name) const { return (directory_ / name).string(); }
-  size_t entries() const {
-    return static_cast<size_t>(std::distance(fs::directory_iterator(directory_), {}));
-  }
-  fs::path directory_;
+  OutputFileTest() : TestDirectory("emnet_output_") {}
 };
 
 std::string contents(const std::string& path) {

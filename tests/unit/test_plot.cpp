@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "emnet/plot.hpp"
+#include "test_directory.hpp"
 
 namespace {
 
@@ -23,23 +24,9 @@ bool gnuplot_available() {
   return std::system("command -v gnuplot >/dev/null 2>&1") == 0;
 }
 
-// A fresh directory per test and process: CTest runs the tests in parallel processes.
-class PlotTest : public ::testing::Test {
+class PlotTest : public emnet::testing::TestDirectory {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    directory_ = fs::path(::testing::TempDir()) /
-                 ("emnet_plot_" + std::string(test->name()) + "_" + std::to_string(getpid()));
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(directory_, ignored);
-  }
-  std::string path(const std::string& name) const { return (directory_ / name).string(); }
-
-  fs::path directory_;
+  PlotTest() : TestDirectory("emnet_plot_") {}
 };
 
 std::string file_start(const std::string& path, size_t count) {
