@@ -190,6 +190,7 @@ struct ModalResult {
   long iterations = 0;         // Arnoldi restarts over all attempts (0 for dense)
 };
 
+// `operating_point`: y at rest (velocities zero) to linearise about; empty means zero.
 ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,
                       const ModalOptions& options = {});
 

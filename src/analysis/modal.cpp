@@ -180,8 +180,15 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
     return keep_going(options.progress, step, 6, what);
   };
   if (!phase(0, "modal analysis: equilibration")) return finish(cancelled_status());
+  if (operating_point.size() != 0 && operating_point.size() != system.size())
+    return finish(
+        Status::failure("the operating point has " + std::to_string(operating_point.size()) +
+                        " entries, the network " + std::to_string(system.size()) + " unknowns"));
+  const Eigen::VectorXd rest = operating_point.size() == 0
+                                   ? Eigen::VectorXd(Eigen::VectorXd::Zero(system.size()))
+                                   : operating_point;  // empty: at zero (a linear network)
   Eigen::SparseMatrix<double> a_matrix, e_matrix;
-  form->linearised(form->from_rest(operating_point), Eigen::VectorXd::Zero(n), a_matrix, e_matrix);
+  form->linearised(form->from_rest(rest), Eigen::VectorXd::Zero(n), a_matrix, e_matrix);
   // Everything below works on the equilibrated pencil (Â, Ê) with poles ŝ = s/ω₀, so that
   // thresholds relative to the largest entry or eigenvalue do not depend on the units
   // (equilibration.hpp); poles and vectors are mapped back at the end.

@@ -197,3 +197,22 @@ TEST(PoleErrorBound, CoversTheErrorOfACancellingFormulation) {
 
 }  // namespace
 }  // namespace emnet
+
+namespace emnet {
+namespace {
+
+// An empty operating point is zero (a linear network); one of the wrong size is a failed Status,
+// not a read past its end.
+TEST(SupportedBeamModes, OperatingPointOfTheWrongSizeIsRefused) {
+  const Model model = build_model(testing::cantilever_scene(7));
+  const System system = model.network.assemble();
+  const ModalResult empty = run_modes(system, Eigen::VectorXd());
+  ASSERT_TRUE(empty.status.ok) << empty.status.message;
+  EXPECT_EQ(empty.modes.size(), 7u);
+  const ModalResult wrong = run_modes(system, Eigen::VectorXd::Zero(3));
+  EXPECT_FALSE(wrong.status.ok);
+  EXPECT_NE(wrong.status.message.find("operating point"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace emnet
