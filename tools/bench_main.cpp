@@ -88,16 +88,16 @@
 #include <string>
 #include <vector>
 
-#include "emnet/analysis.hpp"
-#include "emnet/modal_reduction.hpp"
-#include "emnet/model.hpp"
-#include "emnet/ngspice_runner.hpp"
-#include "emnet/periodic.hpp"
-#include "emnet/scene_reader.hpp"
-#include "emnet/segment_selection.hpp"
-#include "emnet/spice_netlist.hpp"
-#include "emnet/transient.hpp"
-#include "emnet/validity.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/spice/ngspice_runner.hpp"
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "emnet/model/segment_selection.hpp"
+#include "emnet/spice/spice_netlist.hpp"
+#include "emnet/analysis/transient.hpp"
+#include "emnet/model/validity.hpp"
 
 extern char** environ;
 
@@ -1575,7 +1575,7 @@ std::string reduction_section(const Settings& settings) {
 
 // ---- 5a. simplifications ---------------------------------------------------------------------
 
-// 5a. What each automatic simplification (emnet/segment_selection.hpp, drive.electrical_dynamics
+// 5a. What each automatic simplification (emnet/model/segment_selection.hpp, drive.electrical_dynamics
 // = "auto") costs in accuracy and saves in time, measured side by side.
 std::string simplification_section(const Settings& settings) {
   std::ostringstream md;

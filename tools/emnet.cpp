@@ -6,7 +6,7 @@
 // crosscheck also: ngspice missing, failing or timed out); 4 crosscheck: a difference exceeds its
 // tolerance; 5 computed but outside the model's validity (a deflection above
 // model.deflection_limit of the beam length, or a DEA's field V/d above its breakdown field;
-// emnet/validity.hpp): the result is printed with a WARNING line on standard output and error
+// emnet/model/validity.hpp): the result is printed with a WARNING line on standard output and error
 // and "validity" in --json; 130 interrupted (Ctrl-C), no output file written; 1 anything else.
 //
 // Output files are written only after the result is computed and printed, each one completely or
@@ -25,23 +25,23 @@
 #include <optional>
 #include <sstream>
 
-#include "emnet/analysis.hpp"
-#include "emnet/crosscheck.hpp"
-#include "emnet/errors.hpp"
-#include "emnet/modal_reduction.hpp"
-#include "emnet/model.hpp"
-#include "emnet/output_file.hpp"
-#include "emnet/periodic.hpp"
-#include "emnet/plot.hpp"
-#include "emnet/progress.hpp"
-#include "emnet/scene_reader.hpp"
-#include "emnet/segment_selection.hpp"
-#include "emnet/sensitivity.hpp"
-#include "emnet/spice_netlist.hpp"
-#include "emnet/terminal_text.hpp"
-#include "emnet/transient.hpp"
-#include "emnet/units.hpp"
-#include "emnet/validity.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/verification/crosscheck.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/core/output_file.hpp"
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/report/plot.hpp"
+#include "emnet/core/progress.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "emnet/model/segment_selection.hpp"
+#include "emnet/studies/sensitivity.hpp"
+#include "emnet/spice/spice_netlist.hpp"
+#include "emnet/core/terminal_text.hpp"
+#include "emnet/analysis/transient.hpp"
+#include "emnet/core/units.hpp"
+#include "emnet/model/validity.hpp"
 #include "terminal_progress.hpp"
 
 namespace {
@@ -297,7 +297,7 @@ std::string ac_input_description(const emnet::Scene& scene, double top_hz) {
   return out.str();
 }
 
-// The validity checks of a result (emnet/validity.hpp): "validity" of --json; in text a line
+// The validity checks of a result (emnet/model/validity.hpp): "validity" of --json; in text a line
 // with the largest values against their limits and a WARNING line per violation.
 Json validity_json(const emnet::Validity& validity) {
   Json violations = Json::array();
@@ -2222,7 +2222,7 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
 // ---- sensitivity ------------------------------------------------------------------------
 //
 // `emnet sensitivity SCENE [--modes K] [--parameter KEY ...] [--check]`: df/dp of the first K
-// resonances for every scene parameter, from the eigenvectors (include/emnet/sensitivity.hpp),
+// resonances for every scene parameter, from the eigenvectors (include/emnet/studies/sensitivity.hpp),
 // and with --check the finite-difference reference.
 
 struct SensitivityCommandOptions {
@@ -2337,7 +2337,7 @@ void add_common(CLI::App* command, CommonOptions& options);
 // ---- netlist: SPICE export ------------------------------------------------------------
 //
 // `emnet netlist SCENE --analysis op|ac|tran [-o FILE.cir]`: the scene's network as a SPICE3
-// deck (src/io/spice_netlist.cpp; include/emnet/spice_netlist.hpp explains the mapping). The ac
+// deck (src/spice/spice_netlist.cpp; include/emnet/spice/spice_netlist.hpp explains the mapping). The ac
 // options are those of `emnet ac`, the tran options those of `emnet tran`, plus the deck's own
 // max step and reltol.
 
@@ -2495,8 +2495,8 @@ void add_netlist_command(CLI::App& app, CommonOptions& options, NetlistOptions& 
 // ---- crosscheck: emnet against ngspice -------------------------------------------------
 //
 // `emnet crosscheck SCENE [--analysis op,ac,modal,tran]`: exports the decks, runs ngspice
-// (include/emnet/ngspice_runner.hpp) and compares with emnet's own analyses
-// (include/emnet/crosscheck.hpp says what is compared and why each tolerance). Exit status 0
+// (include/emnet/spice/ngspice_runner.hpp) and compares with emnet's own analyses
+// (include/emnet/verification/crosscheck.hpp says what is compared and why each tolerance). Exit status 0
 // when every difference is within its tolerance, 4 when one is not, 3 when ngspice is missing,
 // fails or times out, or an emnet analysis fails.
 

@@ -6,7 +6,7 @@
 
 #include <cstdio>
 
-#include "emnet/terminal_text.hpp"
+#include "emnet/core/terminal_text.hpp"
 
 namespace emnet_cli {
 

@@ -1,4 +1,4 @@
-// The command line's side of emnet::Progress (include/emnet/progress.hpp): a progress line on
+// The command line's side of emnet::Progress (include/emnet/core/progress.hpp): a progress line on
 // standard error and Ctrl-C.
 //
 // The analyses report each step (done, total, what); a thread of this reporter prints the
@@ -29,7 +29,7 @@
 #include <string_view>
 #include <thread>
 
-#include "emnet/progress.hpp"
+#include "emnet/core/progress.hpp"
 
 namespace emnet_cli {
 

@@ -5,9 +5,9 @@
 #include <cstdio>
 
 #include "complex_klu.hpp"
-#include "emnet/analysis.hpp"
+#include "emnet/analysis/analysis.hpp"
 #include "equilibration.hpp"
-#include "timed.hpp"
+#include "core/timed.hpp"
 
 namespace emnet {
 

@@ -16,7 +16,7 @@
 #include <string>
 
 #include "displacement_form.hpp"
-#include "emnet/errors.hpp"
+#include "emnet/core/errors.hpp"
 
 namespace emnet {
 

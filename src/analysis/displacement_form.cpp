@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "emnet/analysis.hpp"
+#include "emnet/analysis/analysis.hpp"
 
 namespace emnet {
 

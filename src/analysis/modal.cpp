@@ -11,11 +11,11 @@
 #include <stdexcept>
 
 #include "displacement_form.hpp"
-#include "emnet/analysis.hpp"
+#include "emnet/analysis/analysis.hpp"
 #include "equilibration.hpp"
 #include "pole_bounds.hpp"
 #include "rigid_body_space.hpp"
-#include "timed.hpp"
+#include "core/timed.hpp"
 
 namespace emnet {
 

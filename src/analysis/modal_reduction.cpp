@@ -1,5 +1,5 @@
-// Modal reduction with static correction; see include/emnet/modal_reduction.hpp.
-#include "emnet/modal_reduction.hpp"
+// Modal reduction with static correction; see include/emnet/analysis/modal_reduction.hpp.
+#include "emnet/analysis/modal_reduction.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,10 +8,10 @@
 #include <limits>
 #include <set>
 
-#include "emnet/units.hpp"
+#include "emnet/core/units.hpp"
 #include "exponential_series.hpp"
 #include "left_eigenvector.hpp"
-#include "timed.hpp"
+#include "core/timed.hpp"
 
 namespace emnet {
 

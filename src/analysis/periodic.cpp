@@ -1,6 +1,6 @@
 // Periodic steady state: exact (eigen-decomposed state equation) and shooting (IDA + Newton).
-// See include/emnet/periodic.hpp for the method.
-#include "emnet/periodic.hpp"
+// See include/emnet/analysis/periodic.hpp for the method.
+#include "emnet/analysis/periodic.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -10,11 +10,11 @@
 #include <string>
 
 #include "displacement_form.hpp"
-#include "emnet/analysis.hpp"
-#include "emnet/transient.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/transient.hpp"
 #include "exponential_series.hpp"
 #include "state_space.hpp"
-#include "timed.hpp"
+#include "core/timed.hpp"
 
 namespace emnet {
 

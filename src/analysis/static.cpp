@@ -1,11 +1,11 @@
 // Static analysis: displacements at rest from the s → 0 expansion of the pencil.
-// See include/emnet/analysis.hpp for the method.
+// See include/emnet/analysis/analysis.hpp for the method.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 
-#include "emnet/analysis.hpp"
-#include "timed.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "core/timed.hpp"
 
 namespace emnet {
 

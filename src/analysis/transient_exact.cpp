@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "displacement_form.hpp"
-#include "emnet/analysis.hpp"
-#include "emnet/transient.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/transient.hpp"
 #include "state_space.hpp"
-#include "timed.hpp"
+#include "core/timed.hpp"
 
 namespace emnet {
 

@@ -11,10 +11,10 @@
 
 #include "consistent_start.hpp"
 #include "displacement_form.hpp"
-#include "emnet/analysis.hpp"
-#include "emnet/transient.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/transient.hpp"
 #include "sundials_handles.hpp"
-#include "timed.hpp"
+#include "core/timed.hpp"
 
 namespace emnet {
 

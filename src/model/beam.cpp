@@ -1,4 +1,4 @@
-// Beam chain builder and Hermite interpolation: see include/emnet/model.hpp for the physics.
+// Beam chain builder and Hermite interpolation: see include/emnet/model/model.hpp for the physics.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,7 +8,7 @@
 #include "emnet/elements/conductance.hpp"
 #include "emnet/elements/inductor.hpp"
 #include "emnet/elements/transformer.hpp"
-#include "emnet/model.hpp"
+#include "emnet/model/model.hpp"
 
 namespace emnet {
 

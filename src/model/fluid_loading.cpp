@@ -1,5 +1,5 @@
-// Fluid loading of a thin rectangular beam (Sader 1998): see include/emnet/fluid_loading.hpp.
-#include "emnet/fluid_loading.hpp"
+// Fluid loading of a thin rectangular beam (Sader 1998): see include/emnet/model/fluid_loading.hpp.
+#include "emnet/model/fluid_loading.hpp"
 
 #include <algorithm>
 #include <cmath>

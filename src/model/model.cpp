@@ -41,9 +41,9 @@
 // peaks by 8.3e-4 of the peak (tools/bench 5a), which an 8 Hz band's estimate, 9.1e-4, only
 // just covers and a 6 Hz band's, 5.1e-4, does not.
 //
-// beam.segments = "auto": N from segment_selection (emnet/segment_selection.hpp) on the bare
+// beam.segments = "auto": N from segment_selection (emnet/model/segment_selection.hpp) on the bare
 // beam with the band of interest; with fluid loading, chosen again on the loaded beam.
-#include "emnet/model.hpp"
+#include "emnet/model/model.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -53,14 +53,14 @@
 #include <map>
 #include <stdexcept>
 
-#include "emnet/analysis.hpp"
+#include "emnet/analysis/analysis.hpp"
 #include "emnet/elements/conductance.hpp"
 #include "emnet/elements/current_source.hpp"
 #include "emnet/elements/dea.hpp"
 #include "emnet/elements/voltage_source.hpp"
-#include "emnet/errors.hpp"
-#include "emnet/segment_selection.hpp"
-#include "emnet/units.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/model/segment_selection.hpp"
+#include "emnet/core/units.hpp"
 
 namespace emnet {
 
@@ -127,7 +127,7 @@ double first_beam_resonance(const Scene& scene, const BeamSpec& beam) {
   return result.modes.front().frequency_hz;
 }
 
-// [environment]: Sader's added mass m_a and damping c_a per length (emnet/fluid_loading.hpp),
+// [environment]: Sader's added mass m_a and damping c_a per length (emnet/model/fluid_loading.hpp),
 // added to the beam's mass and viscous damping per length. Γ is taken at environment.frequency,
 // or else at the first undamped resonance of the loaded beam, found by the fixed point
 // f ← f₁(ρA + m_a(f)) from the bare beam's f₁ (it contracts fast: m_a varies with f only

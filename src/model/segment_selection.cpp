@@ -1,5 +1,5 @@
 // beam.segments = "auto": the smallest N whose band modes meet the tolerance (see the header).
-#include "emnet/segment_selection.hpp"
+#include "emnet/model/segment_selection.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -9,10 +9,10 @@
 #include <map>
 #include <stdexcept>
 
-#include "emnet/analysis.hpp"
-#include "emnet/errors.hpp"
-#include "emnet/model.hpp"
-#include "emnet/units.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/core/units.hpp"
 
 namespace emnet {
 

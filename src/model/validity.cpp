@@ -1,12 +1,12 @@
-// The validity checks of computed results (emnet/validity.hpp explains the limits).
-#include "emnet/validity.hpp"
+// The validity checks of computed results (emnet/model/validity.hpp explains the limits).
+#include "emnet/model/validity.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "emnet/model.hpp"
-#include "emnet/units.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/core/units.hpp"
 
 namespace emnet {
 

@@ -1,5 +1,5 @@
 // Network bookkeeping and assembly of the MNA system C·y' + G·y + g(y) = b(t).
-#include "emnet/network.hpp"
+#include "emnet/network/network.hpp"
 
 #include <algorithm>
 #include <cassert>

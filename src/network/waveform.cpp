@@ -1,5 +1,5 @@
 // Waveform evaluation: DC, SPICE-style PULSE, sine and piecewise-linear time functions.
-#include "emnet/waveform.hpp"
+#include "emnet/network/waveform.hpp"
 
 #include <algorithm>
 #include <cmath>

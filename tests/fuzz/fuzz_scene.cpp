@@ -16,10 +16,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "emnet/analysis.hpp"
-#include "emnet/errors.hpp"
-#include "emnet/model.hpp"
-#include "emnet/scene_reader.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/scene/scene_reader.hpp"
 
 namespace {
 

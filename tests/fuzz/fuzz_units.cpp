@@ -1,4 +1,4 @@
-// libFuzzer target: the unit parser (emnet/units.hpp) on any bytes. A unit or quantity string
+// libFuzzer target: the unit parser (emnet/core/units.hpp) on any bytes. A unit or quantity string
 // is parsed or refused with std::invalid_argument; a value that parses is finite. Anything
 // else (a crash, another exception, a sanitizer report, a hang) is a finding.
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "emnet/units.hpp"
+#include "emnet/core/units.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -21,13 +21,13 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "emnet/analysis.hpp"
+#include "emnet/analysis/analysis.hpp"
 #include "emnet/elements/capacitor.hpp"
 #include "emnet/elements/conductance.hpp"
 #include "emnet/elements/current_source.hpp"
 #include "emnet/elements/inductor.hpp"
-#include "emnet/scene_reader.hpp"
-#include "emnet/transient.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "emnet/analysis/transient.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

@@ -2,13 +2,13 @@
 // the scene reader.
 #pragma once
 
-#include "emnet/analysis.hpp"
+#include "emnet/analysis/analysis.hpp"
 #include "emnet/elements/capacitor.hpp"
 #include "emnet/elements/conductance.hpp"
 #include "emnet/elements/current_source.hpp"
 #include "emnet/elements/inductor.hpp"
-#include "emnet/model.hpp"
-#include "emnet/scene.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/scene/scene.hpp"
 
 namespace emnet::testing {
 

@@ -9,7 +9,7 @@
 #include "emnet/elements/conductance.hpp"
 #include "emnet/elements/current_source.hpp"
 #include "emnet/elements/inductor.hpp"
-#include "emnet/scene_reader.hpp"
+#include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

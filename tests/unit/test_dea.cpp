@@ -5,9 +5,9 @@
 #include <complex>
 #include <cstdio>
 
-#include "emnet/analysis.hpp"
+#include "emnet/analysis/analysis.hpp"
 #include "emnet/elements/dea.hpp"
-#include "emnet/scene_reader.hpp"
+#include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

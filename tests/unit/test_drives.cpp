@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "emnet/analysis.hpp"
+#include "emnet/analysis/analysis.hpp"
 #include "emnet/elements/dea.hpp"
-#include "emnet/periodic.hpp"
-#include "emnet/scene_reader.hpp"
-#include "emnet/transient.hpp"
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "emnet/analysis/transient.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

@@ -1,4 +1,4 @@
-// Fluid loading (emnet/fluid_loading.hpp, scene [environment]): Sader's hydrodynamic function
+// Fluid loading (emnet/model/fluid_loading.hpp, scene [environment]): Sader's hydrodynamic function
 // against independent values and its classical limits, the loaded beam against the closed form,
 // the fixed point at the loaded resonance, and the reader's checks of the environment table.
 #include <gtest/gtest.h>
@@ -11,11 +11,11 @@
 #include <string>
 
 #include "cli_run.hpp"
-#include "emnet/analysis.hpp"
-#include "emnet/errors.hpp"
-#include "emnet/fluid_loading.hpp"
-#include "emnet/model.hpp"
-#include "emnet/scene_reader.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/model/fluid_loading.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

@@ -18,7 +18,7 @@
 #include <string>
 
 #include "cli_run.hpp"
-#include "emnet/scene_reader.hpp"
+#include "emnet/scene/scene_reader.hpp"
 
 namespace {
 

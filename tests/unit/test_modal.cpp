@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "emnet/scene_reader.hpp"
+#include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

@@ -12,9 +12,9 @@
 #include "emnet/elements/conductance.hpp"
 #include "emnet/elements/current_source.hpp"
 #include "emnet/elements/inductor.hpp"
-#include "emnet/modal_reduction.hpp"
-#include "emnet/periodic.hpp"
-#include "emnet/scene_reader.hpp"
+#include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

@@ -1,4 +1,4 @@
-// The ngspice runner (include/emnet/ngspice_runner.hpp) on small hand-written decks, over every
+// The ngspice runner (include/emnet/spice/ngspice_runner.hpp) on small hand-written decks, over every
 // backend: libngspice in a forked worker, libngspice in this process, the ngspice program.
 //
 // References are closed forms of an RC low-pass (R = 1 kΩ, C = 1 µF, RC = 1 ms) and a resistive
@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "emnet/ngspice_runner.hpp"
+#include "emnet/spice/ngspice_runner.hpp"
 
 namespace emnet {
 namespace {

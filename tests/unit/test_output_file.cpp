@@ -14,7 +14,7 @@
 #include <iterator>
 #include <string>
 
-#include "emnet/output_file.hpp"
+#include "emnet/core/output_file.hpp"
 #include "test_directory.hpp"
 
 namespace {

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "emnet/periodic.hpp"
-#include "emnet/scene_reader.hpp"
-#include "emnet/transient.hpp"
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "emnet/analysis/transient.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

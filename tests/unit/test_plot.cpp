@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "emnet/plot.hpp"
+#include "emnet/report/plot.hpp"
 #include "test_directory.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-// Tests of the scene reader (emnet/scene_reader.hpp): valid scenes read to the right SI values,
+// Tests of the scene reader (emnet/scene/scene_reader.hpp): valid scenes read to the right SI values,
 // `--set` overrides, and one test per kind of bad input, each checking that the InputError names
 // the file, the line (where there is one) and the key, and says what is wrong; the bounds on
 // every input (scene_limits) and bad input that only the model builder notices.
@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "emnet/analysis.hpp"
-#include "emnet/errors.hpp"
-#include "emnet/model.hpp"
-#include "emnet/scene.hpp"
-#include "emnet/scene_reader.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/scene/scene.hpp"
+#include "emnet/scene/scene_reader.hpp"
 
 namespace emnet {
 namespace {
@@ -602,7 +602,7 @@ TEST(SceneReaderError, OverrideOfMissingArrayEntry) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Bounds: every input is refused or read in bounded time and memory (emnet/scene_reader.hpp,
+// Bounds: every input is refused or read in bounded time and memory (emnet/scene/scene_reader.hpp,
 // scene_limits). Each test asserts the refusal and its message, never a time.
 
 // `count` copies of `piece`.

@@ -1,4 +1,4 @@
-// Scene-driven assembly: beam.segments = "auto" (emnet/segment_selection.hpp),
+// Scene-driven assembly: beam.segments = "auto" (emnet/model/segment_selection.hpp),
 // drive.electrical_dynamics = "auto" (src/model/model.cpp) and the [model] table's reader.
 // References: the continuum cantilever's closed form, Richardson-converged frequencies from
 // N = 1000 and 2000, and the full RC model's periodic steady state.
@@ -10,12 +10,12 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "emnet/analysis.hpp"
-#include "emnet/errors.hpp"
-#include "emnet/model.hpp"
-#include "emnet/periodic.hpp"
-#include "emnet/scene_reader.hpp"
-#include "emnet/segment_selection.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "emnet/model/segment_selection.hpp"
 
 namespace emnet {
 namespace {

@@ -1,4 +1,4 @@
-// Eigenvalue sensitivities (include/emnet/sensitivity.hpp) against closed forms and finite
+// Eigenvalue sensitivities (include/emnet/studies/sensitivity.hpp) against closed forms and finite
 // differences of the poles.
 //
 // Closed form: the undamped lumped cantilever has f ∝ √(EI/ρA)/L² for any N (stiffnesses
@@ -14,8 +14,8 @@
 #include <cmath>
 
 #include "cli_run.hpp"
-#include "emnet/scene_reader.hpp"
-#include "emnet/sensitivity.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "emnet/studies/sensitivity.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

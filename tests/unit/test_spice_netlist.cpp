@@ -1,4 +1,4 @@
-// SPICE export (include/emnet/spice_netlist.hpp): deck structure, safety against scene text,
+// SPICE export (include/emnet/spice/spice_netlist.hpp): deck structure, safety against scene text,
 // freshness of the decks checked in under netlists/, and ngspice (run as a subprocess) on the
 // exported decks against emnet's own static and AC results.
 #include <gtest/gtest.h>
@@ -18,11 +18,11 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "emnet/analysis.hpp"
+#include "emnet/analysis/analysis.hpp"
 #include "emnet/elements/conductance.hpp"
-#include "emnet/model.hpp"
-#include "emnet/scene_reader.hpp"
-#include "emnet/spice_netlist.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "emnet/spice/spice_netlist.hpp"
 #include "fixtures.hpp"
 
 namespace {

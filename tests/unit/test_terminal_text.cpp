@@ -2,7 +2,7 @@
 // printable text (ASCII and UTF-8) is unchanged. Reference: the escapes the header documents.
 #include <gtest/gtest.h>
 
-#include "emnet/terminal_text.hpp"
+#include "emnet/core/terminal_text.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Tests of the unit parser (emnet/units.hpp): SI prefixes, compound units, Unicode spellings,
+// Tests of the unit parser (emnet/core/units.hpp): SI prefixes, compound units, Unicode spellings,
 // exact decimal conversion, and the error messages for wrong, missing or unknown units and for
 // NaN, infinity and text that is not a number.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "emnet/units.hpp"
+#include "emnet/core/units.hpp"
 
 namespace emnet {
 namespace {

@@ -1,5 +1,5 @@
 // Results outside what the small-deflection linear model can honestly give are flagged
-// (emnet/validity.hpp): the library's checks with their limits, the drive voltages each kind
+// (emnet/model/validity.hpp): the library's checks with their limits, the drive voltages each kind
 // applies, and the program's WARNING lines, "validity" in --json and exit status 5.
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "emnet/scene_reader.hpp"
-#include "emnet/validity.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "emnet/model/validity.hpp"
 
 namespace emnet {
 namespace {

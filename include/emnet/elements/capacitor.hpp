@@ -6,7 +6,7 @@
 // Through quantity positive from a to b. Stamps C only.
 #pragma once
 
-#include "emnet/network.hpp"
+#include "emnet/network/network.hpp"
 
 namespace emnet {
 

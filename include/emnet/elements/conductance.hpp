@@ -7,7 +7,7 @@
 // Through quantity positive from a to b. Stamps G only.
 #pragma once
 
-#include "emnet/network.hpp"
+#include "emnet/network/network.hpp"
 
 namespace emnet {
 

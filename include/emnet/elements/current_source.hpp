@@ -5,7 +5,7 @@
 // Units: A, N or N·m. Its AC phasor is the waveform's ac_magnitude/ac_phase.
 #pragma once
 
-#include "emnet/network.hpp"
+#include "emnet/network/network.hpp"
 
 namespace emnet {
 

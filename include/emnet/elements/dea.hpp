@@ -29,7 +29,7 @@
 #include <utility>
 #include <vector>
 
-#include "emnet/network.hpp"
+#include "emnet/network/network.hpp"
 
 namespace emnet {
 

@@ -7,7 +7,7 @@
 // Stamps G only (four VCCS entries per port).
 #pragma once
 
-#include "emnet/network.hpp"
+#include "emnet/network/network.hpp"
 
 namespace emnet {
 

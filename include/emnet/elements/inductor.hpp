@@ -19,7 +19,7 @@
 // j + g_p·L·j' (j alone is the spring's share, the branch unknown).
 #pragma once
 
-#include "emnet/network.hpp"
+#include "emnet/network/network.hpp"
 
 namespace emnet {
 

@@ -9,7 +9,7 @@
 // above (G only). The G block is symmetric.
 #pragma once
 
-#include "emnet/network.hpp"
+#include "emnet/network/network.hpp"
 
 namespace emnet {
 

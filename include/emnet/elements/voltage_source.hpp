@@ -5,7 +5,7 @@
 // Stamps: KCL rows plus (+j), minus (−j); branch row y_plus − y_minus = value(t).
 #pragma once
 
-#include "emnet/network.hpp"
+#include "emnet/network/network.hpp"
 
 namespace emnet {
 

@@ -1,0 +1,197 @@
+// Analyses over one assembled System (DESIGN §5). Each takes the System (and, where it
+// linearises, an operating point) and returns a Result with a Status; numerical failure is
+// a status, never an exception.
+#pragma once
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "emnet/core/errors.hpp"
+#include "emnet/network/output.hpp"
+#include "emnet/network/network.hpp"
+#include "emnet/core/progress.hpp"
+
+namespace emnet {
+
+// A linear solve whose relative residual ‖A·x − b‖/‖b‖ is above this, or not finite, has not
+// solved its system: the analyses return a failed Status then (static, AC, the exact periodic
+// state), never a result. Rounding of the equilibrated systems is 1e-16..1e-13; 1e-8 leaves
+// room for ill-conditioned but meaningful networks and none for a garbage answer.
+inline constexpr double kResidualLimit = 1e-8;
+// The failed Status for `residual` of `what` above kResidualLimit or not finite; success
+// otherwise.
+Status check_residual(double residual, const std::string& what);
+
+// ---- static / operating point -----------------------------------------------------------
+//
+// A mechanical network at rest has zero velocities; what is wanted is displacements. Write
+// every mechanical across unknown as s·(displacement) and expand (G + s·C)·y = b about s = 0:
+// rows whose s⁰ part vanishes (compliance and lever rows, which relate velocities only) are
+// divided by s. What is left at s = 0 is the static system K·z + g(z) = b(0) in
+//   z = [displacements (m, rad) on mechanical nodes; voltages on electrical nodes;
+//        through quantities (forces, torques, currents) on branches],
+// solved by Newton with a sparse LU. Built from G and C alone: no element is special-cased.
+struct StaticOptions {
+  double tolerance = 1e-12;  // Newton: relative step size
+  int max_iterations = 50;
+  Progress* progress = nullptr;  // a report per Newton iteration; cancelled: Status "cancelled"
+};
+
+struct StaticResult {
+  Status status;
+  Eigen::VectorXd state;            // z, see above
+  Eigen::VectorXd operating_point;  // y at rest: velocities 0, everything else from z
+  double relative_residual = 0.0;   // ‖K·z + g − b‖ / ‖b‖ (above kResidualLimit: failed)
+  int newton_iterations = 0;
+  double seconds = 0.0;
+};
+
+StaticResult solve_static(const System& system, const StaticOptions& options = {});
+// Value of a probe at rest (deflections and rotations; velocities are zero).
+double static_probe_value(const System& system, const StaticResult& result, const Probe& probe);
+
+// Which unknowns are mechanical across values (velocities), and which rows have no s⁰ part
+// once those are written as s·(displacement) (compliance and lever rows): `divided`.
+struct RowClassification {
+  std::vector<bool> mechanical;
+  std::vector<bool> divided;
+};
+RowClassification classify_rows(const System& system, const Eigen::SparseMatrix<double>& g_matrix);
+
+// The static operator of the linearised system, for reuse (AC at f = 0).
+class StaticOperator {
+ public:
+  StaticOperator(const System& system, const Eigen::SparseMatrix<double>& linearised_g);
+  // Solves matrix()·z = rhs; false (with a reason) when the operator is singular.
+  bool solve(const Eigen::VectorXcd& rhs, Eigen::VectorXcd& z, std::string& why) const;
+  // A right-hand side on a row divided by s is a constant velocity: no static state.
+  bool excites_divided_rows(const Eigen::VectorXcd& rhs) const;
+  const Eigen::SparseMatrix<double>& matrix() const { return matrix_; }
+  const std::vector<bool>& divided_rows() const { return divided_; }
+  const std::vector<bool>& mechanical() const { return mechanical_; }
+  bool factorised() const { return factorised_; }
+
+ private:
+  Eigen::SparseMatrix<double> matrix_;
+  std::vector<bool> divided_;
+  std::vector<bool> mechanical_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
+  bool factorised_ = false;
+};
+
+// G + ∂g/∂y at y.
+Eigen::SparseMatrix<double> linearised_g(const System& system, const Eigen::VectorXd& y);
+
+// ---- AC ----------------------------------------------------------------------------------
+//
+// Small-signal response about the operating point: (G + J_g + jω·C)·Y = B_ac with B_ac the
+// sources' AC phasors plus direct excitations (System::b_ac). At f = 0 a displacement probe
+// is the static response to B_ac (the limit of V/(jω)).
+std::vector<double> frequency_grid(double from, double to, int points, bool log);
+
+struct AcOptions {
+  Progress* progress = nullptr;  // one report per frequency; cancelled: Status "cancelled"
+};
+
+struct AcResult {
+  Status status;
+  std::vector<double> frequencies;                        // Hz
+  std::vector<std::vector<std::complex<double>>> values;  // [probe][frequency]
+  double max_relative_residual = 0.0;  // worst ‖A·Y − B‖/‖B‖ over the sweep
+  int pivot_searches = 0;  // factorisations with a pivot search (the first, and where reused
+                           // pivots gave 4× the residual of the last search)
+  double seconds = 0.0;
+};
+
+// A relative residual above kResidualLimit at any frequency is a failed Status naming it.
+AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
+                const std::vector<double>& frequencies, const std::vector<Probe>& probes,
+                const AcOptions& options = {});
+std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y, double omega);
+
+// ---- modal -------------------------------------------------------------------------------
+//
+// Poles s of the network, from its displacement form (src/analysis/displacement_form.hpp):
+// every mechanical across unknown written as s·(displacement), rows without an s⁰ part divided
+// by s, and a velocity unknown v = s·z for every node with mass, so that the pencil
+//     P(s) = A + s·E,    A = ∂F/∂u, E = ∂F/∂u' at the operating point,
+// is the static operator plus damping and inertia. Unlike the velocity form (G + J_g) + s·C it
+// has no pole at s = 0 for a statically indeterminate beam (a self-stress carries no motion),
+// and its rows relate forces to strains without differences of nearly equal velocities.
+// Shift-invert: with T = (Â + σÊ)⁻¹·Ê on the equilibrated pencil (equilibration.hpp),
+// T·x = μ·x gives s = σ − 1/μ; the pencil's infinite eigenvalues (algebraic unknowns) map to
+// μ = 0 and drop out. Small pencils: dense eigen-decomposition of T, every finite pole. Large
+// ones: implicitly restarted Arnoldi (Spectra) for the poles nearest σ, one sparse LU.
+//
+// Rigid-body motions (a free or sliding end, a pin without a spring) make A singular: s = 0 is a
+// pole, defective (displacement and velocity chain) when nothing damps the motion to ground. It
+// is found first, as the invariant subspace of T for μ = 1/σ at a small positive shift σ (block
+// shift-invert iteration, right and left), reported as rigid-body modes (displacement fields),
+// and projected out of T (the spectral projector along the other poles), so that rounding of a
+// Jordan block cannot pollute the elastic poles.
+//
+// Accuracy of each pole: a residual is a backward error; the pole's own error is the residual
+// times its condition. For each pole (a group of poles equal to within 1e-6, such as the two
+// DEAs' RC loops, is treated together) with right vectors X, left vectors Y (inverse iteration
+// on the adjoint pencil) and residuals R = Â·X + Ê·X·Λ evaluated in extended precision, the
+// first-order bound |δŝ| ≤ ‖Y‖₂·‖R‖_F·‖(Yᴴ·Ê·X)⁻¹‖₂ holds against the exact poles of the stored
+// pencil (Wilkinson; Tisseur, "Backward error and condition of polynomial eigenvalue
+// problems", Linear Algebra Appl. 309 (2000)). A pole whose bound cannot be formed (no left
+// vector, Yᴴ·Ê·X singular) or is not small (relative bound above 1e-3, where first order is no
+// longer a bound) is marked unbounded, with the reason.
+struct ModalOptions {
+  int count = 0;  // large pencils: oscillatory poles wanted (0: the 10 lowest)
+  // System unknowns up to which the dense method is used (every pole, O(n³)). Measured on the
+  // fish fin with the default request (tools/bench, "modes"): dense/Arnoldi time 0.22 at 36
+  // unknowns, 0.76 at 66, 2.1 at 126, 114 at 606, so the crossover lies near 80.
+  int dense_limit = 80;
+  bool keep_vectors = true;
+  bool error_bounds = true;  // compute each pole's error bound (from the transposed pencil)
+  // Reports each phase (equilibration, factorisation, rigid-body space, eigenvalues, left
+  // vectors, bounds) and, inside the Arnoldi iterations, the operator applications; cancelled,
+  // the analysis stops at the next phase or application with cancelled_status().
+  Progress* progress = nullptr;
+};
+
+struct Mode {
+  std::complex<double> pole;          // s [1/s], Im ≥ 0
+  double frequency_hz = 0.0;          // |Im s| / 2π (damped)
+  double natural_frequency_hz = 0.0;  // |s| / 2π
+  double damping_ratio = 0.0;         // −Re s / |s|
+  // ‖(Â + ŝÊ)·x̂‖ / ((‖Â‖ + |ŝ|·‖Ê‖)·‖x̂‖) on the equilibrated pencil (unit-free): the backward
+  // error.
+  double relative_residual = 0.0;
+  // First-order bound on |δs| [1/s] (see above); valid when error_bounded. The frequency's error
+  // is at most pole_error/2π [Hz], the damping ratio's at most pole_error/|s|.
+  double pole_error = 0.0;
+  bool error_bounded = false;
+  std::string unbounded_reason;  // why not, when !error_bounded
+  Eigen::VectorXcd vector;       // y-space eigenvector (across values are velocities)
+};
+
+struct ModalResult {
+  Status status;
+  std::vector<Mode> modes;       // oscillatory poles (Im s > 0), sorted by frequency
+  std::vector<Mode> real_poles;  // non-oscillatory poles (RC, overdamped), sorted by |s|
+  // Rigid-body motions (pole s = 0): displacement fields on the system's unknowns (m and rad on
+  // mechanical across unknowns, 0 elsewhere), an orthonormal basis, largest entry positive.
+  std::vector<Eigen::VectorXd> rigid_body_modes;
+  std::string method;   // "dense" or "arnoldi"
+  int unknowns = 0;     // of the system
+  int pencil_size = 0;  // of the displacement-form pencil
+  double shift = 0.0;
+  double seconds = 0.0;
+  double bound_seconds = 0.0;  // of that, the error bounds
+  bool complete = false;       // true when every finite pole was computed
+  std::string note;            // e.g. how many of the requested poles converged
+  long iterations = 0;         // Arnoldi restarts over all attempts (0 for dense)
+};
+
+// `operating_point`: y at rest (velocities zero) to linearise about; empty means zero.
+ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,
+                      const ModalOptions& options = {});
+
+}  // namespace emnet

@@ -1,0 +1,79 @@
+// Time-domain analysis: SUNDIALS IDA on the network's DAE, and the exact solution of linear
+// networks under piecewise-constant sources.
+//
+// Both integrate the displacement form of C·y' + G·y + g(y) = b(t) (src/analysis/
+// displacement_form.hpp): mechanical across unknowns become displacements z (with a velocity
+// v = z' where a mass or inertia needs one), and compliance / lever rows, which relate
+// velocities only, are integrated once. Spring forces are then algebraic, massless rotation
+// nodes a static condensation, and the DAE has index 1 — which IDA requires; deflections are
+// states, read without a numerical integrator.
+#pragma once
+
+#include <Eigen/Dense>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "emnet/core/errors.hpp"
+#include "emnet/network/output.hpp"
+#include "emnet/network/network.hpp"
+#include "emnet/core/progress.hpp"
+
+namespace emnet {
+
+enum class StartState {
+  rest,    // every unknown zero at t = 0⁻; sources switch on at t = 0
+  static_  // the static state under the sources' values at t = 0 (the first half-period)
+};
+
+struct TransientOptions {
+  double end_time = 1.0;             // [s]
+  std::vector<double> output_times;  // increasing, in [0, end_time]
+  double relative_tolerance = 1e-6;  // IDA
+  double absolute_tolerance = 0.0;   // IDA; 0: relative_tolerance × a scale per unknown
+  double max_step = 0.0;             // IDA; 0: unlimited
+  StartState start = StartState::rest;
+  // IDA only: start from this displacement-form state instead (its differential components;
+  // the algebraic ones are made consistent). Used by shooting.
+  std::optional<Eigen::VectorXd> initial_state;
+  // One report per output time; when cancelled, the run stops at the next output time (IDA: or
+  // the next return of its solver) with Status "cancelled".
+  Progress* progress = nullptr;
+};
+
+struct IntegratorStatistics {
+  long steps = 0;
+  long residual_evaluations = 0;
+  long jacobian_evaluations = 0;
+  long newton_iterations = 0;
+  long error_test_failures = 0;
+  long convergence_failures = 0;
+  long restarts = 0;  // one per switching edge
+};
+
+struct TransientResult {
+  Status status;
+  std::string method;                       // "ida" or "exact"
+  std::vector<double> times;                // output times reached
+  std::vector<std::vector<double>> values;  // [probe][time]
+  IntegratorStatistics statistics;
+  Eigen::VectorXd final_state;  // IDA: the displacement-form state at end_time
+  double seconds = 0.0;
+};
+
+// IDA (BDF, variable order and step) with a sparse KLU linear solver; stops exactly at every
+// source breakpoint and restarts there with consistent values (IDACalcIC).
+TransientResult run_transient_ida(const System& system, const std::vector<Probe>& probes,
+                                  const TransientOptions& options);
+
+// The ends of the constant (or smooth) intervals of the sources over (0, end_time]: every
+// source breakpoint, the last one being end_time itself.
+std::vector<double> interval_ends(const System& system, double end_time);
+
+// Exact solution for a linear network whose sources are piecewise constant (zero rise time):
+// a matrix exponential per constant interval. Fails (status) for other networks, and when an
+// output is not finite.
+TransientResult run_transient_exact(const System& system, const std::vector<Probe>& probes,
+                                    const TransientOptions& options);
+
+}  // namespace emnet

@@ -1,0 +1,55 @@
+// Progress and cancellation of long analyses.
+//
+// An analysis that loops (the AC sweep over its frequencies, a transient over its output times,
+// the sensitivity over its parameters) takes an optional Progress* in its options: after each
+// step it calls report(done, total, what), and when cancelled() is true it stops at the next
+// step and returns the failed Status cancelled_status(). A null pointer means no reports and no
+// cancellation. report() is called on the analysis's own thread once per step, so an
+// implementation only records the state (a program prints it at its own rate); cancelled() is a
+// flag read, e.g. one that a SIGINT handler sets.
+#pragma once
+
+#include <string_view>
+
+#include "emnet/core/errors.hpp"
+
+namespace emnet {
+
+class Progress {
+ public:
+  virtual ~Progress() = default;
+  // `done` of `total` steps of `what` ("AC frequencies", "output times"); total 0: unknown.
+  virtual void report(long done, long total, std::string_view what) = 0;
+  virtual bool cancelled() const = 0;
+};
+
+inline bool cancel_requested(const Progress* progress) {
+  return progress != nullptr && progress->cancelled();
+}
+
+// Reports a step; false when the analysis is to stop (cancelled).
+inline bool keep_going(Progress* progress, long done, long total, std::string_view what) {
+  if (progress == nullptr) return true;
+  progress->report(done, total, what);
+  return !progress->cancelled();
+}
+
+inline constexpr std::string_view kCancelledMessage = "cancelled";
+inline Status cancelled_status() {
+  return Status::failure(std::string(kCancelledMessage));
+}
+
+// Forwards the cancellation of `outer` but drops reports: for analyses run inside one step of
+// another (the one-period IDA runs of a shooting solve), whose reports would replace the outer
+// analysis's.
+class CancellationOnly : public Progress {
+ public:
+  explicit CancellationOnly(const Progress* outer) : outer_(outer) {}
+  void report(long, long, std::string_view) override {}
+  bool cancelled() const override { return cancel_requested(outer_); }
+
+ private:
+  const Progress* outer_;
+};
+
+}  // namespace emnet

@@ -1,0 +1,81 @@
+// Results a small-deflection linear model cannot honestly give: the checks and their messages.
+//
+// The beam is Euler–Bernoulli with small deflections (sin φ ≈ φ, no shortening along the
+// beam, loads that keep their direction) and the DEAs are linear capacitors that never break
+// down. Two checks say when a computed result has left that model:
+//
+// - Deflection: the largest |deflection| computed at an output against model.deflection_limit
+//   times beam.length (default 10 %). What the linear theory gets wrong grows as (w/L)². For a
+//   cantilever bent by an end moment (how a DEA patch loads a beam) the exact shape is an arc,
+//   tip deflection R·(1 − cos θ) with θ = L/R = 2w/L against the linear w = L²/(2R): at
+//   w = 0.1·L the linear value is 0.33 % too large and the tip has moved 0.67 % of L toward the
+//   clamp, which the model does not have; at 0.2·L 1.3 % and 2.6 %. Under an end force (the
+//   elastica, integrated for these numbers) 1.0 % at 0.1·L and 4.0 % at 0.2·L. Past a few
+//   tenths of L the numbers describe no real beam (a linear beam deflects without bound).
+// - Electric field: the largest voltage across each DEA's film divided by its thickness d
+//   (dea[].dielectric_thickness, the nominal film: the model does not thin it under load)
+//   against dea[].breakdown_field (default kDefaultBreakdownField, emnet/scene/scene.hpp). Above it the
+//   film breaks down and the DEA is a short, not a capacitor.
+//
+// A check fails only strictly above its limit ("at most" the limit is inside). The checks
+// judge the values handed to them, so each command passes what it computed: static the state
+// at t = 0 (drive_voltages_at_start), the others every level the drive applies
+// (drive_peak_voltages). A flagged result is still computed and printed, with a WARNING; the
+// program exits with kExitOutsideValidity.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "emnet/scene/scene.hpp"
+
+namespace emnet {
+
+// Exit status of a command whose result is computed but outside the model's validity.
+constexpr int kExitOutsideValidity = 5;
+
+// The largest |deflection| [m] computed at one output (a probe, dx4, the beam's nodes).
+struct DeflectionPeak {
+  std::string output;
+  double peak = 0.0;
+};
+
+// The largest |voltage| [V] across one DEA's film in what was computed.
+struct DeaVoltage {
+  std::string dea;
+  double voltage = 0.0;
+};
+
+enum class ValidityCheck { deflection, electric_field };
+const char* validity_check_name(ValidityCheck check);  // "deflection", "electric_field"
+
+struct ValidityViolation {
+  ValidityCheck check = ValidityCheck::deflection;
+  std::string subject;  // the output or the DEA
+  std::string key;      // the scene key of the limit: "model.deflection_limit"
+  double value = 0.0;   // |w| [m] or V/d [V/m]
+  double limit = 0.0;   // model.deflection_limit·L [m] or dea[].breakdown_field [V/m]
+  std::string message;  // one line, with the numbers
+};
+
+struct Validity {
+  std::vector<ValidityViolation> violations;
+  // The worst of each check as a fraction of its limit (0 when nothing was checked).
+  double deflection_fraction = 0.0;
+  double field_fraction = 0.0;
+  std::string summary;  // one line: the largest values against their limits
+  bool within() const { return violations.empty(); }
+};
+
+// Each DEA the drive names with its largest source voltage over the drive: V for the square
+// waves, V0 + v for the sines. The RC loop's capacitor voltage stays within the source's range.
+std::vector<DeaVoltage> drive_peak_voltages(const Scene& scene);
+// The same at t = 0 (the state `emnet static` and `tran --start static` apply).
+std::vector<DeaVoltage> drive_voltages_at_start(const Scene& scene);
+
+// The violations among `deflections` and `voltages` of `scene` (its beam length, DEA films and
+// limits); a DEA named in `voltages` must be one of the scene's.
+Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& deflections,
+                        const std::vector<DeaVoltage>& voltages);
+
+}  // namespace emnet

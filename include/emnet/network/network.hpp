@@ -1,0 +1,155 @@
+// The network: nodes with a physical domain, and the elements between them.
+//
+// Firestone (mobility) analogy, DESIGN §1: across = voltage (velocity v [m/s], angular
+// velocity Ω [rad/s], electric potential u [V]); through = current (force F [N], torque
+// M [N·m], electric current i [A]). Node `ground` is the reference of every domain
+// (v = 0: a clamp; Ω = 0; u = 0).
+//
+// A Network holds no analysis state. assemble() stamps every element once into the MNA form
+//     C·y' + G·y + g(y) = b(t)
+// with y = [node across values; branch unknowns]; analyses take the System and never look at
+// element kinds.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <complex>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "emnet/network/waveform.hpp"
+
+namespace emnet {
+
+enum class Domain { electrical, translational, rotational };
+const char* domain_name(Domain domain);
+const char* across_unit(Domain domain);   // "V", "m/s", "rad/s"
+const char* through_unit(Domain domain);  // "A", "N", "N*m"
+inline bool is_mechanical(Domain domain) {
+  return domain != Domain::electrical;
+}
+
+using NodeId = int;
+constexpr NodeId ground = -1;
+
+struct Node {
+  std::string name;  // short, SPICE-safe: "v3", "r3", "e_A"
+  Domain domain;
+  std::string meaning;  // "velocity at x = 70.0 mm"
+};
+
+// What one unknown of y is.
+struct Unknown {
+  std::string name;
+  enum class Kind { node_across, branch_through } kind;
+  Domain domain;  // of the node, or of the branch's through quantity
+};
+
+class Stamper;
+
+// One network element. Elements stamp; analyses solve.
+class Element {
+ public:
+  explicit Element(std::string name) : name_(std::move(name)) {}
+  virtual ~Element() = default;
+  const std::string& name() const { return name_; }
+  virtual const char* kind() const = 0;
+  // Extra unknowns this element adds to y (branch currents), with their domain.
+  virtual std::vector<Unknown> branch_unknowns() const { return {}; }
+  // Linear part (G, C), source terms b(t) and the AC excitation.
+  virtual void stamp(Stamper& stamper) const = 0;
+  // Nonlinear part: adds g(y) to `g` and, when `jacobian` is given, ∂g/∂y to it (as entries
+  // added into the triplet list). Linear elements do nothing.
+  virtual bool is_nonlinear() const { return false; }
+  virtual void add_nonlinear(const Eigen::VectorXd& /*y*/, Eigen::VectorXd& /*g*/,
+                             std::vector<Eigen::Triplet<double>>* /*jacobian*/) const {}
+
+ private:
+  std::string name_;
+};
+
+class System;
+
+class Network {
+ public:
+  NodeId add_node(std::string name, Domain domain, std::string meaning);
+  template <class ElementType, class... Args>
+  ElementType& add(Args&&... args) {
+    auto element = std::make_unique<ElementType>(std::forward<Args>(args)...);
+    ElementType& reference = *element;
+    elements_.push_back(std::move(element));
+    return reference;
+  }
+  const std::vector<Node>& nodes() const { return nodes_; }
+  const Node& node(NodeId id) const { return nodes_.at(static_cast<size_t>(id)); }
+  const std::vector<std::unique_ptr<Element>>& elements() const { return elements_; }
+  const Element* find(const std::string& name) const;
+
+  System assemble() const;
+
+ private:
+  std::vector<Node> nodes_;
+  std::vector<std::unique_ptr<Element>> elements_;
+};
+
+// The assembled MNA system. Built once; every analysis reads it.
+class System {
+ public:
+  int size() const { return static_cast<int>(unknowns.size()); }
+
+  std::vector<Unknown> unknowns;
+  Eigen::SparseMatrix<double> G;  // conductance / stiffness-like part
+  Eigen::SparseMatrix<double> C;  // capacitance / mass-like part
+
+  // b(t) = Σ coefficient·waveforms[w].value(t)·e_row
+  struct SourceTerm {
+    int row;
+    double coefficient;
+    int waveform;
+  };
+  std::vector<Waveform> waveforms;
+  std::vector<SourceTerm> source_terms;
+  Eigen::VectorXcd ac_excitation;  // direct AC excitation stamped by elements
+
+  std::vector<const Element*> nonlinear_elements;
+
+  Eigen::VectorXd b(double t) const;
+  Eigen::VectorXd b_at_rest() const { return b(0.0); }
+  // AC right-hand side: source phasors plus the direct excitation.
+  Eigen::VectorXcd b_ac() const;
+  bool is_nonlinear() const { return !nonlinear_elements.empty(); }
+  // g(y) and, optionally, its Jacobian.
+  void nonlinear(const Eigen::VectorXd& y, Eigen::VectorXd& g,
+                 Eigen::SparseMatrix<double>* jacobian) const;
+  // Instants in (t_begin, t_end] where a source jumps.
+  std::vector<double> breakpoints(double t_begin, double t_end) const;
+  // Index of the first unknown belonging to each element's branch list, by element name.
+  int branch_index(const std::string& element_name, int k = 0) const;
+  std::vector<std::pair<std::string, int>> branch_offsets;
+};
+
+// Handed to Element::stamp. Rows/columns equal to `ground` are dropped.
+class Stamper {
+ public:
+  Stamper(System& system, int branch_offset) : system_(system), branch_offset_(branch_offset) {}
+  void g(int row, int column, double value);
+  void c(int row, int column, double value);
+  // A two-terminal admittance between nodes a and b: +value on the diagonal, −value off it.
+  void g_between(NodeId a, NodeId b, double value);
+  void c_between(NodeId a, NodeId b, double value);
+  // Adds coefficient·waveform(t) to b[row]; returns the waveform's index for reuse.
+  int source(int row, double coefficient, const Waveform& waveform);
+  void source(int row, double coefficient, int waveform_index);
+  void ac(int row, std::complex<double> value);
+  // Global index of this element's k-th branch unknown.
+  int branch(int k) const { return branch_offset_ + k; }
+
+  std::vector<Eigen::Triplet<double>> g_entries;
+  std::vector<Eigen::Triplet<double>> c_entries;
+
+ private:
+  System& system_;
+  int branch_offset_;
+};
+
+}  // namespace emnet

@@ -1,0 +1,187 @@
+// A scene: what the user writes in netlists/*.toml, read into plain SI data.
+//
+// The reader (src/scene/scene_reader.cpp) turns a TOML file plus `--set key=value` overrides into
+// a Scene, checking every key, unit and range; the model builder (src/model/) turns a Scene
+// into a Network. Every quantity here is SI; the comments name the scene key.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "emnet/core/quantity.hpp"
+
+namespace emnet {
+
+enum class EndCondition { clamped, free, pinned, sliding };
+const char* end_condition_name(EndCondition end);
+
+struct BeamSpec {
+  double length = 0.0;  // beam.length [m]
+  int segments = 0;     // beam.segments [-]
+  // beam.segments = "auto": the model builder chooses N from [model] (segments is 0 until
+  // then; emnet/model/segment_selection.hpp). An integer, or --segments N, sets it false.
+  bool auto_segments = false;
+  double bending_stiffness = 0.0;             // beam.bending_stiffness EI [N·m²]
+  double mass_per_length = 0.0;               // beam.mass_per_length ρA [kg/m]
+  double rotary_inertia_per_length = 0.0;     // beam.rotary_inertia_per_length ρI [kg·m]
+  EndCondition left = EndCondition::clamped;  // beam.left  (x = 0)
+  EndCondition right = EndCondition::free;    // beam.right (x = length)
+};
+
+struct DampingSpec {
+  double viscous_per_length = 0.0;  // damping.viscous_per_length [N·s/m²], to ground
+  double kelvin_voigt_time = 0.0;   // damping.kelvin_voigt_time τ [s]: M = EI(κ + τ·κ')
+  // damping.loss_factor η at damping.loss_factor_frequency f: τ = η/(2π f). Either this pair
+  // or kelvin_voigt_time, not both (the reader enforces it).
+  std::optional<double> loss_factor;
+  std::optional<double> loss_factor_frequency;  // [Hz]
+  double effective_kelvin_voigt_time() const;
+};
+
+// Default dea[].breakdown_field: 80 V/µm, the dielectric breakdown strength in the data sheet
+// of WACKER ELASTOSIL Film 2030 (ASTM D 3755), the silicone film of the paper's DEAs. The data
+// sheet gives it for the film as supplied; the paper pre-stretches its film (to 51 µm), which
+// it says raises the breakdown strength, by how much it does not say.
+inline constexpr double kDefaultBreakdownField = 80e6;
+
+enum class Face { top, bottom };  // top = +w side; an energised DEA there bends toward −w
+
+struct DeaSpec {
+  std::string name;                    // dea[].name
+  double from = 0.0;                   // dea[].from x0 [m]
+  double to = 0.0;                     // dea[].to   x1 [m]
+  Face face = Face::top;               // dea[].face
+  double lever_arm = 0.0;              // dea[].lever_arm z [m] from the neutral plane
+  double relative_permittivity = 0.0;  // dea[].relative_permittivity ε_r [-]
+  double dielectric_thickness = 0.0;   // dea[].dielectric_thickness d [m]
+  double force_thickness = 0.0;        // dea[].force_thickness d' [m] (paper Eq. 16)
+  double electrode_width = 0.0;        // dea[].electrode_width [m]
+  double electrode_resistance = 0.0;   // dea[].electrode_resistance [Ω]
+  bool back_coupling = false;          // dea[].back_coupling: i += V·dC/dt
+  // dea[].breakdown_field [V/m]: the field V/d across the film above which a result is flagged
+  // as outside the model (emnet/model/validity.hpp); default kDefaultBreakdownField.
+  double breakdown_field = kDefaultBreakdownField;
+};
+
+// drive.kind: what the DEAs are driven with (src/model/model.cpp builds the sources):
+//   antagonistic       0/V square wave on DEA A for the first `duty` of each period, on B for
+//                      the rest (keys deas = [A, B], voltage, frequency, duty, rise_time, overlap);
+//   switched           0/V square wave on one DEA, on for the first `duty` of each period
+//                      (deas = [A], voltage, frequency, duty, rise_time);
+//   bias_differential  V_A = V0 + v·sin(2πft), V_B = V0 − v·sin(2πft) (deas = [A, B], bias,
+//                      amplitude, frequency);
+//   single             V = V0 + v·sin(2πft) on one DEA (deas = [A], bias, amplitude, frequency);
+//   none               no DEA driven: the scene's loads only (frequency, if given, is only the
+//                      period of `tran --periods`).
+// drive.electrical_dynamics applies to every kind. The reader refuses a key the kind does not use.
+enum class DriveKind { none, antagonistic, bias_differential, single, switched };
+const char* drive_kind_name(DriveKind kind);
+
+struct DriveSpec {
+  DriveKind kind = DriveKind::none;  // drive.kind
+  std::vector<std::string> deas;     // drive.deas: [A, B] (antagonistic, bias_differential), [A]
+  double voltage = 0.0;              // drive.voltage [V]: switched level (antagonistic, switched)
+  double bias = 0.0;                 // drive.bias V0 [V] (bias_differential, single)
+  double amplitude = 0.0;            // drive.amplitude v [V] (bias_differential, single)
+  double frequency = 0.0;            // drive.frequency [Hz]: switching / sine frequency
+  double rise_time = 0.0;            // drive.rise_time [s] (antagonistic, switched)
+  double duty = 0.5;  // drive.duty [-]: fraction of the period A is on (antagonistic, switched)
+  // drive.overlap [s] (antagonistic): A stays on this long after B has switched on, both on
+  // together; negative, a dead time: A switches off this long before B switches on.
+  double overlap = 0.0;
+  // drive.electrical_dynamics: true = each DEA is its capacitor behind its electrode
+  // resistance and its force follows the capacitor voltage (nonlinear); false = an ideal
+  // voltage-driven force k_F·V(t)² from the source (a linear network: exact transient).
+  bool electrical_dynamics = true;
+  // drive.electrical_dynamics = "auto": the model builder keeps the RC dynamics only when a
+  // probe asks for an electrical quantity or the RC lag matters in [model]'s band to its
+  // tolerance (src/model/model.cpp). The model's scene holds the choice in
+  // electrical_dynamics, with this flag cleared; code that sets electrical_dynamics on a read
+  // scene clears it too.
+  bool electrical_dynamics_auto = false;
+};
+
+enum class LoadKind { force, moment };
+struct LoadSpec {
+  LoadKind kind = LoadKind::force;  // load[].kind
+  double at = 0.0;                  // load[].at [m]
+  double value = 0.0;               // load[].value [N] or [N·m]; also its AC amplitude
+};
+
+struct ProbeSpec {
+  std::string name;                                    // probe[].name
+  ProbeQuantity quantity = ProbeQuantity::deflection;  // probe[].quantity
+  double at = 0.0;                                     // probe[].at [m] (beam quantities)
+  std::string dea;                                     // probe[].dea (dea_voltage, dea_current)
+};
+
+struct AcSpec {
+  double from = 0.1;   // ac.from [Hz]
+  double to = 10.0;    // ac.to [Hz]
+  int points = 200;    // ac.points
+  bool log = false;    // ac.scale = "lin" | "log"
+  bool given = false;  // the scene has an [ac] table (its upper end then bounds the default band)
+};
+
+// [model]: what the scene wants to know, for the automatic choices (beam.segments = "auto",
+// drive.electrical_dynamics = "auto"). model.band = ["0 Hz", "130 Hz"] or "130 Hz" (from 0);
+// unset, the band is 0 to the larger of ac.to (with an [ac] table) and 10 x drive.frequency
+// (emnet/model/segment_selection.hpp, band_of_interest).
+struct ModelSpec {
+  std::optional<double> band_from;  // model.band lower end [Hz]
+  std::optional<double> band_to;    // model.band upper end [Hz]
+  double tolerance = 1e-3;          // model.tolerance: relative accuracy of the band's resonances
+  // model.deflection_limit: the largest |deflection| a small-deflection linear beam is trusted
+  // with, as a fraction of beam.length; a result beyond it is flagged (emnet/model/validity.hpp).
+  double deflection_limit = 0.1;
+};
+
+// [environment]: the fluid around the beam (fluid loading, emnet/model/fluid_loading.hpp).
+enum class Fluid { none, air, water };
+const char* fluid_name(Fluid fluid);
+
+struct EnvironmentSpec {
+  Fluid fluid = Fluid::none;       // environment.fluid
+  double density = 0.0;            // environment.density ρ [kg/m³] (default: the fluid's, 20 °C)
+  double dynamic_viscosity = 0.0;  // environment.dynamic_viscosity η [Pa·s] (default as density)
+  double width = 0.0;              // environment.width b [m]: the plate's width across the motion
+  // environment.frequency [Hz] at which the hydrodynamic function is evaluated; unset: the
+  // first resonance of the loaded beam, found by fixed-point iteration.
+  std::optional<double> frequency;
+};
+
+// A choice the model builder made for the scene ("auto" keys): what, why, at what estimated
+// error and cost; printed in every command's notes and as "automatic_choices" in --json.
+struct AutomaticChoice {
+  std::string key;               // "beam.segments", "drive.electrical_dynamics"
+  std::string value;             // "38", "false"
+  std::string reason;            // one line, with the numbers
+  double estimated_error = 0.0;  // relative, the criterion's estimate of what the choice costs
+  double tolerance = 0.0;        // model.tolerance it was held to
+  double band_from_hz = 0.0;     // the band of interest it was made for
+  double band_to_hz = 0.0;
+  double seconds = 0.0;  // time spent choosing
+};
+
+struct Scene {
+  std::string file;   // path it was read from
+  std::string name;   // scene.name
+  std::string title;  // scene.title
+  BeamSpec beam;
+  DampingSpec damping;
+  std::vector<DeaSpec> deas;
+  DriveSpec drive;
+  std::vector<LoadSpec> loads;
+  std::vector<ProbeSpec> probes;
+  AcSpec ac;
+  EnvironmentSpec environment;
+  ModelSpec model;
+  std::map<std::string, std::string> provenance;  // [provenance] "dotted.key" = "paper: …"
+  // Choices already made for this scene (a model's scene has beam.segments = "auto" resolved
+  // and carries the choice here, so a model rebuilt from it keeps the same N and says why).
+  std::vector<AutomaticChoice> automatic_choices;
+};
+
+}  // namespace emnet

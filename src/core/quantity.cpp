@@ -1,0 +1,42 @@
+// Names and units of the output quantities; see include/emnet/core/quantity.hpp.
+#include "emnet/core/quantity.hpp"
+
+namespace emnet {
+
+const char* probe_quantity_name(ProbeQuantity quantity) {
+  switch (quantity) {
+    case ProbeQuantity::deflection:
+      return "deflection";
+    case ProbeQuantity::velocity:
+      return "velocity";
+    case ProbeQuantity::rotation:
+      return "rotation";
+    case ProbeQuantity::angular_velocity:
+      return "angular_velocity";
+    case ProbeQuantity::dea_voltage:
+      return "dea_voltage";
+    case ProbeQuantity::dea_current:
+      return "dea_current";
+  }
+  return "?";
+}
+
+const char* probe_unit(ProbeQuantity quantity) {
+  switch (quantity) {
+    case ProbeQuantity::deflection:
+      return "m";
+    case ProbeQuantity::velocity:
+      return "m/s";
+    case ProbeQuantity::rotation:
+      return "rad";
+    case ProbeQuantity::angular_velocity:
+      return "rad/s";
+    case ProbeQuantity::dea_voltage:
+      return "V";
+    case ProbeQuantity::dea_current:
+      return "A";
+  }
+  return "?";
+}
+
+}  // namespace emnet
