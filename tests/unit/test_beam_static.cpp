@@ -5,9 +5,10 @@
 //   tip moment M:  w = M·x²/(2EI),           φ = M·x/EI
 //   moment pair −T at a, +T at b (a < b): bending moment T on [a, b], zero elsewhere, so
 //     w = 0 (x ≤ a), T(x − a)²/(2EI) (a ≤ x ≤ b), T(b − a)²/(2EI) + T(b − a)(x − b)/EI (x ≥ b)
-// The segment network has exactly the Hermite element's flexibility (DESIGN §2) and loads
-// between nodes enter as consistent nodal loads, so nodal values are exact for every N: the
-// only error is rounding in a sparse LU of a well-conditioned system, hence 1e-10 relative.
+// The segment network has exactly the Hermite element's flexibility (docs/model.md, The beam
+// segment) and loads between nodes enter as consistent nodal loads, so nodal values are exact for
+// every N: the only error is rounding in a sparse LU of a well-conditioned system, hence 1e-10
+// relative.
 #include <gtest/gtest.h>
 
 #include <cmath>

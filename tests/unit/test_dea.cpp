@@ -22,16 +22,17 @@ TEST(DeaForce, PaperValuesAtThreeAndFourKilovolts) {
   EXPECT_NEAR(k * 4000.0 * 4000.0, 0.097, 5e-4);
 }
 
-// C₀ = ε₀ε_r·A/d ≈ 0.85 nF for a 25 mm × 70 mm electrode (DESIGN §3, two digits given).
+// C₀ = ε₀ε_r·A/d ≈ 0.85 nF for a 25 mm × 70 mm electrode (docs/model.md, The DEA transducer, two
+// digits given).
 TEST(DeaForce, CapacitanceOfThePaperElectrode) {
   EXPECT_NEAR(dea_capacitance(2.8, 51e-6, 25e-3, 70e-3), 0.85e-9, 0.005e-9);
 }
 
 // A top-face DEA over [x0, x1] at voltage V (static, single drive at bias V) is the moment
-// pair T = −z·k_F·V² (DESIGN §3), so the cantilever deflects (closed form, as in
-// test_beam_static): w(L) = T(x1 − x0)²/(2EI) + T(x1 − x0)(L − x1)/EI. The span falls
-// between nodes; nodal statics are exact, so the tolerance is rounding: 1e-10 relative. The
-// bottom face gives the opposite sign.
+// pair T = −z·k_F·V² (docs/model.md, The DEA transducer), so the cantilever deflects (closed form,
+// as in test_beam_static): w(L) = T(x1 − x0)²/(2EI) + T(x1 − x0)(L − x1)/EI. The span falls between
+// nodes; nodal statics are exact, so the tolerance is rounding: 1e-10 relative. The bottom face
+// gives the opposite sign.
 TEST(DeaForce, StaticMomentPairOnTheBeam) {
   for (Face face : {Face::top, Face::bottom}) {
     Scene scene = testing::cantilever_scene(9);

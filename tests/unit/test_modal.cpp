@@ -1,10 +1,11 @@
 // Modal analysis of the cantilever network against the Euler–Bernoulli continuum.
 //
-// Reference (DESIGN §2): f_n = (β_n L)²/(2π L²)·√(EI/ρA), β_n L = 1.875104, 4.694091, 7.854757.
-// The lumped-mass network converges at second order in 1/N, so the error ratio between
-// N = 7, 14 and 28 approaches 4; we accept [3.5, 4.5] (the next term of the expansion moves the
-// ratio by O(1/N²) ≈ 2 % at N = 7). f1 at N = 7 must be within 1 % (DESIGN: 0.9907 of the
-// continuum value). Mode residuals are checked to 1e-9 (relative, rounding of a dense solve).
+// Reference (docs/model.md, The beam segment): f_n = (β_n L)²/(2π L²)·√(EI/ρA), β_n L
+// = 1.875104, 4.694091, 7.854757. The lumped-mass network converges at second order in 1/N, so the
+// error ratio between N = 7, 14 and 28 approaches 4; we accept [3.5, 4.5] (the next term of the
+// expansion moves the ratio by O(1/N²) ≈ 2 % at N = 7). f1 at N = 7 must be within 1 %
+// (docs/model.md: 0.9907 of the continuum value). Mode residuals are checked to 1e-9 (relative,
+// rounding of a dense solve).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -51,7 +52,7 @@ TEST(CantileverModes, FirstFrequencyAtSevenSegmentsWithinOnePercent) {
   const auto f = network_frequencies(7);
   const double exact = continuum_frequency(0, 0.5, 2.0, 0.3);
   EXPECT_NEAR(f[0] / exact, 1.0, 0.01);
-  EXPECT_NEAR(f[0] / exact, 0.9907, 0.0005);  // the figure DESIGN §2 quotes for half-mass lumping
+  EXPECT_NEAR(f[0] / exact, 0.9907, 0.0005);  // docs/model.md, mass lumping
 }
 
 TEST(CantileverModes, FirstThreeFrequenciesConvergeAtSecondOrder) {

@@ -8,12 +8,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
+#include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/analysis/periodic.hpp"
 #include "emnet/elements/capacitor.hpp"
 #include "emnet/elements/conductance.hpp"
 #include "emnet/elements/current_source.hpp"
 #include "emnet/elements/inductor.hpp"
-#include "emnet/analysis/modal_reduction.hpp"
-#include "emnet/analysis/periodic.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
 
@@ -144,7 +144,7 @@ TEST(ModalReduction, KeepingAllModesReproducesTheFullModel) {
 
 // The requested tolerance is met against the full model over the whole sweep (not only at
 // the check frequencies run_ac_reduced measures itself). Reference: run_ac on the same system,
-// every grid point; the error of each probe relative to its largest |response| (DESIGN: the
+// every grid point; the error of each probe relative to its largest |response| (the
 // error the user asked for). Tolerance: the requested one, the point of the feature.
 // The fish fin at N = 100 and 500 with tol 1e-4 (f_c = 1 kHz) is the case where Arnoldi stops
 // at the Kelvin–Voigt cluster near −1/τ (159 Hz) and the 4th mode and the cluster are not found:

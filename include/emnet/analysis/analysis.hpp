@@ -1,5 +1,5 @@
-// Analyses over one assembled System (DESIGN §5). Each takes the System (and, where it
-// linearises, an operating point) and returns a Result with a Status; numerical failure is
+// Analyses over one assembled System (docs/model.md, The analyses). Each takes the System (and,
+// where it linearises, an operating point) and returns a Result with a Status; numerical failure is
 // a status, never an exception.
 #pragma once
 
@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "emnet/core/errors.hpp"
-#include "emnet/network/output.hpp"
-#include "emnet/network/network.hpp"
 #include "emnet/core/progress.hpp"
+#include "emnet/network/network.hpp"
+#include "emnet/network/output.hpp"
 
 namespace emnet {
 

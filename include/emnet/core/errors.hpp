@@ -1,7 +1,8 @@
 // Error types shared by every layer.
 //
-// Three kinds of error (DESIGN §6): assert for invariants; InputError for bad user input,
-// naming the file, line and key; a status in each analysis Result for numerical failure.
+// Three kinds of error (docs/model.md, Kinds of error): assert for invariants; InputError for bad
+// user input, naming the file, line and key; a status in each analysis Result for numerical
+// failure.
 #pragma once
 
 #include <stdexcept>

@@ -2,8 +2,8 @@
 //
 //   through = capacitance · d(y_a − y_b)/dt
 // electrical: i = C·du/dt [F]; translational: a mass m [kg] is a capacitor from its velocity
-// node to ground, F = m·dv/dt; rotational: an inertia J [kg·m²], M = J·dΩ/dt (DESIGN §1).
-// Through quantity positive from a to b. Stamps C only.
+// node to ground, F = m·dv/dt; rotational: an inertia J [kg·m²], M = J·dΩ/dt (docs/model.md,
+// Conventions). Through quantity positive from a to b. Stamps C only.
 #pragma once
 
 #include "emnet/network/network.hpp"

@@ -3,7 +3,7 @@
 //   through = conductance · (y_a − y_b)
 // electrical: i = u/R, conductance = 1/R [S]; translational damper: F = r·(v_a − v_b),
 // conductance = r [N·s/m]; rotational damper: M = r·(Ω_a − Ω_b), r [N·m·s/rad].
-// Firestone analogy (DESIGN §1): a damper's coefficient is the conductance itself.
+// Firestone analogy (docs/model.md, Conventions): a damper's coefficient is the conductance itself.
 // Through quantity positive from a to b. Stamps G only.
 #pragma once
 

@@ -4,7 +4,7 @@
 // (e+, e−) with A_e = electrode width × length (≈ 0.85 nF for the paper's fin). The electrode
 // resistance is a separate Conductance in series (built by the model builder).
 //
-// Force (paper Eq. 16, DESIGN §3): the face is pushed longitudinally with
+// Force (paper Eq. 16, docs/model.md, The DEA transducer): the face is pushed longitudinally with
 //     F = k_F · u²,    k_F = ε₀·ε_r·d'·w_e / (2·d²)       [N/V²]
 // u = capacitor voltage y_e+ − y_e−, d = dielectric thickness, d' = thickness in Eq. 16,
 // w_e = electrode width. Paper film: 0.055 N at 3 kV, 0.097 N at 4 kV.
@@ -14,8 +14,8 @@
 // top face at lever arm z: ẋ = −z·(Ω(x1) − Ω(x0)), Ω(x) Hermite-interpolated, so c holds
 // rotation-node and, between nodes, velocity-node coefficients). The force does work F·ẋ, so
 // it enters as generalised through quantities F·c_k into nodes k: for a span over whole
-// segments a moment pair ∓z·F at x0 / x1 (DESIGN §3). Sign: an energised top-face DEA bends
-// the beam toward −w.
+// segments a moment pair ∓z·F at x0 / x1 (docs/model.md, The DEA transducer). Sign: an energised
+// top-face DEA bends the beam toward −w.
 //
 // Back-coupling (optional): with C(x) = C₀ + 2·k_F·x the current into the capacitor gains
 // i_b = u·(dC/dx)·ẋ = 2·k_F·u·ẋ (electrical power u·i_b = 2·F·ẋ: half to the mechanics, half

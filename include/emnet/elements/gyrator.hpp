@@ -3,7 +3,7 @@
 //   i_1 = K · (y_c − y_d),    i_2 = −K · (y_a − y_b)
 // port 1 = (a, b), port 2 = (c, d); i_k is the through quantity entering the port's + node.
 // Lossless: u_1·i_1 + u_2·i_2 = 0. A linearised electrostatic transducer biased at U₀ is a
-// gyrator with K = U₀·∂C/∂x [N/V = A·s/m] (DESIGN §3): F = K·u, i = K·v.
+// gyrator with K = U₀·∂C/∂x [N/V = A·s/m] (docs/model.md, The DEA transducer): F = K·u, i = K·v.
 // Stamps G only (four VCCS entries per port).
 #pragma once
 

@@ -3,7 +3,7 @@
 //   y_a − y_b = inductance · d(j)/dt,     j = through quantity from a to b (a branch unknown)
 // electrical: u = L·di/dt [H]; translational: a spring of stiffness k is a compliance
 // n = 1/k [m/N] carrying the spring force F, v_a − v_b = n·dF/dt; rotational: n = 1/k
-// [rad/(N·m)] carrying the torque (DESIGN §1).
+// [rad/(N·m)] carrying the torque (docs/model.md, Conventions).
 // Stamps: KCL rows a (+j) and b (−j); branch row  y_a − y_b − L·j' = 0  (G: ±1, C: −L).
 // At rest the branch row says nothing about j (only about displacements), which is what lets
 // the static analysis solve for displacements (src/analysis/static.cpp).

@@ -2,9 +2,9 @@
 //
 //   secondary across:  y_s+ − y_s− = Σ_k ratio_k · (y_pk+ − y_pk−)
 //   primary through:   i_pk = −ratio_k · j        (j: through quantity entering s+)
-// so the power Σ across·through over all ports is zero: lossless, DESIGN §1 ("lever arm a:
-// v = a·Ω, M = a·F"). With one primary it is the classic ideal transformer of ratio a;
-// ports may span domains (rotational primary, translational secondary: a lever of arm a [m]).
+// so the power Σ across·through over all ports is zero: lossless, docs/model.md, Conventions
+// ("lever arm a: v = a·Ω, M = a·F"). With one primary it is the classic ideal transformer of ratio
+// a; ports may span domains (rotational primary, translational secondary: a lever of arm a [m]).
 // Stamps: branch unknown j; KCL s+ (+j), s− (−j), pk+ (−a_k·j), pk− (+a_k·j); branch row as
 // above (G only). The G block is symmetric.
 #pragma once
