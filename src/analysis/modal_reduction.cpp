@@ -524,7 +524,7 @@ ReducedPeriodicSolver::ReducedPeriodicSolver(const System& system,
     return;
   }
   std::vector<Eigen::VectorXcd> inputs;
-  for (const auto& term : system.source_terms) {
+  for (const auto& term : system.excitation.source_terms) {
     auto found = std::find(waveforms_.begin(), waveforms_.end(), term.waveform);
     size_t j = static_cast<size_t>(found - waveforms_.begin());
     if (found == waveforms_.end()) {
@@ -562,7 +562,7 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& system, const std::vec
                                       ": the reduced periodic method takes displacement-like "
                                       "probes only (deflection, rotation)"));
   for (int w : waveforms_)
-    if (w >= static_cast<int>(system.waveforms.size()))
+    if (w >= static_cast<int>(system.excitation.waveforms.size()))
       return finish(Status::failure("the network's sources differ from the reduced one's"));
 
   const std::vector<KeptPole>& kept = reduction_.kept;
@@ -576,7 +576,7 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& system, const std::vec
   for (size_t i = 0; i < intervals; ++i) {
     const double middle = 0.5 * (edges[i] + edges[i + 1]);
     for (size_t j = 0; j < inputs; ++j)
-      u[i][j] = system.waveforms[static_cast<size_t>(waveforms_[j])].value(middle);
+      u[i][j] = system.excitation.waveforms[static_cast<size_t>(waveforms_[j])].value(middle);
     for (size_t k = 0; k < modes; ++k) {
       Complex forcing = 0.0;
       for (size_t j = 0; j < inputs; ++j) forcing += reduction_.beta[k][j] * u[i][j];

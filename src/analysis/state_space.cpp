@@ -31,7 +31,7 @@ Eigen::MatrixXd completed_basis(const Eigen::MatrixXd& leading) {
 
 double characteristic_angular_frequency(const System& system, double end_time) {
   double frequency = end_time > 0.0 ? 1.0 / end_time : 0.0;
-  for (const auto& w : system.waveforms)
+  for (const auto& w : system.excitation.waveforms)
     if (w.period > 0.0) frequency = std::max(frequency, 1.0 / w.period);
   return 2 * M_PI * frequency;
 }

@@ -14,7 +14,7 @@
 namespace emnet {
 
 Status require_piecewise_constant(const System& system) {
-  for (const auto& w : system.waveforms) {
+  for (const auto& w : system.excitation.waveforms) {
     const bool constant_pieces =
         w.shape == Waveform::Shape::dc ||
         (w.shape == Waveform::Shape::pulse && w.rise == 0.0 && w.fall == 0.0);

@@ -52,26 +52,26 @@ const Element* Network::find(const std::string& name) const {
   return nullptr;
 }
 
-System Network::assemble() const {
-  System system;
-  for (const auto& node : nodes_)
-    system.unknowns.push_back({node.name, Unknown::Kind::node_across, node.domain});
-  std::vector<int> offsets;
-  for (const auto& element : elements_) {
-    offsets.push_back(system.size());
-    system.branch_offsets.emplace_back(element->name(), system.size());
-    for (auto& unknown : element->branch_unknowns()) system.unknowns.push_back(unknown);
-  }
+namespace {
+
+// Stamps every element of `elements` into `system` (whose unknowns are set): its excitation
+// always, G and C when `matrices` is true, with the waveforms' owning elements recorded.
+void stamp_elements(const std::vector<std::shared_ptr<Element>>& elements,
+                    const std::vector<int>& offsets, System& system, bool matrices) {
   const int n = system.size();
-  system.ac_excitation = Eigen::VectorXcd::Zero(n);
+  system.excitation.ac = Eigen::VectorXcd::Zero(n);
   std::vector<Eigen::Triplet<double>> g_entries, c_entries;
-  for (size_t k = 0; k < elements_.size(); ++k) {
+  for (size_t k = 0; k < elements.size(); ++k) {
     Stamper stamper(system, offsets[k]);
-    elements_[k]->stamp(stamper);
+    elements[k]->stamp(stamper);
+    system.excitation.waveform_element.resize(system.excitation.waveforms.size(),
+                                              static_cast<int>(k));
+    if (!matrices) continue;
     g_entries.insert(g_entries.end(), stamper.g_entries.begin(), stamper.g_entries.end());
     c_entries.insert(c_entries.end(), stamper.c_entries.begin(), stamper.c_entries.end());
-    if (elements_[k]->is_nonlinear()) system.nonlinear_elements.push_back(elements_[k].get());
+    if (elements[k]->is_nonlinear()) system.nonlinear_elements.push_back(elements[k]);
   }
+  if (!matrices) return;
   system.G.resize(n, n);
   system.C.resize(n, n);
   system.G.setFromTriplets(g_entries.begin(), g_entries.end());
@@ -80,21 +80,74 @@ System Network::assemble() const {
   system.C.prune(0.0);
   system.G.makeCompressed();
   system.C.makeCompressed();
+}
+
+// The unknowns of `nodes` and `elements` into `system`; the first branch unknown of each
+// element (its offset) returned.
+std::vector<int> number_unknowns(const std::vector<Node>& nodes,
+                                 const std::vector<std::shared_ptr<Element>>& elements,
+                                 System& system) {
+  for (const auto& node : nodes)
+    system.unknowns.push_back({node.name, Unknown::Kind::node_across, node.domain});
+  std::vector<int> offsets;
+  for (const auto& element : elements) {
+    offsets.push_back(system.size());
+    system.branch_offsets.emplace_back(element->name(), system.size());
+    for (auto& unknown : element->branch_unknowns()) system.unknowns.push_back(unknown);
+  }
+  return offsets;
+}
+
+}  // namespace
+
+System Network::assemble() const {
+  System system;
+  const std::vector<int> offsets = number_unknowns(nodes_, elements_, system);
+  stamp_elements(elements_, offsets, system, true);
   return system;
 }
 
+Excitation Network::assemble_excitation() const {
+  System system;
+  const std::vector<int> offsets = number_unknowns(nodes_, elements_, system);
+  stamp_elements(elements_, offsets, system, false);
+  return std::move(system.excitation);
+}
+
+void System::set_excitation(Excitation replacement) {
+  const auto waveform_count = static_cast<int>(replacement.waveforms.size());
+  if (replacement.ac.size() != size())
+    throw std::invalid_argument("excitation: AC vector of size " +
+                                std::to_string(replacement.ac.size()) + " for a system of " +
+                                std::to_string(size()) + " unknowns");
+  for (const auto& term : replacement.source_terms)
+    if (term.row < 0 || term.row >= size() || term.waveform < 0 || term.waveform >= waveform_count)
+      throw std::invalid_argument("excitation: a source term outside the system (row " +
+                                  std::to_string(term.row) + ", waveform " +
+                                  std::to_string(term.waveform) + ")");
+  excitation = std::move(replacement);
+}
+
+System System::with_excitation(Excitation replacement) const {
+  System copy = *this;
+  copy.set_excitation(std::move(replacement));
+  return copy;
+}
+
 Eigen::VectorXd System::b(double t) const {
+  const auto& waveforms = excitation.waveforms;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size());
   std::vector<double> values(waveforms.size());
   for (size_t w = 0; w < waveforms.size(); ++w) values[w] = waveforms[w].value(t);
-  for (const auto& term : source_terms) rhs[term.row] += term.coefficient * values[term.waveform];
+  for (const auto& term : excitation.source_terms)
+    rhs[term.row] += term.coefficient * values[term.waveform];
   return rhs;
 }
 
 Eigen::VectorXcd System::b_ac() const {
-  Eigen::VectorXcd rhs = ac_excitation;
-  for (const auto& term : source_terms)
-    rhs[term.row] += term.coefficient * waveforms[term.waveform].ac_phasor();
+  Eigen::VectorXcd rhs = excitation.ac;
+  for (const auto& term : excitation.source_terms)
+    rhs[term.row] += term.coefficient * excitation.waveforms[term.waveform].ac_phasor();
   return rhs;
 }
 
@@ -102,7 +155,7 @@ void System::nonlinear(const Eigen::VectorXd& y, Eigen::VectorXd& g,
                        Eigen::SparseMatrix<double>* jacobian) const {
   g = Eigen::VectorXd::Zero(size());
   std::vector<Eigen::Triplet<double>> entries;
-  for (const Element* element : nonlinear_elements)
+  for (const auto& element : nonlinear_elements)
     element->add_nonlinear(y, g, jacobian ? &entries : nullptr);
   if (jacobian) {
     jacobian->resize(size(), size());
@@ -112,7 +165,7 @@ void System::nonlinear(const Eigen::VectorXd& y, Eigen::VectorXd& g,
 
 std::vector<double> System::breakpoints(double t_begin, double t_end) const {
   std::vector<double> out;
-  for (const auto& waveform : waveforms) waveform.breakpoints(t_begin, t_end, out);
+  for (const auto& waveform : excitation.waveforms) waveform.breakpoints(t_begin, t_end, out);
   std::sort(out.begin(), out.end());
   // Edges of different sources meant to coincide (A off, B on) may differ by rounding:
   // they are one breakpoint, not an interval of a few ulps.
@@ -154,21 +207,22 @@ void Stamper::c_between(NodeId a, NodeId b, double value) {
 }
 
 int Stamper::source(int row, double coefficient, const Waveform& waveform) {
-  system_.waveforms.push_back(waveform);
-  const int index = static_cast<int>(system_.waveforms.size()) - 1;
+  system_.excitation.waveforms.push_back(waveform);
+  const int index = static_cast<int>(system_.excitation.waveforms.size()) - 1;
   source(row, coefficient, index);
   return index;
 }
 
 void Stamper::source(int row, double coefficient, int waveform_index) {
-  assert(waveform_index >= 0 && waveform_index < static_cast<int>(system_.waveforms.size()));
+  assert(waveform_index >= 0 &&
+         waveform_index < static_cast<int>(system_.excitation.waveforms.size()));
   if (row == ground || coefficient == 0.0) return;
-  system_.source_terms.push_back({row, coefficient, waveform_index});
+  system_.excitation.source_terms.push_back({row, coefficient, waveform_index});
 }
 
 void Stamper::ac(int row, std::complex<double> value) {
   if (row == ground) return;
-  system_.ac_excitation[row] += value;
+  system_.excitation.ac[row] += value;
 }
 
 }  // namespace emnet

@@ -1,6 +1,6 @@
 // The network: nodes with a physical domain, and the elements between them.
 //
-// Firestone (mobility) analogy, DESIGN §1: across = voltage (velocity v [m/s], angular
+// Firestone (mobility) analogy: across = voltage (velocity v [m/s], angular
 // velocity Ω [rad/s], electric potential u [V]); through = current (force F [N], torque
 // M [N·m], electric current i [A]). Node `ground` is the reference of every domain
 // (v = 0: a clamp; Ω = 0; u = 0).
@@ -9,6 +9,15 @@
 //     C·y' + G·y + g(y) = b(t)
 // with y = [node across values; branch unknowns]; analyses take the System and never look at
 // element kinds.
+//
+// Ownership: elements are shared (std::shared_ptr), by the Network that holds them and by every
+// System assembled from it (its nonlinear elements), so a System stays valid after its Network
+// (or the Model around it) is gone; a copy of a Network shares its elements.
+//
+// What a sweep changes is kept apart from what it does not: the System's G, C and nonlinear
+// elements are fixed by the network's structure; its Excitation (the source terms of b(t) with
+// their waveforms, and the direct AC excitation) can be replaced on an assembled System
+// (System::set_excitation) without assembling G and C again.
 #pragma once
 
 #include <Eigen/Sparse>
@@ -69,27 +78,45 @@ class Element {
 };
 
 class System;
+struct Excitation;
 
 class Network {
  public:
   NodeId add_node(std::string name, Domain domain, std::string meaning);
   template <class ElementType, class... Args>
   ElementType& add(Args&&... args) {
-    auto element = std::make_unique<ElementType>(std::forward<Args>(args)...);
+    auto element = std::make_shared<ElementType>(std::forward<Args>(args)...);
     ElementType& reference = *element;
     elements_.push_back(std::move(element));
     return reference;
   }
   const std::vector<Node>& nodes() const { return nodes_; }
   const Node& node(NodeId id) const { return nodes_.at(static_cast<size_t>(id)); }
-  const std::vector<std::unique_ptr<Element>>& elements() const { return elements_; }
+  const std::vector<std::shared_ptr<Element>>& elements() const { return elements_; }
   const Element* find(const std::string& name) const;
 
   System assemble() const;
+  // The excitation alone, as assemble() stamps it (no G, no C).
+  Excitation assemble_excitation() const;
 
  private:
   std::vector<Node> nodes_;
-  std::vector<std::unique_ptr<Element>> elements_;
+  std::vector<std::shared_ptr<Element>> elements_;
+};
+
+// What drives the system: b(t) = Σ coefficient·waveforms[w].value(t)·e_row over the source
+// terms, and the AC right-hand side b_ac = Σ coefficient·waveforms[w].ac_phasor()·e_row + ac.
+struct Excitation {
+  struct SourceTerm {
+    int row;
+    double coefficient;
+    int waveform;
+  };
+  std::vector<Waveform> waveforms;
+  // The element (index into Network::elements()) whose stamp added each waveform.
+  std::vector<int> waveform_element;
+  std::vector<SourceTerm> source_terms;
+  Eigen::VectorXcd ac;  // direct AC excitation stamped by elements
 };
 
 // The assembled MNA system. Built once; every analysis reads it.
@@ -100,18 +127,16 @@ class System {
   std::vector<Unknown> unknowns;
   Eigen::SparseMatrix<double> G;  // conductance / stiffness-like part
   Eigen::SparseMatrix<double> C;  // capacitance / mass-like part
+  // Elements with a nonlinear part g(y), shared with the Network they came from.
+  std::vector<std::shared_ptr<const Element>> nonlinear_elements;
 
-  // b(t) = Σ coefficient·waveforms[w].value(t)·e_row
-  struct SourceTerm {
-    int row;
-    double coefficient;
-    int waveform;
-  };
-  std::vector<Waveform> waveforms;
-  std::vector<SourceTerm> source_terms;
-  Eigen::VectorXcd ac_excitation;  // direct AC excitation stamped by elements
+  using SourceTerm = Excitation::SourceTerm;
+  Excitation excitation;
 
-  std::vector<const Element*> nonlinear_elements;
+  // A new excitation for the same G, C and nonlinear elements (a sweep's next frequency).
+  // Throws std::invalid_argument when it does not fit the system (size, rows, waveforms).
+  void set_excitation(Excitation replacement);
+  System with_excitation(Excitation replacement) const;
 
   Eigen::VectorXd b(double t) const;
   Eigen::VectorXd b_at_rest() const { return b(0.0); }
