@@ -35,7 +35,9 @@
 #include "emnet/report/plot.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/scene/scene_reader.hpp"
-#include "emnet/model/segment_selection.hpp"
+#include "emnet/studies/segment_selection.hpp"
+#include "emnet/studies/resolve.hpp"
+#include "emnet/model/outputs.hpp"
 #include "emnet/studies/sensitivity.hpp"
 #include "emnet/spice/spice_netlist.hpp"
 #include "emnet/core/terminal_text.hpp"
@@ -179,9 +181,12 @@ emnet::Scene load_scene(const CommonOptions& options) {
   // beam.segments = "auto": chosen once here, so that every model a command builds from the
   // scene (sweeps, fits, finite differences) has the same N; the choice travels with the scene.
   if (scene.beam.auto_segments) {
-    const emnet::Scene resolved = emnet::build_model(scene).scene;
-    scene.beam = resolved.beam;  // N only: drive.electrical_dynamics = "auto" stays to choose
-    scene.automatic_choices = resolved.automatic_choices;
+    // N only: the fluid loading's resonance and drive.electrical_dynamics = "auto" stay to be
+    // chosen for each scene the command builds.
+    emnet::ResolveOptions segments_only;
+    segments_only.fluid_resonance = false;
+    segments_only.electrical_dynamics = false;
+    scene = emnet::resolve_scene(scene, segments_only).scene;
   }
   return scene;
 }
@@ -192,6 +197,13 @@ bool electrical_probe_requested(const CommonOptions& options) {
   for (const auto& text : options.probes)
     if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0) return true;
   return false;
+}
+
+// The model of `scene` with its remaining "auto" keys resolved for the command's probes.
+emnet::Model resolved_model(const emnet::Scene& scene, const CommonOptions& options) {
+  emnet::PrepareOptions prepare;
+  prepare.electrical_probe_requested = electrical_probe_requested(options);
+  return emnet::prepare_model(scene, prepare);
 }
 
 // "automatic_choices" of --json: what each "auto" key became, why, its error estimate, cost.
@@ -399,7 +411,7 @@ Prepared prepare(const CommonOptions& options, bool require_static = false,
                  std::optional<emnet::Scene> scene = std::nullopt) {
   if (!scene) scene = load_scene(options);
   show_phase(options, "building the network");
-  Prepared p{emnet::build_model(*scene, electrical_probe_requested(options)), {}, {}};
+  Prepared p{resolved_model(*scene, options), {}, {}};
   p.system = p.model.network.assemble();
   emnet::StaticOptions static_options;
   static_options.progress = progress_of(options);
@@ -1153,34 +1165,11 @@ struct TranOptions {
   std::string plot;
 };
 
-// Outputs of a transient: the scene's probes, dx_k = P_k − P1 when a probe P1 exists (paper
-// Eqs. 20–22), and each DEA's capacitor voltage and current when it has an electrical model.
+// Outputs of a transient: the scene's probes with P_k replaced by dx_k = P_k − P1 when a probe
+// P1 exists (paper Eqs. 20–22), and each DEA's capacitor voltage and current when it has an
+// electrical model (emnet/model/outputs.hpp, transient_output_list).
 std::vector<emnet::Probe> transient_probes(const emnet::Model& model) {
-  std::vector<emnet::Probe> probes;
-  const emnet::Probe* reference = nullptr;
-  for (const auto& probe : model.probes)
-    if (probe.name == "P1") reference = &probe;
-  for (const auto& probe : model.probes) {
-    if (&probe == reference) continue;  // P1 itself: the reference of dx_k
-    if (reference && probe.name.size() >= 2 && probe.name[0] == 'P' && &probe != reference &&
-        probe.quantity == reference->quantity) {
-      emnet::Probe difference = probe;
-      difference.name = "dx" + probe.name.substr(1);
-      difference.description = probe.name + " - P1";
-      for (const auto& [index, c] : reference->terms) difference.terms.emplace_back(index, -c);
-      probes.push_back(difference);
-    } else {
-      probes.push_back(probe);
-    }
-  }
-  for (const auto& dea : model.deas)
-    if (dea.electrode_node != emnet::ground) {
-      probes.push_back(model.parse_probe("dea_voltage:" + dea.name));
-      probes.push_back(model.parse_probe("dea_current:" + dea.name));
-      probes[probes.size() - 2].name = "u_" + dea.name;
-      probes.back().name = "i_" + dea.name;
-    }
-  return probes;
+  return emnet::probes_of(emnet::transient_output_list(model));
 }
 
 // The outputs of tran and sweep-switching: with --probe those, each an output name of
@@ -1250,8 +1239,7 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
     throw InputError("--points-per-period", "--points-per-period",
                      "must be from 2 to 100000 (inclusive)");
   show_phase(options, "building the network");
-  const emnet::Model model =
-      emnet::build_model(load_scene(options), electrical_probe_requested(options));
+  const emnet::Model model = resolved_model(load_scene(options), options);
   const emnet::System system = model.network.assemble();
   const double frequency = model.scene.drive.frequency;
   if (!(frequency > 0.0))
@@ -1480,7 +1468,7 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
     throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
   show_phase(options, "building the network");
   // The exact method needs a linear network: DEAs as ideal voltage-driven forces.
-  emnet::Model model = emnet::build_model(load_scene(options), electrical_probe_requested(options));
+  emnet::Model model = resolved_model(load_scene(options), options);
   std::vector<std::string> notes;
   if (sweep.method == "exact") {
     for (const auto& text : options.probes)
@@ -1497,7 +1485,7 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
                       si(tau, "s") + " is " + format("%.2g", tau * sweep.to) +
                       " of the shortest period); --method shooting integrates the full model");
       options.overrides.push_back("drive.electrical_dynamics=false");
-      model = emnet::build_model(load_scene(options), electrical_probe_requested(options));
+      model = resolved_model(load_scene(options), options);
     }
   }
   // The default outputs: the deflections; with --probe, every probe given.
@@ -1540,10 +1528,27 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
                      "must be < half the shortest period of the sweep (" + si(0.5 / sweep.to, "s") +
                          " at --to " + si(sweep.to, "Hz") + ")");
   check_overlap_fits(base_scene, sweep.to, "--to");
-  auto system_at = [&](double f) {
-    emnet::Scene at = base_scene;
-    at.drive.frequency = f;
-    return emnet::build_model(at).network.assemble();
+  // Only the drive's excitation changes with the frequency: one model, its G and C assembled
+  // once, the drive sources' waveforms made again per frequency (emnet::drive_excitation, the
+  // same b(t) as a model built at that frequency). With drive.electrical_dynamics = "auto" left
+  // in the scene the choice may change with the frequency (its default band is 10 x f): then a
+  // model per frequency.
+  const bool excitation_only = !base_scene.drive.electrical_dynamics_auto;
+  std::optional<emnet::Model> swept_model;
+  emnet::System swept;
+  if (excitation_only) {
+    swept_model = emnet::prepare_model(base_scene);
+    swept = swept_model->network.assemble();
+  }
+  auto system_at = [&](double f) -> const emnet::System& {
+    if (excitation_only) {
+      swept.set_excitation(emnet::drive_excitation(*swept_model, swept.excitation, f));
+    } else {
+      emnet::Scene at = base_scene;
+      at.drive.frequency = f;
+      swept = emnet::prepare_model(at).network.assemble();
+    }
+    return swept;
   };
   // The reduced periodic state at frequency f (the sweep and its check).
   auto reduced_at = [&](const emnet::System& system, double f) {
@@ -1559,7 +1564,7 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
   };
   for (long k = 0; k < count; ++k) {
     const double f = sweep.from + sweep.step * static_cast<double>(k);
-    const emnet::System system = system_at(f);
+    const emnet::System& system = system_at(f);
     if (sweep.method == "exact" && !sweep.reduce && !solver) {
       show_phase(options, "eigen-decomposition of the state matrix (" +
                               std::to_string(system.size()) +
@@ -1622,7 +1627,7 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
     std::unique_ptr<emnet::PeriodicSolver> full;
     for (size_t k : picked) {
       stop_if_interrupted();
-      const emnet::System system = system_at(frequencies[k]);
+      const emnet::System& system = system_at(frequencies[k]);
       if (!full) {
         const auto build_start = std::chrono::steady_clock::now();
         full = std::make_unique<emnet::PeriodicSolver>(system);
@@ -1911,7 +1916,7 @@ std::pair<double, double> periodic_extremes(emnet::Scene scene, const std::strin
   scene.drive.electrical_dynamics = false;
   scene.drive.electrical_dynamics_auto = false;
   scene.drive.frequency = frequency_hz;
-  const emnet::Model model = emnet::build_model(scene);
+  const emnet::Model model = emnet::prepare_model(scene);
   const emnet::System system = model.network.assemble();
   check_periodic_decomposition_size(system.size(), "--segments");
   std::vector<emnet::Probe> probes;
@@ -2117,12 +2122,12 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
                      "must be a positive frequency in Hz (> 0)");
   std::string output = cmd.output;
   if (output.empty()) {
-    const emnet::Model model = emnet::build_model(scene);
+    const emnet::Model model = emnet::prepare_model(scene);
     // The last speckle-point difference dx_k (the paper measures dx4), else the last deflection.
-    for (const auto& probe : transient_probes(model))
-      if (probe.unit == "m" && (output.rfind("dx", 0) != 0 || probe.name.rfind("dx", 0) == 0))
-        output = probe.name;
-    if (output.empty()) throw InputError(scene.file, "probe", "the scene has no deflection output");
+    const std::vector<emnet::ModelOutput> outputs = emnet::transient_output_list(model);
+    const emnet::ModelOutput* chosen = emnet::default_deflection_output(outputs);
+    if (!chosen) throw InputError(scene.file, "probe", "the scene has no deflection output");
+    output = chosen->probe.name;
   }
   const std::string& dea_name = scene.drive.deas[0];
   size_t dea = scene.deas.size();
@@ -2390,7 +2395,7 @@ int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
   if (deck_options.analysis == emnet::SpiceAnalysis::ac)
     deck_options.ac = checked_ac_spec(scene.ac, netlist.from_text, netlist.to_text, netlist.points,
                                       netlist.scale);
-  const emnet::Model model = emnet::build_model(scene, electrical_probe_requested(options));
+  const emnet::Model model = resolved_model(scene, options);
   deck_options.overrides = shown_overrides;
   if (!options.probes.empty()) deck_options.outputs = selected_probes(model, options);
   if (deck_options.analysis == emnet::SpiceAnalysis::tran) {
@@ -2405,6 +2410,8 @@ int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
     deck_options.relative_tolerance = netlist.reltol;
     deck_options.start =
         netlist.start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
+    if (deck_options.start == emnet::StartState::static_)
+      deck_options.static_state = emnet::solve_static(model.network.assemble());
   }
   const emnet::SpiceDeck deck = emnet::write_spice_deck(model, deck_options);
   // What the deck asks ngspice to store: every output at every output step (or frequency).
@@ -2531,8 +2538,7 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
   check.tran_reltol = cross.reltol;
   check.tran_points_per_period = cross.points_per_period;
   check.overrides = overrides_with_segments(options);
-  const emnet::Model model =
-      emnet::build_model(load_scene(options), electrical_probe_requested(options));
+  const emnet::Model model = resolved_model(load_scene(options), options);
   show_phase(options, "ngspice and emnet analyses");
   const emnet::CrosscheckReport report = emnet::run_crosscheck(model, check);
   stop_if_interrupted();

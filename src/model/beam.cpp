@@ -65,7 +65,8 @@ LinearTerms BeamLayout::slope_terms(double x) const {
                 {angular_velocity[b], -2 * xi + 3 * xi * xi}});
 }
 
-BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& damping) {
+BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& damping,
+                    ModelStructure* structure) {
   BeamLayout beam;
   const int n = spec.segments;
   const double l = spec.length / n;
@@ -82,14 +83,16 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
     const bool hold_v = at_end && (end == EndCondition::clamped || end == EndCondition::pinned);
     const bool hold_r = at_end && (end == EndCondition::clamped || end == EndCondition::sliding);
     const std::string where = millimetres(x);
-    beam.velocity.push_back(hold_v
-                                ? ground
-                                : network.add_node("v" + std::to_string(k), Domain::translational,
-                                                   "velocity at " + where + " [m/s]"));
+    beam.velocity.push_back(
+        hold_v ? ground
+               : add_recorded_node(network, structure, {NodeRole::beam_velocity, k, ""},
+                                   "v" + std::to_string(k), Domain::translational,
+                                   "velocity at " + where + " [m/s]"));
     beam.angular_velocity.push_back(
         hold_r ? ground
-               : network.add_node("r" + std::to_string(k), Domain::rotational,
-                                  "angular velocity at " + where + " [rad/s]"));
+               : add_recorded_node(network, structure, {NodeRole::beam_angular_velocity, k, ""},
+                                   "r" + std::to_string(k), Domain::rotational,
+                                   "angular velocity at " + where + " [rad/s]"));
   }
 
   // Lumped mass, rotary inertia and viscous damping: half a segment's share at each end.
@@ -97,15 +100,22 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
     const double share = (k == 0 || k == n) ? 0.5 * l : l;
     const size_t i = static_cast<size_t>(k);
     const std::string id = std::to_string(k);
+    auto record = [&](ElementPart part, const std::string& what) {
+      return ElementRecord{
+          Component::beam_node, part, k, "", -1, -1, what + " lumped at beam node " + id};
+    };
     if (beam.velocity[i] != ground) {
-      network.add<Capacitor>("mass" + id, beam.velocity[i], ground, spec.mass_per_length * share);
+      add_recorded<Capacitor>(network, structure, record(ElementPart::mass, "mass [kg]"),
+                              "mass" + id, beam.velocity[i], ground, spec.mass_per_length * share);
       if (damping.viscous_per_length > 0.0)
-        network.add<Conductance>("damper" + id, beam.velocity[i], ground,
-                                 damping.viscous_per_length * share);
+        add_recorded<Conductance>(
+            network, structure, record(ElementPart::viscous_damper, "viscous damper [N*s/m]"),
+            "damper" + id, beam.velocity[i], ground, damping.viscous_per_length * share);
     }
     if (beam.angular_velocity[i] != ground && spec.rotary_inertia_per_length > 0.0)
-      network.add<Capacitor>("inertia" + id, beam.angular_velocity[i], ground,
-                             spec.rotary_inertia_per_length * share);
+      add_recorded<Capacitor>(
+          network, structure, record(ElementPart::rotary_inertia, "rotary inertia [kg*m^2]"),
+          "inertia" + id, beam.angular_velocity[i], ground, spec.rotary_inertia_per_length * share);
   }
 
   const double tau = damping.effective_kelvin_voigt_time();
@@ -114,15 +124,26 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
   for (int k = 0; k < n; ++k) {
     const size_t a = static_cast<size_t>(k), b = a + 1;
     const std::string id = std::to_string(k);
-    const NodeId middle =
-        network.add_node("m" + id, Domain::translational,
-                         "segment " + id + " branch between spring and lever [m/s]");
+    const NodeId middle = add_recorded_node(
+        network, structure, {NodeRole::segment_middle, k, ""}, "m" + id, Domain::translational,
+        "segment " + id + " branch between spring and lever [m/s]");
+    auto record = [&](ElementPart part, const std::string& what) {
+      return ElementRecord{Component::beam_segment,        part, k, "", -1, -1,
+                           what + " of beam segment " + id};
+    };
     // Kelvin–Voigt: a damper τ/n across each compliance n, stamped as τ·(spring force)'.
-    network.add<Inductor>("nR" + id, beam.angular_velocity[a], beam.angular_velocity[b],
-                          rotational_compliance, Domain::rotational, tau / rotational_compliance);
-    network.add<Inductor>("nT" + id, beam.velocity[a], middle, translational_compliance,
-                          Domain::translational, tau / translational_compliance);
-    network.add<Transformer>(
+    add_recorded<Inductor>(
+        network, structure,
+        record(ElementPart::rotational_compliance, "rotational compliance l/EI [rad/(N*m)]"),
+        "nR" + id, beam.angular_velocity[a], beam.angular_velocity[b], rotational_compliance,
+        Domain::rotational, tau / rotational_compliance);
+    add_recorded<Inductor>(
+        network, structure,
+        record(ElementPart::translational_compliance, "translational compliance l^3/(12*EI) [m/N]"),
+        "nT" + id, beam.velocity[a], middle, translational_compliance, Domain::translational,
+        tau / translational_compliance);
+    add_recorded<Transformer>(
+        network, structure, record(ElementPart::lever, "lever (l/2)*(Omega_k + Omega_k+1)"),
         "lever" + id, beam.velocity[b], middle,
         std::vector<Transformer::Port>{{beam.angular_velocity[a], ground, 0.5 * l},
                                        {beam.angular_velocity[b], ground, 0.5 * l}},

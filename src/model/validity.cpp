@@ -5,8 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "emnet/model/model.hpp"
 #include "emnet/core/units.hpp"
+#include "emnet/model/model.hpp"
 
 namespace emnet {
 

@@ -575,7 +575,7 @@ void SceneReader::read_beam(const toml::table& root, BeamSpec& beam) const {
     if (text != "auto")
       reader.fail("segments", "must be an integer >= 1 or \"auto\", got '" + text + "'");
     beam.auto_segments = true;
-    beam.segments = 0;  // chosen by the model builder (emnet/model/segment_selection.hpp)
+    beam.segments = 0;  // chosen by the resolve step (emnet/studies/segment_selection.hpp)
   }
   const std::optional<long long> segments =
       beam.auto_segments ? std::optional<long long>(1) : reader.optional_integer("segments");
@@ -818,7 +818,7 @@ void SceneReader::read_drive(const toml::table& root, Scene& scene) const {
     if (text != "auto")
       reader.fail("electrical_dynamics", "must be true, false or \"auto\", got '" + text + "'");
     drive.electrical_dynamics_auto = true;
-    drive.electrical_dynamics = true;  // until the model builder chooses
+    drive.electrical_dynamics = true;  // until the resolve step chooses
   } else {
     drive.electrical_dynamics = reader.optional_boolean("electrical_dynamics").value_or(true);
   }
@@ -950,7 +950,7 @@ void SceneReader::read_environment(const toml::table& root, EnvironmentSpec& env
 // tolerance in (0, 0.5) (a relative error of one half is no accuracy at all); deflection_limit
 // in (0, 1], a fraction of the beam length (default 0.1). The automatic
 // choices need a band: from model.band, else from an [ac] table or the drive frequency
-// (band_of_interest in emnet/model/segment_selection.hpp); without any, "auto" is an error here.
+// (band_of_interest in emnet/studies/segment_selection.hpp); without any, "auto" is an error here.
 void SceneReader::read_model(const toml::table& root, Scene& scene) const {
   const Section reader = section(root, "model");
   ModelSpec& model = scene.model;

@@ -1,5 +1,7 @@
-// SPICE deck writer: see include/emnet/spice/spice_netlist.hpp for the mapping of every element kind,
-// the sign conventions, the op deck's static network and the safety rules.
+// SPICE deck writer: see include/emnet/spice/spice_netlist.hpp for the mapping of every element
+// kind, the sign conventions, the op deck's static network and the safety rules. The deck's
+// groups (a beam segment, the node masses, a load, a DEA) come from the model's record of its
+// elements (Model::structure), its outputs from the model's output list (emnet/model/outputs.hpp).
 #include "emnet/spice/spice_netlist.hpp"
 
 #include <algorithm>
@@ -7,11 +9,11 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 
 #include "emnet/analysis/analysis.hpp"
+#include "emnet/core/errors.hpp"
 #include "emnet/elements/capacitor.hpp"
 #include "emnet/elements/conductance.hpp"
 #include "emnet/elements/current_source.hpp"
@@ -20,7 +22,7 @@
 #include "emnet/elements/inductor.hpp"
 #include "emnet/elements/transformer.hpp"
 #include "emnet/elements/voltage_source.hpp"
-#include "emnet/core/errors.hpp"
+#include "emnet/model/outputs.hpp"
 
 namespace emnet {
 
@@ -213,9 +215,6 @@ void DeckWriter::name_nodes() {
 }
 
 std::vector<Group> DeckWriter::groups() const {
-  static const std::regex segment_element("^(nR|nT|lever)([0-9]+)$");
-  static const std::regex node_element("^(mass|damper|inertia)([0-9]+)$");
-  static const std::regex load_element("^load([0-9]+)_.*$");
   std::vector<Group> list;
   auto group_for = [&](const std::string& key) -> Group& {
     for (Group& g : list)
@@ -226,16 +225,17 @@ std::vector<Group> DeckWriter::groups() const {
   const double l = model_.beam.segment_length;
   const double ei = scene_.beam.bending_stiffness;
   const double tau = scene_.damping.effective_kelvin_voigt_time();
-  for (const auto& element : network_.elements()) {
-    const std::string& name = element->name();
-    std::smatch match;
+  const auto& elements = network_.elements();
+  for (size_t e = 0; e < elements.size(); ++e) {
+    const ElementRecord* record = model_.structure.element(e);
     std::string key = "other";
     std::vector<std::string> title;
-    if (std::regex_match(name, match, segment_element)) {
-      const size_t k = std::stoul(match[2].str());
-      key = "segment " + match[2].str();
+    if (record && record->component == Component::beam_segment) {
+      const size_t k = static_cast<size_t>(record->index);
+      const std::string id = std::to_string(record->index);
+      key = "segment " + id;
       if (k + 1 < model_.beam.x.size())
-        title = {"segment " + match[2].str() + ": x = " + millimetres(model_.beam.x[k]) + " .. " +
+        title = {"segment " + id + ": x = " + millimetres(model_.beam.x[k]) + " .. " +
                      millimetres(model_.beam.x[k + 1]) + ", l = " + number(l) +
                      " m, EI = " + number(ei) + " N*m^2",
                  "  nR: rotational compliance n_R = l/EI [rad/(N*m)] between the rotation "
@@ -247,60 +247,55 @@ std::vector<Group> DeckWriter::groups() const {
             "  Kelvin-Voigt damping: a resistor n/tau (a damper tau/n) across each "
             "compliance, tau = " +
             number(tau) + " s");
-    } else if (std::regex_match(name, match, node_element)) {
+    } else if (record && record->component == Component::beam_node) {
       key = "nodes";
       title = {
           "lumped at the beam nodes (half of each segment's share to each end node): "
           "masses rhoA*l [kg] and rotary inertias [kg*m^2] as capacitors to ground, viscous "
           "dampers [N*s/m] as resistors to ground"};
-    } else if (std::regex_match(name, match, load_element)) {
-      const size_t k = std::stoul(match[1].str());
-      key = "load " + match[1].str();
+    } else if (record && record->component == Component::load) {
+      const size_t k = static_cast<size_t>(record->index);
+      const std::string id = std::to_string(record->index);
+      key = "load " + id;
       if (k < scene_.loads.size()) {
         const LoadSpec& load = scene_.loads[k];
-        title = {"load " + match[1].str() + ": " +
+        title = {"load " + id + ": " +
                  (load.kind == LoadKind::force ? "force " + number(load.value) + " N"
                                                : "moment " + number(load.value) + " N*m") +
                  " at x = " + millimetres(load.at) +
                  ", as consistent nodal loads from the Hermite shape functions"};
       }
-    } else {
-      for (const DeaLayout& dea : model_.deas) {
-        const std::string& n = dea.name;
-        bool is_force_source = false;
-        const std::string prefix = "F_" + n + "_";
-        if (name.compare(0, prefix.size(), prefix) == 0)
-          for (const Node& node : network_.nodes())
-            if (name.substr(prefix.size()) == node.name) is_force_source = true;
-        if (name == "V_" + n || name == "Re_" + n || name == "dea_" + n || is_force_source) {
-          key = "dea " + n;
-          const DeaSpec* spec = nullptr;
-          for (const DeaSpec& s : scene_.deas)
-            if (s.name == n) spec = &s;
-          title.push_back("DEA " + n +
-                          (spec ? std::string(": ") + (spec->face == Face::top ? "top" : "bottom") +
-                                      " face, x = " + millimetres(spec->from) + " .. " +
-                                      millimetres(spec->to) +
-                                      ", lever arm z = " + millimetres(spec->lever_arm)
-                                : std::string()));
-          title.push_back("  force F = k_F*u^2, k_F = " + number(dea.force_constant) +
-                          " N/V^2 (paper Eq. 16), as the moment pair -/+z*F at the span's ends");
-          if (scene_.drive.electrical_dynamics)
-            title.push_back("  electrical: source V_V_" + n + ", electrode resistance " +
-                            number(dea.electrode_resistance) +
-                            " Ohm, capacitor C0 = " + number(dea.capacitance) +
-                            " F; the force follows the capacitor voltage u = V(e_" + n + ")");
-          else
-            title.push_back(
-                "  ideal drive (drive.electrical_dynamics = false): the force "
-                "k_F*V(t)^2 of the source voltage, as current sources");
-          break;
-        }
+    } else if (record && (record->component == Component::dea ||
+                          record->component == Component::drive_source)) {
+      const DeaLayout* dea = model_.find_dea(record->dea);
+      const std::string& n = record->dea;
+      key = "dea " + n;
+      const DeaSpec* spec = nullptr;
+      for (const DeaSpec& s : scene_.deas)
+        if (s.name == n) spec = &s;
+      title.push_back("DEA " + n +
+                      (spec ? std::string(": ") + (spec->face == Face::top ? "top" : "bottom") +
+                                  " face, x = " + millimetres(spec->from) + " .. " +
+                                  millimetres(spec->to) +
+                                  ", lever arm z = " + millimetres(spec->lever_arm)
+                            : std::string()));
+      if (dea) {
+        title.push_back("  force F = k_F*u^2, k_F = " + number(dea->force_constant) +
+                        " N/V^2 (paper Eq. 16), as the moment pair -/+z*F at the span's ends");
+        if (scene_.drive.electrical_dynamics)
+          title.push_back("  electrical: source V_V_" + n + ", electrode resistance " +
+                          number(dea->electrode_resistance) +
+                          " Ohm, capacitor C0 = " + number(dea->capacitance) +
+                          " F; the force follows the capacitor voltage u = V(e_" + n + ")");
+        else
+          title.push_back(
+              "  ideal drive (drive.electrical_dynamics = false): the force "
+              "k_F*V(t)^2 of the source voltage, as current sources");
       }
     }
     Group& group = group_for(key);
     if (group.title.empty()) group.title = title;
-    group.elements.push_back(element.get());
+    group.elements.push_back(elements[e].get());
   }
   for (Group& g : list)
     if (g.title.empty()) g.title = {g.key == "other" ? "other elements" : g.key};
@@ -597,13 +592,16 @@ void DeckWriter::write_outputs() {
   std::ostringstream& out = body_;
   Eigen::VectorXd static_state;
   const bool static_start = tran_ && options_.start == StartState::static_;
-  StaticResult rest;
-  if (static_start) {
-    rest = solve_static(system_);
-    if (!rest.status.ok)
-      throw InputError(where(), "--start",
-                       "static: the network has no static state (" + rest.status.message + ")");
-  }
+  if (static_start && !options_.static_state)
+    throw std::invalid_argument(
+        "write_spice_deck: a tran deck from the static state needs options.static_state "
+        "(solve_static of the model's network)");
+  if (static_start && !options_.static_state->status.ok)
+    throw InputError(
+        where(), "--start",
+        "static: the network has no static state (" + options_.static_state->status.message + ")");
+  if (static_start && options_.static_state->state.size() != system_.size())
+    throw std::invalid_argument("write_spice_deck: options.static_state is of another network");
   const int node_count = static_cast<int>(network_.nodes().size());
   out << "*\n";
   comment(out,
@@ -642,7 +640,8 @@ void DeckWriter::write_outputs() {
       out << element_name('R', "out_" + probe.name) << " " << out_node << " 0 "
           << number(integrator_leak_resistance) << "\n";
       if (static_start)
-        initial_conditions_.emplace_back(out_node, static_probe_value(system_, rest, probe));
+        initial_conditions_.emplace_back(
+            out_node, static_probe_value(system_, *options_.static_state, probe));
     } else {
       out << element_name('R', "out_" + probe.name) << " " << out_node << " 0 1\n";
     }
@@ -932,29 +931,7 @@ std::string spice_identifier(const std::string& text) {
 }
 
 std::vector<Probe> spice_output_probes(const Model& model) {
-  std::vector<Probe> probes = model.probes;
-  const Probe* reference = nullptr;
-  for (const auto& probe : model.probes)
-    if (probe.name == "P1") reference = &probe;
-  if (reference)
-    for (const auto& probe : model.probes) {
-      if (&probe == reference || probe.name.size() < 2 || probe.name[0] != 'P' ||
-          probe.quantity != reference->quantity)
-        continue;
-      Probe difference = probe;
-      difference.name = "dx" + probe.name.substr(1);
-      difference.description = probe.name + " - P1";
-      for (const auto& [index, c] : reference->terms) difference.terms.emplace_back(index, -c);
-      probes.push_back(difference);
-    }
-  for (const auto& dea : model.deas)
-    if (dea.electrode_node != ground) {
-      probes.push_back(model.parse_probe("dea_voltage:" + dea.name));
-      probes.back().name = "u_" + dea.name;
-      probes.push_back(model.parse_probe("dea_current:" + dea.name));
-      probes.back().name = "i_" + dea.name;
-    }
-  return probes;
+  return probes_of(deck_output_list(model));
 }
 
 SpiceDeck write_spice_deck(const Model& model, const SpiceDeckOptions& options) {

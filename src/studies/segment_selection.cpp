@@ -1,5 +1,5 @@
 // beam.segments = "auto": the smallest N whose band modes meet the tolerance (see the header).
-#include "emnet/model/segment_selection.hpp"
+#include "emnet/studies/segment_selection.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -11,8 +11,8 @@
 
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/core/errors.hpp"
-#include "emnet/model/model.hpp"
 #include "emnet/core/units.hpp"
+#include "emnet/model/model.hpp"
 
 namespace emnet {
 

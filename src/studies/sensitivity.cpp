@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "emnet/model/model.hpp"
+#include "emnet/studies/resolve.hpp"
 #include "analysis/left_eigenvector.hpp"
 
 namespace emnet {
@@ -116,7 +117,7 @@ struct Linearised {
 // about zero; a nonlinear one needs its operating point.
 Linearised linearise(const Scene& scene) {
   Linearised result;
-  result.model = std::make_unique<Model>(build_model(scene));
+  result.model = std::make_unique<Model>(prepare_model(scene));
   result.system = result.model->network.assemble();
   const StaticResult rest = solve_static(result.system);
   if (rest.status.ok) {

@@ -487,7 +487,7 @@ class Crosscheck {
     bool ideal_drive = false;
     if (scene.drive.electrical_dynamics && !scene.deas.empty() &&
         scene.drive.kind != DriveKind::none) {
-      scene.drive.electrical_dynamics = false;
+      set_electrical_dynamics(scene, false);
       ideal_drive = true;
     }
     const Model tran_model = ideal_drive ? build_model(scene) : Model{};

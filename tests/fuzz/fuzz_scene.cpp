@@ -1,5 +1,5 @@
-// libFuzzer target: scene text through the reader (read_scene_text), the model builder
-// (build_model) and a static solve (solve_static), as `emnet static` runs them.
+// libFuzzer target: scene text through the reader (read_scene_text), the resolve step and the
+// model builder (prepare_model) and a static solve (solve_static), as `emnet static` runs them.
 //
 // Bad input must come back as an emnet::InputError; a static solve that fails must say why.
 // Anything else (a crash, another exception, a sanitizer report, a leak, a hang, too much
@@ -8,8 +8,8 @@
 // loading, whose fixed point runs up to 100 modal solves, each about 40 ms at N = 7 in this
 // instrumented build), since the builder's and the solver's cost grows with N (up to the
 // reader's 100 000), not with the input: a slow input then means a defect, not a large but
-// legal model. For the same reason scenes with beam.segments = "auto" (whose N the builder
-// chooses, up to 20 000) are read, not built.
+// legal model. For the same reason scenes with beam.segments = "auto" (whose N the resolve
+// step chooses, up to 20 000) are read, not built.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -20,6 +20,7 @@
 #include "emnet/core/errors.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene_reader.hpp"
+#include "emnet/studies/resolve.hpp"
 
 namespace {
 
@@ -27,7 +28,7 @@ constexpr int kMaximumSegments = 16;
 constexpr int kMaximumFluidSegments = 8;
 
 void build_and_solve(const emnet::Scene& scene) {
-  const emnet::Model model = emnet::build_model(scene);
+  const emnet::Model model = emnet::prepare_model(scene);
   const emnet::System system = model.network.assemble();
   const emnet::StaticResult result = emnet::solve_static(system);
   if (!result.status.ok) {

@@ -18,6 +18,7 @@
 #include "emnet/elements/dea.hpp"
 #include "emnet/analysis/periodic.hpp"
 #include "emnet/scene/scene_reader.hpp"
+#include "emnet/studies/resolve.hpp"
 #include "emnet/analysis/transient.hpp"
 #include "fixtures.hpp"
 
@@ -172,7 +173,7 @@ TEST(AntagonisticDrive, AcInputBypassesTheRcLoopsAndTheNotesSaySo) {
     for (size_t f = 0; f < grid.size(); ++f)
       EXPECT_LE(std::abs(results[0].values[k][f] - results[1].values[k][f]), 1e-12 * peak);
   }
-  const Model automatic = build_model(fin({"drive.electrical_dynamics=auto"}));
+  const Model automatic = prepare_model(fin({"drive.electrical_dynamics=auto"}));
   ASSERT_FALSE(automatic.automatic_choices.empty());
   const std::string& reason = automatic.automatic_choices.back().reason;
   EXPECT_NE(reason.find("RC dynamics kept"), std::string::npos) << reason;

@@ -16,6 +16,7 @@
 #include "emnet/model/fluid_loading.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene_reader.hpp"
+#include "emnet/studies/resolve.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {
@@ -160,7 +161,7 @@ TEST(FluidLoading, AddedMassLowersEveryModeByTheClosedFormRatio) {
 TEST(FluidLoading, HydrodynamicFunctionIsTakenAtTheLoadedFirstResonance) {
   // Without environment.frequency, Γ is evaluated at the loaded beam's first undamped
   // resonance: the fixed point stops at a relative change of 1e-10; tolerance 1e-9.
-  const Model model = build_model(cantilever_in_water(std::nullopt));
+  const Model model = prepare_model(cantilever_in_water(std::nullopt));
   ASSERT_TRUE(model.fluid.has_value());
   EXPECT_GT(model.fluid->fixed_point_steps, 0);
   const std::vector<Mode> modes = modes_of(model);

@@ -15,6 +15,7 @@
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene.hpp"
 #include "emnet/scene/scene_reader.hpp"
+#include "emnet/studies/resolve.hpp"
 
 namespace emnet {
 namespace {
@@ -928,7 +929,7 @@ TEST(SceneReaderBounds, SceneFileAtMostTheSizeLimit) {
 // both succeed.
 std::optional<InputError> build_error(const std::string& text) {
   try {
-    const Model model = build_model(read_scene_text(text, kFileName));
+    const Model model = prepare_model(read_scene_text(text, kFileName));
     (void)solve_static(model.network.assemble());
   } catch (const InputError& error) {
     return error;
@@ -986,7 +987,7 @@ TEST(SceneModelBounds, FuzzRegressionInputsAreRefusedOrBuilt) {
     try {
       const Scene scene = read_scene(entry.path().string());
       if (scene.beam.auto_segments) continue;
-      const Model model = build_model(scene);
+      const Model model = prepare_model(scene);
       (void)solve_static(model.network.assemble());
     } catch (const InputError& error) {
       EXPECT_EQ(error.where().rfind(entry.path().string(), 0), 0u) << error.what();

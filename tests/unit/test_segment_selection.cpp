@@ -1,5 +1,5 @@
-// Scene-driven assembly: beam.segments = "auto" (emnet/model/segment_selection.hpp),
-// drive.electrical_dynamics = "auto" (src/model/model.cpp) and the [model] table's reader.
+// The resolve step: beam.segments = "auto" (emnet/studies/segment_selection.hpp),
+// drive.electrical_dynamics = "auto" (emnet/studies/resolve.hpp) and the [model] table's reader.
 // References: the continuum cantilever's closed form, Richardson-converged frequencies from
 // N = 1000 and 2000, and the full RC model's periodic steady state.
 #include <gtest/gtest.h>
@@ -11,11 +11,12 @@
 
 #include "cli_run.hpp"
 #include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/periodic.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/model/model.hpp"
-#include "emnet/analysis/periodic.hpp"
 #include "emnet/scene/scene_reader.hpp"
-#include "emnet/model/segment_selection.hpp"
+#include "emnet/studies/resolve.hpp"
+#include "emnet/studies/segment_selection.hpp"
 
 namespace emnet {
 namespace {
@@ -61,7 +62,7 @@ TEST(SegmentSelection, CantileverAutoMeetsTheClosedFormAndIsMinimal) {
         read_scene(kCantilever, {"beam.segments=auto", "model.band=[\"0 Hz\", \"110 Hz\"]",
                                  "model.tolerance=" + std::to_string(tolerance)});
     ASSERT_TRUE(scene.beam.auto_segments);
-    const Model model = build_model(scene);
+    const Model model = prepare_model(scene);
     const AutomaticChoice* choice = find_choice(model, "beam.segments");
     ASSERT_NE(choice, nullptr);
     const int n = model.scene.beam.segments;
@@ -106,7 +107,7 @@ TEST(SegmentSelection, FishfinAutoWithinToleranceOfConvergedAnswer) {
   for (const double tolerance : {1e-2, 1e-3}) {
     const Scene scene = read_scene(
         kFishfin, {"beam.segments=auto", "model.tolerance=" + std::to_string(tolerance)});
-    const Model model = build_model(scene);
+    const Model model = prepare_model(scene);
     const AutomaticChoice* choice = find_choice(model, "beam.segments");
     ASSERT_NE(choice, nullptr);
     EXPECT_DOUBLE_EQ(choice->band_to_hz, 50.0);
@@ -134,7 +135,7 @@ TEST(SegmentSelection, FishfinAutoWithinToleranceOfConvergedAnswer) {
 TEST(SegmentSelection, IntegerOverrideWins) {
   const Scene scene = read_scene(kFishfin, {"beam.segments=auto", "beam.segments=12"});
   EXPECT_FALSE(scene.beam.auto_segments);
-  const Model model = build_model(scene);
+  const Model model = prepare_model(scene);
   EXPECT_EQ(model.scene.beam.segments, 12);
   EXPECT_EQ(find_choice(model, "beam.segments"), nullptr);
 }
@@ -147,7 +148,7 @@ TEST(SegmentSelection, IntegerOverrideWins) {
 TEST(ElectricalDynamicsAuto, CriterionNumbersForTheFishfin) {
   const double tau = 1e6 * 8.8541878128e-12 * 2.8 * 0.025 * 0.070 / 51e-6;
   {
-    const Model model = build_model(
+    const Model model = prepare_model(
         read_scene(kFishfin, {"drive.electrical_dynamics=auto", "model.band=\"130 Hz\""}));
     const AutomaticChoice* choice = find_choice(model, "drive.electrical_dynamics");
     ASSERT_NE(choice, nullptr);
@@ -157,7 +158,7 @@ TEST(ElectricalDynamicsAuto, CriterionNumbersForTheFishfin) {
     EXPECT_TRUE(model.scene.drive.electrical_dynamics);
   }
   {
-    const Model model = build_model(
+    const Model model = prepare_model(
         read_scene(kFishfin, {"drive.electrical_dynamics=auto", "model.band=\"8 Hz\""}));
     const AutomaticChoice* choice = find_choice(model, "drive.electrical_dynamics");
     ASSERT_NE(choice, nullptr);
@@ -168,21 +169,21 @@ TEST(ElectricalDynamicsAuto, CriterionNumbersForTheFishfin) {
   }
   {  // a looser tolerance moves the threshold to √(2·1e-2)/(2πτ) = 26.5 Hz
     const Model model =
-        build_model(read_scene(kFishfin, {"drive.electrical_dynamics=auto", "model.band=\"25 Hz\"",
-                                          "model.tolerance=1e-2"}));
+        prepare_model(read_scene(kFishfin, {"drive.electrical_dynamics=auto",
+                                            "model.band=\"25 Hz\"", "model.tolerance=1e-2"}));
     EXPECT_EQ(find_choice(model, "drive.electrical_dynamics")->value, "false");
   }
 }
 
 TEST(ElectricalDynamicsAuto, KeptWhenAProbeAsksForAnElectricalQuantity) {
   Scene scene = read_scene(kFishfin, {"drive.electrical_dynamics=auto", "model.band=\"8 Hz\""});
-  EXPECT_EQ(find_choice(build_model(scene, true), "drive.electrical_dynamics")->value, "true");
+  EXPECT_EQ(find_choice(prepare_model(scene, {true}), "drive.electrical_dynamics")->value, "true");
   ProbeSpec current;
   current.name = "iA";
   current.quantity = ProbeQuantity::dea_current;
   current.dea = "A";
   scene.probes.push_back(current);
-  const Model model = build_model(scene);
+  const Model model = prepare_model(scene);
   EXPECT_EQ(find_choice(model, "drive.electrical_dynamics")->value, "true");
   EXPECT_TRUE(model.network.assemble().is_nonlinear());
 }
@@ -198,14 +199,14 @@ TEST(ElectricalDynamicsAuto, KeptWhenAProbeAsksForAnElectricalQuantity) {
 TEST(ElectricalDynamicsAuto, IdealDifferenceWithinTheStatedEstimate) {
   const Scene scene = read_scene(
       kFishfin, {"drive.electrical_dynamics=auto", "model.band=\"25 Hz\"", "model.tolerance=1e-2"});
-  const Model ideal = build_model(scene);
+  const Model ideal = prepare_model(scene);
   const AutomaticChoice* choice = find_choice(ideal, "drive.electrical_dynamics");
   ASSERT_NE(choice, nullptr);
   ASSERT_EQ(choice->value, "false");
   Scene full_scene = scene;
   full_scene.drive.electrical_dynamics_auto = false;
   full_scene.drive.electrical_dynamics = true;
-  const Model full = build_model(full_scene);
+  const Model full = prepare_model(full_scene);
   const double period = 1.0 / scene.drive.frequency;
   const System ideal_system = ideal.network.assemble();
   const System full_system = full.network.assemble();
@@ -229,7 +230,7 @@ TEST(ElectricalDynamicsAuto, IdealDifferenceWithinTheStatedEstimate) {
 
 // Notes: one line per automatic choice and one back-coupling line, not one per DEA.
 TEST(ElectricalDynamicsAuto, NotesSayWhatWasChosenAndWhy) {
-  const Model model = build_model(read_scene(
+  const Model model = prepare_model(read_scene(
       kFishfin, {"beam.segments=auto", "drive.electrical_dynamics=auto", "model.band=\"8 Hz\""}));
   int back_coupling = 0, segments = 0, electrical = 0;
   for (const auto& note : model.notes) {

@@ -23,6 +23,7 @@
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/spice/spice_netlist.hpp"
+#include "emnet/studies/resolve.hpp"
 #include "fixtures.hpp"
 
 namespace {
@@ -57,7 +58,7 @@ std::string source_path(const std::string& relative) {
 }
 
 Model scene_model(const std::string& relative, const std::vector<std::string>& overrides = {}) {
-  return build_model(read_scene(source_path(relative), overrides));
+  return prepare_model(read_scene(source_path(relative), overrides));
 }
 
 // Element lines: not comments, not dot commands, not continuation lines.
@@ -279,6 +280,37 @@ std::string regenerate(const CheckedInDeck& d) {
     options.relative_tolerance = d.reltol;
   }
   return write_spice_deck(model, options).text;
+}
+
+// The tran deck from the static state takes that state from its caller (the writer runs no
+// analysis). Reference: emnet's static solve of the same network, whose probe values the .ic
+// lines hold (printed with the deck's 12 digits); without a state the writer refuses, a failed
+// one is the InputError naming --start that the command line reports.
+TEST(SpiceNetlist, StaticStartTakesTheCallersStaticState) {
+  const Model model = scene_model("netlists/fishfin.toml");
+  SpiceDeckOptions options;
+  options.analysis = SpiceAnalysis::tran;
+  options.end_time = 0.4;
+  options.output_step = 2e-3;
+  options.start = StartState::static_;
+  EXPECT_THROW(write_spice_deck(model, options), std::invalid_argument);
+  const System system = model.network.assemble();
+  options.static_state = solve_static(system);
+  ASSERT_TRUE(options.static_state->status.ok);
+  const SpiceDeck deck = write_spice_deck(model, options);
+  const Probe tip = model.parse_probe("tip");
+  char expected[96];
+  std::snprintf(expected, sizeof expected, ".ic V(out_tip)=%.12g\n",
+                static_probe_value(system, *options.static_state, tip));
+  EXPECT_NE(deck.text.find(expected), std::string::npos) << expected;
+  options.static_state->status = Status::failure("singular");
+  try {
+    write_spice_deck(model, options);
+    ADD_FAILURE() << "a failed static state was written";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.key(), "--start");
+    EXPECT_NE(std::string(error.what()).find("no static state (singular)"), std::string::npos);
+  }
 }
 
 TEST(SpiceNetlist, CheckedInDecksAreFresh) {

@@ -1,6 +1,7 @@
-// From a Scene to a Network: the beam chain, the DEA patches and their drive, loads, probes.
+// From a resolved Scene to a Network: the beam chain, the DEA patches and their drive, loads,
+// probes, with a record of what each element is (emnet/model/structure.hpp).
 //
-// The beam (DESIGN §2): N equal massless segments of length l = L/N, each realised exactly as
+// The beam: N equal massless segments of length l = L/N, each realised exactly as
 //   - a rotational compliance n_R = l/EI between the rotation nodes r_k and r_k+1;
 //   - a translational branch v_k → n_T = l³/(12·EI) → m_k → lever → v_k+1, the lever being an
 //     ideal transformer whose secondary adds (l/2)·(Ω_k + Ω_k+1) and whose primaries feed the
@@ -13,6 +14,11 @@
 // compliance n (the inductor's parallel conductance, stamped as τ times the rate of the
 // spring force: elements/inductor.hpp), which gives exactly the damping matrix τ·K.
 // Ends: clamped (v = Ω = 0), pinned (v = 0), sliding (Ω = 0), free: tied to ground or left open.
+//
+// The model builder runs no analysis: the scene's "auto" keys (beam.segments, the fluid
+// loading's resonance without environment.frequency, drive.electrical_dynamics) are resolved
+// before it (resolve_scene or prepare_model, emnet/studies/resolve.hpp), and build_model refuses
+// a scene that still has one.
 #pragma once
 
 #include <optional>
@@ -20,7 +26,10 @@
 #include <utility>
 #include <vector>
 
+#include "emnet/elements/dea.hpp"
+#include "emnet/model/drive.hpp"
 #include "emnet/model/fluid_loading.hpp"
+#include "emnet/model/structure.hpp"
 #include "emnet/network/network.hpp"
 #include "emnet/network/output.hpp"
 #include "emnet/network/waveform.hpp"
@@ -34,15 +43,17 @@ struct BeamLayout {
   std::vector<double> x;                 // node positions [m]
   std::vector<NodeId> velocity;          // translational node per position (ground if held)
   std::vector<NodeId> angular_velocity;  // rotational node per position (ground if held)
-  // Cubic Hermite interpolation over the segment holding x (DESIGN §5):
+  // Cubic Hermite interpolation over the segment holding x:
   // w(x) = Σ c·(w, φ at the segment's ends); the same coefficients map v, Ω to v(x).
   LinearTerms deflection_terms(double x) const;
   // φ(x) = dw/dx from the derivatives of the same shape functions.
   LinearTerms slope_terms(double x) const;
 };
 
-// Adds the beam chain to `network`.
-BeamLayout add_beam(Network& network, const BeamSpec& beam, const DampingSpec& damping);
+// Adds the beam chain to `network`, and the record of each node and element to `structure`
+// when given.
+BeamLayout add_beam(Network& network, const BeamSpec& beam, const DampingSpec& damping,
+                    ModelStructure* structure = nullptr);
 
 struct DeaLayout {
   std::string name;
@@ -51,11 +62,15 @@ struct DeaLayout {
   double electrode_resistance = 0.0;
   double capacitance = 0.0;
   double force_constant = 0.0;  // k_F [N/V²]
+  // Face elongation rate per across value: ẋ = Σ c·y[node] (the slopes at the span's ends
+  // times ∓ the lever arm), where its force enters the beam.
+  std::vector<Dea::Coupling> coupling;
 };
 
 struct Model {
-  Scene scene;
+  Scene scene;  // the resolved scene it was built from
   Network network;
+  ModelStructure structure;  // what each node and element of `network` is
   BeamLayout beam;
   std::vector<DeaLayout> deas;
   std::vector<Probe> probes;       // the scene's probes (a tip deflection probe if it has none)
@@ -72,24 +87,36 @@ struct Model {
   Probe make_probe(const ProbeSpec& spec) const;
   // Parses "deflection@70mm", "velocity@0.1", "dea_current:A" or a probe name of the scene.
   Probe parse_probe(const std::string& text) const;
+  // The DEA named `name`; nullptr when there is none.
+  const DeaLayout* find_dea(const std::string& name) const;
 };
 
-// What a drive applies to DEA `dea_name` (src/model/model.cpp says why): its source voltage
-// (constant 0 for a DEA the drive does not name) and, for the square-wave drives, the factor f
-// of its AC force input f·k_F·V² (±1/2; 0 for the sine drives, whose AC input is the source's
-// own amplitude v).
-struct DeaDrive {
-  Waveform voltage;
-  double ac_force_factor = 0.0;
-};
-DeaDrive dea_drive(const DriveSpec& drive, const std::string& dea_name);
+// The scene's "auto" keys that are not resolved yet, by their keys: "beam.segments",
+// "environment.frequency" (fluid loading without a frequency whose resonance is not found, or
+// was found for another beam or fluid: fluid_resonance_current), "drive.electrical_dynamics".
+std::vector<std::string> unresolved_keys(const Scene& scene);
+// Whether scene.environment.resonance was found for the scene's beam and fluid as they are.
+bool fluid_resonance_current(const Scene& scene);
 
-// The largest RC time constant R_e·C₀ [s] of the DEAs the drive names (0 when it names none);
-// `which`, when given, receives that DEA's name.
-double drive_time_constant(const Scene& scene, std::string* which = nullptr);
+// Sader's loading (emnet/model/fluid_loading.hpp) of the scene's [environment] at `frequency`
+// [Hz]; an InputError naming "environment" when the values overflow it.
+FluidLoading scene_fluid_loading(const Scene& scene, double frequency);
 
-// `electrical_probe_requested`: a probe outside the scene (the command line's --probe) asks for
-// dea_voltage or dea_current, which drive.electrical_dynamics = "auto" must then keep.
-Model build_model(const Scene& scene, bool electrical_probe_requested = false);
+// The [environment] fluid loading of a resolved scene (at environment.frequency, else at
+// environment.resonance) applied to `beam` and `damping`: its added mass and damping per length
+// added to them, its note(s) appended to `notes`.
+Model::AppliedFluidLoading apply_fluid_loading(const Scene& scene, BeamSpec& beam,
+                                               DampingSpec& damping,
+                                               std::vector<std::string>& notes);
+
+// drive.electrical_dynamics set to `on` in `scene`: "auto" cleared and the record of a choice
+// made for it dropped (a model of the result says what was set, not what was once chosen).
+void set_electrical_dynamics(Scene& scene, bool on);
+
+// The network of a resolved scene (no "auto" left: unresolved_keys empty). Runs no analysis.
+// Throws std::logic_error naming the unresolved keys otherwise, InputError for a scene that
+// cannot be built (a probe of a DEA without an electrical model, a fluid loading that cannot
+// be evaluated).
+Model build_model(const Scene& resolved_scene);
 
 }  // namespace emnet

@@ -14,8 +14,8 @@
 //   tenths of L the numbers describe no real beam (a linear beam deflects without bound).
 // - Electric field: the largest voltage across each DEA's film divided by its thickness d
 //   (dea[].dielectric_thickness, the nominal film: the model does not thin it under load)
-//   against dea[].breakdown_field (default kDefaultBreakdownField, emnet/scene/scene.hpp). Above it the
-//   film breaks down and the DEA is a short, not a capacitor.
+//   against dea[].breakdown_field (default kDefaultBreakdownField, emnet/scene/scene.hpp). Above it
+//   the film breaks down and the DEA is a short, not a capacitor.
 //
 // A check fails only strictly above its limit ("at most" the limit is inside). The checks
 // judge the values handed to them, so each command passes what it computed: static the state

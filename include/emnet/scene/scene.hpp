@@ -1,8 +1,9 @@
 // A scene: what the user writes in netlists/*.toml, read into plain SI data.
 //
 // The reader (src/scene/scene_reader.cpp) turns a TOML file plus `--set key=value` overrides into
-// a Scene, checking every key, unit and range; the model builder (src/model/) turns a Scene
-// into a Network. Every quantity here is SI; the comments name the scene key.
+// a Scene, checking every key, unit and range; the resolve step (src/studies/resolve.cpp) makes
+// its "auto" choices; the model builder (src/model/) turns the resolved Scene into a Network.
+// Every quantity here is SI; the comments name the scene key.
 #pragma once
 
 #include <map>
@@ -20,8 +21,8 @@ const char* end_condition_name(EndCondition end);
 struct BeamSpec {
   double length = 0.0;  // beam.length [m]
   int segments = 0;     // beam.segments [-]
-  // beam.segments = "auto": the model builder chooses N from [model] (segments is 0 until
-  // then; emnet/model/segment_selection.hpp). An integer, or --segments N, sets it false.
+  // beam.segments = "auto": the resolve step chooses N from [model] (segments is 0 until
+  // then; emnet/studies/segment_selection.hpp). An integer, or --segments N, sets it false.
   bool auto_segments = false;
   double bending_stiffness = 0.0;             // beam.bending_stiffness EI [N·m²]
   double mass_per_length = 0.0;               // beam.mass_per_length ρA [kg/m]
@@ -95,11 +96,12 @@ struct DriveSpec {
   // resistance and its force follows the capacitor voltage (nonlinear); false = an ideal
   // voltage-driven force k_F·V(t)² from the source (a linear network: exact transient).
   bool electrical_dynamics = true;
-  // drive.electrical_dynamics = "auto": the model builder keeps the RC dynamics only when a
+  // drive.electrical_dynamics = "auto": the resolve step keeps the RC dynamics only when a
   // probe asks for an electrical quantity or the RC lag matters in [model]'s band to its
-  // tolerance (src/model/model.cpp). The model's scene holds the choice in
-  // electrical_dynamics, with this flag cleared; code that sets electrical_dynamics on a read
-  // scene clears it too.
+  // tolerance (emnet/studies/resolve.hpp). A resolved scene holds the choice in
+  // electrical_dynamics, with this flag cleared; code that sets electrical_dynamics on a scene
+  // clears it too (set_electrical_dynamics, emnet/model/model.hpp, also drops the choice's
+  // record).
   bool electrical_dynamics_auto = false;
 };
 
@@ -128,7 +130,7 @@ struct AcSpec {
 // [model]: what the scene wants to know, for the automatic choices (beam.segments = "auto",
 // drive.electrical_dynamics = "auto"). model.band = ["0 Hz", "130 Hz"] or "130 Hz" (from 0);
 // unset, the band is 0 to the larger of ac.to (with an [ac] table) and 10 x drive.frequency
-// (emnet/model/segment_selection.hpp, band_of_interest).
+// (emnet/studies/segment_selection.hpp, band_of_interest).
 struct ModelSpec {
   std::optional<double> band_from;  // model.band lower end [Hz]
   std::optional<double> band_to;    // model.band upper end [Hz]
@@ -150,10 +152,23 @@ struct EnvironmentSpec {
   // environment.frequency [Hz] at which the hydrodynamic function is evaluated; unset: the
   // first resonance of the loaded beam, found by fixed-point iteration.
   std::optional<double> frequency;
+  // That resonance, once found (the resolve step, emnet/studies/resolve.hpp): the fixed point
+  // and the beam and fluid it was found for. The model builder evaluates the loading there; a
+  // scene whose beam or fluid no longer matches (changed since) has it unresolved again.
+  struct Resonance {
+    double frequency = 0.0;         // [Hz] the loaded beam's first undamped resonance
+    double vacuum_frequency = 0.0;  // [Hz] the bare beam's, where the fixed point started
+    int fixed_point_steps = 0;
+    BeamSpec beam;  // the beam it resolves (N as the model is built)
+    Fluid fluid = Fluid::none;
+    double density = 0.0, dynamic_viscosity = 0.0, width = 0.0;
+  };
+  std::optional<Resonance> resonance;
 };
 
-// A choice the model builder made for the scene ("auto" keys): what, why, at what estimated
-// error and cost; printed in every command's notes and as "automatic_choices" in --json.
+// A choice made for the scene's "auto" keys by the resolve step (emnet/studies/resolve.hpp):
+// what, why, at what estimated error and cost; printed in every command's notes and as
+// "automatic_choices" in --json.
 struct AutomaticChoice {
   std::string key;               // "beam.segments", "drive.electrical_dynamics"
   std::string value;             // "38", "false"
@@ -179,8 +194,9 @@ struct Scene {
   EnvironmentSpec environment;
   ModelSpec model;
   std::map<std::string, std::string> provenance;  // [provenance] "dotted.key" = "paper: …"
-  // Choices already made for this scene (a model's scene has beam.segments = "auto" resolved
-  // and carries the choice here, so a model rebuilt from it keeps the same N and says why).
+  // Choices already made for this scene (a resolved scene, and so a model's, has its "auto"
+  // keys resolved and carries the choices here, so a model rebuilt from it keeps the same N and
+  // drive and says why).
   std::vector<AutomaticChoice> automatic_choices;
 };
 

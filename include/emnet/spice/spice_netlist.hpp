@@ -1,10 +1,10 @@
-// SPICE export: a writer over the assembled network's element ports and parameters (DESIGN §6,
-// after gnucap's lang_spice), not a method of each element. It writes a plain SPICE3 deck that
+// SPICE export: a writer over the assembled network's element ports and parameters (after
+// gnucap's lang_spice), not a method of each element. It writes a plain SPICE3 deck that
 // ngspice runs unchanged (`ngspice -b deck.cir`) and that uses only what LTspice also reads:
 // R, L, C, V, I, E, F, G, B, PULSE/SIN/PWL sources, .op/.ac/.tran, .options, .ic. An
 // ngspice-only `.control` block (run, then wrdata of the outputs) is written only on request.
 //
-// Conventions (DESIGN §1, Firestone analogy): across = node voltage, through = current.
+// Conventions (Firestone analogy): across = node voltage, through = current.
 //   translational: velocity v [m/s] = V,  force F [N] = A
 //   rotational:    angular velocity Ω [rad/s] = V,  torque M [N·m] = A
 //   electrical:    potential u [V],  current i [A]
@@ -27,8 +27,8 @@
 //                   primary receives a_k·j through an F source (into pk+, out of pk−).
 //   Gyrator K       two G sources: K·(y_c − y_d) out of a into b, −K·(y_a − y_b) out of c into d.
 //   Dea             its capacitor C₀ (e+, e−), and per coupling node k a B source injecting
-//                   c_k·k_F·u² with u = V(e+) − V(e−) (the force follows the capacitor voltage,
-//                   DESIGN §3); with back-coupling a B source drawing 2·k_F·u·ẋ from e+ to e−,
+//                   c_k·k_F·u² with u = V(e+) − V(e−) (the force follows the capacitor
+//                   voltage); with back-coupling a B source drawing 2·k_F·u·ẋ from e+ to e−,
 //                   ẋ = Σ c_k·V(k). Its direct AC force (antagonistic drive) is an AC-only
 //                   current source c_k·ac_force into each coupling node (ac deck only).
 // Independent sources: op and ac decks hold their value at t = 0 (what emnet's static and its
@@ -54,7 +54,9 @@
 // 10 s; |1/(jωRC)| = 1.6e-9 relative at 0.1 Hz); the resistor gives the op point a DC path.
 // Its initial value is the start state of `emnet tran`: zero at rest (`.tran … uic`), or the
 // static value under the drive at t = 0 (written with `.ic`; ngspice holds the node there while
-// it computes the operating point, which gives the rest of the static state). A probe that is
+// it computes the operating point, which gives the rest of the static state). The writer runs
+// no analysis: that static state is the caller's (SpiceDeckOptions::static_state), which has
+// usually solved it already and can report its failure in its own terms. A probe that is
 // not an integral feeds a 1 Ω resistor: V(out) = Σc·V. In the op deck a probe's term stays when
 // emnet's static_probe_value keeps it (displacement of a deflection, voltage of a DEA), through
 // a 1 Ω resistor. In the ac deck an integral output at f = 0 is 0, where emnet gives the
@@ -73,9 +75,10 @@
 #include <string>
 #include <vector>
 
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/transient.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene.hpp"
-#include "emnet/analysis/transient.hpp"
 
 namespace emnet {
 
@@ -98,6 +101,11 @@ struct SpiceDeckOptions {
   // tran: ε of instantly switching pulses = this fraction of the pulse's shorter level time.
   double edge_fraction = 1e-5;
   StartState start = StartState::rest;
+  // tran with start = static: the static state of the model's network (solve_static of
+  // model.network.assemble()), whose integral outputs' values the deck's .ic lines hold.
+  // Required then: std::invalid_argument without it; a failed one is an InputError naming
+  // --start ("the network has no static state").
+  std::optional<StaticResult> static_state;
   // Append an ngspice `.control` block (run, then wrdata of the outputs to `control_output`).
   bool control = false;
   std::string control_output;  // empty: "<scene name>-<analysis>.data"
@@ -135,9 +143,9 @@ struct SpiceDeck {
 // InputError for a model that cannot be written safely or options out of range.
 SpiceDeck write_spice_deck(const Model& model, const SpiceDeckOptions& options);
 
-// The outputs `emnet tran` prints: the scene's probes, dx_k = P_k − P1 when a probe P1 exists
-// (paper Eqs. 20–22), and each DEA's capacitor voltage u_X and current i_X when it has an
-// electrical model. The scene's probes are kept as they are (P1 included).
+// A deck's default outputs: the model's deck_output_list (emnet/model/outputs.hpp): the scene's
+// probes as they are (P1 included), dx_k = P_k − P1 when a probe P1 exists (paper Eqs. 20–22),
+// and each DEA's capacitor voltage u_X and current i_X when it has an electrical model.
 std::vector<Probe> spice_output_probes(const Model& model);
 
 // Text made safe for a SPICE comment (see the header comment), and a name made of

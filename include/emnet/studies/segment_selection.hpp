@@ -1,7 +1,7 @@
 // Choosing the number of beam segments N for a band and a tolerance (beam.segments = "auto").
 //
 // Convergence model: the lumped-mass chain's modal frequencies converge to the continuum
-// beam's as O(N⁻²) (DESIGN §2), f_N = f∞·(1 + a/N² + …). Richardson extrapolation from N and
+// beam's as O(N⁻²), f_N = f∞·(1 + a/N² + …). Richardson extrapolation from N and
 // 2N removes the leading term, f∞ ≈ f_2N + (f_2N − f_N)/3, and estimates the error of N as
 // e_N = |f_N − f∞|/f∞; the worst e_N over the modes in the band (at least the first mode) is
 // the error of N.

@@ -1,0 +1,62 @@
+// The outputs a model offers beyond its scene's probes, each with a record of where it comes
+// from: the speckle-point differences dx_k = P_k − P1 and the DEAs' electrical quantities.
+//
+// Speckle-point differences (the paper's Eqs. 20–22, its Fig. 12): with a probe named P1 (the
+// reference speckle point, at the clamp on the fish fin), each other probe P_k of the same
+// quantity (a name "P" followed by at least one character) gives dx_k = P_k − P1, named "dx"
+// followed by what follows the "P" ("P4" → "dx4"), described as "P4 - P1": P1's terms
+// subtracted from P_k's. DEA outputs: each DEA with an electrical model (drive.electrical_dynamics)
+// gives its capacitor voltage u_X and its current i_X.
+//
+// Two output lists are built from these, one for each use:
+//   transient_output_list  (emnet tran, sweep-switching, mismatch, identify --peak): the scene's
+//     probes with each P_k replaced by its dx_k and P1 left out (whenever there is a P1: it is
+//     the reference; on the fish fin it sits at the clamp and is identically zero, and dx_k is
+//     what the paper measures), then the DEA outputs;
+//   deck_output_list  (SPICE decks, spice_output_probes): the scene's probes as they are, P1
+//     included (a deck's outputs are compared with emnet probe by probe, the raw P_k as well),
+//     then every dx_k, then the DEA outputs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "emnet/model/model.hpp"
+#include "emnet/network/output.hpp"
+
+namespace emnet {
+
+enum class OutputOrigin {
+  scene_probe,               // one of Model::probes
+  speckle_point_difference,  // dx_k = P_k − P1
+  dea_voltage,               // u_X: DEA X's capacitor voltage
+  dea_current,               // i_X: the current into DEA X
+};
+
+struct ModelOutput {
+  Probe probe;
+  OutputOrigin origin = OutputOrigin::scene_probe;
+  // scene_probe: its index in Model::probes; speckle_point_difference: P_k's index there.
+  int probe_index = -1;
+  int reference_index = -1;  // speckle_point_difference: P1's index in Model::probes
+  std::string dea;           // dea_voltage, dea_current: the DEA's name
+};
+
+// The index of P1 in Model::probes (the last probe of that name); -1 when there is none.
+int speckle_point_reference(const Model& model);
+// dx_k = P_k − P1 for every P_k of Model::probes, in their order; none without a P1.
+std::vector<ModelOutput> speckle_point_differences(const Model& model);
+// u_X and i_X of every DEA with an electrical model, in DEA order (u before i).
+std::vector<ModelOutput> dea_electrical_outputs(const Model& model);
+
+std::vector<ModelOutput> transient_output_list(const Model& model);
+std::vector<ModelOutput> deck_output_list(const Model& model);
+
+// The output a comparison of one deflection takes by default (mismatch, a sweep's resonance):
+// the last speckle-point difference of `outputs`, else their last deflection; nullptr when
+// they have no deflection.
+const ModelOutput* default_deflection_output(const std::vector<ModelOutput>& outputs);
+
+std::vector<Probe> probes_of(const std::vector<ModelOutput>& outputs);
+
+}  // namespace emnet
