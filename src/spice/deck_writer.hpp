@@ -1,0 +1,176 @@
+// The SPICE deck writer's inner parts, shared by its sources: spice_netlist.cpp (the deck, its
+// header, outputs and analysis), deck_elements.cpp (the groups of elements and each element's
+// lines) and deck_sources.cpp (the sources' time functions). The mapping itself is described in
+// include/emnet/spice/spice_netlist.hpp.
+#pragma once
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "emnet/core/errors.hpp"
+#include "emnet/spice/spice_netlist.hpp"
+
+namespace emnet::spice_deck {
+
+inline constexpr double pi = 3.14159265358979323846;
+// Leak resistor of an integrator output (1 F): time constant 1e9 s, see the header comment.
+inline constexpr double integrator_leak_resistance = 1e9;
+
+inline std::string lower(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+inline bool is_name_character(char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+inline bool is_identifier(const std::string& text) {
+  return !text.empty() && std::all_of(text.begin(), text.end(), is_name_character);
+}
+
+// 12 significant digits: far below the 1e-6 at which decks are compared with emnet, and short.
+inline std::string number(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.12g", value);
+  return buffer;
+}
+
+// Positions and lengths in comments, in millimetres.
+inline std::string millimetres(double metres) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.6g mm", metres * 1e3);
+  return buffer;
+}
+
+inline std::string file_name(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// Names unique without regard to letter case; never a ground alias.
+class NameTable {
+ public:
+  std::string claim(const std::string& wanted) {
+    std::string base = spice_identifier(wanted);
+    if (lower(base) == "0" || lower(base) == "gnd") base = "n_" + base;
+    std::string candidate = base;
+    for (int k = 2; used_.count(lower(candidate)) != 0; ++k)
+      candidate = base + "_" + std::to_string(k);
+    used_.insert(lower(candidate));
+    return candidate;
+  }
+
+ private:
+  std::set<std::string> used_;
+};
+
+// A group of elements written under one comment: the lumped node elements, one beam segment,
+// one load, one DEA, or the rest.
+struct Group {
+  std::string key;
+  std::vector<std::string> title;
+  std::vector<const Element*> elements;
+};
+
+class DeckWriter {
+ public:
+  DeckWriter(const Model& model, const SpiceDeckOptions& options)
+      : model_(model),
+        network_(model.network),
+        scene_(model.scene),
+        options_(options),
+        op_(options.analysis == SpiceAnalysis::op),
+        ac_(options.analysis == SpiceAnalysis::ac),
+        tran_(options.analysis == SpiceAnalysis::tran),
+        system_(model.network.assemble()) {}
+
+  SpiceDeck write();
+
+ private:
+  std::string where() const { return scene_.file.empty() ? std::string("scene") : scene_.file; }
+  bool mechanical(NodeId node) const {
+    return node != ground && is_mechanical(network_.node(node).domain);
+  }
+  const std::string& node(NodeId id) const {
+    static const std::string ground_name = "0";
+    return id == ground ? ground_name : node_names_.at(static_cast<size_t>(id));
+  }
+  std::string voltage(NodeId plus, NodeId minus) const {
+    if (minus == ground) return "V(" + node(plus) + ")";
+    if (plus == ground) return "(-V(" + node(minus) + "))";
+    return "(V(" + node(plus) + ")-V(" + node(minus) + "))";
+  }
+  std::string value(double x, const std::string& what) const {
+    if (!std::isfinite(x)) throw InputError(where(), what, "value is not finite");
+    return number(x);
+  }
+  // A comment, wrapped at 100 columns on spaces; continuation lines are indented.
+  void comment(std::ostringstream& out, const std::string& text) const {
+    const std::string safe = spice_comment_text(text);
+    const size_t indent = safe.find_first_not_of(' ') == std::string::npos
+                              ? 0
+                              : std::min<size_t>(safe.find_first_not_of(' '), 8);
+    std::string line;
+    std::istringstream words(safe.substr(indent));
+    std::string word;
+    line = std::string(indent, ' ');
+    bool first = true;
+    while (words >> word) {
+      if (!first && 2 + line.size() + 1 + word.size() > 100) {
+        out << "* " << line << "\n";
+        line = std::string(indent + 4, ' ');
+        first = true;
+      }
+      line += (first ? "" : " ") + word;
+      first = false;
+    }
+    out << "* " << line << "\n";
+  }
+  std::string element_name(char letter, const std::string& name) {
+    return elements_.claim(std::string(1, letter) + "_" + name);
+  }
+  std::string internal_node(const std::string& name, const std::string& meaning) {
+    const std::string spice = nodes_.claim(name);
+    node_comments_.push_back(spice + ": " + meaning);
+    return spice;
+  }
+
+  void check_names() const;
+  void name_nodes();
+  std::vector<Group> groups() const;
+  void write_header(std::ostringstream& out) const;
+  void write_element(const Element& element);
+  void write_outputs();
+  void write_analysis(std::ostringstream& out);
+  std::string source(const Waveform& waveform, const std::string& what);
+  std::string time_function(const Waveform& waveform, const std::string& what);
+  std::string pwl(const std::vector<std::pair<double, double>>& points, const std::string& what);
+  std::string node_meaning(const Node& node) const;
+
+  const Model& model_;
+  const Network& network_;
+  const Scene& scene_;
+  const SpiceDeckOptions& options_;
+  const bool op_, ac_, tran_;
+  const System system_;
+  std::vector<Probe> outputs_;
+  NameTable nodes_, elements_;
+  std::vector<std::string> node_names_;
+  std::vector<std::string> node_comments_;
+  std::vector<std::string> output_comments_;
+  std::ostringstream body_;
+  std::vector<std::pair<std::string, double>> initial_conditions_;  // tran, static start
+  std::vector<std::string> edge_notes_;
+  std::vector<std::string> left_out_;  // op: masses and dampers of the current group
+  SpiceDeck deck_;
+};
+
+}  // namespace emnet::spice_deck
