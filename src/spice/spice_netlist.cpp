@@ -320,7 +320,7 @@ SpiceDeck DeckWriter::write() {
   }
   write_outputs();
 
-  // What the model builder chose for the scene's "auto" keys ([model] band and tolerance).
+  // What the resolve step chose for the scene's "auto" keys ([model] band and tolerance).
   for (const auto& choice : model_.automatic_choices) {
     std::string note = choice.reason;  // plain comment text: '"auto"' as 'auto'
     note.erase(std::remove(note.begin(), note.end(), '"'), note.end());
