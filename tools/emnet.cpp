@@ -34,6 +34,7 @@
 #include "emnet/analysis/periodic.hpp"
 #include "emnet/report/plot.hpp"
 #include "emnet/core/progress.hpp"
+#include "emnet/scene/parameter_listing.hpp"
 #include "emnet/scene/parameters.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/segment_selection.hpp"
@@ -2674,6 +2675,48 @@ void add_common(CLI::App* command, CommonOptions& options) {
 
 }  // namespace
 
+// ---- schema ------------------------------------------------------------------------------
+//
+// `emnet schema [--markdown | --json]`: the scene's parameter table (emnet/scene/parameters.hpp),
+// every key with its unit, default, range, users and meaning; no scene is read.
+
+struct SchemaOptions {
+  bool markdown = false;
+  bool json = false;
+};
+
+CLI::App* add_schema_command(CLI::App& app, SchemaOptions& schema) {
+  CLI::App* command = app.add_subcommand(
+      "schema",
+      "every scene key: its unit, default, range, which drive kinds or components use it and\n"
+      "what it means (a text table; --markdown or --json)");
+  auto* markdown = command->add_flag("--markdown", schema.markdown, "a Markdown table");
+  command->add_flag("--json", schema.json, "a JSON array, one object per key")->excludes(markdown);
+  return command;
+}
+
+int run_schema_command(const SchemaOptions& schema) {
+  if (schema.markdown) {
+    std::cout << emnet::parameter_listing_markdown();
+  } else if (schema.json) {
+    Json keys = Json::array();
+    for (const auto& row : emnet::parameter_listing())
+      keys.push_back({{"key", row.key},
+                      {"kind", row.kind},
+                      {"unit", row.unit},
+                      {"default", row.default_text},
+                      {"required", row.required},
+                      {"range", row.range},
+                      {"used_by", row.used_by},
+                      {"meaning", row.meaning},
+                      {"sensitivity", row.sensitivity}});
+    std::cout << json_text(Json{{"keys", keys}}) << "\n";
+  } else {
+    std::cout << emnet::parameter_listing_text();
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
   CLI::App app{
       "emnet: lumped electromechanical network simulator.\n"
@@ -2847,6 +2890,9 @@ int main(int argc, char** argv) {
   CLI::App* crosscheck_command = nullptr;
   add_crosscheck_command(app, options, crosscheck_options, crosscheck_command);
 
+  SchemaOptions schema_options;
+  CLI::App* schema_command = add_schema_command(app, schema_options);
+
   // An unknown command would otherwise be taken for a scene file ("A subcommand is required").
   std::vector<std::string> command_names;
   std::string commands;
@@ -2909,6 +2955,7 @@ int main(int argc, char** argv) {
     if (*mismatch_command) status = run_mismatch_command(options, mismatch_options);
     if (*netlist_command) status = run_netlist_command(options, netlist_options);
     if (*crosscheck_command) status = run_crosscheck_command(options, crosscheck_options);
+    if (*schema_command) status = run_schema_command(schema_options);
   } catch (const InputError& e) {
     status = failed(2, "error", e.what());
   } catch (const FileError& e) {
