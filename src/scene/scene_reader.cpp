@@ -418,7 +418,7 @@ void SceneReader::read_environment(const toml::table& root, Scene& scene) const 
 // [model]: band = "130 Hz" (from 0) or ["0 Hz", "130 Hz"], 0 <= from < to, finite; tolerance and
 // deflection_limit in their ranges. The automatic choices need a band: from model.band, else
 // from an [ac] table or the drive frequency (band_of_interest in
-// emnet/model/segment_selection.hpp); without any, "auto" is an error here.
+// emnet/studies/segment_selection.hpp); without any, "auto" is an error here.
 void SceneReader::read_model(const toml::table& root, Scene& scene) const {
   const Section reader = section(root, "model");
   auto key = [](const char* name) -> const ParameterInfo& { return parameter_info("model", name); };
