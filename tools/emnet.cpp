@@ -34,6 +34,8 @@
 #include "emnet/analysis/periodic.hpp"
 #include "emnet/report/plot.hpp"
 #include "emnet/core/progress.hpp"
+#include "emnet/scene/parameter_listing.hpp"
+#include "emnet/scene/parameters.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/segment_selection.hpp"
 #include "emnet/studies/resolve.hpp"
@@ -1841,12 +1843,15 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
 // ---- identify -------------------------------------------------------------------------
 
 // The identified bending stiffness: the fixed point of EI ← EI·(target/f)², from the
-// scene's (and overrides') value.
+// scene's value. Every trial sets its values on the scene loaded once (set_parameter,
+// emnet/scene/parameters.hpp), so beam.segments = "auto" is chosen once, at the start values: the
+// fit is of one network, whose N the notes print.
 struct StiffnessFit {
   double stiffness = 0.0, frequency = 0.0;
   int iterations = 0;
 };
-StiffnessFit fit_stiffness(const CommonOptions& options, double target_hz, int mode_number);
+StiffnessFit fit_stiffness(const CommonOptions& options, emnet::Scene scene, double target_hz,
+                           int mode_number);
 
 // --peak NAME=VALUE[@VOLTAGE]: the periodic-state peak |deflection| of probe NAME under the
 // scene's drive (at VOLTAGE when given) at the switching frequency `frequency_hz`.
@@ -1856,10 +1861,11 @@ struct PeakTarget {
   double voltage = 0.0;  // [V]; 0: the scene's drive.voltage
 };
 
-StiffnessFit fit_stiffness(const CommonOptions& options, double target_hz, int mode_number) {
+StiffnessFit fit_stiffness(const CommonOptions& options, emnet::Scene scene, double target_hz,
+                           int mode_number) {
   CommonOptions trial = options;
   trial.reporter = nullptr;  // the iterations are the step shown, not each model they build
-  double stiffness = load_scene(options).beam.bending_stiffness;
+  double stiffness = emnet::get_parameter(scene, "beam.bending_stiffness");
   double frequency = 0.0;
   int iterations = 0;
   // Undamped frequencies scale as √EI exactly; damping and the electrical poles make the
@@ -1868,11 +1874,8 @@ StiffnessFit fit_stiffness(const CommonOptions& options, double target_hz, int m
     if (!keep_going(progress_of(options), iterations - 1, 30,
                     "bending stiffness: fixed-point iterations (30 at most)"))
       throw Interrupted("interrupted");
-    trial.overrides = options.overrides;
-    char value[64];
-    std::snprintf(value, sizeof value, "%.17g", stiffness);
-    trial.overrides.push_back(std::string("beam.bending_stiffness=") + value);
-    Prepared p = prepare(trial);
+    emnet::set_parameter(scene, "beam.bending_stiffness", stiffness);
+    Prepared p = prepare(trial, false, scene);
     emnet::ModalOptions modal_options;
     modal_options.keep_vectors = false;
     if (p.system.size() > modal_options.dense_limit) modal_options.count = mode_number + 5;
@@ -1934,11 +1937,10 @@ std::pair<double, double> periodic_extremes(emnet::Scene scene, const std::strin
   return {r.minimum[0], r.maximum[0]};
 }
 
-// The periodic peak max(|min|, |max|) with the given overrides.
-double periodic_peak(const CommonOptions& options, const std::string& probe_name,
+// The periodic peak max(|min|, |max|) of `scene`.
+double periodic_peak(const emnet::Scene& scene, const std::string& probe_name,
                      double frequency_hz) {
-  const auto [minimum, maximum] =
-      periodic_extremes(load_scene(options), probe_name, frequency_hz, "--peak");
+  const auto [minimum, maximum] = periodic_extremes(scene, probe_name, frequency_hz, "--peak");
   return std::max(std::abs(minimum), std::abs(maximum));
 }
 
@@ -1956,8 +1958,9 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   // Only parameters the scene marks as identified or assumed are fitted: a value taken from the
   // paper or a data sheet is a given, not an unknown.
   std::vector<emnet::AutomaticChoice> automatic_choices;
+  const emnet::Scene start_scene = load_scene(options);  // every trial sets its values on a copy
   {
-    const emnet::Scene scene = load_scene(options);
+    const emnet::Scene& scene = start_scene;
     automatic_choices = scene.automatic_choices;
     std::vector<std::string> fitted_keys{"beam.bending_stiffness"};
     if (!peak_text.empty()) fitted_keys.push_back("damping.loss_factor");
@@ -1975,25 +1978,23 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   // 1. Bending stiffness to the resonance; 2. with --peak, the loss factor to the peak at the
   // resonance, then the stiffness again (the damping moves the damped frequency a little),
   // until both hold.
-  CommonOptions fitted = options;
-  StiffnessFit fit = fit_stiffness(fitted, target_hz, mode_number);
+  emnet::Scene fitted = start_scene;  // with --peak's voltage
+  StiffnessFit fit = fit_stiffness(options, start_scene, target_hz, mode_number);
   std::optional<PeakTarget> peak;
   double loss_factor = 0.0, achieved_peak = 0.0;
   int peak_rounds = 0;
   if (!peak_text.empty()) {
     peak = parse_peak_target(peak_text);
-    const emnet::Scene scene = load_scene(options);
-    if (!scene.damping.loss_factor)
-      throw InputError(scene.file, "damping.loss_factor",
+    if (!start_scene.damping.loss_factor)
+      throw InputError(start_scene.file, "damping.loss_factor",
                        "--peak fits damping.loss_factor, which the scene does not set");
-    loss_factor = *scene.damping.loss_factor;
-    if (peak->voltage > 0.0)
-      fitted.overrides.push_back("drive.voltage=" + format("%.17g", peak->voltage));
+    loss_factor = *start_scene.damping.loss_factor;
+    if (peak->voltage > 0.0) emnet::set_parameter(fitted, "drive.voltage", peak->voltage);
     auto with = [&](double eta, double stiffness) {
-      CommonOptions o = fitted;
-      o.overrides.push_back("damping.loss_factor=" + format("%.17g", eta));
-      o.overrides.push_back("beam.bending_stiffness=" + format("%.17g", stiffness));
-      return o;
+      emnet::Scene trial = fitted;
+      emnet::set_parameter(trial, "damping.loss_factor", eta);
+      emnet::set_parameter(trial, "beam.bending_stiffness", stiffness);
+      return trial;
     };
     for (peak_rounds = 1; peak_rounds <= 10; ++peak_rounds) {
       // The peak falls monotonically with the loss factor: bisection in log η over [1e-5, 2].
@@ -2015,10 +2016,10 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
       }
       const double previous = loss_factor;
       loss_factor = std::sqrt(low * high);
-      CommonOptions o = fitted;
-      o.overrides.push_back("damping.loss_factor=" + format("%.17g", loss_factor));
+      emnet::Scene trial = fitted;
+      emnet::set_parameter(trial, "damping.loss_factor", loss_factor);
       const double previous_stiffness = fit.stiffness;
-      fit = fit_stiffness(o, target_hz, mode_number);
+      fit = fit_stiffness(options, trial, target_hz, mode_number);
       achieved_peak = periodic_peak(with(loss_factor, fit.stiffness), peak->probe, target_hz);
       if (std::abs(loss_factor - previous) <= 1e-9 * loss_factor &&
           std::abs(fit.stiffness - previous_stiffness) <= 1e-9 * fit.stiffness)
@@ -2030,9 +2031,8 @@ int run_identify(const CommonOptions& options, double target_hz, int mode_number
   // Validity of the periodic peak --peak prints, at the drive's levels (--peak's voltage).
   std::optional<emnet::Validity> validity;
   if (peak) {
-    const emnet::Scene fitted_scene = load_scene(fitted);
-    validity = emnet::check_validity(fitted_scene, {{peak->probe, achieved_peak}},
-                                     emnet::drive_peak_voltages(fitted_scene));
+    validity = emnet::check_validity(fitted, {{peak->probe, achieved_peak}},
+                                     emnet::drive_peak_voltages(fitted));
   }
   const double total = seconds_since(start);
   end_progress(options);
@@ -2227,8 +2227,8 @@ int run_mismatch_command(const CommonOptions& options, const MismatchOptions& cm
 // ---- sensitivity ------------------------------------------------------------------------
 //
 // `emnet sensitivity SCENE [--modes K] [--parameter KEY ...] [--check]`: df/dp of the first K
-// resonances for every scene parameter, from the eigenvectors (include/emnet/studies/sensitivity.hpp),
-// and with --check the finite-difference reference.
+// resonances for every scene parameter, from the eigenvectors
+// (include/emnet/studies/sensitivity.hpp), and with --check the finite-difference reference.
 
 struct SensitivityCommandOptions {
   int modes = 3;
@@ -2342,9 +2342,9 @@ void add_common(CLI::App* command, CommonOptions& options);
 // ---- netlist: SPICE export ------------------------------------------------------------
 //
 // `emnet netlist SCENE --analysis op|ac|tran [-o FILE.cir]`: the scene's network as a SPICE3
-// deck (src/spice/spice_netlist.cpp; include/emnet/spice/spice_netlist.hpp explains the mapping). The ac
-// options are those of `emnet ac`, the tran options those of `emnet tran`, plus the deck's own
-// max step and reltol.
+// deck (src/spice/spice_netlist.cpp; include/emnet/spice/spice_netlist.hpp explains the mapping).
+// The ac options are those of `emnet ac`, the tran options those of `emnet tran`, plus the deck's
+// own max step and reltol.
 
 struct NetlistOptions {
   std::string analysis;
@@ -2503,9 +2503,9 @@ void add_netlist_command(CLI::App& app, CommonOptions& options, NetlistOptions& 
 //
 // `emnet crosscheck SCENE [--analysis op,ac,modal,tran]`: exports the decks, runs ngspice
 // (include/emnet/spice/ngspice_runner.hpp) and compares with emnet's own analyses
-// (include/emnet/verification/crosscheck.hpp says what is compared and why each tolerance). Exit status 0
-// when every difference is within its tolerance, 4 when one is not, 3 when ngspice is missing,
-// fails or times out, or an emnet analysis fails.
+// (include/emnet/verification/crosscheck.hpp says what is compared and why each tolerance). Exit
+// status 0 when every difference is within its tolerance, 4 when one is not, 3 when ngspice is
+// missing, fails or times out, or an emnet analysis fails.
 
 struct CrosscheckCommandOptions {
   std::string analyses = "all";
@@ -2674,6 +2674,48 @@ void add_common(CLI::App* command, CommonOptions& options) {
 }
 
 }  // namespace
+
+// ---- schema ------------------------------------------------------------------------------
+//
+// `emnet schema [--markdown | --json]`: the scene's parameter table (emnet/scene/parameters.hpp),
+// every key with its unit, default, range, users and meaning; no scene is read.
+
+struct SchemaOptions {
+  bool markdown = false;
+  bool json = false;
+};
+
+CLI::App* add_schema_command(CLI::App& app, SchemaOptions& schema) {
+  CLI::App* command = app.add_subcommand(
+      "schema",
+      "every scene key: its unit, default, range, which drive kinds or components use it and\n"
+      "what it means (a text table; --markdown or --json)");
+  auto* markdown = command->add_flag("--markdown", schema.markdown, "a Markdown table");
+  command->add_flag("--json", schema.json, "a JSON array, one object per key")->excludes(markdown);
+  return command;
+}
+
+int run_schema_command(const SchemaOptions& schema) {
+  if (schema.markdown) {
+    std::cout << emnet::parameter_listing_markdown();
+  } else if (schema.json) {
+    Json keys = Json::array();
+    for (const auto& row : emnet::parameter_listing())
+      keys.push_back({{"key", row.key},
+                      {"kind", row.kind},
+                      {"unit", row.unit},
+                      {"default", row.default_text},
+                      {"required", row.required},
+                      {"range", row.range},
+                      {"used_by", row.used_by},
+                      {"meaning", row.meaning},
+                      {"sensitivity", row.sensitivity}});
+    std::cout << json_text(Json{{"keys", keys}}) << "\n";
+  } else {
+    std::cout << emnet::parameter_listing_text();
+  }
+  return 0;
+}
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -2848,6 +2890,9 @@ int main(int argc, char** argv) {
   CLI::App* crosscheck_command = nullptr;
   add_crosscheck_command(app, options, crosscheck_options, crosscheck_command);
 
+  SchemaOptions schema_options;
+  CLI::App* schema_command = add_schema_command(app, schema_options);
+
   // An unknown command would otherwise be taken for a scene file ("A subcommand is required").
   std::vector<std::string> command_names;
   std::string commands;
@@ -2910,6 +2955,7 @@ int main(int argc, char** argv) {
     if (*mismatch_command) status = run_mismatch_command(options, mismatch_options);
     if (*netlist_command) status = run_netlist_command(options, netlist_options);
     if (*crosscheck_command) status = run_crosscheck_command(options, crosscheck_options);
+    if (*schema_command) status = run_schema_command(schema_options);
   } catch (const InputError& e) {
     status = failed(2, "error", e.what());
   } catch (const FileError& e) {

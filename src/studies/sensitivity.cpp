@@ -8,9 +8,10 @@
 #include <limits>
 #include <memory>
 
-#include "emnet/model/model.hpp"
-#include "emnet/studies/resolve.hpp"
 #include "analysis/left_eigenvector.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/scene/parameters.hpp"
+#include "emnet/studies/resolve.hpp"
 
 namespace emnet {
 
@@ -20,85 +21,37 @@ constexpr double two_pi = 6.283185307179586476925286766559;
 
 // ---- parameters by key ----------------------------------------------------------------
 
-struct Slot {
-  double* value = nullptr;
-  std::string key, unit;
-};
+// Every numeric parameter of `scene` that enters the linearised network, zero or not: the
+// parameter table's sensitivity keys that the scene uses (emnet/scene/parameters.hpp), in the
+// table's order, DEA by DEA.
+std::vector<SceneParameterAddress> network_parameters(const Scene& scene) {
+  std::vector<SceneParameterAddress> addresses;
+  for (SceneParameterAddress& address : scene_numeric_parameters(scene))
+    if (address.info->sensitivity) addresses.push_back(std::move(address));
+  return addresses;
+}
 
-// The DEA named by `selector` (its name, or its index as text), or nullptr.
-DeaSpec* find_dea(Scene& scene, const std::string& selector) {
-  for (auto& dea : scene.deas)
-    if (dea.name == selector) return &dea;
-  if (!selector.empty() && std::all_of(selector.begin(), selector.end(), ::isdigit)) {
-    const size_t index = std::stoul(selector);
-    if (index < scene.deas.size()) return &scene.deas[index];
+double value_of(const Scene& scene, const SceneParameterAddress& address) {
+  return address.info->get(scene, address.entry).value_or(0.0);
+}
+
+SceneParameter parameter_of(const Scene& scene, const SceneParameterAddress& address) {
+  return {address.key, address.info->unit(), value_of(scene, address)};
+}
+
+// The parameter `key` names ("dea.A.x", "dea[A].x", "dea.0.x", "dea[0].x" or a plain key).
+SceneParameterAddress find_network_parameter(const Scene& scene, const std::string& key) {
+  const std::vector<SceneParameterAddress> parameters = network_parameters(scene);
+  try {
+    const SceneParameterAddress named = find_scene_parameter_address(scene, key, "--parameter");
+    for (const SceneParameterAddress& parameter : parameters)
+      if (parameter.key == named.key) return parameter;
+  } catch (const InputError&) {
+    // Not a key of this scene: said below with the keys it has.
   }
-  return nullptr;
-}
-
-std::vector<Slot> dea_slots(DeaSpec& dea) {
-  const std::string prefix = "dea[" + dea.name + "].";
-  return {{&dea.lever_arm, prefix + "lever_arm", "m"},
-          {&dea.relative_permittivity, prefix + "relative_permittivity", ""},
-          {&dea.dielectric_thickness, prefix + "dielectric_thickness", "m"},
-          {&dea.force_thickness, prefix + "force_thickness", "m"},
-          {&dea.electrode_width, prefix + "electrode_width", "m"},
-          {&dea.electrode_resistance, prefix + "electrode_resistance", "Ohm"}};
-}
-
-// Every numeric parameter of `scene` that enters the linearised network, zero or not.
-std::vector<Slot> all_slots(Scene& scene) {
-  std::vector<Slot> slots = {
-      {&scene.beam.length, "beam.length", "m"},
-      {&scene.beam.bending_stiffness, "beam.bending_stiffness", "N*m^2"},
-      {&scene.beam.mass_per_length, "beam.mass_per_length", "kg/m"},
-      {&scene.beam.rotary_inertia_per_length, "beam.rotary_inertia_per_length", "kg*m"},
-      {&scene.damping.viscous_per_length, "damping.viscous_per_length", "N*s/m^2"}};
-  if (scene.damping.loss_factor.has_value()) {
-    slots.push_back({&*scene.damping.loss_factor, "damping.loss_factor", ""});
-    if (scene.damping.loss_factor_frequency.has_value())
-      slots.push_back(
-          {&*scene.damping.loss_factor_frequency, "damping.loss_factor_frequency", "Hz"});
-  } else {
-    slots.push_back({&scene.damping.kelvin_voigt_time, "damping.kelvin_voigt_time", "s"});
-  }
-  for (auto& dea : scene.deas)
-    for (const Slot& slot : dea_slots(dea)) slots.push_back(slot);
-  if (scene.drive.kind == DriveKind::antagonistic || scene.drive.kind == DriveKind::switched)
-    slots.push_back({&scene.drive.voltage, "drive.voltage", "V"});
-  if (scene.drive.kind == DriveKind::bias_differential || scene.drive.kind == DriveKind::single)
-    slots.push_back({&scene.drive.bias, "drive.bias", "V"});
-  return slots;
-}
-
-// "dea.A.x", "dea[A].x", "dea.0.x", "dea[0].x" → "dea[A].x"; other keys unchanged.
-std::string canonical_key(Scene& scene, const std::string& key) {
-  std::string selector, field;
-  if (key.rfind("dea[", 0) == 0) {
-    const size_t close = key.find("].");
-    if (close == std::string::npos) return key;
-    selector = key.substr(4, close - 4);
-    field = key.substr(close + 2);
-  } else if (key.rfind("dea.", 0) == 0) {
-    const size_t dot = key.find('.', 4);
-    if (dot == std::string::npos) return key;
-    selector = key.substr(4, dot - 4);
-    field = key.substr(dot + 1);
-  } else {
-    return key;
-  }
-  const DeaSpec* dea = find_dea(scene, selector);
-  return dea ? "dea[" + dea->name + "]." + field : key;
-}
-
-Slot find_slot(Scene& scene, const std::string& key) {
-  const std::string canonical = canonical_key(scene, key);
-  std::vector<Slot> slots = all_slots(scene);
-  for (const Slot& slot : slots)
-    if (slot.key == canonical) return slot;
   std::string known;
-  for (const Slot& slot : slots)
-    if (*slot.value != 0.0) known += (known.empty() ? "" : ", ") + slot.key;
+  for (const SceneParameterAddress& parameter : parameters)
+    if (value_of(scene, parameter) != 0.0) known += (known.empty() ? "" : ", ") + parameter.key;
   throw InputError("--parameter", key,
                    "not a numeric parameter of scene '" + scene.name + "'; known: " + known);
 }
@@ -151,26 +104,24 @@ void fill_frequencies(ModeSensitivity& sensitivity, std::complex<double> pole, d
 }  // namespace
 
 std::vector<SceneParameter> scene_parameters(const Scene& scene) {
-  Scene copy = scene;
   std::vector<SceneParameter> parameters;
-  for (const Slot& slot : all_slots(copy))
-    if (*slot.value != 0.0) parameters.push_back({slot.key, slot.unit, *slot.value});
+  for (const SceneParameterAddress& address : network_parameters(scene))
+    if (value_of(scene, address) != 0.0) parameters.push_back(parameter_of(scene, address));
   return parameters;
 }
 
 SceneParameter find_scene_parameter(const Scene& scene, const std::string& key) {
-  Scene copy = scene;
-  const Slot slot = find_slot(copy, key);
-  if (*slot.value == 0.0)
+  const SceneParameterAddress address = find_network_parameter(scene, key);
+  if (value_of(scene, address) == 0.0)
     throw InputError("--parameter", key,
                      "is 0 in scene '" + scene.name + "': a relative step is undefined");
-  return {slot.key, slot.unit, *slot.value};
+  return parameter_of(scene, address);
 }
 
 Scene with_parameter(const Scene& scene, const std::string& key, double value) {
   Scene copy = scene;
-  const Slot slot = find_slot(copy, key);
-  if (slot.key == "beam.length" && scene.beam.length > 0.0) {
+  const SceneParameterAddress address = find_network_parameter(scene, key);
+  if (address.key == "beam.length" && scene.beam.length > 0.0) {
     // Positions along the beam scale with it: a probe at the free end stays at the end.
     const double stretch = value / scene.beam.length;
     for (auto& dea : copy.deas) {
@@ -180,7 +131,7 @@ Scene with_parameter(const Scene& scene, const std::string& key, double value) {
     for (auto& probe : copy.probes) probe.at *= stretch;
     for (auto& load : copy.loads) load.at *= stretch;
   }
-  *slot.value = value;
+  address.info->set(copy, address.entry, value);
   return copy;
 }
 

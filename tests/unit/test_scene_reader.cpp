@@ -996,6 +996,52 @@ TEST(SceneModelBounds, FuzzRegressionInputsAreRefusedOrBuilt) {
   EXPECT_GE(count, 10);
 }
 
+// Each fuzz regression input is refused with the message it got when it was found and fixed
+// (or, for the one whose crash was in the model builder, read): the parameter table's reader
+// must refuse them the same way.
+TEST(SceneModelBounds, FuzzRegressionInputsKeepTheirMessages) {
+  const std::filesystem::path directory =
+      std::filesystem::path(EMNET_SOURCE_DIR) / "tests" / "fuzz" / "regressions" / "scene";
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"fluid-reynolds-overflow.toml", ""},
+      {"found-brace-in-array.toml", ":5: not a valid TOML file: '}' in an array"},
+      {"found-comment-in-header.toml", ":5: not a valid TOML file: expected a key"},
+      {"found-date-space-digit-comment.toml", ":1: not a valid TOML file: a date, a space"},
+      {"found-date-space-digit-with-equals.toml", ":1: not a valid TOML file: a date, a space"},
+      {"found-date-space-digit-with-semicolon.toml", ":1: not a valid TOML file: a date, a space"},
+      {"found-date-time-then-bracket.toml", ":1: not a valid TOML file: a date-time needs a time"},
+      {"found-date-time-without-time.toml", ":1: not a valid TOML file: a date-time needs a time"},
+      {"found-quote-inside-a-number.toml", ":1: not a valid TOML file: character U+00B5 outside"},
+      {"found-quotes-after-a-number.toml", ":1: not a valid TOML file: character U+03A9 outside"},
+      {"found-u-fefd-at-start.toml", ":2: not a valid TOML file: invalid UTF-8 (byte 0xBE)"},
+      {"header-without-key.toml", ":3: not a valid TOML file: expected a key"},
+      {"micro-sign-after-line-ending-backslash.toml",
+       ":3: the character U+00B5 right after a line-ending backslash"},
+      {"micro-sign-after-number.toml", ":2: not a valid TOML file: character U+00B5 outside"},
+      {"non-ascii-bare-key.toml", ":1: not a valid TOML file: character U+00E9 outside"},
+      {"subnormal-beam-length.toml",
+       ":5: key 'beam.length': must be 0 or at least 2.225073859e-308 m in magnitude"},
+  };
+  const auto files = std::distance(std::filesystem::directory_iterator(directory),
+                                   std::filesystem::directory_iterator());
+  EXPECT_EQ(static_cast<std::size_t>(files), expected.size())
+      << "a regression input without its expected message";
+  for (const auto& [name, message] : expected) {
+    const std::string path = (directory / name).string();
+    const std::string text = read_scene_file(path);
+    if (message.empty()) {
+      EXPECT_NO_THROW(read_scene_text(text, path)) << name;
+      continue;
+    }
+    try {
+      (void)read_scene_text(text, path);
+      ADD_FAILURE() << name << ": read";
+    } catch (const InputError& error) {
+      EXPECT_EQ(std::string(error.what()).rfind(path + message, 0), 0u) << error.what();
+    }
+  }
+}
+
 TEST(SceneReaderBounds, DateTimesPassTheScan) {
   // Dates and times are valid TOML (the scene has no use for them: the reader says so).
   for (const char* value : {"1979-05-27T07:32:00Z", "1979-05-27 07:32:00.5-07:00",

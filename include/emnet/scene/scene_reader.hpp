@@ -39,7 +39,8 @@ inline constexpr std::size_t overrides = 1000;                // --set KEY=VALUE
 // is parsed as a TOML value when it is one (0.2, true, "70 mm", ["A", "B"]) and taken as a
 // string otherwise (70mm, 70 mm, log). Plain keys are addressed as "beam.length", entries of
 // [[dea]], [[probe]] and [[load]] by name or index: "dea.A.lever_arm", "dea[A].lever_arm",
-// "load.0.value". An override may set a key the file lacks, but only one the schema knows.
+// "load.0.value". An override may set a key the file lacks, but only one the parameter table
+// (emnet/scene/parameters.hpp) knows.
 // The file must be a regular file of at most scene_limits::file_bytes. Throws InputError on any
 // problem.
 Scene read_scene(const std::string& path, const std::vector<std::string>& overrides = {});

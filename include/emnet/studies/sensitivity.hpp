@@ -28,8 +28,10 @@
 // centrally, with h = 1e-4 and 2h; Richardson's estimate |D(2h) − D(h)|/3 bounds the truncation
 // error of D(h), and ε·|s|/h its rounding.
 //
-// Parameters are named by the keys of `--set` (scene_reader.hpp): "beam.bending_stiffness",
-// "damping.loss_factor", "dea[A].lever_arm" (also "dea.A.lever_arm", or by index "dea.0.…").
+// Parameters are the keys the parameter table marks `sensitivity` (emnet/scene/parameters.hpp:
+// continuous parameters of the linearised network's matrices) that the scene uses, named as
+// `--set` names them: "beam.bending_stiffness", "damping.loss_factor", "dea[A].lever_arm" (also
+// "dea.A.lever_arm", or by index "dea.0.…").
 #pragma once
 
 #include <complex>
@@ -50,7 +52,8 @@ struct SceneParameter {
 };
 
 // Every numeric parameter of the scene that enters the linearised network and is non-zero (a
-// relative step of zero is none): beam, damping, DEA geometry and material, drive levels.
+// relative step of zero is none): beam, damping, DEA geometry and material, drive levels; the
+// parameter table's sensitivity keys the scene uses, in the table's order.
 std::vector<SceneParameter> scene_parameters(const Scene& scene);
 // One parameter by key; throws InputError (where "--parameter", naming the key and listing the
 // known ones) when the scene has no such parameter or its value is zero.
