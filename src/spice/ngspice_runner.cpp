@@ -8,7 +8,7 @@
 //   every event to the sink of the run in progress and never throw);
 //   one deck through the library (shared by the worker and the in-this-process mode);
 //   the forked worker and its record stream;
-//   the ngspice program as a subprocess (src/core/supervised_program.hpp) and the rawfile parser;
+//   the ngspice program as a subprocess (emnet/core/process.hpp) and the rawfile parser;
 //   run_ngspice, which picks the backend and falls back.
 //
 // The worker's record stream, child to parent, one record after another:
@@ -54,9 +54,9 @@
 #include <system_error>
 #include <utility>
 
-#include "emnet/core/terminal_text.hpp"
 #include "core/posix_handles.hpp"
-#include "core/supervised_program.hpp"
+#include "emnet/core/process.hpp"
+#include "emnet/core/terminal_text.hpp"
 
 namespace emnet {
 
@@ -1162,24 +1162,29 @@ BackendAttempt run_program(const std::vector<std::string>& lines, const NgspiceO
   LineCollector out_lines(NgspiceStream::out, log);
   LineCollector err_lines(NgspiceStream::err, log);
   bool printed_anything = false;
-  SupervisedProgramOptions program;
+  const auto collect = [&](LineCollector& collector) {
+    return ProcessOutput::to_callback([&](const char* data, std::size_t size) {
+      printed_anything = true;
+      collector.add(data, size);
+      return true;
+    });
+  };
+  ProcessOptions program;
   program.arguments = {options.program, "-b", "-r", rawfile_path, deck_path};
+  program.standard_output = collect(out_lines);
+  program.standard_error = collect(err_lines);
   program.timeout_seconds = options.timeout_seconds;
   program.file_size_limit = options.max_result_bytes;
-  const SupervisedProgramEnd end = run_supervised_program(
-      program, [&](ProgramStream stream, const char* data, std::size_t size) {
-        printed_anything = true;
-        (stream == ProgramStream::standard_output ? out_lines : err_lines).add(data, size);
-      });
+  const ProcessResult end = run_process(program);
   out_lines.finish();
   err_lines.finish();
   result.messages = log.messages();
   result.ngspice_seconds = end.seconds;
 
-  using How = SupervisedProgramEnd::How;
+  using How = ProcessResult::How;
   if (end.how == How::not_started) {
     attempt.unavailable_reason =
-        "cannot run '" + terminal_text(options.program) + "': " + errno_text(end.start_error);
+        "cannot run '" + terminal_text(options.program) + "': " + errno_text(end.error_number);
     return attempt;
   }
   if (end.how == How::failed) return fail_here("cannot run ngspice: " + end.problem);

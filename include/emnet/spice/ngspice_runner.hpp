@@ -17,7 +17,7 @@
 //  * the ngspice program, as a subprocess, when libngspice cannot be loaded (or on request):
 //    `ngspice -b -r RAWFILE DECK` in a private temporary directory, under a supervisor that
 //    kills the program and everything it started (also a grandchild that left its process
-//    group and session) at the time limit (src/core/supervised_program.hpp); the rawfile
+//    group and session) at the time limit (emnet/core/process.hpp); the rawfile
 //    (binary, or ASCII when SPICE_ASCIIRAWFILE is set) is parsed here.
 //
 // Bounds, whatever ngspice does: the time limit holds however much it writes (its output is
