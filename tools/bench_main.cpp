@@ -8,8 +8,10 @@
 //  the median, and the spread as min..max, with the number of repetitions. An item whose
 //  warm-up alone takes more than half its budget is timed by that one run (repetitions 1).
 //  "In-process" times a function call in this process; "whole process" times a program
-//  started with posix_spawn until it exits (wall clock, output to /dev/null), so it includes
-//  program start, reading the scene or deck, and printing or writing results.
+//  started through emnet's process helper (emnet/core/process.hpp), from just before it is
+//  started until it is reaped, as its supervisor sees it (wall clock, output to /dev/null), so
+//  it includes program start, reading the scene or deck, and printing or writing results, but
+//  not the start of the supervisor or the clean-up after the program.
 //
 //  1. Discretisation error against cost. Cantilever (netlists/cantilever.toml: L = 0.5 m,
 //     EI = 2 N·m², ρA = 0.3 kg/m, 1 N at the tip) with N segments: f1..f3 of run_modes against
@@ -62,11 +64,7 @@
 //
 // Outputs (in --out): report.md, data files *.dat and gnuplot scripts *.gp for the Pareto
 // plots (tools/bench runs gnuplot), decks/*.cir.
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <Eigen/Dense>
@@ -99,8 +97,7 @@
 #include "emnet/spice/spice_netlist.hpp"
 #include "emnet/analysis/transient.hpp"
 #include "emnet/model/validity.hpp"
-
-extern char** environ;
+#include "emnet/core/process.hpp"
 
 namespace {
 
@@ -185,67 +182,29 @@ Timing measure(const std::function<double()>& run, int repetitions, double budge
 struct ProcessRun {
   bool ok = false;
   double seconds = 0.0;
-  long max_rss_kib = 0;
   std::string output;  // standard output, when captured
 };
 
-// Runs argv[0] (searched in PATH) with standard error to /dev/null and standard output to
-// /dev/null or, with `capture`, to a temporary file that is read back.
+// Runs argv[0] (searched in PATH) through emnet's process helper, standard input and error
+// /dev/null, standard output /dev/null or, with `capture`, kept (at most 1 MiB). `seconds` is
+// the program's run as its supervisor sees it, from just before it is started until it is
+// reaped (emnet/core/process.hpp): the program's own start, work and exit, without the
+// supervisor's start or the clean-up after the program.
 ProcessRun run_process(const std::vector<std::string>& arguments, bool capture = false,
                        double timeout_seconds = 300.0) {
+  emnet::ProcessOptions options;
+  options.arguments = arguments;
+  if (capture) options.standard_output = emnet::ProcessOutput::captured(std::size_t{1} << 20);
+  options.timeout_seconds = timeout_seconds;
+  const emnet::ProcessResult end = emnet::run_process(options);
   ProcessRun run;
-  std::vector<char*> argv;
-  for (const auto& argument : arguments) argv.push_back(const_cast<char*>(argument.c_str()));
-  argv.push_back(nullptr);
-  char capture_path[] = "/tmp/emnet-bench-XXXXXX";
-  int capture_fd = -1;
-  if (capture) capture_fd = mkstemp(capture_path);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  if (capture_fd >= 0)
-    posix_spawn_file_actions_adddup2(&actions, capture_fd, 1);
-  else
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const auto start = Clock::now();
-  const int spawned = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) {
-    if (capture_fd >= 0) close(capture_fd), unlink(capture_path);
-    return run;
-  }
-  int status = 0;
-  struct rusage usage {};
-  while (true) {
-    const pid_t done = wait4(pid, &status, WNOHANG, &usage);
-    if (done == pid) break;
-    if (seconds_since(start) > timeout_seconds) {
-      kill(pid, SIGKILL);
-      wait4(pid, &status, 0, &usage);
-      status = -1;
-      break;
-    }
-    usleep(200);
-  }
-  run.seconds = seconds_since(start);
-  run.max_rss_kib = usage.ru_maxrss;
+  run.seconds = end.seconds;
   // emnet's exit status 5: computed, but outside the model's validity (the fish fin's tip at
   // resonance swings past 10 % of its length); the result is there and is timed like any other.
   const bool emnet_run =
       arguments[0].size() >= 5 && arguments[0].compare(arguments[0].size() - 5, 5, "emnet") == 0;
-  run.ok = status != -1 && WIFEXITED(status) &&
-           (WEXITSTATUS(status) == 0 ||
-            (emnet_run && WEXITSTATUS(status) == emnet::kExitOutsideValidity));
-  if (capture_fd >= 0) {
-    std::ifstream in(capture_path);
-    std::stringstream text;
-    text << in.rdbuf();
-    run.output = text.str();
-    close(capture_fd);
-    unlink(capture_path);
-  }
+  run.ok = end.exited_with(0) || (emnet_run && end.exited_with(emnet::kExitOutsideValidity));
+  run.output = end.standard_output;
   return run;
 }
 
@@ -1262,8 +1221,8 @@ int scale_point(const Settings& settings, const std::string& analysis, int segme
   } else {
     return 2;
   }
-  // Peak resident set of this process image: VmHWM. (ru_maxrss would also count the parent's
-  // pages, since posix_spawn shares its address space until exec.)
+  // Peak resident set of this process image: VmHWM. (ru_maxrss would also count the pages of
+  // the process that started it, whose address space it shares until exec.)
   const double seconds = seconds_since(start);
   long peak_kib = 0;
   std::ifstream status("/proc/self/status");

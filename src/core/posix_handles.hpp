@@ -1,6 +1,7 @@
-// POSIX handles in RAII wrappers, shared by the ngspice runner and the supervised program:
-// a file descriptor, a pipe, a child process that is killed and reaped when its handle goes
-// away, and the few system-call helpers around them (write everything, read one chunk).
+// POSIX handles in RAII wrappers, shared by the process helper (emnet/core/process.hpp) and
+// the ngspice runner: a file descriptor, a pipe, a child process that is killed and reaped
+// when its handle goes away, and the few system-call helpers around them (write everything,
+// read one chunk).
 #pragma once
 
 #include <fcntl.h>

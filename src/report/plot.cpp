@@ -5,17 +5,18 @@
 // image: gnuplot runs a hidden copy of the script whose only difference is its output, a
 // temporary image beside the real one, which is renamed onto the image when gnuplot has
 // succeeded and written a non-empty file; a failure leaves the previous image, if any, never a
-// half-written one. gnuplot is started through /bin/sh as
-//   cd 'DIRECTORY' && exec timeout -k 5 60 gnuplot -d '.NAME.gp.PID.run' </dev/null 2>&1
-// with every argument in shell single quotes, so a path cannot inject a shell command; the
-// script names its files relative to its directory, so the saved one can be re-run from there.
+// half-written one. gnuplot is started without a shell, through the process helper
+// (emnet/core/process.hpp), as
+//   gnuplot -d .NAME.gp.PID.run      (in DIRECTORY, standard input /dev/null)
+// under a time limit of 60 s that kills it and everything it started; its standard output and
+// error are kept (the first 1 MiB) for the message when it fails. The script names its files
+// relative to its directory, so the saved one can be re-run from there.
 // Every text from the caller goes into the script as a single-quoted gnuplot string (no
 // backslash, backquote or macro expansion happens inside those) with control characters
 // replaced by spaces and quotes doubled, and is drawn with `noenhanced` so '_', '^', '@', '{'
 // are shown literally.
 #include "emnet/report/plot.hpp"
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -32,6 +33,7 @@
 #include <vector>
 
 #include "emnet/core/output_file.hpp"
+#include "emnet/core/process.hpp"
 
 namespace emnet {
 
@@ -97,19 +99,6 @@ std::string gnuplot_string(const std::string& text) {
   for (char c : one_line(text)) {
     if (c == '\'') {
       quoted += "''";
-    } else {
-      quoted += c;
-    }
-  }
-  return quoted + "'";
-}
-
-// `text` as a shell single-quoted word.
-std::string shell_word(const std::string& text) {
-  std::string quoted = "'";
-  for (char c : text) {
-    if (c == '\'') {
-      quoted += "'\\''";
     } else {
       quoted += c;
     }
@@ -222,44 +211,44 @@ Status write_script_and_run(const PlotFiles& files, const std::string& preamble,
 Status run_gnuplot(const PlotFiles& files, const std::string& script_name,
                    const std::string& image_path) {
   std::error_code ignored;
-  const std::string command = "cd " + shell_word(files.directory.string()) +
-                              " && exec timeout -k 5 " + std::to_string(kGnuplotTimeLimitSeconds) +
-                              " gnuplot -d " + shell_word(script_name) + " </dev/null 2>&1";
-  std::FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) {
-    return Status::failure("cannot start gnuplot (through /bin/sh) for '" + files.script_path +
-                           "'");
-  }
+  // gnuplot's standard output and error, in the order they come, the first 1 MiB.
   std::string output;
-  char buffer[4096];
-  for (size_t read; (read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) {
-    if (output.size() < 1 << 20) output.append(buffer, read);
-  }
-  const int wait_status = ::pclose(pipe);
+  const auto keep = ProcessOutput::to_callback([&](const char* data, std::size_t size) {
+    output.append(data, std::min(size, (std::size_t{1} << 20) -
+                                           std::min(output.size(), std::size_t{1} << 20)));
+    return true;
+  });
+  ProcessOptions gnuplot;
+  gnuplot.arguments = {"gnuplot", "-d", script_name};
+  gnuplot.working_directory = files.directory.string();
+  gnuplot.standard_output = keep;
+  gnuplot.standard_error = keep;
+  gnuplot.timeout_seconds = kGnuplotTimeLimitSeconds;
+  const ProcessResult end = run_process(gnuplot);
 
   const std::string details = last_lines(output, 8);
   const std::string output_note = details.empty() ? "" : ":\n  " + details;
-  if (wait_status == -1)
-    return Status::failure("lost track of gnuplot for '" + files.script_path + "'");
-  if (WIFSIGNALED(wait_status)) {
-    return Status::failure("gnuplot was killed by signal " + std::to_string(WTERMSIG(wait_status)) +
-                           " on '" + files.script_path + "'" + output_note);
-  }
-  const int exit_code = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
-  if (exit_code == 124 || exit_code == 137) {
-    return Status::failure("gnuplot did not finish within " +
-                           std::to_string(kGnuplotTimeLimitSeconds) + " s on '" +
-                           files.script_path + "'");
-  }
-  if (exit_code == 126 || exit_code == 127) {
+  using How = ProcessResult::How;
+  if (end.how == How::failed)
+    return Status::failure("cannot run gnuplot for '" + files.script_path + "': " + end.problem);
+  if (end.how == How::not_started) {
     return Status::failure(
         "cannot run gnuplot: it is not installed or not on PATH (Debian package gnuplot-nox, "
         "installed by tools/setup-deps); the data and script are in '" +
         files.data_path + "' and '" + files.script_path + "'" + output_note);
   }
-  if (exit_code != 0) {
-    return Status::failure("gnuplot failed (exit code " + std::to_string(exit_code) + ") on '" +
-                           files.script_path + "'" + output_note);
+  if (end.how == How::timed_out) {
+    return Status::failure("gnuplot did not finish within " +
+                           std::to_string(kGnuplotTimeLimitSeconds) + " s on '" +
+                           files.script_path + "'");
+  }
+  if (end.how == How::signalled) {
+    return Status::failure("gnuplot was killed by signal " + std::to_string(end.signal_number) +
+                           " on '" + files.script_path + "'" + output_note);
+  }
+  if (end.exit_status != 0) {
+    return Status::failure("gnuplot failed (exit code " + std::to_string(end.exit_status) +
+                           ") on '" + files.script_path + "'" + output_note);
   }
   const auto size = std::filesystem::file_size(image_path, ignored);
   if (ignored || size == 0) {

@@ -1,17 +1,20 @@
-// The ngspice runner (include/emnet/spice/ngspice_runner.hpp) on small hand-written decks, over every
-// backend: libngspice in a forked worker, libngspice in this process, the ngspice program.
+// The ngspice runner (include/emnet/spice/ngspice_runner.hpp) on small hand-written decks, over
+// every backend: libngspice in the worker program, libngspice in this process, the ngspice program.
 //
 // References are closed forms of an RC low-pass (R = 1 kΩ, C = 1 µF, RC = 1 ms) and a resistive
 // divider; each tolerance says where it comes from. Failure cases (syntax error, a deck that
 // makes libngspice ask to be detached, a run past the time limit, a crash, missing library or
 // program) must give a failure status with a clear message, never a hang or a crash of the
 // test process. Time bounds in these tests only guard against hangs; they measure nothing.
+#include <dlfcn.h>
 #include <gtest/gtest.h>
+#include <pthread.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -21,9 +24,11 @@
 #include <iterator>
 #include <ostream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli_run.hpp"
+#include "emnet/core/process.hpp"
 #include "emnet/spice/ngspice_runner.hpp"
 
 namespace emnet {
@@ -723,6 +728,124 @@ TEST(NgspiceRunnerBounds, LibraryMessagesInTheWorkerAreCappedAndEscaped) {
   EXPECT_TRUE(has_message_containing(result, "raw\\e[1mraw"));
   for (const NgspiceMessage& message : result.messages)
     EXPECT_EQ(message.text.find('\x1b'), std::string::npos) << message.text;
+}
+
+// ---- the worker program ---------------------------------------------------------------------
+
+// The library backend from a process with other threads: one loads and unloads a shared
+// library and allocates the whole time (what a Python host or a threaded study may do). A fork
+// of this process that then ran the loader or the allocator could find their locks held by
+// that thread and hang until the time limit; the worker is a program started with exec, so
+// every run must give the divider's exact operating point (reference and 1e-12 as in
+// OperatingPointOfDividerIsExact).
+TEST(NgspiceRunner, WorkerRunsFromAProcessWithAnotherThreadBusy) {
+  std::atomic<bool> stop{false};
+  std::thread busy([&] {
+    while (!stop) {
+      if (void* library = ::dlopen("libm.so.6", RTLD_NOW | RTLD_LOCAL)) ::dlclose(library);
+      std::vector<double> values(1000, 1.0);
+      values.push_back(values.size());
+    }
+  });
+  NgspiceOptions options;
+  options.backend = NgspiceBackend::library;
+  options.timeout_seconds = 20;
+  for (int run = 0; run < 10; ++run) {
+    const NgspiceResult result = run_ngspice(kDividerDeck, options);
+    EXPECT_TRUE(result.status.ok) << "run " << run << ": " << result.status.message;
+    EXPECT_EQ(result.backend_used, NgspiceBackend::library);
+    if (const NgspiceVector* out = result.find("out"))
+      EXPECT_NEAR(out->real_values.at(0), 0.75, 0.75 * 1e-12);
+    else
+      ADD_FAILURE() << "run " << run << ": no vector out";
+  }
+  stop = true;
+  busy.join();
+}
+
+// The library backend forks nothing of the calling process that runs its fork handlers
+// (pthread_atfork, as fork() would): the worker is a program started with exec through the
+// process helper's supervisor. The forked worker this replaced ran the handler below once per
+// run, and then dlopen and C++ code in the copy.
+std::atomic<int> fork_handler_calls{0};
+
+TEST(NgspiceRunner, WorkerIsNoForkOfTheCaller) {
+  static const int registered = ::pthread_atfork([] { ++fork_handler_calls; }, nullptr, nullptr);
+  ASSERT_EQ(registered, 0);
+  const int before = fork_handler_calls.load();
+  NgspiceOptions options;
+  options.backend = NgspiceBackend::library;
+  const NgspiceResult result = run_ngspice(kDividerDeck, options);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  EXPECT_EQ(result.backend_used, NgspiceBackend::library);
+  EXPECT_EQ(fork_handler_calls.load(), before);
+}
+
+// A worker program that is not there: the library backend fails and says where it looked
+// (given in the options, or in EMNET_NGSPICE_WORKER), and the automatic backend runs the
+// ngspice program instead, saying why.
+TEST(NgspiceRunner, MissingWorkerProgramIsAClearFailure) {
+  const std::string missing = "/nonexistent/emnet-ngspice-worker";
+  NgspiceOptions options;
+  options.backend = NgspiceBackend::library;
+  options.worker_program = missing;
+  NgspiceResult result = run_ngspice(kDividerDeck, options);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("NgspiceOptions::worker_program, '" + missing +
+                                       "', is not an executable file"),
+            std::string::npos)
+      << result.status.message;
+  EXPECT_TRUE(result.vectors.empty());
+
+  options.worker_program.clear();
+  ::setenv("EMNET_NGSPICE_WORKER", missing.c_str(), 1);
+  result = run_ngspice(kDividerDeck, options);
+  ::unsetenv("EMNET_NGSPICE_WORKER");
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("the environment variable EMNET_NGSPICE_WORKER, '" +
+                                       missing + "'"),
+            std::string::npos)
+      << result.status.message;
+
+  options.worker_program = missing;
+  options.backend = NgspiceBackend::automatic;
+  result = run_ngspice(kDividerDeck, options);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  EXPECT_EQ(result.backend_used, NgspiceBackend::program);
+  EXPECT_NE(result.backend_description.find(missing), std::string::npos)
+      << result.backend_description;
+  EXPECT_NEAR(vector_named(result, "out").real_values.at(0), 0.75, 0.75 * 1e-12);
+}
+
+// A worker of another build (another protocol) refuses the request, and the run says so
+// instead of misreading its records: the real worker asked for protocol 99, and a stand-in
+// that answers like it does.
+TEST(NgspiceRunner, WorkerOfAnotherProtocolIsRefused) {
+  const std::string built = std::string(EMNET_BINARY);
+  ProcessOptions refusal;
+  refusal.arguments = {built.substr(0, built.rfind('/') + 1) + "emnet-ngspice-worker", "--protocol",
+                       "99", "--max-message-bytes", "1000"};
+  refusal.standard_error = ProcessOutput::captured(4096);
+  refusal.timeout_seconds = 20;
+  const ProcessResult end = run_process(refusal);
+  EXPECT_TRUE(end.exited_with(2)) << end.description();
+  EXPECT_NE(end.standard_error.find("asked for protocol 99; this worker speaks protocol 1"),
+            std::string::npos)
+      << end.standard_error;
+
+  const std::string worker = write_fake_program(
+      "other_protocol_worker",
+      "echo \"emnet-ngspice-worker: asked for protocol $2; this worker speaks protocol 0\" >&2\n"
+      "exit 2\n");
+  NgspiceOptions options;
+  options.backend = NgspiceBackend::library;
+  options.worker_program = worker;
+  const NgspiceResult result = run_ngspice(kDividerDeck, options);
+  EXPECT_FALSE(result.status.ok);
+  EXPECT_NE(result.status.message.find("exit status 2"), std::string::npos)
+      << result.status.message;
+  EXPECT_NE(result.status.message.find("this worker speaks protocol 0"), std::string::npos)
+      << result.status.message;
 }
 
 }  // namespace

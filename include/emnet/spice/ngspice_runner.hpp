@@ -6,19 +6,27 @@
 //    at build time, so emnet starts and falls back when it is missing) and driven through its
 //    shared-library API (ngSpice_Init with output callbacks, ngSpice_Circ with the deck's
 //    lines, ngSpice_Command("run"), ngSpice_AllVecs / ngGet_Vec_Info for the results).
-//    By default this runs in a forked worker process: libngspice keeps one circuit state per
-//    process in global variables, asks to be "detached" (ControlledExit) after some parse
-//    errors, and a crash or an endless run inside it must not take emnet down or hang it. The
-//    worker streams ngspice's messages and then the vectors (raw IEEE doubles, so bit-exact)
-//    back through a pipe; the parent waits with a time limit, kills the worker when it is
+//    By default this runs in a worker process, the program emnet-ngspice-worker (built next
+//    to emnet; found as NgspiceOptions::worker_program says): libngspice keeps one circuit
+//    state per process in global variables, asks to be "detached" (ControlledExit) after some
+//    parse errors, and a crash or an endless run inside it must not take emnet down or hang
+//    it. The worker is started with exec through the process helper
+//    (emnet/core/process.hpp), never as a fork of the calling process, so the runner is safe
+//    in a process with other threads. It reads the deck on its standard input and streams
+//    ngspice's messages and then the vectors (raw IEEE doubles, so bit-exact) back; the
+//    runner keeps the time limit, kills the worker and everything it started when it is
 //    exceeded, and reports a signal death as a crash. `library_in_this_process` skips the
-//    worker (no fork: for timing the library itself); the time limit is then kept with
-//    `bg_run` / `bg_halt`, and a crash of ngspice is a crash of emnet.
+//    worker (for timing the library itself); the time limit is then kept with `bg_run` /
+//    `bg_halt`, and a crash of ngspice is a crash of the caller.
 //  * the ngspice program, as a subprocess, when libngspice cannot be loaded (or on request):
-//    `ngspice -b -r RAWFILE DECK` in a private temporary directory, under a supervisor that
-//    kills the program and everything it started (also a grandchild that left its process
-//    group and session) at the time limit (src/core/supervised_program.hpp); the rawfile
-//    (binary, or ASCII when SPICE_ASCIIRAWFILE is set) is parsed here.
+//    `ngspice -b -r RAWFILE DECK` in a private temporary directory, through the process
+//    helper, which kills the program and everything it started (also a grandchild that left
+//    its process group and session) at the time limit; the rawfile (binary, or ASCII when
+//    SPICE_ASCIIRAWFILE is set) is parsed here.
+//
+// When the worker program cannot be found the library backend is not available: with
+// NgspiceBackend::library the run fails saying where the worker was looked for; with
+// `automatic` the program runs instead, and backend_description says why.
 //
 // Bounds, whatever ngspice does: the time limit holds however much it writes (its output is
 // read in chunks of at most 64 KiB between looks at the clock); of its messages at most
@@ -66,8 +74,14 @@ struct NgspiceOptions {
   std::vector<std::string> library_names = {"libngspice.so.0", "libngspice.so"};
   // Program run by the subprocess backend (searched in PATH when it has no '/').
   std::string program = "ngspice";
-  // Run libngspice in this process instead of a forked worker (see the header comment).
+  // Run libngspice in this process instead of the worker program (see the header comment).
   bool library_in_this_process = false;
+  // The worker program (emnet-ngspice-worker) of the library backend. Empty: the environment
+  // variable EMNET_NGSPICE_WORKER, else the first that exists of the running program's
+  // directory, the path the build writes it to, and the installed path (libexec). A path
+  // given here or in the variable is used as it is (one that names no executable file makes
+  // the library backend unavailable, with that reason).
+  std::string worker_program;
   // ngspice's messages kept, in bytes (each message's text and bookkeeping): the first three
   // quarters for the first lines, the last quarter for the last ones (see the header comment).
   std::size_t max_message_bytes = std::size_t{1} << 20;
@@ -95,7 +109,7 @@ struct NgspiceVector {
 struct NgspiceResult {
   Status status;
   NgspiceBackend backend_used = NgspiceBackend::automatic;  // library or program once run
-  std::string backend_description;  // "libngspice in-process (forked worker)", "ngspice ..."
+  std::string backend_description;  // "libngspice in-process (... worker process ...)", ...
   // Every analysis plot of the run in order ("Operating Point", "AC Analysis", "Transient
   // Analysis"); the vectors are those of the last.
   std::vector<std::string> plot_names;
