@@ -5,6 +5,9 @@
 #include <dlfcn.h>
 #include <ngspice/sharedspice.h>
 #include <signal.h>
+#include <sys/stat.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -77,9 +80,40 @@ int on_send_init_data(pvecinfoall plot, int, void*) {
   return 0;
 }
 
+// ngspice's background threads that have reported their end (the callback runs on the thread
+// itself) and may still be running the library's code on their way out: the library must not
+// be unloaded under them.
+std::mutex ending_threads_mutex;
+std::vector<pid_t> ending_threads;
+
+bool thread_alive(pid_t thread) {
+  struct stat status {};
+  return ::stat(("/proc/self/task/" + std::to_string(thread)).c_str(), &status) == 0;
+}
+
+// Waits until every background thread that reported its end has ended, at most `seconds`;
+// false when one is still there.
+bool wait_for_ending_threads(double seconds) {
+  const auto give_up = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                          std::chrono::duration<double>(seconds));
+  std::lock_guard<std::mutex> lock(ending_threads_mutex);
+  for (;;) {
+    ending_threads.erase(std::remove_if(ending_threads.begin(), ending_threads.end(),
+                                        [](pid_t thread) { return !thread_alive(thread); }),
+                         ending_threads.end());
+    if (ending_threads.empty()) return true;
+    if (Clock::now() > give_up) return false;
+    ::usleep(200);
+  }
+}
+
 // ngspice passes true when its background thread has ended, false when it starts.
 int on_background_thread(NG_BOOL thread_ended, int, void*) {
   try {
+    if (thread_ended) {
+      std::lock_guard<std::mutex> lock(ending_threads_mutex);
+      ending_threads.push_back(static_cast<pid_t>(::syscall(SYS_gettid)));
+    }
     LibraryRunSink* sink = current_sink.load();
     if (!sink || !thread_ended) return 0;
     std::lock_guard<std::mutex> lock(sink->mutex);
@@ -120,7 +154,10 @@ struct NgspiceLibrary::Functions {
   decltype(&ngGet_Vec_Info) vector_info = nullptr;
 };
 
-std::unique_ptr<NgspiceLibrary> NgspiceLibrary::instance_;
+// Never destroyed: at the process's exit the library stays loaded. ngspice's background thread
+// runs on in the library's code for a moment after it reports its end (the last run's), and a
+// dlclose among the static destructors could unmap that code under it (a crash at exit).
+std::unique_ptr<NgspiceLibrary>& NgspiceLibrary::instance_ = *new std::unique_ptr<NgspiceLibrary>;
 
 NgspiceLibrary* NgspiceLibrary::acquire(const std::vector<std::string>& names, std::string& why,
                                         bool may_replace) {
@@ -149,6 +186,9 @@ NgspiceLibrary* NgspiceLibrary::acquire(const std::vector<std::string>& names, s
 }
 
 void NgspiceLibrary::unload() {
+  // A background thread still on its way out of the library's code: it stays loaded (set
+  // aside, as in acquire), rather than unmapped under that thread.
+  if (instance_ && !wait_for_ending_threads(2.0)) instance_->handle_ = nullptr;
   instance_.reset();
 }
 

@@ -96,7 +96,7 @@ class NgspiceLibrary {
   std::string loaded_name_;
   struct Functions;
   std::unique_ptr<Functions> functions_;
-  static std::unique_ptr<NgspiceLibrary> instance_;
+  static std::unique_ptr<NgspiceLibrary>& instance_;
 };
 
 struct LibraryRun {
