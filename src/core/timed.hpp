@@ -2,10 +2,10 @@
 // seconds it took; this fills both at each return.
 #pragma once
 
-#include <chrono>
 #include <utility>
 
 #include "emnet/core/errors.hpp"
+#include "emnet/core/stopwatch.hpp"
 
 namespace emnet {
 
@@ -15,13 +15,12 @@ class Timed {
   Result result;
   Result finish(Status status) {
     result.status = std::move(status);
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    result.seconds = stopwatch_.seconds();
     return result;
   }
 
  private:
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  Stopwatch stopwatch_;
 };
 
 }  // namespace emnet

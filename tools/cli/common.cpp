@@ -1,0 +1,372 @@
+#include "cli/common.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/analysis/transient.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/core/output_file.hpp"
+#include "emnet/core/progress.hpp"
+#include "emnet/core/stopwatch.hpp"
+#include "emnet/core/terminal_text.hpp"
+#include "emnet/core/units.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/model/outputs.hpp"
+#include "emnet/model/validity.hpp"
+#include "emnet/report/plot.hpp"
+#include "emnet/scene/parameter_listing.hpp"
+#include "emnet/scene/parameters.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "emnet/spice/spice_netlist.hpp"
+#include "emnet/studies/resolve.hpp"
+#include "emnet/studies/segment_selection.hpp"
+#include "emnet/studies/sensitivity.hpp"
+#include "emnet/verification/crosscheck.hpp"
+
+namespace emnet_cli {
+
+// --probe or --csv given to a command that has no use for it: refused, never ignored.
+void refuse_option(bool given, const std::string& option, const std::string& why) {
+  if (given) throw InputError(option, option, why);
+}
+
+emnet::Progress* progress_of(const CommonOptions& options) {
+  return options.reporter;
+}
+
+// A step of a command without counts, shown on the progress line.
+void show_phase(const CommonOptions& options, const std::string& what) {
+  if (options.reporter) options.reporter->phase(what);
+}
+
+// The progress line ends before the result (or a warning) is printed.
+void end_progress(const CommonOptions& options) {
+  if (options.reporter) options.reporter->finish();
+}
+
+void stop_if_interrupted() {
+  if (InterruptHandler::interrupted()) throw Interrupted("interrupted");
+}
+
+// Text from outside (scene, override, tool output) as shown on the terminal.
+std::string shown(const std::string& text) {
+  return emnet::terminal_text(text);
+}
+
+// --json output: strings with invalid UTF-8 (a name given by --set) are shown with U+FFFD
+// instead of ending the program.
+std::string json_text(const nlohmann::ordered_json& json) {
+  return json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
+
+std::string format(const char* pattern, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, pattern, value);
+  return buffer;
+}
+
+std::string si(double value, const std::string& unit) {
+  return format("%.6g", value) + (unit.empty() ? "" : " " + unit);
+}
+
+std::string milliseconds(double seconds) {
+  return seconds < 1.0 ? format("%.3g ms", seconds * 1e3) : format("%.3g s", seconds);
+}
+
+// Upper bound of the values a command stores and prints or writes (time steps × outputs, AC
+// points × probes, ...): 20 million doubles, 160 MB, which --json prints as several hundred MB
+// of text. Checked before computing, with the estimate and what to change.
+
+// A size in bytes as it is read: "168 MB", "4 GB".
+std::string bytes_text(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, bytes < 1e9 ? "%.3g MB" : "%.3g GB",
+                bytes < 1e9 ? bytes / 1e6 : bytes / 1e9);
+  return text;
+}
+
+void check_stored_values(double values, const std::string& what, const std::string& option,
+                         const std::string& remedy) {
+  if (values <= kMaximumStoredValues) return;
+  char counts[96];
+  std::snprintf(counts, sizeof counts, " would store %.3g values (", values);
+  throw InputError(option, option,
+                   what + counts + bytes_text(8.0 * values) + " of doubles); at most " +
+                       format("%.0f", kMaximumStoredValues) + " values (" +
+                       bytes_text(8.0 * kMaximumStoredValues) +
+                       ") are stored (inclusive): " + remedy);
+}
+
+// Every printed result must be finite: a NaN is a numerical failure, never an output.
+double finite(double value, const std::string& what) {
+  if (!std::isfinite(value)) throw NumericalFailure("non-finite result for " + what);
+  return value;
+}
+
+// --set overrides with --segments appended.
+std::vector<std::string> overrides_with_segments(const CommonOptions& options) {
+  std::vector<std::string> overrides = options.overrides;
+  if (options.segments) {
+    if (*options.segments < 1)
+      throw InputError(
+          "--segments", "--segments",
+          "must be >= 1 (a number of beam segments), got " + std::to_string(*options.segments));
+    overrides.push_back("beam.segments=" + std::to_string(*options.segments));
+  }
+  return overrides;
+}
+
+emnet::Scene load_scene(const CommonOptions& options) {
+  const std::vector<std::string> overrides = overrides_with_segments(options);
+  emnet::Scene scene = emnet::read_scene(options.scene_path, overrides);
+  // beam.segments = "auto": chosen once here, so that every model a command builds from the
+  // scene (sweeps, fits, finite differences) has the same N; the choice travels with the scene.
+  if (scene.beam.auto_segments) {
+    // N only: the fluid loading's resonance and drive.electrical_dynamics = "auto" stay to be
+    // chosen for each scene the command builds.
+    emnet::ResolveOptions segments_only;
+    segments_only.fluid_resonance = false;
+    segments_only.electrical_dynamics = false;
+    scene = emnet::resolve_scene(scene, segments_only).scene;
+  }
+  return scene;
+}
+
+// A --probe asking for an electrical quantity (drive.electrical_dynamics = "auto" keeps the
+// RC dynamics for it).
+bool electrical_probe_requested(const CommonOptions& options) {
+  for (const auto& text : options.probes)
+    if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0) return true;
+  return false;
+}
+
+// The model of `scene` with its remaining "auto" keys resolved for the command's probes.
+emnet::Model resolved_model(const emnet::Scene& scene, const CommonOptions& options) {
+  emnet::PrepareOptions prepare;
+  prepare.electrical_probe_requested = electrical_probe_requested(options);
+  return emnet::prepare_model(scene, prepare);
+}
+
+// "automatic_choices" of --json: what each "auto" key became, why, its error estimate, cost.
+Json automatic_choices_json(const std::vector<emnet::AutomaticChoice>& automatic_choices) {
+  Json choices = Json::array();
+  for (const auto& choice : automatic_choices)
+    choices.push_back({{"key", choice.key},
+                       {"value", choice.value},
+                       {"reason", choice.reason},
+                       {"estimated_error", choice.estimated_error},
+                       {"tolerance", choice.tolerance},
+                       {"band_hz", {choice.band_from_hz, choice.band_to_hz}},
+                       {"seconds", choice.seconds}});
+  return choices;
+}
+
+std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const CommonOptions& options) {
+  if (options.probes.empty()) return model.probes;
+  std::vector<emnet::Probe> probes;
+  for (const auto& text : options.probes) probes.push_back(model.parse_probe(text));
+  return probes;
+}
+
+std::string drive_summary(const emnet::Scene& scene) {
+  const auto& drive = scene.drive;
+  std::ostringstream out;
+  out << "drive " << emnet::drive_kind_name(drive.kind);
+  switch (drive.kind) {
+    case emnet::DriveKind::antagonistic:
+      out << " 0/" << si(drive.voltage, "V") << " square wave at " << si(drive.frequency, "Hz");
+      break;
+    case emnet::DriveKind::switched:
+      out << " 0/" << si(drive.voltage, "V") << " square wave at " << si(drive.frequency, "Hz")
+          << " on DEA " << drive.deas[0];
+      break;
+    case emnet::DriveKind::bias_differential:
+      out << " V0 = " << si(drive.bias, "V") << ", v = " << si(drive.amplitude, "V");
+      break;
+    case emnet::DriveKind::single:
+      out << " V0 + v*sin(2*pi*f*t), V0 = " << si(drive.bias, "V")
+          << ", v = " << si(drive.amplitude, "V") << ", f = " << si(drive.frequency, "Hz")
+          << " on DEA " << drive.deas[0];
+      break;
+    case emnet::DriveKind::none:
+      break;
+  }
+  return out.str();
+}
+
+// What the AC input is, in words: printed with every AC result. `top_hz`: the sweep's highest
+// frequency, where the square-wave drives' omitted RC factor is largest.
+std::string ac_input_description(const emnet::Scene& scene, double top_hz) {
+  std::ostringstream out;
+  const auto& drive = scene.drive;
+  // The square-wave drives' force goes in directly; through the RC loops its fundamental would
+  // be 1/(1 + j*omega*tau) times it (src/model/model.cpp).
+  auto rc_loops = [&] {
+    const double tau = emnet::drive_time_constant(scene);
+    const std::complex<double> lag = 1.0 / std::complex<double>(1.0, 2 * pi * top_hz * tau);
+    out << " The DEAs' RC loops are not in this input, whatever drive.electrical_dynamics: "
+           "through them the force's fundamental would be 1/(1 + j*2*pi*f*tau) times it (exact "
+           "at duty 0.5; tau = "
+        << milliseconds(tau) << ": at " << si(top_hz, "Hz") << " " << format("%.6g", std::abs(lag))
+        << ", " << format("%.3g", std::arg(lag) * 180.0 / pi) << " deg).";
+  };
+  switch (drive.kind) {
+    case emnet::DriveKind::antagonistic:
+      out << "AC input: the alternating part of the antagonistic square-wave drive: each DEA's "
+             "force k_F*V^2/2 (V = "
+          << si(drive.voltage, "V") << ") as a sinusoid, DEA " << shown(drive.deas[0])
+          << " and DEA " << shown(drive.deas[1])
+          << " in antiphase (the square wave's +/- level; its fundamental is 4/pi times this); "
+             "exact, no linearisation: a 0/V voltage squares to a 0/k_F*V^2 force.";
+      rc_loops();
+      break;
+    case emnet::DriveKind::switched:
+      out << "AC input: the alternating part of the switched square-wave drive on DEA "
+          << shown(drive.deas[0])
+          << ": its force, a 0/k_F*V^2 square wave (V = " << si(drive.voltage, "V")
+          << "), is +/- k_F*V^2/2 about its mean k_F*V^2/2; the +/- level as a sinusoid (its "
+             "fundamental is 4/pi times this); exact, no linearisation: a 0/V voltage squares to "
+             "a 0/k_F*V^2 force. The mean is a static offset, not in this input. The network is "
+             "linearised at the static state (DEA on), which only the back-coupling sees.";
+      rc_loops();
+      break;
+    case emnet::DriveKind::bias_differential:
+      out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << shown(drive.deas[0])
+          << " and -v on DEA " << shown(drive.deas[1])
+          << " about the bias V0 = " << si(drive.bias, "V")
+          << "; the network linearised at V0 (the moment is exactly linear in v).";
+      break;
+    case emnet::DriveKind::single:
+      out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << shown(drive.deas[0])
+          << ", linearised about the bias V0 = " << si(drive.bias, "V")
+          << " (the force's part 2*k_F*V0*v; its DC and 2f parts, k_F*v^2/2 each, are left out).";
+      break;
+    case emnet::DriveKind::none:
+      out << "AC input: the scene's loads, each with its value as amplitude.";
+      break;
+  }
+  if (drive.kind != emnet::DriveKind::none && !scene.loads.empty())
+    out << " Plus the scene's loads, each with its value as amplitude.";
+  return out.str();
+}
+
+// The validity checks of a result (emnet/model/validity.hpp): "validity" of --json; in text a line
+// with the largest values against their limits and a WARNING line per violation.
+Json validity_json(const emnet::Validity& validity) {
+  Json violations = Json::array();
+  for (const auto& v : validity.violations)
+    violations.push_back({{"check", emnet::validity_check_name(v.check)},
+                          {"subject", v.subject},
+                          {"key", v.key},
+                          {"value", v.value},
+                          {"limit", v.limit},
+                          {"message", v.message}});
+  return {{"status", validity.within() ? "within" : "OUTSIDE"},
+          {"summary", validity.summary},
+          {"deflection_fraction_of_limit", validity.deflection_fraction},
+          {"field_fraction_of_breakdown", validity.field_fraction},
+          {"violations", violations}};
+}
+
+std::string validity_warning(const emnet::ValidityViolation& violation) {
+  return "WARNING: outside the model's validity: " + violation.message;
+}
+
+void print_validity(const emnet::Validity& validity) {
+  std::cout << "validity: " << validity.summary << "\n";
+  for (const auto& v : validity.violations) std::cout << validity_warning(v) << "\n";
+}
+
+// The exit status of a computed result: 0, or 5 with the warnings on standard error.
+int validity_exit(const emnet::Validity& validity) {
+  for (const auto& v : validity.violations) std::cerr << "emnet: " << validity_warning(v) << "\n";
+  return validity.within() ? 0 : emnet::kExitOutsideValidity;
+}
+
+void print_header(const emnet::Model& model, const emnet::System& system) {
+  const auto& scene = model.scene;
+  std::cout << "scene " << shown(scene.name) << " (" << shown(scene.file)
+            << "): " << scene.beam.segments << " segments, L = " << si(scene.beam.length, "m")
+            << ", EI = " << si(scene.beam.bending_stiffness, "N*m^2")
+            << ", rhoA = " << si(scene.beam.mass_per_length, "kg/m") << ", " << scene.deas.size()
+            << " DEA(s), " << drive_summary(scene) << "\n"
+            << "network: " << model.network.nodes().size() << " nodes, "
+            << model.network.elements().size() << " elements, " << system.size() << " unknowns\n";
+  for (const auto& note : model.notes) std::cout << "note: " << shown(note) << "\n";
+}
+
+void write_csv(const std::string& path, const std::vector<std::string>& header,
+               const std::vector<std::vector<double>>& rows) {
+  write_csv_rows(path, header, rows.size(),
+                 [&](size_t i, std::vector<double>& row) { row = rows[i]; });
+}
+
+// A plot's Status as a FileError (gnuplot missing or failing is no numerical failure).
+void check_plot(const emnet::Status& status) {
+  if (!status.ok) throw FileError("--plot: " + status.message);
+}
+
+// Builds the model and its operating point. A linear network without a static state (a free
+// body) can still be analysed dynamically: its operating point is then zero, as said in a note;
+// `static` itself requires the static state.
+Prepared prepare(const CommonOptions& options, bool require_static,
+                 std::optional<emnet::Scene> scene) {
+  if (!scene) scene = load_scene(options);
+  show_phase(options, "building the network");
+  Prepared p{resolved_model(*scene, options), {}, {}};
+  p.system = p.model.network.assemble();
+  emnet::StaticOptions static_options;
+  static_options.progress = progress_of(options);
+  p.rest = emnet::solve_static(p.system, static_options);
+  stop_if_interrupted();
+  if (!p.rest.status.ok) {
+    if (require_static || p.system.is_nonlinear())
+      throw NumericalFailure("static operating point: " + p.rest.status.message);
+    p.model.notes.push_back("no static state (" + p.rest.status.message +
+                            "); the linear network is analysed about zero");
+    p.rest.operating_point = Eigen::VectorXd::Zero(p.system.size());
+  }
+  return p;
+}
+
+void add_common(CLI::App* command, CommonOptions& options) {
+  command->add_option("scene", options.scene_path, "scene file (TOML), e.g. netlists/fishfin.toml")
+      ->required();
+  command->add_option("--segments", options.segments,
+                      "number of beam segments, >= 1 (same as --set beam.segments=N)");
+  command
+      ->add_option("--set", options.overrides,
+                   "override a scene key: --set beam.length=0.2 or --set \"drive.voltage=3 kV\"")
+      ->allow_extra_args(false);
+  command
+      ->add_option("--probe", options.probes,
+                   "output: a probe name of the scene, QUANTITY@POSITION "
+                   "(deflection, velocity, rotation, angular_velocity; e.g. deflection@70mm) or "
+                   "dea_voltage:NAME / dea_current:NAME")
+      ->allow_extra_args(false);
+  command->add_flag("--json", options.json, "print machine-readable JSON instead of tables");
+  command->add_option("--csv", options.csv, "also write the result table to this CSV file");
+  auto* progress = command->add_flag(
+      "--progress", options.progress,
+      "show progress on standard error also when it is not a terminal (a line per step "
+      "and per second)");
+  command
+      ->add_flag("--quiet", options.quiet,
+                 "no progress line (by default shown on a terminal for runs over a second)")
+      ->excludes(progress);
+}
+
+}  // namespace emnet_cli

@@ -1,0 +1,132 @@
+// emnet command-line program: one scene, one command (tools/cli/<command>.cpp each parse their
+// options, call the library and report).
+//
+// Exit status: 0 success; 2 bad input (scene file, override, option), with one message naming
+// the file, line and key, or an output file (--csv, --plot, -o) or standard output that could
+// not be written (the result is printed first); 3 numerical failure, with the reason (for
+// crosscheck also: ngspice missing, failing or timed out); 4 crosscheck: a difference exceeds its
+// tolerance; 5 computed but outside the model's validity (a deflection above
+// model.deflection_limit of the beam length, or a DEA's field V/d above its breakdown field;
+// emnet/model/validity.hpp): the result is printed with a WARNING line on standard output and error
+// and "validity" in --json; 130 interrupted (Ctrl-C), no output file written; 1 anything else.
+//
+// Output files are written only after the result is computed and printed, each one completely or
+// not at all (emnet::OutputFile). Text from outside (names, titles, file names, tool messages)
+// reaches the terminal through emnet::terminal_text, control characters escaped.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/common.hpp"
+#include "emnet/core/terminal_text.hpp"
+
+using namespace emnet_cli;
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "emnet: lumped electromechanical network simulator.\n"
+      "Euler-Bernoulli beams cut into N segments, driven by dielectric elastomer actuators, as\n"
+      "Firestone (mobility) networks: force = current, velocity = voltage."};
+  app.require_subcommand(1);
+  app.footer(
+      "Exit status: 0 success; 2 bad input; 3 numerical failure; 4 crosscheck: a difference\n"
+      "exceeds its tolerance; 5 computed but outside the model's validity (a deflection above\n"
+      "model.deflection_limit of the beam length, default 10 %, or a DEA's field V/d above\n"
+      "dea[].breakdown_field): printed with a WARNING and \"validity\" in --json.");
+  CommonOptions options;
+  const std::vector<Command> commands = {add_static_command(app, options),
+                                         add_modes_command(app, options),
+                                         add_ac_command(app, options),
+                                         add_tran_command(app, options),
+                                         add_sweep_switching_command(app, options),
+                                         add_identify_command(app, options),
+                                         add_sensitivity_command(app, options),
+                                         add_mismatch_command(app, options),
+                                         add_netlist_command(app, options),
+                                         add_crosscheck_command(app, options),
+                                         add_schema_command(app)};
+  const CLI::App* crosscheck_command = commands[9].app;
+
+  // An unknown command would otherwise be taken for a scene file ("A subcommand is required").
+  std::vector<std::string> command_names;
+  std::string command_list;
+  for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    command_names.push_back(command->get_name());
+    command_list += (command_list.empty() ? "" : ", ") + command->get_name();
+  }
+  if (argc < 2 || (argv[1][0] != '-' && std::find(command_names.begin(), command_names.end(),
+                                                  argv[1]) == command_names.end())) {
+    std::cerr << "emnet: error: "
+              << (argc < 2 ? std::string("a command is required")
+                           : "unknown command '" + shown(argv[1]) + "'")
+              << "; the commands are " << command_list << " (see emnet --help)\n";
+    return 2;
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "emnet: error: " << e.what() << " (see emnet --help)\n";
+    return 2;
+  }
+
+  // Ctrl-C sets a flag that the analyses poll (terminal_progress.hpp); the progress line
+  // goes to standard error. `crosscheck` polls none (ngspice runs on its own), so Ctrl-C keeps
+  // its default there: it ends the program at once (an output file is renamed into place only
+  // when complete).
+  std::optional<InterruptHandler> interrupt_handler;
+  if (!*crosscheck_command) interrupt_handler.emplace();
+  using Mode = TerminalProgress::Mode;
+  TerminalProgress reporter("emnet " + app.get_subcommands().front()->get_name(),
+                            options.quiet      ? Mode::quiet
+                            : options.progress ? Mode::forced
+                                               : Mode::automatic);
+  options.reporter = &reporter;
+  // One message for a failure: after the progress line, control characters escaped; an
+  // interruption wins over the failure it caused.
+  auto failed = [&](int status, const std::string& kind, const std::string& what) {
+    reporter.finish();
+    if (InterruptHandler::interrupted()) {
+      std::cerr << "emnet: interrupted (Ctrl-C): stopped, no output file written\n";
+      return 130;
+    }
+    std::cerr << "emnet: " << kind << ": "
+              << (status == 2 ? emnet::terminal_text(what) : emnet::terminal_lines(what)) << "\n";
+    return status;
+  };
+  int status = 1;
+  try {
+    for (const Command& command : commands)
+      if (*command.app) status = command.run();
+  } catch (const InputError& e) {
+    status = failed(2, "error", e.what());
+  } catch (const FileError& e) {
+    status = failed(2, "error", e.what());
+  } catch (const Interrupted& e) {
+    status = failed(130, "interrupted", e.what());
+  } catch (const NumericalFailure& e) {
+    status = failed(3, "numerical failure", e.what());
+  } catch (const std::exception& e) {
+    status = failed(1, "internal error", e.what());
+  }
+  reporter.finish();
+  // The result printed is output too: a full disk or a closed file behind standard output is
+  // an error, not a silent loss.
+  std::cout.flush();
+  const bool lost = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+  if (lost) {
+    std::cerr << "emnet: error: cannot write the result to standard output ("
+              << std::strerror(errno) << ")\n";
+    return status == 0 ? 2 : status;
+  }
+  return status;
+}

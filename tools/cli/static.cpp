@@ -1,0 +1,128 @@
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "cli/common.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/analysis/transient.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/core/output_file.hpp"
+#include "emnet/core/progress.hpp"
+#include "emnet/core/stopwatch.hpp"
+#include "emnet/core/terminal_text.hpp"
+#include "emnet/core/units.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/model/outputs.hpp"
+#include "emnet/model/validity.hpp"
+#include "emnet/report/plot.hpp"
+#include "emnet/scene/parameter_listing.hpp"
+#include "emnet/scene/parameters.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "emnet/spice/spice_netlist.hpp"
+#include "emnet/studies/resolve.hpp"
+#include "emnet/studies/segment_selection.hpp"
+#include "emnet/studies/sensitivity.hpp"
+#include "emnet/verification/crosscheck.hpp"
+
+namespace emnet_cli {
+
+using emnet::InputError;
+using Json = nlohmann::ordered_json;
+
+// ---- static ---------------------------------------------------------------------------
+
+int run_static(const CommonOptions& options) {
+  const emnet::Stopwatch stopwatch;
+  Prepared p = prepare(options, true);
+  const auto probes = selected_probes(p.model, options);
+  const auto& beam = p.model.beam;
+  std::vector<std::vector<double>> rows;
+  for (size_t k = 0; k < beam.x.size(); ++k) {
+    emnet::ProbeSpec w{"w", emnet::ProbeQuantity::deflection, beam.x[k], ""};
+    emnet::ProbeSpec phi{"phi", emnet::ProbeQuantity::rotation, beam.x[k], ""};
+    rows.push_back(
+        {beam.x[k],
+         finite(emnet::static_probe_value(p.system, p.rest, p.model.make_probe(w)), "deflection"),
+         finite(emnet::static_probe_value(p.system, p.rest, p.model.make_probe(phi)), "rotation")});
+  }
+  std::vector<double> probe_values;
+  for (const auto& probe : probes)
+    probe_values.push_back(
+        finite(emnet::static_probe_value(p.system, p.rest, probe), "probe " + probe.name));
+  // Validity: the nodal deflections and the deflection probes, the sources at t = 0.
+  std::vector<emnet::DeflectionPeak> peaks{{"the beam's nodes", 0.0}};
+  for (const auto& row : rows) peaks[0].peak = std::max(peaks[0].peak, std::abs(row[1]));
+  for (size_t k = 0; k < probes.size(); ++k)
+    if (probes[k].quantity == emnet::ProbeQuantity::deflection)
+      peaks.push_back({probes[k].name, std::abs(probe_values[k])});
+  const emnet::Validity validity =
+      emnet::check_validity(p.model.scene, peaks, emnet::drive_voltages_at_start(p.model.scene));
+  const double total = stopwatch.seconds();
+  end_progress(options);
+  auto write_files = [&] {
+    if (!options.csv.empty()) write_csv(options.csv, {"x_m", "deflection_m", "rotation_rad"}, rows);
+  };
+  if (options.json) {
+    Json out;
+    out["scene"] = p.model.scene.name;
+    out["automatic_choices"] = automatic_choices_json(p.model.automatic_choices);
+    out["segments"] = p.model.scene.beam.segments;
+    out["nodes"] = Json::array();
+    for (const auto& row : rows)
+      out["nodes"].push_back({{"x_m", row[0]}, {"deflection_m", row[1]}, {"rotation_rad", row[2]}});
+    out["probes"] = Json::array();
+    for (size_t k = 0; k < probes.size(); ++k)
+      out["probes"].push_back({{"name", probes[k].name},
+                               {"description", probes[k].description},
+                               {"unit", probes[k].unit},
+                               {"value", probe_values[k]}});
+    out["accuracy"] = {{"relative_residual", p.rest.relative_residual},
+                       {"newton_iterations", p.rest.newton_iterations},
+                       {"discretisation", "exact at the nodes for any N (Hermite statics)"}};
+    out["cost"] = {{"solve_seconds", p.rest.seconds}, {"total_seconds", total}};
+    out["validity"] = validity_json(validity);
+    std::cout << json_text(out) << "\n";
+    write_files();
+    return validity_exit(validity);
+  }
+  print_header(p.model, p.system);
+  std::cout << "static state at rest (" << drive_summary(p.model.scene) << ", first half-period)\n"
+            << "accuracy: Newton " << p.rest.newton_iterations
+            << " iteration(s), relative residual " << format("%.2g", p.rest.relative_residual)
+            << "; nodal values exact for any N (Hermite statics), cubic Hermite between nodes\n"
+            << "cost: solve " << milliseconds(p.rest.seconds) << ", total " << milliseconds(total)
+            << "\n\n";
+  std::printf("%8s %12s %16s %16s\n", "node", "x [mm]", "deflection [m]", "rotation [rad]");
+  for (size_t k = 0; k < rows.size(); ++k)
+    std::printf("%8zu %12.6g %16.6e %16.6e\n", k, rows[k][0] * 1e3, rows[k][1], rows[k][2]);
+  if (!probes.empty()) std::cout << "\nprobes:\n";
+  for (size_t k = 0; k < probes.size(); ++k)
+    std::printf("  %-10s %-40s %14.6e %s\n", shown(probes[k].name).c_str(),
+                shown(probes[k].description).c_str(), probe_values[k],
+                shown(probes[k].unit).c_str());
+  print_validity(validity);
+  write_files();
+  return validity_exit(validity);
+}
+
+Command add_static_command(CLI::App& app, CommonOptions& options) {
+  auto* static_command = app.add_subcommand(
+      "static", "deflection and rotation at every node at rest, and at the probes");
+  add_common(static_command, options);
+
+  return {static_command, [&options] { return run_static(options); }};
+}
+
+}  // namespace emnet_cli
