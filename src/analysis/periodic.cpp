@@ -12,6 +12,8 @@
 #include "displacement_form.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/transient.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/core/units.hpp"
 #include "exponential_series.hpp"
 #include "state_space.hpp"
 #include "core/timed.hpp"
@@ -470,6 +472,18 @@ PeriodicResult run_periodic_shooting(const System& system, const std::vector<Pro
   } catch (const std::exception& e) {
     return finish(Status::failure(std::string("shooting: ") + e.what()));
   }
+}
+
+void check_periodic_memory(int unknowns, const std::string& option) {
+  const double bytes = kPeriodicDenseBytesPerUnknown2 * unknowns * static_cast<double>(unknowns);
+  if (bytes <= kPeriodicDenseMemoryLimit) return;
+  throw InputError(option, option,
+                   "the exact periodic method decomposes a dense matrix of the network's " +
+                       std::to_string(unknowns) + " unknowns: about " +
+                       format_number("%.3g", bytes / 1e9) +
+                       " GB (256 bytes per unknown squared), where at most " +
+                       format_number("%.0f", kPeriodicDenseMemoryLimit / 1e9) +
+                       " GB is allowed (inclusive); use fewer --segments or --method shooting");
 }
 
 }  // namespace emnet

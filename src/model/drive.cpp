@@ -6,6 +6,8 @@
 #include <stdexcept>
 
 #include "emnet/elements/dea.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/core/units.hpp"
 #include "emnet/model/model.hpp"
 
 namespace emnet {
@@ -143,6 +145,18 @@ double drive_time_constant(const Scene& scene, std::string* which) {
     }
   }
   return tau;
+}
+
+void check_overlap_fits(const Scene& scene, double frequency_hz, const std::string& where) {
+  const auto& drive = scene.drive;
+  if (drive.overlap == 0.0) return;
+  const double period = 1.0 / frequency_hz, on_time = drive.duty * period + drive.overlap;
+  if (!(on_time > 2.0 * drive.rise_time && on_time < period - 2.0 * drive.rise_time))
+    throw InputError(scene.file, "drive.overlap",
+                     format_number("%.6g s", drive.overlap) +
+                         " makes DEA A's on-time leave the period " +
+                         format_number("%.6g s", period) + " at " +
+                         format_number("%.6g Hz", frequency_hz) + " (" + where + ")");
 }
 
 }  // namespace emnet

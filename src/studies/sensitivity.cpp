@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "analysis/left_eigenvector.hpp"
+#include "emnet/analysis/operating_point.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/scene/parameters.hpp"
 #include "emnet/studies/resolve.hpp"
@@ -72,15 +73,12 @@ Linearised linearise(const Scene& scene) {
   Linearised result;
   result.model = std::make_unique<Model>(prepare_model(scene));
   result.system = result.model->network.assemble();
-  const StaticResult rest = solve_static(result.system);
-  if (rest.status.ok) {
-    result.operating_point = rest.operating_point;
-  } else if (result.system.is_nonlinear()) {
-    result.status = Status::failure("static operating point: " + rest.status.message);
+  const OperatingPoint point = operating_point(result.system);
+  if (!point.status.ok) {
+    result.status = point.status;
     return result;
-  } else {
-    result.operating_point = Eigen::VectorXd::Zero(result.system.size());
   }
+  result.operating_point = point.rest.operating_point;
   result.g_matrix = linearised_g(result.system, result.operating_point);
   return result;
 }

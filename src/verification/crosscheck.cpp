@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/operating_point.hpp"
 #include "emnet/core/output_file.hpp"
 #include "emnet/spice/spice_netlist.hpp"
 #include "emnet/analysis/transient.hpp"
@@ -223,15 +224,11 @@ class Crosscheck {
   // The static state (op) or the operating point about which ac and modal linearise.
   const StaticResult& rest(const System& system) {
     if (!rest_ready_) {
-      rest_ = solve_static(system);
+      OperatingPoint point = operating_point(system);
       rest_ready_ = true;
-      if (!rest_.status.ok) {
-        if (system.is_nonlinear())
-          throw CrosscheckFailure("emnet static operating point: " + rest_.status.message);
-        report_.notes.push_back("no static state (" + rest_.status.message +
-                                "); the linear network is analysed about zero");
-        rest_.operating_point = Eigen::VectorXd::Zero(system.size());
-      }
+      if (!point.status.ok) throw CrosscheckFailure("emnet " + point.status.message);
+      if (point.about_zero) report_.notes.push_back(point.note);
+      rest_ = std::move(point.rest);
     }
     return rest_;
   }
@@ -503,10 +500,9 @@ class Crosscheck {
       period = 1.0 / scene.drive.frequency;
       period_from = "the drive's period";
     } else {
-      const StaticResult operating = solve_static(sys);
-      const Eigen::VectorXd y0 =
-          operating.status.ok ? operating.operating_point : Eigen::VectorXd::Zero(sys.size());
-      const ModalResult modes = run_modes(sys, y0);
+      const OperatingPoint operating = operating_point(sys);
+      if (!operating.status.ok) throw CrosscheckFailure("emnet " + operating.status.message);
+      const ModalResult modes = run_modes(sys, operating.rest.operating_point);
       if (!modes.status.ok || modes.modes.empty()) {
         report_.notes.push_back("tran: no drive frequency and no oscillatory mode; not compared");
         return;

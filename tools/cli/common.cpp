@@ -15,6 +15,7 @@
 
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/analysis/operating_point.hpp"
 #include "emnet/analysis/periodic.hpp"
 #include "emnet/analysis/transient.hpp"
 #include "emnet/core/errors.hpp"
@@ -328,17 +329,14 @@ Prepared prepare(const CommonOptions& options, bool require_static,
   show_phase(options, "building the network");
   Prepared p{resolved_model(*scene, options), {}, {}};
   p.system = p.model.network.assemble();
-  emnet::StaticOptions static_options;
-  static_options.progress = progress_of(options);
-  p.rest = emnet::solve_static(p.system, static_options);
+  emnet::OperatingPointOptions point_options;
+  point_options.static_options.progress = progress_of(options);
+  point_options.require_static = require_static;
+  emnet::OperatingPoint point = emnet::operating_point(p.system, point_options);
   stop_if_interrupted();
-  if (!p.rest.status.ok) {
-    if (require_static || p.system.is_nonlinear())
-      throw NumericalFailure("static operating point: " + p.rest.status.message);
-    p.model.notes.push_back("no static state (" + p.rest.status.message +
-                            "); the linear network is analysed about zero");
-    p.rest.operating_point = Eigen::VectorXd::Zero(p.system.size());
-  }
+  if (!point.status.ok) throw NumericalFailure(point.status.message);
+  if (point.about_zero) p.model.notes.push_back(point.note);
+  p.rest = std::move(point.rest);
   return p;
 }
 

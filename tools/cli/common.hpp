@@ -20,8 +20,11 @@
 
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/analysis/operating_point.hpp"
+#include "emnet/analysis/periodic.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/output_file.hpp"
+#include "emnet/model/drive.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/model/validity.hpp"
 #include "emnet/studies/resolve.hpp"
@@ -207,11 +210,6 @@ struct PlottedOutputs {
 };
 PlottedOutputs plotted_outputs(const std::vector<emnet::Probe>& probes,
                                const CommonOptions& options, const std::string& quantity);
-
-// sweep_switching.cpp: drive.overlap must fit the period at `frequency_hz`; the exact periodic
-// method's dense decomposition must fit its memory limit.
-void check_overlap_fits(const emnet::Scene& scene, double frequency_hz, const std::string& where);
-void check_periodic_decomposition_size(int unknowns, const std::string& option);
 
 // identify.cpp: the periodic extremes (minimum, maximum) of output `probe_name` of `scene`
 // switched at `frequency_hz`, DEAs as ideal voltage-driven forces.

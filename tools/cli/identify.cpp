@@ -122,13 +122,13 @@ PeakTarget parse_peak_target(const std::string& text) {
 // network; the full DEA model moves the fish fin's peak at 5 Hz by 5e-4).
 std::pair<double, double> periodic_extremes(emnet::Scene scene, const std::string& probe_name,
                                             double frequency_hz, const std::string& option) {
-  check_overlap_fits(scene, frequency_hz, option);
+  emnet::check_overlap_fits(scene, frequency_hz, option);
   scene.drive.electrical_dynamics = false;
   scene.drive.electrical_dynamics_auto = false;
   scene.drive.frequency = frequency_hz;
   const emnet::Model model = emnet::prepare_model(scene);
   const emnet::System system = model.network.assemble();
-  check_periodic_decomposition_size(system.size(), "--segments");
+  emnet::check_periodic_memory(system.size(), "--segments");
   std::vector<emnet::Probe> probes;
   for (const auto& probe : transient_probes(model))
     if (probe.name == probe_name) probes.push_back(probe);

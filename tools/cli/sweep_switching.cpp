@@ -68,37 +68,6 @@ struct PeriodicReductionCheck {
   bool tolerance_met = false;
 };
 
-// drive.overlap is in seconds: DEA A's on-time duty·T + overlap must stay inside the period
-// (less the rise time at both edges) at the switching frequency `frequency_hz` too.
-void check_overlap_fits(const emnet::Scene& scene, double frequency_hz, const std::string& where) {
-  const auto& drive = scene.drive;
-  if (drive.overlap == 0.0) return;
-  const double period = 1.0 / frequency_hz, on_time = drive.duty * period + drive.overlap;
-  if (!(on_time > 2.0 * drive.rise_time && on_time < period - 2.0 * drive.rise_time))
-    throw InputError(scene.file, "drive.overlap",
-                     si(drive.overlap, "s") + " makes DEA A's on-time leave the period " +
-                         si(period, "s") + " at " + si(frequency_hz, "Hz") + " (" + where + ")");
-}
-
-// Memory of the exact periodic method's dense eigen-decomposition of the state matrix, measured
-// on the fish fin: 31 MB at 306 unknowns, 104 MB at 606, 393 MB at 1206, 1.47 GB at 2406, about
-// 254 bytes per unknown squared (complex eigenvectors, their LU and inverse, work space); its
-// time grows as the cube (44 s at 1206 unknowns, 237 s at 2406 on this project's machine).
-constexpr double kPeriodicDenseBytesPerUnknown2 = 256.0;
-constexpr double kPeriodicDenseMemoryLimit = 4e9;  // bytes
-
-void check_periodic_decomposition_size(int unknowns, const std::string& option) {
-  const double bytes = kPeriodicDenseBytesPerUnknown2 * unknowns * static_cast<double>(unknowns);
-  if (bytes <= kPeriodicDenseMemoryLimit) return;
-  throw InputError(option, option,
-                   "the exact periodic method decomposes a dense matrix of the network's " +
-                       std::to_string(unknowns) + " unknowns: about " +
-                       format("%.3g", bytes / 1e9) +
-                       " GB (256 bytes per unknown squared), where at most " +
-                       format("%.0f", kPeriodicDenseMemoryLimit / 1e9) +
-                       " GB is allowed (inclusive); use fewer --segments or --method shooting");
-}
-
 int run_sweep_command(CommonOptions options, SweepOptions sweep) {
   const emnet::Stopwatch stopwatch;
   if (!(sweep.from > 0.0) || !(sweep.to >= sweep.from) || !(sweep.step > 0.0) ||
@@ -161,7 +130,7 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
                           " outputs x 2 extremes",
                       "--step", "raise --step or give fewer --probe");
   if (sweep.method == "exact" && !sweep.reduce)
-    check_periodic_decomposition_size(model.network.assemble().size(), "--segments");
+    emnet::check_periodic_memory(model.network.assemble().size(), "--segments");
   std::unique_ptr<emnet::PeriodicSolver> solver;
   std::unique_ptr<emnet::ReducedPeriodicSolver> reduced;
   std::optional<PeriodicReductionCheck> check;
@@ -179,7 +148,7 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
     throw InputError(base_scene.file, "drive.rise_time",
                      "must be < half the shortest period of the sweep (" + si(0.5 / sweep.to, "s") +
                          " at --to " + si(sweep.to, "Hz") + ")");
-  check_overlap_fits(base_scene, sweep.to, "--to");
+  emnet::check_overlap_fits(base_scene, sweep.to, "--to");
   // Only the drive's excitation changes with the frequency: one model, its G and C assembled
   // once, the drive sources' waveforms made again per frequency (emnet::drive_excitation, the
   // same b(t) as a model built at that frequency). With drive.electrical_dynamics = "auto" left
@@ -313,12 +282,12 @@ int run_sweep_command(CommonOptions options, SweepOptions sweep) {
   {
     show_phase(options, "modes for the resonance marker");
     const emnet::System system = model.network.assemble();
-    const emnet::StaticResult rest = emnet::solve_static(system);
+    const emnet::OperatingPoint rest = emnet::operating_point(system);
     emnet::ModalOptions modal;
     modal.keep_vectors = false;
     if (system.size() > modal.dense_limit) modal.count = 3;
-    const auto modes = emnet::run_modes(system, rest.operating_point, modal);
-    if (modes.status.ok && !modes.modes.empty())
+    const auto modes = emnet::run_modes(system, rest.rest.operating_point, modal);
+    if (rest.status.ok && modes.status.ok && !modes.modes.empty())
       markers.push_back({modes.modes[0].frequency_hz,
                          "f1 = " + format("%.6g", modes.modes[0].frequency_hz) + " Hz"});
   }

@@ -87,4 +87,9 @@ Excitation drive_excitation(const Model& model, const Excitation& assembled, dou
 // `which`, when given, receives that DEA's name.
 double drive_time_constant(const Scene& scene, std::string* which = nullptr);
 
+// drive.overlap is in seconds: DEA A's on-time duty·T + overlap must stay inside the period
+// (less the rise time at both edges) at the switching frequency `frequency_hz` too. InputError
+// naming the scene file and drive.overlap, and `where` (the option that asked for the frequency).
+void check_overlap_fits(const Scene& scene, double frequency_hz, const std::string& where);
+
 }  // namespace emnet
