@@ -1,0 +1,208 @@
+// Cross-check, tran: emnet's transient (exact, or IDA for a nonlinear network) against ngspice's
+// (include/emnet/verification/crosscheck.hpp says why each tolerance).
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "crosscheck_session.hpp"
+#include "emnet/analysis/transient.hpp"
+#include "emnet/core/stopwatch.hpp"
+
+namespace emnet::crosscheck_detail {
+
+// ---- tran ---------------------------------------------------------------------------------
+void CrosscheckSession::tran() {
+  Scene scene = model_.scene;
+  bool ideal_drive = false;
+  if (scene.drive.electrical_dynamics && !scene.deas.empty() &&
+      scene.drive.kind != DriveKind::none) {
+    set_electrical_dynamics(scene, false);
+    ideal_drive = true;
+  }
+  const Model tran_model = ideal_drive ? build_model(scene) : Model{};
+  const Model& m = ideal_drive ? tran_model : model_;
+  const System sys = m.network.assemble();
+  if (ideal_drive)
+    report_.notes.push_back(
+        "tran: compared with the ideal drive (drive.electrical_dynamics = false: force "
+        "k_F*V(t)^2 from the source), the linear network emnet's exact method solves");
+  double period = 0.0;
+  std::string period_from;
+  if (scene.drive.frequency > 0.0 && scene.drive.kind != DriveKind::none) {
+    period = 1.0 / scene.drive.frequency;
+    period_from = "the drive's period";
+  } else {
+    const OperatingPoint operating = operating_point(sys);
+    if (!operating.status.ok) throw CrosscheckFailure("emnet " + operating.status.message);
+    const ModalResult modes = run_modes(sys, operating.rest.operating_point);
+    if (!modes.status.ok || modes.modes.empty()) {
+      report_.notes.push_back("tran: no drive frequency and no oscillatory mode; not compared");
+      return;
+    }
+    period = 1.0 / modes.modes.front().frequency_hz;
+    period_from = "the first mode's period";
+  }
+  SpiceDeckOptions d = deck_options(SpiceAnalysis::tran);
+  d.end_time = options_.tran_periods * period;
+  d.output_step = period / options_.tran_points_per_period;
+  d.max_step = 0.0;  // the output step
+  d.relative_tolerance = options_.tran_reltol;
+  d.edge_fraction = options_.tran_edge_fraction;
+  d.start = StartState::rest;
+  SpiceDeck deck = write_spice_deck(m, d);
+  NgspiceResult ng = run_deck(CrosscheckAnalysis::tran, deck, "tran", true);
+  auto stopped_at = [&](const NgspiceResult& r) {
+    const NgspiceVector* sc = r.scale();
+    return sc && sc->size() > 0 ? real_at(*sc, sc->size() - 1) : 0.0;
+  };
+  // A step load from rest near a massless node can make ngspice give up ("timestep too
+  // small") when its max step is tight (the cantilever below about T/1000); one retry with a
+  // max step of T/200, said in the notes — the tolerance stays the same.
+  const bool gave_up = !ng.status.ok || !(stopped_at(ng) >= d.end_time * (1.0 - 1e-9));
+  if (gave_up && options_.tran_points_per_period > 200 &&
+      lower(ng.messages_text()).find("timestep too small") != std::string::npos) {
+    report_.notes.push_back("tran: ngspice gave up (" + last_error_line(ng) + ") with max step T/" +
+                            std::to_string(options_.tran_points_per_period) +
+                            "; retried with T/200");
+    d.output_step = period / 200;
+    deck = write_spice_deck(m, d);
+    ng = run_deck(CrosscheckAnalysis::tran, deck, "tran");
+  } else if (!ng.status.ok) {
+    ng = run_deck(CrosscheckAnalysis::tran, deck, "tran");  // reports the failure
+  }
+  report_.notes.push_back("tran: " + number("%.4g", options_.tran_periods) + " x " + period_from +
+                          " (" + number("%.6g s", d.end_time) + ") from rest, ngspice reltol " +
+                          number("%.0e", d.relative_tolerance) + ", max step " +
+                          number("%.4g s", d.output_step));
+  const NgspiceVector* scale = ng.scale();
+  if (!scale || scale->size() == 0) throw CrosscheckFailure("ngspice's tran run has no scale");
+  const double last_time = real_at(*scale, scale->size() - 1);
+  if (!(last_time >= d.end_time * (1.0 - 1e-9)))
+    throw CrosscheckFailure("ngspice stopped its transient at t = " + number("%.6g s", last_time) +
+                            " of " + number("%.6g s", d.end_time) + " (" + last_error_line(ng) +
+                            ")");
+  // ngspice's time points within [0, end]; at most tran_compared_points of them, evenly
+  // strided (each costs emnet one matrix exponential).
+  const std::size_t stride =
+      (scale->size() + options_.tran_compared_points - 1) / options_.tran_compared_points;
+  std::vector<std::size_t> indices;
+  for (std::size_t i = 0; i < scale->size(); i += std::max<std::size_t>(stride, 1))
+    indices.push_back(i);
+  if (indices.back() != scale->size() - 1) indices.push_back(scale->size() - 1);
+  std::vector<double> times;
+  for (std::size_t i : indices) times.push_back(std::clamp(real_at(*scale, i), 0.0, d.end_time));
+  if (stride > 1)
+    report_.notes.push_back("tran: ngspice took " + std::to_string(scale->size()) +
+                            " time points; one in " + std::to_string(stride) + " is compared (" +
+                            std::to_string(indices.size()) + ")");
+  std::vector<double> unique_times = times;
+  std::sort(unique_times.begin(), unique_times.end());
+  unique_times.erase(std::unique(unique_times.begin(), unique_times.end()), unique_times.end());
+
+  const auto probes = spice_output_probes(m);
+  TransientOptions t;
+  t.end_time = d.end_time;
+  t.output_times = unique_times;
+  t.start = StartState::rest;
+  const bool linear = !sys.is_nonlinear();
+  const Stopwatch stopwatch;
+  TransientResult reference;
+  if (linear) {
+    reference = run_transient_exact(sys, probes, t);
+  } else {
+    t.relative_tolerance = 1e-10;
+    reference = run_transient_ida(sys, probes, t);
+    report_.notes.push_back(
+        "tran: the network is nonlinear; the reference is IDA at rtol 1e-10, not the exact "
+        "method");
+  }
+  const double emnet_seconds = stopwatch.seconds();
+  if (!reference.status.ok)
+    throw CrosscheckFailure("emnet tran (" + std::string(linear ? "exact" : "ida") +
+                            "): " + reference.status.message);
+  if (reference.times.size() != unique_times.size())
+    throw CrosscheckFailure("emnet tran: reached " + std::to_string(reference.times.size()) +
+                            " of " + std::to_string(unique_times.size()) + " output times");
+
+  // Switching edges: emnet's instants; ε = edge fraction × the shorter level time.
+  const std::vector<double> edges = sys.breakpoints(0.0, d.end_time);
+  double shortest = d.end_time, previous = 0.0;
+  for (double e : edges) {
+    if (e - previous > 0.0) shortest = std::min(shortest, e - previous);
+    previous = e;
+  }
+  const double epsilon = options_.tran_edge_fraction * shortest;
+  const double window = options_.tran_edge_exclusion * epsilon;
+  std::vector<bool> compared(times.size(), true);
+  std::size_t excluded = 0;
+  for (std::size_t i = 0; i < times.size(); ++i)
+    for (double e : edges)
+      if (std::abs(times[i] - e) <= window) {
+        compared[i] = false;
+        ++excluded;
+        break;
+      }
+  if (!edges.empty())
+    report_.notes.push_back("tran: " + std::to_string(edges.size()) +
+                            " switching edge(s) of width " + number("%.3g s", epsilon) +
+                            " in the deck; " + std::to_string(excluded) + " of " +
+                            std::to_string(times.size()) + " ngspice time points within +/-" +
+                            number("%.3g s", window) + " of an edge are not compared");
+
+  std::map<std::string, CrosscheckRow> rows;
+  std::vector<std::string> order;
+  for (std::size_t p = 0; p < probes.size(); ++p) {
+    const auto& spice = vector(ng, deck.outputs[p].vector, "tran");
+    if (spice.size() != scale->size())
+      throw CrosscheckFailure("ngspice's tran vector " + deck.outputs[p].vector +
+                              " has a different length than its time vector");
+    std::vector<double> emnet_values(times.size());
+    double peak = 0.0;
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      const std::size_t u = static_cast<std::size_t>(
+          std::lower_bound(unique_times.begin(), unique_times.end(), times[i]) -
+          unique_times.begin());
+      emnet_values[i] = reference.values[p][u];
+      if (compared[i]) peak = std::max(peak, std::abs(emnet_values[i]));
+    }
+    const bool zero = !(peak > 0.0);
+    const std::string name = "outputs [" + probes[p].unit + "]";
+    if (!rows.count(name)) {
+      order.push_back(name);
+      CrosscheckRow row;
+      row.analysis = CrosscheckAnalysis::tran;
+      row.quantity = name;
+      row.tolerance = options_.tran_tolerance_per_reltol * options_.tran_reltol;
+      row.basis = "relative to each output's peak |value| over the run; tolerance " +
+                  number("%.4g", options_.tran_tolerance_per_reltol) + " x reltol";
+      rows[name] = row;
+    }
+    auto& row = rows[name];
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      if (!compared[i]) continue;
+      const double difference =
+          std::abs(real_at(spice, indices[i]) - emnet_values[i]) / (zero ? 1.0 : peak);
+      if (!std::isfinite(difference))
+        throw CrosscheckFailure("non-finite tran difference at " + probes[p].name);
+      if (difference >= row.largest_difference) {
+        row.largest_difference = difference;
+        row.where = probes[p].name + " at t = " + number("%.6g s", times[i]) +
+                    (zero ? " (zero in emnet: absolute)" : "");
+      }
+    }
+  }
+  for (const auto& name : order) {
+    auto& row = rows.at(name);
+    row.pass = row.largest_difference <= row.tolerance;
+    report_.rows.push_back(row);
+  }
+  report_.timings.push_back(
+      {CrosscheckAnalysis::tran, ng.ngspice_seconds, ng.seconds, emnet_seconds,
+       std::string(linear ? "run_transient_exact" : "run_transient_ida (rtol 1e-10)") + " at " +
+           std::to_string(unique_times.size()) + " of ngspice's time points"});
+}
+
+}  // namespace emnet::crosscheck_detail
