@@ -1,0 +1,231 @@
+// The sweeps of a modal reduction: the AC sweep checked against the full model at a few
+// frequencies (run_ac_reduced) and the periodic steady state of the reduced model
+// (ReducedPeriodicSolver); see include/emnet/analysis/modal_reduction.hpp. The reduction itself
+// is built in modal_reduction.cpp.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "core/timed.hpp"
+#include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/core/stopwatch.hpp"
+#include "emnet/core/units.hpp"
+#include "exponential_series.hpp"
+
+namespace emnet {
+
+Status require_piecewise_constant(const System& system);  // transient_exact.cpp
+
+namespace {
+constexpr double two_pi = 6.283185307179586476925286766559;
+using Complex = std::complex<double>;
+}  // namespace
+
+std::vector<double> check_frequencies(const std::vector<double>& grid,
+                                      const std::vector<std::vector<Complex>>& values, int spread) {
+  std::set<size_t> picked;
+  if (grid.empty()) return {};
+  const size_t last = grid.size() - 1;
+  for (int k = 0; k < spread; ++k)
+    picked.insert(
+        spread > 1 ? static_cast<size_t>(std::llround(static_cast<double>(last) * k / (spread - 1)))
+                   : 0);
+  for (const auto& series : values) {
+    size_t best = 0;
+    for (size_t f = 0; f < series.size(); ++f)
+      if (std::abs(series[f]) > std::abs(series[best])) best = f;
+    if (best <= last) picked.insert(best);
+  }
+  std::vector<double> out;
+  for (size_t index : picked) out.push_back(grid[index]);
+  return out;
+}
+
+std::vector<double> errors_relative_to_peak(const std::vector<std::vector<Complex>>& values,
+                                            const std::vector<std::vector<Complex>>& reference) {
+  std::vector<double> errors;
+  for (size_t p = 0; p < reference.size(); ++p) {
+    double largest = 0.0, difference = 0.0;
+    for (size_t f = 0; f < reference[p].size(); ++f) {
+      largest = std::max(largest, std::abs(reference[p][f]));
+      difference = std::max(difference, std::abs(values[p][f] - reference[p][f]));
+    }
+    errors.push_back(largest > 0.0 ? difference / largest : (difference > 0.0 ? 1.0 : 0.0));
+  }
+  return errors;
+}
+
+AcReductionResult run_ac_reduced(const System& system, const Eigen::VectorXd& operating_point,
+                                 const std::vector<double>& frequencies,
+                                 const std::vector<Probe>& probes, ReductionOptions options) {
+  if (options.band == 0.0 && !frequencies.empty())
+    options.band = *std::max_element(frequencies.begin(), frequencies.end());
+  validate(options);
+  Timed<AcReductionResult> timed;
+  AcReductionResult& result = timed.result;
+  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
+  const Eigen::VectorXcd rhs = system.b_ac();
+  if (rhs.norm() == 0.0)
+    return finish(Status::failure(
+        "the scene has no AC excitation (no drive and no load): every response would be zero"));
+
+  Stopwatch start;
+  result.model = reduce_modal(system, operating_point, {rhs}, options);
+  result.reduce_seconds = start.seconds();
+  if (!result.model.status.ok) return finish(Status::failure(result.model.status.message));
+
+  start.restart();
+  result.ac.frequencies = frequencies;
+  result.ac.values.assign(probes.size(), {});
+  for (size_t p = 0; p < probes.size(); ++p)
+    for (double f : frequencies)
+      result.ac.values[p].push_back(result.model.response(probes[p], two_pi * f));
+  result.evaluate_seconds = start.seconds();
+  result.ac.seconds = result.reduce_seconds + result.evaluate_seconds;
+  for (const auto& series : result.ac.values)
+    for (const Complex& v : series)
+      if (!std::isfinite(std::abs(v)))
+        return finish(Status::failure("the reduced model gave a non-finite response"));
+
+  // The check: the full model at a few frequencies of the sweep.
+  start.restart();
+  result.check_frequencies = check_frequencies(frequencies, result.ac.values);
+  const AcResult full = run_ac(system, operating_point, result.check_frequencies, probes);
+  result.check_seconds = start.seconds();
+  if (!full.status.ok) return finish(Status::failure("full model check: " + full.status.message));
+  std::vector<std::vector<Complex>> reduced_at_checks(probes.size());
+  for (size_t p = 0; p < probes.size(); ++p)
+    for (double f : result.check_frequencies)
+      reduced_at_checks[p].push_back(result.model.response(probes[p], two_pi * f));
+  result.probe_errors = errors_relative_to_peak(reduced_at_checks, full.values);
+  // The a-priori estimate at the band's edge, or the sweep's if it reaches beyond it.
+  const double omega =
+      two_pi * std::max(options.band, frequencies.empty() ? 0.0
+                                                          : *std::max_element(frequencies.begin(),
+                                                                              frequencies.end()));
+  for (size_t p = 0; p < probes.size(); ++p) {
+    result.measured_error = std::max(result.measured_error, result.probe_errors[p]);
+    double largest = 0.0;
+    for (const Complex& v : full.values[p]) largest = std::max(largest, std::abs(v));
+    if (largest > 0.0)
+      result.error_estimate =
+          std::max(result.error_estimate,
+                   result.model.truncation_factor_at(omega) *
+                       std::abs(result.model.correction_response(probes[p], omega)) / largest);
+  }
+  result.tolerance_met = result.measured_error <= options.tolerance;
+  return finish(Status::success());
+}
+
+ReducedPeriodicSolver::ReducedPeriodicSolver(const System& system,
+                                             const ReductionOptions& options) {
+  validate(options);
+  if (system.is_nonlinear()) {
+    reduction_.status = Status::failure("the reduced periodic method needs a linear network");
+    return;
+  }
+  std::vector<Eigen::VectorXcd> inputs;
+  for (const auto& term : system.excitation.source_terms) {
+    auto found = std::find(waveforms_.begin(), waveforms_.end(), term.waveform);
+    size_t j = static_cast<size_t>(found - waveforms_.begin());
+    if (found == waveforms_.end()) {
+      waveforms_.push_back(term.waveform);
+      inputs.push_back(Eigen::VectorXcd::Zero(system.size()));
+    }
+    inputs[j][term.row] += term.coefficient;
+  }
+  if (inputs.empty()) {
+    reduction_.status = Status::failure("the network has no source: nothing to reduce");
+    return;
+  }
+  ReductionOptions periodic = options;
+  periodic.cutoff_hz = options.band / options.tolerance;
+  periodic.dense_limit = std::max(options.dense_limit, 600);
+  periodic.series_correction = false;
+  reduction_ = reduce_modal(system, Eigen::VectorXd::Zero(system.size()), inputs, periodic);
+}
+
+PeriodicResult ReducedPeriodicSolver::solve(const System& system, const std::vector<Probe>& probes,
+                                            double period, int samples) const {
+  Timed<PeriodicResult> timed;
+  PeriodicResult& result = timed.result;
+  result.method = "reduced";
+  result.period = period;
+  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
+  if (!reduction_.status.ok) return finish(reduction_.status);
+  if (Status pieces = require_piecewise_constant(system); !pieces.ok) return finish(pieces);
+  if (system.size() != reduction_.full_unknowns || system.is_nonlinear())
+    return finish(Status::failure("the network differs from the one that was reduced"));
+  for (const Probe& probe : probes)
+    for (const auto& [index, coefficient] : probe.terms)
+      if ((reduction_.mechanical[static_cast<size_t>(index)] ? 1 : 0) != probe.integrations)
+        return finish(Status::failure("probe " + probe.name +
+                                      ": the reduced periodic method takes displacement-like "
+                                      "probes only (deflection, rotation)"));
+  for (int w : waveforms_)
+    if (w >= static_cast<int>(system.excitation.waveforms.size()))
+      return finish(Status::failure("the network's sources differ from the reduced one's"));
+
+  const std::vector<KeptPole>& kept = reduction_.kept;
+  const size_t modes = kept.size(), inputs = waveforms_.size();
+  const std::vector<double> edges = constant_intervals(system, period);
+  const size_t intervals = edges.size() - 1;
+  std::vector<std::vector<double>> u(intervals, std::vector<double>(inputs));
+  std::vector<Eigen::VectorXcd> particular(intervals, Eigen::VectorXcd::Zero(modes));
+  Eigen::VectorXcd lambda(modes);
+  for (size_t k = 0; k < modes; ++k) lambda[k] = kept[k].pole;
+  for (size_t i = 0; i < intervals; ++i) {
+    const double middle = 0.5 * (edges[i] + edges[i + 1]);
+    for (size_t j = 0; j < inputs; ++j)
+      u[i][j] = system.excitation.waveforms[static_cast<size_t>(waveforms_[j])].value(middle);
+    for (size_t k = 0; k < modes; ++k) {
+      Complex forcing = 0.0;
+      for (size_t j = 0; j < inputs; ++j) forcing += reduction_.beta[k][j] * u[i][j];
+      particular[i][k] = -forcing / lambda[k];
+    }
+  }
+  std::vector<Eigen::VectorXcd> start_of;
+  if (Status periodic = periodic_interval_starts(lambda, edges, particular, {}, start_of,
+                                                 result.periodicity_residual);
+      !periodic.ok)
+    return finish(periodic);
+
+  // Probe p in interval i at offset h: offset_pi + Re Σ_k a_pik·e^{λ_k h} (one pole of each
+  // conjugate pair kept, its coefficient doubled).
+  std::vector<ExponentialSeries> series(probes.size());
+  for (size_t p = 0; p < probes.size(); ++p) {
+    Eigen::VectorXcd g = Eigen::VectorXcd::Zero(modes);
+    std::vector<Complex> d(inputs, 0.0);
+    for (const auto& [index, c] : probes[p].terms) {
+      for (size_t k = 0; k < modes; ++k)
+        g[k] += c * kept[k].z_vector[index] * (kept[k].oscillatory ? 2.0 : 1.0);
+      for (size_t j = 0; j < inputs; ++j) d[j] += c * reduction_.correction[j][index];
+    }
+    for (size_t i = 0; i < intervals; ++i) {
+      double value = 0.0;
+      for (size_t j = 0; j < inputs; ++j) value += d[j].real() * u[i][j];
+      series[p].offset.push_back(value + g.cwiseProduct(particular[i]).sum().real());
+      series[p].coefficient.push_back(g.cwiseProduct(start_of[i] - particular[i]));
+    }
+  }
+  sample_periodic_series(lambda, edges, series, samples, result);
+  return finish(Status::success());
+}
+
+double periodic_difference(const PeriodicResult& reduced, const PeriodicResult& full) {
+  if (reduced.values.size() != full.values.size()) return -1.0;
+  double worst = 0.0;
+  for (size_t p = 0; p < full.values.size(); ++p) {
+    if (reduced.values[p].size() != full.values[p].size()) return -1.0;
+    double largest = 0.0, difference = 0.0;
+    for (size_t s = 0; s < full.values[p].size(); ++s) {
+      largest = std::max(largest, std::abs(full.values[p][s]));
+      difference = std::max(difference, std::abs(reduced.values[p][s] - full.values[p][s]));
+    }
+    worst = std::max(worst, largest > 0.0 ? difference / largest : difference);
+  }
+  return worst;
+}
+
+}  // namespace emnet
