@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <memory>
 
 #include "analysis/left_eigenvector.hpp"
 #include "emnet/analysis/operating_point.hpp"
@@ -61,8 +60,7 @@ SceneParameterAddress find_network_parameter(const Scene& scene, const std::stri
 
 struct Linearised {
   Status status;
-  std::unique_ptr<Model> model;  // owns the elements the System points to
-  System system;
+  System system;  // shares its elements with the model it was assembled from
   Eigen::VectorXd operating_point;
   Eigen::SparseMatrix<double> g_matrix;  // G + J_g at the operating point
 };
@@ -71,8 +69,7 @@ struct Linearised {
 // about zero; a nonlinear one needs its operating point.
 Linearised linearise(const Scene& scene) {
   Linearised result;
-  result.model = std::make_unique<Model>(prepare_model(scene));
-  result.system = result.model->network.assemble();
+  result.system = prepare_model(scene).network.assemble();
   const OperatingPoint point = operating_point(result.system);
   if (!point.status.ok) {
     result.status = point.status;
