@@ -19,10 +19,12 @@
 
 #include <cmath>
 #include <string>
+#include <string_view>
 
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/operating_point.hpp"
 #include "emnet/core/errors.hpp"
+#include "emnet/core/progress.hpp"
 #include "emnet/scene/parameters.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/identify.hpp"
@@ -130,6 +132,25 @@ TEST(IdentifyStudy, NoSuchModeIsAFailure) {
       emnet::identify(emnet::testing::cantilever_scene(10), options);
   ASSERT_FALSE(result.status.ok);
   EXPECT_EQ(result.status.message, "identify: mode 1000 not found");
+}
+
+// A progress that asks to stop at once.
+struct StopAtOnce : emnet::Progress {
+  void report(long, long, std::string_view) override {}
+  bool cancelled() const override { return true; }
+};
+
+TEST(IdentifyStudy, CancelledBeforeTheFirstTrialIsTheCancelledStatus) {
+  StopAtOnce stop;
+  emnet::IdentifyOptions options;
+  options.target_hz = 5.0;
+  options.progress = &stop;
+  const emnet::IdentifyResult result =
+      emnet::identify(emnet::testing::cantilever_scene(10), options);
+  ASSERT_FALSE(result.status.ok);
+  EXPECT_EQ(result.status.message, emnet::kCancelledMessage);
+  EXPECT_EQ(result.modal_solves, 0);
+  EXPECT_TRUE(result.fitted.empty());
 }
 
 TEST(IdentifyStudy, GivenValuesAndBadTargetsAreInputErrors) {
