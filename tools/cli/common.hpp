@@ -211,11 +211,6 @@ struct PlottedOutputs {
 PlottedOutputs plotted_outputs(const std::vector<emnet::Probe>& probes,
                                const CommonOptions& options, const std::string& quantity);
 
-// identify.cpp: the periodic extremes (minimum, maximum) of output `probe_name` of `scene`
-// switched at `frequency_hz`, DEAs as ideal voltage-driven forces.
-std::pair<double, double> periodic_extremes(emnet::Scene scene, const std::string& probe_name,
-                                            double frequency_hz, const std::string& option);
-
 // The program's commands, one file each (tools/cli/<command>.cpp).
 Command add_static_command(CLI::App& app, CommonOptions& options);
 Command add_modes_command(CLI::App& app, CommonOptions& options);

@@ -1,0 +1,44 @@
+// The periodic extremes of one output of a scene under its square-wave drive: the minimum and
+// maximum over one period of the periodic steady state, used by identify (the peak a loss
+// factor is fitted to) and mismatch (the left/right swing).
+//
+// The drive is switched at `frequency_hz` (drive.frequency is replaced), with the DEAs as ideal
+// voltage-driven forces (drive.electrical_dynamics = false): the exact periodic method
+// (analysis/periodic.hpp) needs a linear network, and on the fish fin the full DEA model moves
+// the peak at 5 Hz by 5e-4 relative. The exact method's extremes are global extrema of a sum of
+// exponentials, found to 1e-11 of the largest |value| and then refined by Newton to rounding.
+//
+// Units: those of the output (a deflection in m).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "emnet/core/errors.hpp"
+#include "emnet/scene/scene.hpp"
+
+namespace emnet {
+
+struct PeriodicExtremesOptions {
+  double frequency_hz = 0.0;  // the switching frequency [Hz]
+  // An output of transient_output_list (emnet/model/outputs.hpp: dx4, u_A, ...), else a probe
+  // of the scene (P4, tip).
+  std::string output;
+  // The option InputErrors name: the one that gave the output and the frequency ("--output").
+  std::string where = "--output";
+};
+
+struct PeriodicExtremesResult {
+  Status status;         // failure: "periodic state: <why>", or a non-finite extreme
+  double minimum = 0.0;  // the output's smallest value over one period (the left swing)
+  double maximum = 0.0;  // its largest (the right swing)
+  double peak = 0.0;     // max(|minimum|, |maximum|)
+  double seconds = 0.0;
+};
+
+// Throws InputError (naming options.where) when the drive's overlap does not fit the period at
+// options.frequency_hz, the exact method would need too much memory, or there is no output of
+// that name; a numerical failure is the Status.
+PeriodicExtremesResult periodic_extremes(Scene scene, const PeriodicExtremesOptions& options);
+
+}  // namespace emnet

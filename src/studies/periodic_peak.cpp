@@ -1,0 +1,58 @@
+// The periodic extremes of one output under the square-wave drive
+// (emnet/studies/periodic_peak.hpp).
+#include "emnet/studies/periodic_peak.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/core/stopwatch.hpp"
+#include "emnet/model/drive.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/model/outputs.hpp"
+#include "emnet/studies/resolve.hpp"
+
+namespace emnet {
+
+PeriodicExtremesResult periodic_extremes(Scene scene, const PeriodicExtremesOptions& options) {
+  const Stopwatch stopwatch;
+  PeriodicExtremesResult result;
+  check_overlap_fits(scene, options.frequency_hz, options.where);
+  scene.drive.electrical_dynamics = false;
+  scene.drive.electrical_dynamics_auto = false;
+  scene.drive.frequency = options.frequency_hz;
+  const Model model = prepare_model(scene);
+  const System system = model.network.assemble();
+  check_periodic_memory(system.size(), "--segments");
+  // The model's recorded outputs first (dx_k replaces P_k there), then the scene's own probes
+  // (P4 is still a probe of the scene).
+  std::vector<Probe> probes;
+  for (const auto& probe : probes_of(transient_output_list(model)))
+    if (probe.name == options.output) probes.push_back(probe);
+  for (const auto& probe : model.probes)
+    if (probes.empty() && probe.name == options.output) probes.push_back(probe);
+  if (probes.empty())
+    throw InputError(options.where, options.where,
+                     "no deflection output named '" + options.output + "'");
+  const PeriodicSolver solver(system);
+  const PeriodicResult periodic = solver.solve(system, probes, 1.0 / options.frequency_hz, 256);
+  result.seconds = stopwatch.seconds();
+  if (!periodic.status.ok) {
+    result.status = Status::failure("periodic state: " + periodic.status.message);
+    return result;
+  }
+  if (!std::isfinite(periodic.minimum[0])) {
+    result.status = Status::failure("non-finite result for a periodic minimum");
+    return result;
+  }
+  if (!std::isfinite(periodic.maximum[0])) {
+    result.status = Status::failure("non-finite result for a periodic maximum");
+    return result;
+  }
+  result.minimum = periodic.minimum[0];
+  result.maximum = periodic.maximum[0];
+  result.peak = std::max(std::abs(result.minimum), std::abs(result.maximum));
+  return result;
+}
+
+}  // namespace emnet
