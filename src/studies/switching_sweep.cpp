@@ -122,6 +122,10 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   // that frequency). With drive.electrical_dynamics = "auto" left in the scene the choice may
   // change with the frequency (its default band is 10 x f): then a model per frequency.
   const bool excitation_only = !scene.drive.electrical_dynamics_auto;
+  if (!excitation_only)
+    result.notes.push_back(
+        "drive.electrical_dynamics = \"auto\": a model prepared per switching frequency (the "
+        "choice of the DEAs' RC dynamics may change with it)");
   System swept;
   if (excitation_only) {
     const Stopwatch model_stopwatch;
