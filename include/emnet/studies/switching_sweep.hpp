@@ -1,0 +1,129 @@
+// The switching sweep: the periodic steady state of a model whose square-wave drive switches at
+// each of a list of frequencies, reduced to the periodic minimum ("left" peak) and maximum
+// ("right" peak) of every output per frequency.
+//
+// Per switching frequency f only the drive's excitation b(t) changes (period T = 1/f): the
+// model's G and C are assembled once and emnet::drive_excitation makes the drive sources'
+// waveforms again at f (the same b(t) as a model built at f). With drive.electrical_dynamics =
+// "auto" left in the scene the RC choice may change with f, so then a model is prepared per
+// frequency from the scene. Methods (emnet/analysis/periodic.hpp):
+//   exact     PeriodicSolver: one eigen-decomposition of the state equation C·y' + G·y = b(t)
+//             for the whole sweep, the periodic state in closed form per frequency, extremes
+//             global (a curvature-bounded search between samples, then Newton); a linear
+//             network only.
+//   shooting  run_periodic_shooting: Newton on one period of IDA per frequency (any network).
+//   reduce    (exact only) ReducedPeriodicSolver: the same closed form in the modal coordinates
+//             of the modes below band/tolerance with the static correction as a feed-through
+//             (emnet/analysis/modal_reduction.hpp); checked against the full exact method at
+//             the first, the largest-swing and the last frequency (periodic_difference: the
+//             largest difference at every sample relative to each output's largest |value|).
+// The sweep peak is the frequency of the largest peak-to-peak (max − min) of the last output.
+// f1 (optional) is the network's lowest mode about its operating point, a plot marker.
+//
+// Units: frequencies in Hz, peaks in each output's unit (Probe::unit), times in seconds.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/core/progress.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/model/validity.hpp"
+#include "emnet/scene/scene.hpp"
+
+namespace emnet {
+
+enum class SwitchingSweepMethod { exact, shooting };
+
+struct SwitchingSweepOptions {
+  // The switching frequencies [Hz]; when empty, from, from + step, … up to `to` (inclusive).
+  std::vector<double> frequencies;
+  double from = 1.0, to = 7.0, step = 0.1;
+  SwitchingSweepMethod method = SwitchingSweepMethod::exact;
+  // Samples per period; 0: the method's default (64 exact, 256 shooting). The exact method's
+  // extremes are global whatever the count; shooting refines the largest samples by a parabola.
+  int samples = 0;
+  double rtol = 1e-9;  // shooting: IDA's relative tolerance
+  bool reduce = false;
+  ReductionOptions reduction;  // with `reduce`
+  // The outputs whose peaks are swept; at least one. With `reduce`, deflections and rotations.
+  std::vector<Probe> outputs;
+  bool first_mode = true;  // compute f1 (the lowest mode), for a plot marker
+  // One report per frequency; cancelled: a failed Status "cancelled" and `cancelled` set.
+  Progress* progress = nullptr;
+  // Told each step without counts ("eigen-decomposition of the state matrix (…)"), if set.
+  std::function<void(const std::string&)> phase;
+};
+
+// The periodic extremes of one output over the sweep: left[k], right[k] at frequencies[k].
+struct SwitchingSweepOutput {
+  Probe probe;
+  std::vector<double> left, right;  // periodic minimum and maximum [probe.unit]
+};
+
+// The reduced sweep against the full exact one at a few frequencies.
+struct SwitchingSweepReductionCheck {
+  ModalReduction model;                     // what was kept (modes, real poles, cut-off)
+  double build_seconds = 0.0;               // poles, left vectors, static solves
+  std::vector<double> frequencies, errors;  // check frequencies [Hz], periodic_difference there
+  double measured_error = 0.0;              // the largest of errors
+  double tolerance = 0.0;                   // the reduction's tolerance
+  bool tolerance_met = false;               // measured_error <= tolerance
+  double full_build_seconds = 0.0;          // the full PeriodicSolver's decomposition
+  double full_solve_seconds = 0.0;          // per frequency: the fastest full solve at the checks
+  double reduced_solve_seconds = 0.0;       // the same for the reduced solves there
+};
+
+struct SwitchingSweepResult {
+  Status status;
+  bool cancelled = false;  // stopped by options.progress (status "cancelled")
+  std::string method;      // "exact", "shooting" or "reduced"
+  std::vector<double> frequencies;
+  std::vector<SwitchingSweepOutput> outputs;
+  // The sweep peak: the largest peak-to-peak of the last output.
+  size_t peak_index = 0;  // into frequencies
+  double peak_frequency = 0.0;
+  double peak_left = 0.0, peak_right = 0.0;               // of the last output there
+  size_t peak_output = 0;                                 // outputs.size() - 1
+  std::optional<SwitchingSweepReductionCheck> reduction;  // with `reduce`
+  std::optional<double> first_mode_hz;                    // f1, when asked and found
+  Validity validity;  // of the deflection peaks over the sweep and the drive's voltages
+  // Accuracy: the largest periodicity residual of the periodic solves.
+  double worst_periodicity_residual = 0.0;
+  // Cost.
+  long solves = 0;                     // periodic solves of the sweep (checks not counted)
+  int unknowns = 0;                    // of the swept network
+  double model_seconds = 0.0;          // models prepared and assembled
+  double excitation_seconds = 0.0;     // the drive's excitation made and set per frequency
+  double decomposition_seconds = 0.0;  // PeriodicSolver's decomposition or the reduction's build
+  double solve_seconds = 0.0;          // the periodic solves (their own seconds, summed)
+  double check_seconds = 0.0;          // the reduction check
+  double first_mode_seconds = 0.0;
+  double seconds = 0.0;  // everything
+  std::vector<std::string> notes;
+};
+
+// The switching frequencies of from/to/step (throws InputError naming "--from/--to/--step" or
+// "--step" when 0 < from <= to, step > 0 fails or they are more than 100000) or `frequencies`
+// as given (each finite and > 0).
+std::vector<double> switching_frequencies(const SwitchingSweepOptions& options);
+// The checks of the options alone (the frequencies, samples from 8 to 1000000 after the
+// default, reduce with the exact method only), as run_switching_sweep makes them first.
+void check_switching_sweep_options(const SwitchingSweepOptions& options);
+
+// The sweep of `model` (outputs, f1 and validity are of it). `scene`: the scene the sweep
+// varies, normally model's own read scene with segments chosen; when its
+// drive.electrical_dynamics is "auto" a model is prepared from it per frequency, else `model`'s
+// excitation is swapped. Input errors (options, a rise time or DEA overlap that does not fit
+// the shortest period, a dense state matrix too large, a velocity output with `reduce`) throw
+// InputError; numerical failure, a non-finite peak and cancellation are the Status.
+SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
+                                         const SwitchingSweepOptions& options);
+// The same with scene = model.scene.
+SwitchingSweepResult run_switching_sweep(const Model& model, const SwitchingSweepOptions& options);
+
+}  // namespace emnet

@@ -1,0 +1,321 @@
+// The switching sweep (emnet/studies/switching_sweep.hpp): per switching frequency the drive's
+// excitation swapped into one assembled System (or a model per frequency when the RC choice is
+// "auto"), the periodic state by the exact, shooting or reduced method, its extremes kept; then
+// the sweep peak, the reduction's check, f1 and the validity of the peaks.
+#include "emnet/studies/switching_sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <utility>
+
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/operating_point.hpp"
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/core/stopwatch.hpp"
+#include "emnet/model/drive.hpp"
+#include "emnet/studies/resolve.hpp"
+
+namespace emnet {
+namespace {
+
+std::string number_text(const char* pattern, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, pattern, value);
+  return buffer;
+}
+
+// "6.5 Hz": a value with %.6g and its unit (as the program prints quantities).
+std::string si_text(double value, const std::string& unit) {
+  return number_text("%.6g", value) + (unit.empty() ? "" : " " + unit);
+}
+
+int samples_or_default(const SwitchingSweepOptions& options) {
+  if (options.samples != 0) return options.samples;
+  return options.method == SwitchingSweepMethod::shooting ? 256 : 64;
+}
+
+}  // namespace
+
+std::vector<double> switching_frequencies(const SwitchingSweepOptions& options) {
+  if (!options.frequencies.empty()) {
+    for (double f : options.frequencies)
+      if (!(f > 0.0) || !std::isfinite(f))
+        throw InputError(
+            "frequencies", "frequencies",
+            "every switching frequency must be finite and > 0 Hz, not " + number_text("%.6g", f));
+    if (options.frequencies.size() > 100000)
+      throw InputError("frequencies", "frequencies", "at most 100000 frequencies are swept");
+    return options.frequencies;
+  }
+  if (!(options.from > 0.0) || !(options.to >= options.from) || !(options.step > 0.0) ||
+      !std::isfinite(options.to))
+    throw InputError("--from/--to/--step", "--step",
+                     "need 0 < from <= to and step > 0 (frequencies in Hz)");
+  const double frequency_count =
+      std::floor((options.to - options.from) / options.step + 1e-9) + 1.0;
+  if (!(frequency_count <= 100000))
+    throw InputError("--step", "--step",
+                     "gives " + number_text("%.6g", frequency_count) +
+                         " frequencies; at most 100000 (inclusive) are swept");
+  const long count = static_cast<long>(frequency_count);
+  std::vector<double> frequencies;
+  frequencies.reserve(static_cast<size_t>(count));
+  for (long k = 0; k < count; ++k)
+    frequencies.push_back(options.from + options.step * static_cast<double>(k));
+  return frequencies;
+}
+
+void check_switching_sweep_options(const SwitchingSweepOptions& options) {
+  switching_frequencies(options);
+  const int samples = samples_or_default(options);
+  if (samples < 8 || samples > 1000000)
+    throw InputError("--samples", "--samples", "must be from 8 to 1000000 (inclusive)");
+  if (options.reduce && options.method != SwitchingSweepMethod::exact)
+    throw InputError("--reduce", "--method", "--reduce replaces the exact method, not shooting");
+}
+
+SwitchingSweepResult run_switching_sweep(const Model& model, const SwitchingSweepOptions& options) {
+  return run_switching_sweep(model, model.scene, options);
+}
+
+SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
+                                         const SwitchingSweepOptions& options) {
+  const Stopwatch stopwatch;
+  check_switching_sweep_options(options);
+  const std::vector<double> frequencies = switching_frequencies(options);
+  const int samples = samples_or_default(options);
+  const bool exact = options.method == SwitchingSweepMethod::exact;
+  const std::vector<Probe>& probes = options.outputs;
+  if (probes.empty())
+    throw InputError(model.scene.file, "probe", "the switching sweep needs at least one output");
+  if (options.reduce)
+    for (const auto& probe : probes)
+      if (probe.quantity != ProbeQuantity::deflection && probe.quantity != ProbeQuantity::rotation)
+        throw InputError("--probe", probe.name,
+                         "--reduce takes deflections and rotations only: a velocity of the "
+                         "reduced model would need the derivative of the square wave's "
+                         "feed-through; run without --reduce");
+  const double highest = *std::max_element(frequencies.begin(), frequencies.end());
+  auto phase = [&](const std::string& what) {
+    if (options.phase) options.phase(what);
+  };
+
+  SwitchingSweepResult result;
+  result.method = options.reduce ? "reduced" : exact ? "exact" : "shooting";
+  auto fail = [&](const std::string& message) {
+    result.status = Status::failure(message);
+    result.seconds = stopwatch.seconds();
+    return result;
+  };
+  if (exact && !options.reduce)
+    check_periodic_memory(model.network.assemble().size(), "--segments");
+  if (!(scene.drive.rise_time < 0.5 / highest))
+    throw InputError(scene.file, "drive.rise_time",
+                     "must be < half the shortest period of the sweep (" +
+                         si_text(0.5 / highest, "s") + " at --to " + si_text(highest, "Hz") + ")");
+  check_overlap_fits(scene, highest, "--to");
+
+  // Only the drive's excitation changes with the frequency: `model`'s G and C assembled once,
+  // the drive sources' waveforms made again per frequency (the same b(t) as a model built at
+  // that frequency). With drive.electrical_dynamics = "auto" left in the scene the choice may
+  // change with the frequency (its default band is 10 x f): then a model per frequency.
+  const bool excitation_only = !scene.drive.electrical_dynamics_auto;
+  if (!excitation_only)
+    result.notes.push_back(
+        "drive.electrical_dynamics = \"auto\": a model prepared per switching frequency (the "
+        "choice of the DEAs' RC dynamics may change with it)");
+  System swept;
+  if (excitation_only) {
+    const Stopwatch model_stopwatch;
+    swept = model.network.assemble();
+    result.model_seconds += model_stopwatch.seconds();
+  }
+  auto system_at = [&](double f) -> const System& {
+    if (excitation_only) {
+      const Stopwatch excitation_stopwatch;
+      swept.set_excitation(drive_excitation(model, swept.excitation, f));
+      result.excitation_seconds += excitation_stopwatch.seconds();
+    } else {
+      const Stopwatch model_stopwatch;
+      Scene at = scene;
+      at.drive.frequency = f;
+      swept = prepare_model(at).network.assemble();
+      result.model_seconds += model_stopwatch.seconds();
+    }
+    return swept;
+  };
+
+  std::unique_ptr<PeriodicSolver> solver;
+  std::unique_ptr<ReducedPeriodicSolver> reduced;
+  std::optional<SwitchingSweepReductionCheck> check;
+  if (options.reduce) check.emplace();
+  // The reduced periodic state at frequency f (the sweep and its check); nullopt when the
+  // reduction failed (result.status set).
+  std::string reduction_failure;
+  auto reduced_at = [&](const System& system, double f) -> std::optional<PeriodicResult> {
+    if (!reduced) {
+      phase("modal reduction (" + std::to_string(system.size()) + " unknowns)");
+      const Stopwatch build_stopwatch;
+      reduced = std::make_unique<ReducedPeriodicSolver>(system, options.reduction);
+      check->build_seconds = build_stopwatch.seconds();
+      result.decomposition_seconds += check->build_seconds;
+    }
+    if (!reduced->reduction().status.ok) {
+      reduction_failure = "sweep-switching --reduce: " + reduced->reduction().status.message;
+      return std::nullopt;
+    }
+    return reduced->solve(system, probes, 1.0 / f, samples);
+  };
+
+  // Per frequency only the extremes are kept (the samples of one period are dropped).
+  result.outputs.resize(probes.size());
+  for (size_t p = 0; p < probes.size(); ++p) {
+    result.outputs[p].probe = probes[p];
+    result.outputs[p].left.reserve(frequencies.size());
+    result.outputs[p].right.reserve(frequencies.size());
+  }
+  std::vector<double> solve_seconds_at;  // per frequency, for the reduction check
+  const long count = static_cast<long>(frequencies.size());
+  for (long k = 0; k < count; ++k) {
+    const double f = frequencies[static_cast<size_t>(k)];
+    const System& system = system_at(f);
+    result.unknowns = system.size();
+    if (exact && !options.reduce && !solver) {
+      phase("eigen-decomposition of the state matrix (" + std::to_string(system.size()) +
+            " unknowns, dense; one step, no estimate inside it)");
+      const Stopwatch decomposition_stopwatch;
+      solver = std::make_unique<PeriodicSolver>(system);
+      result.decomposition_seconds += decomposition_stopwatch.seconds();
+    }
+    if (!keep_going(options.progress, k, count, "switching frequencies")) {
+      result.cancelled = true;
+      return fail(std::string(kCancelledMessage));
+    }
+    PeriodicResult r;
+    if (options.reduce) {
+      std::optional<PeriodicResult> solved = reduced_at(system, f);
+      if (!solved) return fail(reduction_failure);
+      r = std::move(*solved);
+    } else if (exact) {
+      r = solver->solve(system, probes, 1.0 / f, samples);
+    } else {
+      r = run_periodic_shooting(system, probes, 1.0 / f, options.rtol, samples, options.progress);
+    }
+    if (!r.status.ok)
+      return fail("sweep-switching at " + si_text(f, "Hz") + ": " + r.status.message);
+    for (size_t p = 0; p < probes.size(); ++p)
+      if (!std::isfinite(r.minimum[p]) || !std::isfinite(r.maximum[p]))
+        return fail("non-finite result for a peak of " + probes[p].name);
+    if (!std::isfinite(r.periodicity_residual))
+      return fail("sweep-switching at " + si_text(f, "Hz") + ": non-finite periodicity residual");
+    for (size_t p = 0; p < probes.size(); ++p) {
+      result.outputs[p].left.push_back(r.minimum[p]);
+      result.outputs[p].right.push_back(r.maximum[p]);
+    }
+    result.solve_seconds += r.seconds;
+    result.worst_periodicity_residual =
+        std::max(result.worst_periodicity_residual, r.periodicity_residual);
+    solve_seconds_at.push_back(r.seconds);
+    result.frequencies.push_back(f);
+    ++result.solves;
+  }
+
+  // The resonance of the sweep: the frequency of the largest peak-to-peak at the last output
+  // (dx4 or the tip).
+  const size_t main_output = probes.size() - 1;
+  const SwitchingSweepOutput& main = result.outputs[main_output];
+  size_t best = 0;
+  for (size_t k = 0; k < result.frequencies.size(); ++k)
+    if (main.right[k] - main.left[k] > main.right[best] - main.left[best]) best = k;
+  result.peak_output = main_output;
+  if (!result.frequencies.empty()) {
+    result.peak_index = best;
+    result.peak_frequency = result.frequencies[best];
+    result.peak_left = main.left[best];
+    result.peak_right = main.right[best];
+  }
+
+  std::vector<DeflectionPeak> peaks;
+  for (size_t p = 0; p < probes.size(); ++p) {
+    if (probes[p].quantity != ProbeQuantity::deflection) continue;
+    peaks.push_back({probes[p].name, 0.0});
+    for (size_t k = 0; k < result.frequencies.size(); ++k)
+      peaks.back().peak = std::max({peaks.back().peak, std::abs(result.outputs[p].left[k]),
+                                    std::abs(result.outputs[p].right[k])});
+  }
+  result.validity = check_validity(model.scene, peaks, drive_peak_voltages(model.scene));
+
+  if (check && !result.frequencies.empty()) {
+    // The full exact method at the first, the largest-swing and the last frequency, against the
+    // reduced solution there (solved again: the sweep keeps no samples).
+    phase("checking the reduction against the full exact method");
+    const Stopwatch check_stopwatch;
+    check->model = reduced->reduction();
+    check->tolerance = options.reduction.tolerance;
+    std::vector<size_t> picked{0, best, result.frequencies.size() - 1};
+    std::sort(picked.begin(), picked.end());
+    picked.erase(std::unique(picked.begin(), picked.end()), picked.end());
+    std::unique_ptr<PeriodicSolver> full;
+    for (size_t k : picked) {
+      if (cancel_requested(options.progress)) {
+        result.cancelled = true;
+        return fail(std::string(kCancelledMessage));
+      }
+      const double f = result.frequencies[k];
+      const System& system = system_at(f);
+      if (!full) {
+        const Stopwatch build_stopwatch;
+        full = std::make_unique<PeriodicSolver>(system);
+        check->full_build_seconds = build_stopwatch.seconds();
+      }
+      const PeriodicResult exact_there = full->solve(system, probes, 1.0 / f, samples);
+      if (!exact_there.status.ok)
+        return fail("sweep-switching --reduce check at " + si_text(f, "Hz") + ": " +
+                    exact_there.status.message);
+      const std::optional<PeriodicResult> again = reduced_at(system, f);
+      if (!again) return fail(reduction_failure);
+      if (!again->status.ok)
+        return fail("sweep-switching --reduce at " + si_text(f, "Hz") + ": " +
+                    again->status.message);
+      // Per frequency: the fastest check solve (the first also fills per-probe caches).
+      check->full_solve_seconds = check->full_solve_seconds > 0.0
+                                      ? std::min(check->full_solve_seconds, exact_there.seconds)
+                                      : exact_there.seconds;
+      check->reduced_solve_seconds =
+          check->reduced_solve_seconds > 0.0
+              ? std::min({check->reduced_solve_seconds, solve_seconds_at[k], again->seconds})
+              : std::min(solve_seconds_at[k], again->seconds);
+      const double error = periodic_difference(*again, exact_there);
+      if (!std::isfinite(error))
+        return fail("sweep-switching --reduce check at " + si_text(f, "Hz") +
+                    ": non-finite difference between the reduced and the full solution");
+      check->frequencies.push_back(f);
+      check->errors.push_back(error);
+      check->measured_error = std::max(check->measured_error, error);
+    }
+    check->tolerance_met = check->measured_error <= check->tolerance;
+    result.check_seconds = check_stopwatch.seconds();
+    result.reduction = std::move(check);
+  }
+
+  if (options.first_mode) {
+    phase("modes for the resonance marker");
+    const Stopwatch modes_stopwatch;
+    const System system = model.network.assemble();
+    const OperatingPoint rest = operating_point(system);
+    ModalOptions modal;
+    modal.keep_vectors = false;
+    if (system.size() > modal.dense_limit) modal.count = 3;
+    const ModalResult modes = run_modes(system, rest.rest.operating_point, modal);
+    if (rest.status.ok && modes.status.ok && !modes.modes.empty() &&
+        std::isfinite(modes.modes[0].frequency_hz))
+      result.first_mode_hz = modes.modes[0].frequency_hz;
+    result.first_mode_seconds = modes_stopwatch.seconds();
+  }
+  result.seconds = stopwatch.seconds();
+  return result;
+}
+
+}  // namespace emnet

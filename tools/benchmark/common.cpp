@@ -1,0 +1,290 @@
+// The benchmark's shared pieces (declared in bench.hpp): formats, timing, processes, peaks,
+// Pareto plots, method tables and their headline, ngspice helpers.
+#include "bench.hpp"
+
+namespace emnet_bench {
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string format(const char* pattern, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, pattern, value);
+  return buffer;
+}
+
+// "1.23 ms", "4.5 s": a time in the unit that keeps it readable.
+std::string time_text(double seconds) {
+  if (!(seconds > 0.0)) return "–";
+  if (seconds < 1e-3) return format("%.3g µs", seconds * 1e6);
+  if (seconds < 1.0) return format("%.3g ms", seconds * 1e3);
+  return format("%.3g s", seconds);
+}
+
+std::string error_text(double error) {
+  if (!std::isfinite(error)) return "–";
+  return format("%.1e", error);
+}
+
+std::string ratio_text(double ratio) {
+  if (!std::isfinite(ratio) || ratio <= 0.0) return "–";
+  if (ratio >= 100.0) return format("%.0f×", ratio);
+  if (ratio >= 10.0) return format("%.1f×", ratio);
+  return format("%.2f×", ratio);
+}
+
+Timing summarise(std::vector<double> times) {
+  Timing timing;
+  if (times.empty()) return timing;
+  std::sort(times.begin(), times.end());
+  const size_t n = times.size();
+  timing.median = n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+  timing.minimum = times.front();
+  timing.maximum = times.back();
+  timing.repetitions = static_cast<int>(n);
+  return timing;
+}
+
+// Warm-up, then repetitions until `repetitions` or `budget_seconds` (see the header comment).
+// `run` returns the seconds it measured itself (so that it can leave set-up out), or a negative
+// value to be timed from outside.
+Timing measure(const std::function<double()>& run, int repetitions, double budget_seconds) {
+  auto timed = [&] {
+    const auto start = Clock::now();
+    const double inner = run();
+    return inner >= 0.0 ? inner : seconds_since(start);
+  };
+  const auto budget_start = Clock::now();
+  const double warm_up = timed();
+  if (warm_up > 0.5 * budget_seconds || repetitions <= 1) return summarise({warm_up});
+  std::vector<double> times;
+  while (static_cast<int>(times.size()) < repetitions &&
+         (times.empty() || seconds_since(budget_start) < budget_seconds))
+    times.push_back(timed());
+  return summarise(times);
+}
+// Runs argv[0] (searched in PATH) through emnet's process helper, standard input and error
+// /dev/null, standard output /dev/null or, with `capture`, kept (at most 1 MiB). `seconds` is
+// the program's run as its supervisor sees it, from just before it is started until it is
+// reaped (emnet/core/process.hpp): the program's own start, work and exit, without the
+// supervisor's start or the clean-up after the program.
+ProcessRun run_process(const std::vector<std::string>& arguments, bool capture,
+                       double timeout_seconds) {
+  emnet::ProcessOptions options;
+  options.arguments = arguments;
+  if (capture) options.standard_output = emnet::ProcessOutput::captured(std::size_t{1} << 20);
+  options.timeout_seconds = timeout_seconds;
+  const emnet::ProcessResult end = emnet::run_process(options);
+  ProcessRun run;
+  run.seconds = end.seconds;
+  // emnet's exit status 5: computed, but outside the model's validity (the fish fin's tip at
+  // resonance swings past 10 % of its length); the result is there and is timed like any other.
+  const bool emnet_run =
+      arguments[0].size() >= 5 && arguments[0].compare(arguments[0].size() - 5, 5, "emnet") == 0;
+  run.ok = end.exited_with(0) || (emnet_run && end.exited_with(emnet::kExitOutsideValidity));
+  run.output = end.standard_output;
+  return run;
+}
+
+Timing measure_process(const std::vector<std::string>& arguments, int repetitions,
+                       double budget_seconds, bool& ok) {
+  ok = true;
+  return measure(
+      [&] {
+        const ProcessRun run = run_process(arguments);
+        if (!run.ok) ok = false;
+        return run.seconds;
+      },
+      repetitions, budget_seconds);
+}
+emnet::Model build(const std::string& path, std::vector<std::string> overrides) {
+  return emnet::prepare_model(emnet::read_scene(path, overrides));
+}
+
+// The deflection outputs compared everywhere: the scene's probes in metres (and dx_k) that
+// are not identically zero (P1 sits at the clamp).
+std::vector<emnet::Probe> deflection_probes(const emnet::Model& model) {
+  std::vector<emnet::Probe> probes;
+  for (const auto& probe : emnet::spice_output_probes(model))
+    if (probe.unit == "m" && !probe.terms.empty()) probes.push_back(probe);
+  return probes;
+}
+
+// ---- peaks ---------------------------------------------------------------------------------
+
+// The extreme of samples (t_k, y_k), k in [begin, end), refined by the parabola through the
+// extreme sample and its neighbours, which may lie outside the window (non-uniform spacing
+// allowed). `sign` +1: maximum.
+double refined_extreme(const std::vector<double>& t, const std::vector<double>& y, size_t begin,
+                       size_t end, double sign) {
+  size_t best = begin;
+  for (size_t k = begin; k < end; ++k)
+    if (sign * y[k] > sign * y[best]) best = k;
+  // The neighbours may lie outside [begin, end) (a peak at a period's boundary).
+  if (best == 0 || best + 1 >= y.size()) return y[best];
+  const double t0 = t[best - 1], t1 = t[best], t2 = t[best + 1];
+  const double y0 = y[best - 1], y1 = y[best], y2 = y[best + 1];
+  if (!(t1 > t0 && t2 > t1)) return y1;
+  const double d01 = (y1 - y0) / (t1 - t0), d12 = (y2 - y1) / (t2 - t1);
+  const double a = (d12 - d01) / (t2 - t0);
+  if (!(sign * a < 0.0)) return y1;
+  const double b = d01 - a * (t0 + t1);
+  const double tv = -b / (2.0 * a);
+  if (tv < t0 || tv > t2) return y1;
+  return y0 + d01 * (tv - t0) + a * (tv - t0) * (tv - t1);
+}
+// Error of peaks against reference peaks, over frequencies: |difference| relative to that
+// probe's largest |peak| over the sweep; the largest over all.
+double sweep_error(const std::vector<Peaks>& peaks, const std::vector<Peaks>& reference) {
+  if (reference.empty()) return NAN;
+  const size_t probes = reference[0].maximum.size();
+  double worst = 0.0;
+  for (size_t p = 0; p < probes; ++p) {
+    double scale = 0.0;
+    for (const auto& r : reference)
+      scale = std::max({scale, std::abs(r.minimum[p]), std::abs(r.maximum[p])});
+    if (!(scale > 0.0)) continue;
+    for (size_t k = 0; k < reference.size() && k < peaks.size(); ++k)
+      worst = std::max({worst, std::abs(peaks[k].minimum[p] - reference[k].minimum[p]) / scale,
+                        std::abs(peaks[k].maximum[p] - reference[k].maximum[p]) / scale});
+  }
+  return worst;
+}
+
+// One gnuplot script and one data block per series (error floored at 1e-16 for the log axis).
+void write_pareto_plot(const Settings& settings, const std::string& name, const std::string& title,
+                       const std::vector<ParetoPoint>& points) {
+  std::vector<std::string> series;
+  for (const auto& point : points)
+    if (std::find(series.begin(), series.end(), point.series) == series.end())
+      series.push_back(point.series);
+  const std::string data_path = settings.out + "/pareto-" + name + ".dat";
+  std::ofstream data(data_path);
+  data << std::setprecision(6);
+  for (const auto& s : series) {
+    data << "# " << s << "\n";
+    for (const auto& point : points)
+      if (point.series == s)
+        data << point.seconds << " " << std::max(point.error, 1e-16) << " \"" << point.label
+             << "\"\n";
+    data << "\n\n";
+  }
+  std::ofstream script(settings.out + "/pareto-" + name + ".gp");
+  script << "set terminal pngcairo size 900,620 noenhanced font ',10'\n"
+         << "set output '" << settings.out << "/pareto-" << name << ".png'\n"
+         << "set title '" << title << "'\n"
+         << "set logscale xy\nset format x '%.0e'\nset format y '%.0e'\n"
+         << "set xlabel 'wall time [s] (median)'\nset ylabel 'error relative to peak (0 plotted at "
+            "1e-16)'\n"
+         << "set grid\nset key outside right top\n"
+         << "plot ";
+  for (size_t k = 0; k < series.size(); ++k) {
+    script << (k ? ", \\\n     " : "") << "'" << data_path << "' index " << k
+           << " using 1:2 with linespoints pt " << (k % 9) + 4 << " ps 1.2 title '" << series[k]
+           << "', '' index " << k
+           << " using 1:2:3 with labels offset 0.6,0.6 left font ',7' notitle";
+  }
+  script << "\n";
+}
+
+// Largest |a − b| over outputs and kept times, relative to each output's peak |b|.
+double run_error(const std::vector<std::vector<double>>& values,
+                 const std::vector<std::vector<double>>& reference, const std::vector<bool>& keep) {
+  double worst = 0.0;
+  for (size_t p = 0; p < reference.size(); ++p) {
+    double peak = 0.0;
+    for (size_t k = 0; k < reference[p].size(); ++k)
+      if (keep.empty() || keep[k]) peak = std::max(peak, std::abs(reference[p][k]));
+    if (!(peak > 0.0)) continue;
+    for (size_t k = 0; k < reference[p].size() && k < values[p].size(); ++k)
+      if (keep.empty() || keep[k])
+        worst = std::max(worst, std::abs(values[p][k] - reference[p][k]) / peak);
+  }
+  return worst;
+}
+std::string method_table(const std::vector<MethodRow>& rows) {
+  std::ostringstream md;
+  md << "| tool | method | setting | error / peak | in-process | whole process | note |\n"
+        "|---|---|---|---|---|---|---|\n";
+  for (const auto& row : rows)
+    md << "| " << row.tool << " | " << row.method << " | " << row.setting << " | "
+       << error_text(row.error) << " | " << row.in_process.text() << " | "
+       << row.whole_process.text() << " | " << row.note << " |\n";
+  return md.str();
+}
+
+Headline headline(const std::vector<MethodRow>& rows) {
+  Headline h;
+  h.in_process = h.whole_process = std::numeric_limits<double>::infinity();
+  for (const auto& spice : rows) {
+    if (spice.tool != "ngspice" || !std::isfinite(spice.error)) continue;
+    for (int whole = 0; whole < 2; ++whole) {
+      const Timing& spice_time = whole ? spice.whole_process : spice.in_process;
+      if (spice_time.repetitions == 0) continue;
+      const MethodRow* best = nullptr;
+      for (const auto& own : rows) {
+        if (own.tool != "emnet" || !(own.error <= spice.error)) continue;
+        const Timing& own_time = whole ? own.whole_process : own.in_process;
+        if (own_time.repetitions == 0) continue;
+        if (!best || own_time.median < (whole ? best->whole_process : best->in_process).median)
+          best = &own;
+      }
+      if (!best) continue;
+      const double ratio =
+          spice_time.median / (whole ? best->whole_process : best->in_process).median;
+      double& slot = whole ? h.whole_process : h.in_process;
+      if (ratio < slot) {
+        slot = ratio;
+        (whole ? h.whole_process_pair : h.in_process_pair) =
+            "ngspice " + spice.setting + " (" + error_text(spice.error) + ") vs emnet " +
+            best->method + " " + best->setting + " (" + error_text(best->error) + ")";
+      }
+    }
+  }
+  if (!std::isfinite(h.in_process)) h.in_process = NAN;
+  if (!std::isfinite(h.whole_process)) h.whole_process = NAN;
+  return h;
+}
+
+std::vector<std::string> emnet_cli(const Settings& settings, const std::string& command,
+                                   std::vector<std::string> extra) {
+  std::vector<std::string> arguments = {settings.emnet, command, settings.fishfin(), "--set",
+                                        "drive.electrical_dynamics=false"};
+  arguments.insert(arguments.end(), extra.begin(), extra.end());
+  return arguments;
+}
+
+std::string write_deck(const Settings& settings, const std::string& name, const std::string& text) {
+  mkdir((settings.out + "/decks").c_str(), 0755);
+  const std::string path = settings.out + "/decks/" + name + ".cir";
+  std::ofstream(path) << text;
+  return path;
+}
+
+// ngspice's whole process on a deck: the program with a rawfile (without one, `ngspice -b`
+// runs no analysis that writes nothing).
+Timing ngspice_process(const Settings& settings, const std::string& deck_path, int repetitions,
+                       double budget, bool& ok) {
+  const std::string raw = settings.out + "/decks/run.raw";
+  return measure_process({"ngspice", "-b", "-r", raw, deck_path}, repetitions, budget, ok);
+}
+
+emnet::NgspiceOptions in_process_ngspice() {
+  emnet::NgspiceOptions options;
+  options.backend = emnet::NgspiceBackend::library;
+  options.library_in_this_process = true;
+  options.timeout_seconds = 300.0;
+  return options;
+}
+
+std::string remove_options_line(const std::string& deck) {
+  std::istringstream in(deck);
+  std::ostringstream out;
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(".options", 0) != 0) out << line << "\n";
+  return out.str();
+}
+
+}  // namespace emnet_bench

@@ -1,0 +1,183 @@
+// Benchmark section 4, scale: the fish fin at N = 10 … 10 000, each point a fresh process (this
+// program with --scale-point) reporting its peak resident memory and the analysis's time.
+#include "bench.hpp"
+
+namespace emnet_bench {
+
+// ---- 4. scale --------------------------------------------------------------------------------
+
+// Child mode: one analysis at N segments; prints "seconds=<analysis seconds> unknowns=<n>".
+int scale_point(const Settings& settings, const std::string& analysis, int segments) {
+  // modes, ac and tran: the scene as it is (the DEAs' RC loops: IDA's case); the direct
+  // sweep needs the ideal drive (a linear network).
+  std::vector<std::string> overrides = {"beam.segments=" + std::to_string(segments)};
+  if (analysis == "sweep") overrides.push_back("drive.electrical_dynamics=false");
+  const emnet::Model model = build(settings.fishfin(), overrides);
+  const emnet::System system = model.network.assemble();
+  const auto probes = deflection_probes(model);
+  const auto start = Clock::now();
+  bool ok = true;
+  if (analysis == "modes") {
+    const emnet::StaticResult rest = emnet::solve_static(system);
+    emnet::ModalOptions options;
+    options.count = 3;
+    options.keep_vectors = false;
+    ok = emnet::run_modes(system, rest.operating_point, options).status.ok;
+  } else if (analysis == "ac") {
+    const emnet::StaticResult rest = emnet::solve_static(system);
+    ok = emnet::run_ac(system, rest.operating_point, emnet::frequency_grid(0.1, 10.0, 100, false),
+                       probes)
+             .status.ok;
+  } else if (analysis == "tran") {
+    emnet::TransientOptions options;
+    options.end_time = 2.0 / model.scene.drive.frequency;
+    options.relative_tolerance = 1e-5;
+    for (int k = 0; k <= 200; ++k) options.output_times.push_back(k * options.end_time / 200.0);
+    ok = emnet::run_transient_ida(system, probes, options).status.ok;
+  } else if (analysis == "sweep") {
+    SweepContext context = sweep_context(settings);
+    context.scene.beam.segments = segments;
+    context.probes = probes;
+    direct_sweep(context, 64);
+  } else {
+    return 2;
+  }
+  // Peak resident set of this process image: VmHWM. (ru_maxrss would also count the pages of
+  // the process that started it, whose address space it shares until exec.)
+  const double seconds = seconds_since(start);
+  long peak_kib = 0;
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) peak_kib = std::stol(line.substr(6));
+  std::cout << "seconds=" << seconds << " unknowns=" << system.size() << " peak_kib=" << peak_kib
+            << " ok=" << ok << "\n";
+  return ok ? 0 : 3;
+}
+
+struct ScalePoint {
+  int segments = 0, unknowns = 0;
+  double seconds = NAN;
+  long max_rss_kib = 0;
+  std::string skipped;
+};
+
+double fit_exponent(const std::vector<ScalePoint>& points, int from_segments) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (const auto& p : points) {
+    if (p.segments < from_segments || !(p.seconds > 0.0)) continue;
+    const double x = std::log(p.segments), y = std::log(p.seconds);
+    sx += x, sy += y, sxx += x * x, sxy += x * y, ++n;
+  }
+  if (n < 2) return NAN;
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+std::string scale_section(const Settings& settings, std::map<std::string, double>& exponents) {
+  const std::vector<int> sizes = settings.quick
+                                     ? std::vector<int>{10, 30}
+                                     : std::vector<int>{10, 30, 100, 300, 1000, 3000, 10000};
+  const double point_budget = settings.quick ? 10.0 : 20.0;
+  const std::vector<std::pair<std::string, std::string>> analyses = {
+      {"modes", "run_modes, 3 lowest (dense up to 80 unknowns, Arnoldi above)"},
+      {"ac", "run_ac, 100 points 0.1–10 Hz"},
+      {"tran", "run_transient_ida, 2 periods at 5 Hz, rtol 1e-5, 201 outputs"},
+      {"sweep", "direct periodic sweep, 61 frequencies (dense decomposition)"}};
+  std::ostringstream md;
+  md << "### 4. Scale: fish fin against N\n\n"
+     << "Each point is a fresh process (`emnet_bench --scale-point`); time: the analysis alone "
+        "(after reading the scene and building the network; modes and ac include the static "
+        "operating point), one run; memory: the child's peak resident set (VmHWM of "
+        "/proc/self/status at its end). A point is skipped when the previous time extrapolated "
+        "with the fitted "
+        "exponent (at least 1) exceeds "
+     << time_text(point_budget)
+     << ". modes, ac and tran run the scene as it is (with the DEAs' RC loops); the direct "
+        "sweep the ideal drive. Exponent: least squares slope of log(time) on log(N) over "
+        "N ≥ 300, where every analysis runs its large-N method (modes switch from the dense "
+        "method to Arnoldi above 600 unknowns, N ≈ 100).\n\n";
+  std::map<std::string, std::vector<ScalePoint>> results;
+  for (const auto& [analysis, description] : analyses) {
+    auto& points = results[analysis];
+    bool skipping = false;
+    for (int n : sizes) {
+      ScalePoint point;
+      point.segments = n;
+      if (!points.empty() && !skipping) {
+        const ScalePoint& last = points.back();
+        double exponent = std::max(1.0, fit_exponent(points, 0));
+        if (!std::isfinite(exponent)) exponent = 1.0;
+        if (std::isfinite(last.seconds) &&
+            last.seconds * std::pow(static_cast<double>(n) / last.segments, exponent) >
+                point_budget)
+          skipping = true;
+      }
+      if (skipping) {
+        point.skipped = "skipped (over the point budget)";
+        points.push_back(point);
+        continue;
+      }
+      const ProcessRun run = run_process(
+          {settings.self, "--scale-point", analysis, std::to_string(n), "--root", settings.root},
+          true, 1.5 * point_budget);
+      std::istringstream in(run.output);
+      std::string field;
+      while (in >> field) {
+        if (field.rfind("seconds=", 0) == 0) point.seconds = std::stod(field.substr(8));
+        if (field.rfind("unknowns=", 0) == 0) point.unknowns = std::stoi(field.substr(9));
+        if (field.rfind("peak_kib=", 0) == 0) point.max_rss_kib = std::stol(field.substr(9));
+      }
+      if (!run.ok) {
+        point.skipped = "failed or timed out after " + time_text(run.seconds);
+        point.seconds = NAN;
+        skipping = true;
+      }
+      points.push_back(point);
+    }
+    exponents[analysis] = fit_exponent(points, 300);
+  }
+  md << "| N | ";
+  for (const auto& a : analyses) md << a.first << " time | " << a.first << " memory | ";
+  md << "\n|---|";
+  for (size_t k = 0; k < analyses.size(); ++k) md << "---|---|";
+  md << "\n";
+  for (size_t i = 0; i < sizes.size(); ++i) {
+    md << "| " << sizes[i] << " | ";
+    for (const auto& a : analyses) {
+      const ScalePoint& p = results[a.first][i];
+      if (!p.skipped.empty())
+        md << p.skipped << " | – | ";
+      else
+        md << time_text(p.seconds) << " | " << format("%.0f MiB", p.max_rss_kib / 1024.0) << " | ";
+    }
+    md << "\n";
+  }
+  md << "| growth exponent (N ≥ 300) | ";
+  for (const auto& a : analyses)
+    md << (std::isfinite(exponents[a.first]) ? format("%.2f", exponents[a.first]) : "–") << " | | ";
+  md << "\n\n";
+  for (const auto& a : analyses) md << "- " << a.first << ": " << a.second << "\n";
+  // Scale data for a plot.
+  std::ofstream data(settings.out + "/scale.dat");
+  for (const auto& a : analyses) {
+    data << "# " << a.first << "\n";
+    for (const auto& p : results[a.first])
+      if (p.skipped.empty() && p.seconds > 0.0)
+        data << p.segments << " " << p.seconds << " " << p.max_rss_kib / 1024.0 << "\n";
+    data << "\n\n";
+  }
+  std::ofstream script(settings.out + "/scale.gp");
+  script << "set terminal pngcairo size 900,620 noenhanced font ',10'\n"
+         << "set output '" << settings.out << "/scale.png'\n"
+         << "set title 'fish fin: analysis time against segments'\n"
+         << "set logscale xy\nset xlabel 'segments N'\nset ylabel 'time [s]'\nset grid\n"
+         << "set key left top\nplot ";
+  for (size_t k = 0; k < analyses.size(); ++k)
+    script << (k ? ", " : "") << "'" << settings.out << "/scale.dat' index " << k
+           << " using 1:2 with linespoints title '" << analyses[k].first << "'";
+  script << "\n";
+  return md.str();
+}
+
+}  // namespace emnet_bench

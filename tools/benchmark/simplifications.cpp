@@ -1,0 +1,313 @@
+// Benchmark sections 5b (modal reduction: run_ac_reduced and ReducedPeriodicSolver against the
+// full analyses) and 5a (simplifications: the automatic segment count, the ideal drive against
+// the RC drive).
+#include "bench.hpp"
+
+namespace emnet_bench {
+
+// ---- 5b. modal reduction ----------------------------------------------------------------------
+
+// 5b. Modal reduction (modal_reduction.hpp) against the full model, side by side in this run.
+// AC: the fish fin's 1000-point sweep (0–10 Hz, band 10 Hz) by run_ac and by run_ac_reduced
+// (time: reduction + evaluation, without its own check); error: the largest |difference| over
+// all 1000 points, relative to each probe's largest |response|. Periodic: the 61-frequency
+// switching sweep (1–7 Hz, ideal drive, band 7 Hz, 256 samples) by PeriodicSolver and by
+// ReducedPeriodicSolver, each with its one-off decomposition or reduction; error: the largest
+// periodic_difference (every sample, relative to each probe's largest |deflection|).
+std::string reduction_section(const Settings& settings) {
+  std::ostringstream md;
+  const std::vector<int> sizes =
+      settings.quick ? std::vector<int>{7, 100} : std::vector<int>{7, 100, 500};
+  const std::vector<double> tolerances =
+      settings.quick ? std::vector<double>{1e-2, 1e-3} : std::vector<double>{1e-2, 1e-3, 1e-4};
+  md << "## 5b. Modal reduction: speed gained and error\n\n"
+     << "Modes below f_c = band/√tol kept, the rest as a static correction (AC: a Taylor series "
+        "in s when Arnoldi stops below f_c) (`emnet ac --reduce`, `emnet sweep-switching "
+        "--reduce`; README, Modal reduction). "
+        "Full and reduced timed side by side in this run; the error is measured against the "
+        "full model at every point.\n\n"
+     << "AC, fish fin, 1000 points 0–10 Hz, band 10 Hz (reduced time: poles, left vectors, "
+        "static solve(s) and evaluation; s^m: the correction's series order):\n\n"
+     << "| N | unknowns | tol | f_c | kept modes (method) | full run_ac | reduced | speed-up | "
+        "max error | |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  for (int n : sizes) {
+    std::vector<std::string> overrides = ideal_drive;
+    overrides.push_back("beam.segments=" + std::to_string(n));
+    const emnet::Model model = build(settings.fishfin(), overrides);
+    const emnet::System system = model.network.assemble();
+    const emnet::StaticResult rest = emnet::solve_static(system);
+    const std::vector<emnet::Probe> probes = deflection_probes(model);
+    const auto grid = emnet::frequency_grid(0.0, 10.0, 1000, false);
+    emnet::AcResult full;
+    const Timing full_time = measure(
+        [&] { return full = emnet::run_ac(system, rest.operating_point, grid, probes), -1.0; }, 5,
+        3.0);
+    for (double tolerance : tolerances) {
+      emnet::ReductionOptions options;
+      options.band = 10.0;
+      options.tolerance = tolerance;
+      emnet::AcReductionResult reduced;
+      const Timing reduced_time = measure(
+          [&] {
+            reduced = emnet::run_ac_reduced(system, rest.operating_point, grid, probes, options);
+            return reduced.reduce_seconds + reduced.evaluate_seconds;
+          },
+          5, 3.0);
+      double error = NAN;
+      if (reduced.status.ok && full.status.ok) {
+        const std::vector<double> errors =
+            emnet::errors_relative_to_peak(reduced.ac.values, full.values);
+        error = *std::max_element(errors.begin(), errors.end());
+      }
+      md << "| " << n << " | " << system.size() << " | " << format("%.0e", tolerance) << " | "
+         << format("%.4g Hz", reduced.model.cutoff_hz) << " | " << reduced.model.kept_modes << " ("
+         << reduced.model.modal_method
+         << (reduced.model.correction_order > 0
+                 ? ", s^" + std::to_string(reduced.model.correction_order)
+                 : std::string())
+         << ") | " << full_time.text() << " | " << reduced_time.text() << " | "
+         << ratio_text(full_time.median / reduced_time.median) << " | " << error_text(error)
+         << " | "
+         << (!reduced.status.ok   ? "failed: " + reduced.status.message
+             : error <= tolerance ? "met"
+                                  : "**not met**")
+         << " |\n";
+    }
+  }
+  md << "\nPeriodic steady state, fish fin (ideal drive), 61 switching frequencies 1–7 Hz, "
+        "band 7 Hz, 256 samples (times include the one-off decomposition or reduction):\n\n"
+     << "| N | tol | kept modes | full (PeriodicSolver) | reduced | speed-up | max error | |\n"
+     << "|---|---|---|---|---|---|---|---|\n";
+  for (int n : std::vector<int>{7, 100}) {
+    std::vector<std::string> overrides = ideal_drive;
+    overrides.push_back("beam.segments=" + std::to_string(n));
+    const emnet::Scene scene = emnet::read_scene(settings.fishfin(), overrides);
+    const emnet::Model model = emnet::prepare_model(scene);
+    const std::vector<emnet::Probe> probes = deflection_probes(model);
+    std::vector<emnet::System> systems;
+    const int count = settings.quick ? 7 : 61;
+    for (int k = 0; k < count; ++k) {
+      emnet::Scene at = scene;
+      at.drive.frequency = 1.0 + (settings.quick ? 1.0 : 0.1) * k;
+      systems.push_back(emnet::prepare_model(at).network.assemble());
+    }
+    std::vector<emnet::PeriodicResult> full(systems.size());
+    const Timing full_time = measure(
+        [&] {
+          const emnet::PeriodicSolver solver(systems[0]);
+          for (size_t k = 0; k < systems.size(); ++k)
+            full[k] =
+                solver.solve(systems[k], probes, 1.0 / (1.0 + (settings.quick ? 1.0 : 0.1) * k));
+          return -1.0;
+        },
+        5, 5.0);
+    for (double tolerance : tolerances) {
+      emnet::ReductionOptions options;
+      options.band = 7.0;
+      options.tolerance = tolerance;
+      std::vector<emnet::PeriodicResult> reduced(systems.size());
+      int kept = 0;
+      std::string failure;
+      const Timing reduced_time = measure(
+          [&] {
+            const emnet::ReducedPeriodicSolver solver(systems[0], options);
+            kept = solver.reduction().kept_modes;
+            for (size_t k = 0; k < systems.size(); ++k)
+              reduced[k] =
+                  solver.solve(systems[k], probes, 1.0 / (1.0 + (settings.quick ? 1.0 : 0.1) * k));
+            return -1.0;
+          },
+          5, 5.0);
+      double error = 0.0;
+      for (size_t k = 0; k < systems.size(); ++k) {
+        if (!reduced[k].status.ok || !full[k].status.ok) {
+          failure = (reduced[k].status.ok ? full[k] : reduced[k]).status.message;
+          error = NAN;
+          break;
+        }
+        error = std::max(error, emnet::periodic_difference(reduced[k], full[k]));
+      }
+      const double speed_up = full_time.median / reduced_time.median;
+      md << "| " << n << " | " << format("%.0e", tolerance) << " | " << kept << " | "
+         << full_time.text() << " | " << reduced_time.text() << " | " << ratio_text(speed_up)
+         << (speed_up < 1.0 ? " (slower)" : "") << " | " << error_text(error) << " | "
+         << (!failure.empty()     ? "failed: " + failure
+             : error <= tolerance ? "met"
+                                  : "**not met**")
+         << " |\n";
+    }
+  }
+  md << "\n";
+  return md.str();
+}
+
+// ---- 5a. simplifications ---------------------------------------------------------------------
+
+// 5a. What each automatic simplification (emnet/studies/segment_selection.hpp,
+// drive.electrical_dynamics = "auto") costs in accuracy and saves in time, measured side by side.
+std::string simplification_section(const Settings& settings) {
+  std::ostringstream md;
+  const int repetitions = settings.quick ? 2 : 10;
+  const double budget = settings.quick ? 0.5 : 3.0;
+  const double band_top = 130.0;
+  const std::string band = "model.band=\"" + format("%g", band_top) + " Hz\"";
+  // Converged reference: the bare fin beam, Richardson from N = 1000 and 2000 (N = 200 and
+  // 400 with --quick).
+  const emnet::BeamSpec beam = emnet::read_scene(settings.fishfin()).beam;
+  const int reference_n = settings.quick ? 200 : 1000;
+  const std::vector<double> coarse = emnet::beam_frequencies(beam, reference_n, 5);
+  const std::vector<double> fine = emnet::beam_frequencies(beam, 2 * reference_n, 5);
+  std::vector<double> converged;
+  for (size_t k = 0; k < coarse.size() && k < fine.size(); ++k)
+    if (emnet::richardson_extrapolate(coarse[k], fine[k]) <= band_top)
+      converged.push_back(emnet::richardson_extrapolate(coarse[k], fine[k]));
+  auto true_error = [&](int segments) {
+    const std::vector<double> f = emnet::beam_frequencies(beam, segments, 5);
+    double worst = 0.0;
+    for (size_t k = 0; k < converged.size() && k < f.size(); ++k)
+      worst = std::max(worst, std::abs(f[k] - converged[k]) / converged[k]);
+    return worst;
+  };
+  // The analyses the choice serves, on the full fin model (damped, RC DEAs): run_modes (5
+  // lowest modes) and a 1000-point AC sweep over the band (P2-P4, tip).
+  const std::vector<double> grid = emnet::frequency_grid(0.0, band_top, 1000, false);
+  auto analysis_times = [&](int segments) {
+    const emnet::Model m = build(settings.fishfin(), {"beam.segments=" + std::to_string(segments)});
+    const emnet::System system = m.network.assemble();
+    const Eigen::VectorXd rest = emnet::solve_static(system).operating_point;
+    emnet::ModalOptions options;
+    options.count = 5;
+    options.keep_vectors = false;
+    const std::vector<emnet::Probe> probes = deflection_probes(m);
+    return std::make_pair(measure([&] { return emnet::run_modes(system, rest, options).seconds; },
+                                  repetitions, budget),
+                          measure([&] { return emnet::run_ac(system, rest, grid, probes).seconds; },
+                                  repetitions, budget));
+  };
+  const int fixed_n = 200;
+  const auto [fixed_modes, fixed_ac] = analysis_times(fixed_n);
+  md << "### Beam segments: `beam.segments = \"auto\"` against a fixed N = " << fixed_n << "\n\n"
+     << "Fish fin, band 0–" << format("%g", band_top) << " Hz (" << converged.size()
+     << " modes), the modes' worst relative error against the bare beam converged by "
+        "Richardson from N = "
+     << reference_n << " and " << 2 * reference_n
+     << ". Choosing: the selection's own time (median over runs of prepare_model). The analyses "
+        "it serves, on the full model (damped, RC DEAs): run_modes (5 lowest) and a 1000-point "
+        "AC sweep over the band; \"saved\" is the time at N = "
+     << fixed_n << " over the time at the chosen N, without and with the time to choose.\n\n"
+     << "| tolerance | chosen N | estimate | error vs converged | time to choose | modes at N "
+        "(saved) | ac at N (saved) | saved incl. choosing, modes + ac |\n"
+     << "|---|---|---|---|---|---|---|---|\n";
+  for (const double tolerance : {1e-2, 1e-3, 1e-4}) {
+    const std::vector<std::string> overrides = {"beam.segments=auto", band,
+                                                "model.tolerance=" + format("%g", tolerance)};
+    int chosen = 0;
+    double estimate = 0.0;
+    const Timing choose = measure(
+        [&] {
+          const emnet::Model m = build(settings.fishfin(), overrides);
+          chosen = m.scene.beam.segments;
+          estimate = m.automatic_choices.front().estimated_error;
+          return m.automatic_choices.front().seconds;
+        },
+        repetitions, budget);
+    const auto [modes, ac] = analysis_times(chosen);
+    md << "| " << format("%g", tolerance) << " | " << chosen << " | " << error_text(estimate)
+       << " | " << error_text(true_error(chosen)) << " | " << choose.text() << " | "
+       << time_text(modes.median) << " (" << ratio_text(fixed_modes.median / modes.median) << ") | "
+       << time_text(ac.median) << " (" << ratio_text(fixed_ac.median / ac.median) << ") | "
+       << ratio_text((fixed_modes.median + fixed_ac.median) /
+                     (modes.median + ac.median + choose.median))
+       << " |\n";
+  }
+  md << "| (fixed) | " << fixed_n << " | – | " << error_text(true_error(fixed_n)) << " | – | "
+     << fixed_modes.text() << " | " << fixed_ac.text() << " | 1× |\n\n";
+
+  // Ideal against RC drive, at the scene's N = 7 and 5 Hz switching.
+  const emnet::Model rc = build(settings.fishfin(), {});
+  const emnet::Model ideal = build(settings.fishfin(), ideal_drive);
+  const emnet::System rc_system = rc.network.assemble();
+  const emnet::System ideal_system = ideal.network.assemble();
+  const std::vector<emnet::Probe> rc_probes = deflection_probes(rc);
+  const std::vector<emnet::Probe> ideal_probes = deflection_probes(ideal);
+  const double period = 1.0 / rc.scene.drive.frequency;
+  emnet::PeriodicResult rc_periodic, ideal_periodic;
+  const Timing rc_periodic_time = measure(
+      [&] {
+        rc_periodic = emnet::run_periodic_shooting(rc_system, rc_probes, period, 1e-9);
+        return rc_periodic.seconds;
+      },
+      repetitions, budget);
+  const Timing ideal_periodic_time = measure(
+      [&] {
+        const auto start = Clock::now();
+        emnet::PeriodicSolver solver(ideal_system);
+        ideal_periodic = solver.solve(ideal_system, ideal_probes, period);
+        return seconds_since(start);
+      },
+      repetitions, budget);
+  const int periods = settings.quick ? 5 : 50;
+  emnet::TransientOptions options;
+  options.end_time = periods * period;
+  for (int k = 0; k <= 100 * periods; ++k) options.output_times.push_back(k * period / 100);
+  emnet::TransientOptions rc_options = options;
+  rc_options.relative_tolerance = 1e-8;
+  emnet::TransientResult rc_transient, ideal_transient;
+  const Timing rc_transient_time = measure(
+      [&] {
+        rc_transient = emnet::run_transient_ida(rc_system, rc_probes, rc_options);
+        return rc_transient.seconds;
+      },
+      repetitions, budget);
+  const Timing ideal_transient_time = measure(
+      [&] {
+        ideal_transient = emnet::run_transient_exact(ideal_system, ideal_probes, options);
+        return ideal_transient.seconds;
+      },
+      repetitions, budget);
+  // Worst peak difference over the deflection outputs, relative to the RC model's peak.
+  double periodic_difference = 0.0, transient_difference = 0.0;
+  for (size_t p = 0; p < rc_probes.size(); ++p) {
+    const double peak =
+        std::max(std::abs(rc_periodic.maximum[p]), std::abs(rc_periodic.minimum[p]));
+    if (peak <= 0.0) continue;
+    periodic_difference = std::max(
+        {periodic_difference, std::abs(ideal_periodic.maximum[p] - rc_periodic.maximum[p]) / peak,
+         std::abs(ideal_periodic.minimum[p] - rc_periodic.minimum[p]) / peak});
+    double rc_peak = 0.0, ideal_peak = 0.0;
+    for (double v : rc_transient.values[p]) rc_peak = std::max(rc_peak, std::abs(v));
+    for (double v : ideal_transient.values[p]) ideal_peak = std::max(ideal_peak, std::abs(v));
+    if (rc_peak > 0.0)
+      transient_difference =
+          std::max(transient_difference, std::abs(ideal_peak - rc_peak) / rc_peak);
+  }
+  double tau = 0.0;
+  for (const auto& dea : rc.deas) tau = std::max(tau, dea.electrode_resistance * dea.capacitance);
+  const double drive_estimate =
+      std::pow(2 * 3.14159265358979323846 * rc.scene.drive.frequency * tau, 2) / 2;
+  md << "### DEA drive: ideal (`electrical_dynamics = false`) against RC\n\n"
+     << "Fish fin as in the scene (N = " << rc.scene.beam.segments << ", 4 kV square wave at "
+     << format("%g", rc.scene.drive.frequency)
+     << " Hz), RC time constant tau = " << format("%.4g", tau * 1e3)
+     << " ms. Difference: the largest |difference| of the peak "
+        "deflections over the outputs (P2–P4, tip), relative to the RC model's peak. The "
+        "criterion's estimate at the drive frequency, (2*pi*f*tau)^2/2 = "
+     << error_text(drive_estimate)
+     << ". Periodic: RC by Newton shooting (IDA, rtol 1e-9), "
+        "ideal by the exact PeriodicSolver (set-up included). Transient: "
+     << periods
+     << " periods from rest, 100 outputs per period; RC by IDA (rtol 1e-8), ideal "
+        "by the exact method.\n\n"
+     << "| analysis | RC model | ideal drive | cost ratio RC/ideal | peak difference |\n"
+     << "|---|---|---|---|---|\n"
+     << "| periodic steady state | " << rc_periodic_time.text() << " | "
+     << ideal_periodic_time.text() << " | "
+     << ratio_text(rc_periodic_time.median / ideal_periodic_time.median) << " | "
+     << error_text(periodic_difference) << " |\n"
+     << "| transient | " << rc_transient_time.text() << " | " << ideal_transient_time.text()
+     << " | " << ratio_text(rc_transient_time.median / ideal_transient_time.median) << " | "
+     << error_text(transient_difference) << " |\n\n";
+  return md.str();
+}
+
+}  // namespace emnet_bench
