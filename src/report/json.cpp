@@ -125,4 +125,44 @@ Json to_json(const ModesStudyResult& result, const std::vector<Probe>& probes,
   return out;
 }
 
+Json to_json(const SensitivityResult& result, const Scene& scene, bool with_check,
+             double total_seconds) {
+  Json out;
+  out["scene"] = scene.name;
+  out["automatic_choices"] = to_json(scene.automatic_choices);
+  out["segments"] = scene.beam.segments;
+  out["modes"] = Json::array();
+  for (const auto& mode : result.modes)
+    out["modes"].push_back({{"frequency_hz", mode.frequency_hz},
+                            {"natural_frequency_hz", mode.natural_frequency_hz},
+                            {"pole", {mode.pole.real(), mode.pole.imag()}}});
+  out["parameters"] = Json::array();
+  for (const auto& parameter : result.parameters) {
+    Json entry = {{"key", parameter.parameter.key},
+                  {"value", parameter.parameter.value},
+                  {"unit", parameter.parameter.unit},
+                  {"modes", Json::array()}};
+    for (const auto& s : parameter.modes) {
+      Json mode = {{"pole_derivative", {s.pole_derivative.real(), s.pole_derivative.imag()}},
+                   {"frequency_derivative", s.frequency_derivative},
+                   {"natural_frequency_derivative", s.natural_frequency_derivative},
+                   {"normalised", s.normalised},
+                   {"normalised_natural", s.normalised_natural}};
+      if (with_check) {
+        mode["finite_difference_pole_derivative"] = {s.finite_difference_pole_derivative.real(),
+                                                     s.finite_difference_pole_derivative.imag()};
+        mode["check_difference"] = s.check_difference;
+        mode["check_error_estimate"] = s.check_error_estimate;
+      }
+      entry["modes"].push_back(mode);
+    }
+    out["parameters"].push_back(entry);
+  }
+  out["left_vector_residual"] = result.left_vector_residual;
+  out["cost"] = {{"sensitivity_seconds", result.seconds - result.check_seconds},
+                 {"check_seconds", result.check_seconds},
+                 {"total_seconds", total_seconds}};
+  return out;
+}
+
 }  // namespace emnet

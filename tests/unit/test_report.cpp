@@ -118,6 +118,32 @@ TEST(Json, ValidityAndAutomaticChoicesHaveTheProgramsKeys) {
   expect_finite_numbers(choices, "automatic_choices");
 }
 
+// Sensitivity of a cantilever's f1 to EI: f ∝ √EI, so the normalised sensitivity is exactly
+// 1/2 (the lumped chain's frequencies scale with √EI too, for every N); 1e-6 allows the
+// matrices' central difference (relative step 1e-6, error O(1e-12)) and rounding.
+TEST(Json, SensitivityHasTheProgramsKeysAndFiniteNumbers) {
+  SensitivityOptions options;
+  options.modes = 2;
+  options.check = true;
+  const Scene scene = testing::cantilever_scene(6);
+  const SensitivityResult result = run_sensitivity(scene, {"beam.bending_stiffness"}, options);
+  ASSERT_TRUE(result.status.ok) << result.status.message;
+  const Json json = to_json(result, scene, true, 0.5);
+  std::vector<std::string> keys;
+  for (auto it = json.begin(); it != json.end(); ++it) keys.push_back(it.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"scene", "automatic_choices", "segments", "modes",
+                                            "parameters", "left_vector_residual", "cost"}));
+  ASSERT_EQ(json["parameters"].size(), 1u);
+  EXPECT_EQ(json["parameters"][0]["key"], "beam.bending_stiffness");
+  ASSERT_EQ(json["parameters"][0]["modes"].size(), 2u);
+  EXPECT_NEAR(json["parameters"][0]["modes"][0]["normalised"].get<double>(), 0.5, 1e-6);
+  EXPECT_TRUE(json["parameters"][0]["modes"][0].contains("check_difference"));
+  expect_finite_numbers(json, "");
+  // Without the check its fields are left out.
+  EXPECT_FALSE(
+      to_json(result, scene, false, 0.5)["parameters"][0]["modes"][0].contains("check_difference"));
+}
+
 TEST(Describe, DriveInWords) {
   Scene scene = testing::cantilever_scene(4);
   EXPECT_EQ(drive_summary(scene), "drive none");

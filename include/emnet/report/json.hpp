@@ -16,6 +16,7 @@
 #include "emnet/network/output.hpp"
 #include "emnet/scene/scene.hpp"
 #include "emnet/studies/modes_study.hpp"
+#include "emnet/studies/sensitivity.hpp"
 
 namespace emnet {
 
@@ -45,6 +46,13 @@ Json to_json(const ModalReduction& reduction, bool tolerance_met);
 // error bound, error estimate and `total_seconds`), and status "NOT BOUNDED" when a mode's
 // rounding error is not bounded.
 Json to_json(const ModesStudyResult& result, const std::vector<Probe>& probes,
+             double total_seconds);
+
+// The sensitivity study of `scene`: scene, automatic_choices, segments, the modes (frequency,
+// natural frequency, pole), per parameter (key, value, unit) each mode's pole, frequency and
+// natural-frequency derivatives and normalised sensitivities (with `with_check` the finite-
+// difference reference, its difference and error estimate), left_vector_residual, cost.
+Json to_json(const SensitivityResult& result, const Scene& scene, bool with_check,
              double total_seconds);
 
 }  // namespace emnet
