@@ -165,4 +165,29 @@ Json to_json(const SensitivityResult& result, const Scene& scene, bool with_chec
   return out;
 }
 
+Json to_json(const Model& model, const StaticResult& rest,
+             const std::vector<std::vector<double>>& nodes, const std::vector<Probe>& probes,
+             const std::vector<double>& probe_values, const Validity& validity,
+             double total_seconds) {
+  Json out;
+  out["scene"] = model.scene.name;
+  out["automatic_choices"] = to_json(model.automatic_choices);
+  out["segments"] = model.scene.beam.segments;
+  out["nodes"] = Json::array();
+  for (const auto& row : nodes)
+    out["nodes"].push_back({{"x_m", row[0]}, {"deflection_m", row[1]}, {"rotation_rad", row[2]}});
+  out["probes"] = Json::array();
+  for (size_t k = 0; k < probes.size(); ++k)
+    out["probes"].push_back({{"name", probes[k].name},
+                             {"description", probes[k].description},
+                             {"unit", probes[k].unit},
+                             {"value", probe_values[k]}});
+  out["accuracy"] = {{"relative_residual", rest.relative_residual},
+                     {"newton_iterations", rest.newton_iterations},
+                     {"discretisation", "exact at the nodes for any N (Hermite statics)"}};
+  out["cost"] = {{"solve_seconds", rest.seconds}, {"total_seconds", total_seconds}};
+  out["validity"] = to_json(validity);
+  return out;
+}
+
 }  // namespace emnet

@@ -144,6 +144,33 @@ TEST(Json, SensitivityHasTheProgramsKeysAndFiniteNumbers) {
       to_json(result, scene, false, 0.5)["parameters"][0]["modes"][0].contains("check_difference"));
 }
 
+// The static JSON of a cantilever under a tip force F: the tip deflection is F·L³/(3·EI) (exact
+// at the nodes for any N, Hermite statics; 1e-9 relative allows the solve's rounding).
+TEST(Json, StaticHasTheProgramsKeysAndTheTipDeflection) {
+  Scene scene = testing::cantilever_scene(4);
+  scene.loads.push_back(testing::load(LoadKind::force, scene.beam.length, 0.01));
+  const Model model = build_model(scene);
+  const System system = model.network.assemble();
+  const StaticResult rest = solve_static(system);
+  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  std::vector<std::vector<double>> nodes;
+  for (double x : model.beam.x) {
+    const Probe w = model.make_probe({"w", ProbeQuantity::deflection, x, ""});
+    const Probe phi = model.make_probe({"phi", ProbeQuantity::rotation, x, ""});
+    nodes.push_back(
+        {x, static_probe_value(system, rest, w), static_probe_value(system, rest, phi)});
+  }
+  const Json json = to_json(model, rest, nodes, {}, {}, Validity{}, 0.125);
+  std::vector<std::string> keys;
+  for (auto it = json.begin(); it != json.end(); ++it) keys.push_back(it.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"scene", "automatic_choices", "segments", "nodes",
+                                            "probes", "accuracy", "cost", "validity"}));
+  ASSERT_EQ(json["nodes"].size(), 5u);
+  const double tip = 0.01 * std::pow(scene.beam.length, 3) / (3 * scene.beam.bending_stiffness);
+  EXPECT_NEAR(std::abs(json["nodes"][4]["deflection_m"].get<double>()), tip, 1e-9 * tip);
+  expect_finite_numbers(json, "");
+}
+
 TEST(Describe, DriveInWords) {
   Scene scene = testing::cantilever_scene(4);
   EXPECT_EQ(drive_summary(scene), "drive none");

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/model/model.hpp"
 #include "emnet/model/validity.hpp"
 #include "emnet/network/output.hpp"
 #include "emnet/scene/scene.hpp"
@@ -53,6 +54,15 @@ Json to_json(const ModesStudyResult& result, const std::vector<Probe>& probes,
 // natural-frequency derivatives and normalised sensitivities (with `with_check` the finite-
 // difference reference, its difference and error estimate), left_vector_residual, cost.
 Json to_json(const SensitivityResult& result, const Scene& scene, bool with_check,
+             double total_seconds);
+
+// The static state of `model`: scene, automatic_choices, segments, nodes [{x_m, deflection_m,
+// rotation_rad}] from `nodes` (one {x [m], w [m], φ [rad]} per beam node), probes [{name,
+// description, unit, value}] with `probe_values` (one per probe), accuracy (relative_residual,
+// newton_iterations, discretisation), cost (solve and `total_seconds`), validity.
+Json to_json(const Model& model, const StaticResult& rest,
+             const std::vector<std::vector<double>>& nodes, const std::vector<Probe>& probes,
+             const std::vector<double>& probe_values, const Validity& validity,
              double total_seconds);
 
 }  // namespace emnet
