@@ -73,7 +73,8 @@ struct ModesStudyResult {
   // Each mode whose rounding error cannot be bounded: "mode k (f Hz): reason".
   std::vector<std::string> unbounded;
   std::vector<std::string> rigid_body_motions;  // names, see above
-  // How the discretisation error was (or was not) estimated: "N and 2N", "N > 1000", "not asked".
+  // Whether the N/2N estimate was computed (not when not asked, nor above
+  // kModesErrorEstimateSegmentLimit segments: then a note says which).
   bool error_estimate_computed = false;
   double seconds_model = 0.0, seconds_operating_point = 0.0, seconds_modal = 0.0,
          seconds_error_estimate = 0.0, seconds = 0.0;
