@@ -130,15 +130,7 @@ std::string no_ac_input_reason(const emnet::Scene& scene) {
 
 // The fields a reduced model reports in --json, for ac and sweep-switching alike.
 Json reduction_json(const emnet::ModalReduction& m, bool tolerance_met) {
-  return {{"status", tolerance_met ? "met" : "NOT MET"},
-          {"tolerance", m.tolerance},
-          {"band_hz", m.band_hz},
-          {"cutoff_hz", m.cutoff_hz},
-          {"kept_modes", m.kept_modes},
-          {"kept_real_poles", m.kept_real_poles},
-          {"truncated_poles", m.truncated_poles},
-          {"full_unknowns", m.full_unknowns},
-          {"modal_method", m.modal_method}};
+  return emnet::to_json(m, tolerance_met);
 }
 
 // --tolerance and --band of a modal reduction (ac, sweep-switching); band defaults to

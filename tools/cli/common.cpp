@@ -67,12 +67,6 @@ std::string shown(const std::string& text) {
   return emnet::terminal_text(text);
 }
 
-// --json output: strings with invalid UTF-8 (a name given by --set) are shown with U+FFFD
-// instead of ending the program.
-std::string json_text(const nlohmann::ordered_json& json) {
-  return json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
-}
-
 std::string format(const char* pattern, double value) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, pattern, value);
@@ -161,18 +155,9 @@ emnet::Model resolved_model(const emnet::Scene& scene, const CommonOptions& opti
   return emnet::prepare_model(scene, prepare);
 }
 
-// "automatic_choices" of --json: what each "auto" key became, why, its error estimate, cost.
+// "automatic_choices" of --json (emnet/report/json.hpp).
 Json automatic_choices_json(const std::vector<emnet::AutomaticChoice>& automatic_choices) {
-  Json choices = Json::array();
-  for (const auto& choice : automatic_choices)
-    choices.push_back({{"key", choice.key},
-                       {"value", choice.value},
-                       {"reason", choice.reason},
-                       {"estimated_error", choice.estimated_error},
-                       {"tolerance", choice.tolerance},
-                       {"band_hz", {choice.band_from_hz, choice.band_to_hz}},
-                       {"seconds", choice.seconds}});
-  return choices;
+  return emnet::to_json(automatic_choices);
 }
 
 std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const CommonOptions& options) {
@@ -182,104 +167,10 @@ std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const Commo
   return probes;
 }
 
-std::string drive_summary(const emnet::Scene& scene) {
-  const auto& drive = scene.drive;
-  std::ostringstream out;
-  out << "drive " << emnet::drive_kind_name(drive.kind);
-  switch (drive.kind) {
-    case emnet::DriveKind::antagonistic:
-      out << " 0/" << si(drive.voltage, "V") << " square wave at " << si(drive.frequency, "Hz");
-      break;
-    case emnet::DriveKind::switched:
-      out << " 0/" << si(drive.voltage, "V") << " square wave at " << si(drive.frequency, "Hz")
-          << " on DEA " << drive.deas[0];
-      break;
-    case emnet::DriveKind::bias_differential:
-      out << " V0 = " << si(drive.bias, "V") << ", v = " << si(drive.amplitude, "V");
-      break;
-    case emnet::DriveKind::single:
-      out << " V0 + v*sin(2*pi*f*t), V0 = " << si(drive.bias, "V")
-          << ", v = " << si(drive.amplitude, "V") << ", f = " << si(drive.frequency, "Hz")
-          << " on DEA " << drive.deas[0];
-      break;
-    case emnet::DriveKind::none:
-      break;
-  }
-  return out.str();
-}
-
-// What the AC input is, in words: printed with every AC result. `top_hz`: the sweep's highest
-// frequency, where the square-wave drives' omitted RC factor is largest.
-std::string ac_input_description(const emnet::Scene& scene, double top_hz) {
-  std::ostringstream out;
-  const auto& drive = scene.drive;
-  // The square-wave drives' force goes in directly; through the RC loops its fundamental would
-  // be 1/(1 + j*omega*tau) times it (src/model/model.cpp).
-  auto rc_loops = [&] {
-    const double tau = emnet::drive_time_constant(scene);
-    const std::complex<double> lag = 1.0 / std::complex<double>(1.0, 2 * pi * top_hz * tau);
-    out << " The DEAs' RC loops are not in this input, whatever drive.electrical_dynamics: "
-           "through them the force's fundamental would be 1/(1 + j*2*pi*f*tau) times it (exact "
-           "at duty 0.5; tau = "
-        << milliseconds(tau) << ": at " << si(top_hz, "Hz") << " " << format("%.6g", std::abs(lag))
-        << ", " << format("%.3g", std::arg(lag) * 180.0 / pi) << " deg).";
-  };
-  switch (drive.kind) {
-    case emnet::DriveKind::antagonistic:
-      out << "AC input: the alternating part of the antagonistic square-wave drive: each DEA's "
-             "force k_F*V^2/2 (V = "
-          << si(drive.voltage, "V") << ") as a sinusoid, DEA " << shown(drive.deas[0])
-          << " and DEA " << shown(drive.deas[1])
-          << " in antiphase (the square wave's +/- level; its fundamental is 4/pi times this); "
-             "exact, no linearisation: a 0/V voltage squares to a 0/k_F*V^2 force.";
-      rc_loops();
-      break;
-    case emnet::DriveKind::switched:
-      out << "AC input: the alternating part of the switched square-wave drive on DEA "
-          << shown(drive.deas[0])
-          << ": its force, a 0/k_F*V^2 square wave (V = " << si(drive.voltage, "V")
-          << "), is +/- k_F*V^2/2 about its mean k_F*V^2/2; the +/- level as a sinusoid (its "
-             "fundamental is 4/pi times this); exact, no linearisation: a 0/V voltage squares to "
-             "a 0/k_F*V^2 force. The mean is a static offset, not in this input. The network is "
-             "linearised at the static state (DEA on), which only the back-coupling sees.";
-      rc_loops();
-      break;
-    case emnet::DriveKind::bias_differential:
-      out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << shown(drive.deas[0])
-          << " and -v on DEA " << shown(drive.deas[1])
-          << " about the bias V0 = " << si(drive.bias, "V")
-          << "; the network linearised at V0 (the moment is exactly linear in v).";
-      break;
-    case emnet::DriveKind::single:
-      out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << shown(drive.deas[0])
-          << ", linearised about the bias V0 = " << si(drive.bias, "V")
-          << " (the force's part 2*k_F*V0*v; its DC and 2f parts, k_F*v^2/2 each, are left out).";
-      break;
-    case emnet::DriveKind::none:
-      out << "AC input: the scene's loads, each with its value as amplitude.";
-      break;
-  }
-  if (drive.kind != emnet::DriveKind::none && !scene.loads.empty())
-    out << " Plus the scene's loads, each with its value as amplitude.";
-  return out.str();
-}
-
 // The validity checks of a result (emnet/model/validity.hpp): "validity" of --json; in text a line
 // with the largest values against their limits and a WARNING line per violation.
 Json validity_json(const emnet::Validity& validity) {
-  Json violations = Json::array();
-  for (const auto& v : validity.violations)
-    violations.push_back({{"check", emnet::validity_check_name(v.check)},
-                          {"subject", v.subject},
-                          {"key", v.key},
-                          {"value", v.value},
-                          {"limit", v.limit},
-                          {"message", v.message}});
-  return {{"status", validity.within() ? "within" : "OUTSIDE"},
-          {"summary", validity.summary},
-          {"deflection_fraction_of_limit", validity.deflection_fraction},
-          {"field_fraction_of_breakdown", validity.field_fraction},
-          {"violations", violations}};
+  return emnet::to_json(validity);
 }
 
 std::string validity_warning(const emnet::ValidityViolation& violation) {
@@ -309,10 +200,14 @@ void print_header(const emnet::Model& model, const emnet::System& system) {
   for (const auto& note : model.notes) std::cout << "note: " << shown(note) << "\n";
 }
 
+void check_csv(const emnet::Status& status) {
+  if (!status.ok) throw FileError("--csv: " + status.message);
+}
+
 void write_csv(const std::string& path, const std::vector<std::string>& header,
                const std::vector<std::vector<double>>& rows) {
-  write_csv_rows(path, header, rows.size(),
-                 [&](size_t i, std::vector<double>& row) { row = rows[i]; });
+  stop_if_interrupted();
+  check_csv(emnet::write_csv(path, header, rows));
 }
 
 // A plot's Status as a FileError (gnuplot missing or failing is no numerical failure).

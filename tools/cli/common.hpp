@@ -27,6 +27,9 @@
 #include "emnet/model/drive.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/model/validity.hpp"
+#include "emnet/report/csv.hpp"
+#include "emnet/report/describe.hpp"
+#include "emnet/report/json.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "terminal_progress.hpp"
 
@@ -85,8 +88,8 @@ void stop_if_interrupted();
 // Text from outside (scene, override, tool output) as shown on the terminal.
 std::string shown(const std::string& text);
 // --json output: strings with invalid UTF-8 (a name given by --set) are shown with U+FFFD
-// instead of ending the program.
-std::string json_text(const nlohmann::ordered_json& json);
+// instead of ending the program (emnet/report/json.hpp).
+using emnet::json_text;
 
 std::string format(const char* pattern, double value);
 std::string si(double value, const std::string& unit);
@@ -117,10 +120,10 @@ emnet::Model resolved_model(const emnet::Scene& scene, const CommonOptions& opti
 Json automatic_choices_json(const std::vector<emnet::AutomaticChoice>& automatic_choices);
 std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const CommonOptions& options);
 
-std::string drive_summary(const emnet::Scene& scene);
-// What the AC input is, in words: printed with every AC result. `top_hz`: the sweep's highest
-// frequency, where the square-wave drives' omitted RC factor is largest.
-std::string ac_input_description(const emnet::Scene& scene, double top_hz);
+// The drive in words (header line), what the AC input is (every AC result):
+// emnet/report/describe.hpp.
+using emnet::ac_input_description;
+using emnet::drive_summary;
 
 // The validity checks of a result (emnet/model/validity.hpp): "validity" of --json; in text a
 // line with the largest values against their limits and a WARNING line per violation.
@@ -132,37 +135,18 @@ int validity_exit(const emnet::Validity& validity);
 
 void print_header(const emnet::Model& model, const emnet::System& system);
 
+// The Status of writing the --csv file as a FileError ("--csv: <why>").
+void check_csv(const emnet::Status& status);
+
 // A CSV file of `count` rows, row i filled by fill_row(i, row), written completely or not at
-// all; FileError when it cannot be. The rows are formatted as they are written, not stored.
+// all (emnet/report/csv.hpp); FileError when it cannot be. The rows are formatted as they are
+// written, not stored.
 template <class FillRow>
 void write_csv_rows(const std::string& path, const std::vector<std::string>& header, size_t count,
                     const FillRow& fill_row) {
   stop_if_interrupted();
-  emnet::OutputFile out(path);
-  // A header field with a comma, quote or line break is quoted (RFC 4180).
-  auto field = [](const std::string& text) {
-    if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-    std::string quoted = "\"";
-    for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return quoted + "\"";
-  };
-  std::string line;
-  for (size_t k = 0; k < header.size(); ++k) line += (k ? "," : "") + field(header[k]);
-  out.write(line + "\n");
-  char number[32];
-  std::vector<double> row;
-  for (size_t i = 0; i < count; ++i) {
-    row.clear();
-    fill_row(i, row);
-    line.clear();
-    for (size_t k = 0; k < row.size(); ++k) {
-      std::snprintf(number, sizeof number, "%s%.12g", k ? "," : "", row[k]);
-      line += number;
-    }
-    out.write(line + "\n");
-  }
-  if (const emnet::Status status = out.commit(); !status.ok)
-    throw FileError("--csv: " + status.message);
+  check_csv(emnet::write_csv_rows(path, header, count,
+                                  [&](size_t i, std::vector<double>& row) { fill_row(i, row); }));
 }
 
 void write_csv(const std::string& path, const std::vector<std::string>& header,

@@ -28,6 +28,7 @@
 #include "emnet/model/model.hpp"
 #include "emnet/model/outputs.hpp"
 #include "emnet/model/validity.hpp"
+#include "emnet/report/json.hpp"
 #include "emnet/report/plot.hpp"
 #include "emnet/scene/parameter_listing.hpp"
 #include "emnet/scene/parameters.hpp"
@@ -78,42 +79,7 @@ int run_sensitivity_command(const CommonOptions& options, const SensitivityComma
   end_progress(options);
   const auto& modes = result.modes;
   if (options.json) {
-    Json out;
-    out["scene"] = scene.name;
-    out["automatic_choices"] = automatic_choices_json(scene.automatic_choices);
-    out["segments"] = scene.beam.segments;
-    out["modes"] = Json::array();
-    for (const auto& mode : modes)
-      out["modes"].push_back({{"frequency_hz", mode.frequency_hz},
-                              {"natural_frequency_hz", mode.natural_frequency_hz},
-                              {"pole", {mode.pole.real(), mode.pole.imag()}}});
-    out["parameters"] = Json::array();
-    for (const auto& parameter : result.parameters) {
-      Json entry = {{"key", parameter.parameter.key},
-                    {"value", parameter.parameter.value},
-                    {"unit", parameter.parameter.unit},
-                    {"modes", Json::array()}};
-      for (const auto& s : parameter.modes) {
-        Json mode = {{"pole_derivative", {s.pole_derivative.real(), s.pole_derivative.imag()}},
-                     {"frequency_derivative", s.frequency_derivative},
-                     {"natural_frequency_derivative", s.natural_frequency_derivative},
-                     {"normalised", s.normalised},
-                     {"normalised_natural", s.normalised_natural}};
-        if (cmd.check) {
-          mode["finite_difference_pole_derivative"] = {s.finite_difference_pole_derivative.real(),
-                                                       s.finite_difference_pole_derivative.imag()};
-          mode["check_difference"] = s.check_difference;
-          mode["check_error_estimate"] = s.check_error_estimate;
-        }
-        entry["modes"].push_back(mode);
-      }
-      out["parameters"].push_back(entry);
-    }
-    out["left_vector_residual"] = result.left_vector_residual;
-    out["cost"] = {{"sensitivity_seconds", result.seconds - result.check_seconds},
-                   {"check_seconds", result.check_seconds},
-                   {"total_seconds", total}};
-    std::cout << json_text(out) << "\n";
+    std::cout << json_text(emnet::to_json(result, scene, cmd.check, total)) << "\n";
     return 0;
   }
   std::cout << "scene " << shown(scene.name) << " (" << shown(scene.file)

@@ -26,6 +26,7 @@
 #include "emnet/model/model.hpp"
 #include "emnet/model/outputs.hpp"
 #include "emnet/model/validity.hpp"
+#include "emnet/report/json.hpp"
 #include "emnet/report/plot.hpp"
 #include "emnet/scene/parameter_listing.hpp"
 #include "emnet/scene/parameters.hpp"
@@ -75,25 +76,9 @@ int run_static(const CommonOptions& options) {
     if (!options.csv.empty()) write_csv(options.csv, {"x_m", "deflection_m", "rotation_rad"}, rows);
   };
   if (options.json) {
-    Json out;
-    out["scene"] = p.model.scene.name;
-    out["automatic_choices"] = automatic_choices_json(p.model.automatic_choices);
-    out["segments"] = p.model.scene.beam.segments;
-    out["nodes"] = Json::array();
-    for (const auto& row : rows)
-      out["nodes"].push_back({{"x_m", row[0]}, {"deflection_m", row[1]}, {"rotation_rad", row[2]}});
-    out["probes"] = Json::array();
-    for (size_t k = 0; k < probes.size(); ++k)
-      out["probes"].push_back({{"name", probes[k].name},
-                               {"description", probes[k].description},
-                               {"unit", probes[k].unit},
-                               {"value", probe_values[k]}});
-    out["accuracy"] = {{"relative_residual", p.rest.relative_residual},
-                       {"newton_iterations", p.rest.newton_iterations},
-                       {"discretisation", "exact at the nodes for any N (Hermite statics)"}};
-    out["cost"] = {{"solve_seconds", p.rest.seconds}, {"total_seconds", total}};
-    out["validity"] = validity_json(validity);
-    std::cout << json_text(out) << "\n";
+    std::cout << json_text(
+                     emnet::to_json(p.model, p.rest, rows, probes, probe_values, validity, total))
+              << "\n";
     write_files();
     return validity_exit(validity);
   }

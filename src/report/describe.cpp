@@ -1,0 +1,121 @@
+// A scene's drive in words (emnet/report/describe.hpp).
+#include "emnet/report/describe.hpp"
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <sstream>
+
+#include "emnet/core/terminal_text.hpp"
+#include "emnet/model/drive.hpp"
+
+namespace emnet {
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+std::string format(const char* pattern, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, pattern, value);
+  return buffer;
+}
+
+// A value with six significant digits and its unit: "3000 V".
+std::string si(double value, const std::string& unit) {
+  return format("%.6g", value) + (unit.empty() ? "" : " " + unit);
+}
+
+std::string milliseconds(double seconds) {
+  return seconds < 1.0 ? format("%.3g ms", seconds * 1e3) : format("%.3g s", seconds);
+}
+
+std::string shown(const std::string& text) {
+  return terminal_text(text);
+}
+
+}  // namespace
+
+std::string drive_summary(const Scene& scene) {
+  const auto& drive = scene.drive;
+  std::ostringstream out;
+  out << "drive " << drive_kind_name(drive.kind);
+  switch (drive.kind) {
+    case DriveKind::antagonistic:
+      out << " 0/" << si(drive.voltage, "V") << " square wave at " << si(drive.frequency, "Hz");
+      break;
+    case DriveKind::switched:
+      out << " 0/" << si(drive.voltage, "V") << " square wave at " << si(drive.frequency, "Hz")
+          << " on DEA " << drive.deas[0];
+      break;
+    case DriveKind::bias_differential:
+      out << " V0 = " << si(drive.bias, "V") << ", v = " << si(drive.amplitude, "V");
+      break;
+    case DriveKind::single:
+      out << " V0 + v*sin(2*pi*f*t), V0 = " << si(drive.bias, "V")
+          << ", v = " << si(drive.amplitude, "V") << ", f = " << si(drive.frequency, "Hz")
+          << " on DEA " << drive.deas[0];
+      break;
+    case DriveKind::none:
+      break;
+  }
+  return out.str();
+}
+
+// What the AC input is, in words: printed with every AC result. `top_hz`: the sweep's highest
+// frequency, where the square-wave drives' omitted RC factor is largest.
+std::string ac_input_description(const Scene& scene, double top_hz) {
+  std::ostringstream out;
+  const auto& drive = scene.drive;
+  // The square-wave drives' force goes in directly; through the RC loops its fundamental would
+  // be 1/(1 + j*omega*tau) times it (src/model/model.cpp).
+  auto rc_loops = [&] {
+    const double tau = drive_time_constant(scene);
+    const std::complex<double> lag = 1.0 / std::complex<double>(1.0, 2 * pi * top_hz * tau);
+    out << " The DEAs' RC loops are not in this input, whatever drive.electrical_dynamics: "
+           "through them the force's fundamental would be 1/(1 + j*2*pi*f*tau) times it (exact "
+           "at duty 0.5; tau = "
+        << milliseconds(tau) << ": at " << si(top_hz, "Hz") << " " << format("%.6g", std::abs(lag))
+        << ", " << format("%.3g", std::arg(lag) * 180.0 / pi) << " deg).";
+  };
+  switch (drive.kind) {
+    case DriveKind::antagonistic:
+      out << "AC input: the alternating part of the antagonistic square-wave drive: each DEA's "
+             "force k_F*V^2/2 (V = "
+          << si(drive.voltage, "V") << ") as a sinusoid, DEA " << shown(drive.deas[0])
+          << " and DEA " << shown(drive.deas[1])
+          << " in antiphase (the square wave's +/- level; its fundamental is 4/pi times this); "
+             "exact, no linearisation: a 0/V voltage squares to a 0/k_F*V^2 force.";
+      rc_loops();
+      break;
+    case DriveKind::switched:
+      out << "AC input: the alternating part of the switched square-wave drive on DEA "
+          << shown(drive.deas[0])
+          << ": its force, a 0/k_F*V^2 square wave (V = " << si(drive.voltage, "V")
+          << "), is +/- k_F*V^2/2 about its mean k_F*V^2/2; the +/- level as a sinusoid (its "
+             "fundamental is 4/pi times this); exact, no linearisation: a 0/V voltage squares to "
+             "a 0/k_F*V^2 force. The mean is a static offset, not in this input. The network is "
+             "linearised at the static state (DEA on), which only the back-coupling sees.";
+      rc_loops();
+      break;
+    case DriveKind::bias_differential:
+      out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << shown(drive.deas[0])
+          << " and -v on DEA " << shown(drive.deas[1])
+          << " about the bias V0 = " << si(drive.bias, "V")
+          << "; the network linearised at V0 (the moment is exactly linear in v).";
+      break;
+    case DriveKind::single:
+      out << "AC input: v = " << si(drive.amplitude, "V") << " on DEA " << shown(drive.deas[0])
+          << ", linearised about the bias V0 = " << si(drive.bias, "V")
+          << " (the force's part 2*k_F*V0*v; its DC and 2f parts, k_F*v^2/2 each, are left out).";
+      break;
+    case DriveKind::none:
+      out << "AC input: the scene's loads, each with its value as amplitude.";
+      break;
+  }
+  if (drive.kind != DriveKind::none && !scene.loads.empty())
+    out << " Plus the scene's loads, each with its value as amplitude.";
+  return out.str();
+}
+
+}  // namespace emnet
