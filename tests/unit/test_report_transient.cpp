@@ -103,29 +103,34 @@ TEST(TransientJson, KeysInOrderAndValuesOfTheRcStepResponse) {
   EXPECT_EQ(times.back(), 10e-3);
 }
 
-// I/G = 1e300/1e-20 overflows a double: the voltage is finite at t = 0 (the cell at rest) and
-// beyond double precision right after, so each analysis must fail, naming what overflowed,
-// instead of returning inf or NaN.
+// I = 1e300 A into C = 1e-7 F and G = 1e-9 S (τ = C/G = 100 s): I/C = 1e307 V/s is finite, but
+// the final value I/G = 1e309 V is beyond double precision, and so is v(t) = (I/G)·(1 − e^{−t/τ})
+// from t ≈ 20 s (v(25 s) ≈ 2.2e308 V). v(0) = 0 at rest. Each analysis must fail, naming what
+// overflowed, instead of returning inf or NaN.
+System overflowing_rc_cell() {
+  return rc_cell(1e-7, 1e-9, 1e300);
+}
+
 TEST(TransientNonFinite, ExactMethodFailsNamingTheOutputAndTime) {
-  const System system = rc_cell(1e-20, 1e-20, 1e300);  // τ = 1 s
+  const System system = overflowing_rc_cell();
   const std::vector<Probe> probes{cell_voltage()};
-  const TransientResult result = run_transient_exact(system, probes, uniform_outputs(1.0, 4));
+  const TransientResult result = run_transient_exact(system, probes, uniform_outputs(100.0, 4));
   ASSERT_FALSE(result.status.ok);
-  EXPECT_NE(result.status.message.find("non-finite value of output 'v' at t = 0.25 s"),
+  EXPECT_NE(result.status.message.find("non-finite value of output 'v' at t = 25 s"),
             std::string::npos)
       << result.status.message;
 }
 
 TEST(TransientNonFinite, IdaFailsRatherThanReturningAnInfiniteValue) {
-  const System system = rc_cell(1e-20, 1e-20, 1e300);
+  const System system = overflowing_rc_cell();
   const std::vector<Probe> probes{cell_voltage()};
-  const TransientResult result = run_transient_ida(system, probes, uniform_outputs(1.0, 4));
+  const TransientResult result = run_transient_ida(system, probes, uniform_outputs(100.0, 4));
   ASSERT_FALSE(result.status.ok);
   EXPECT_FALSE(result.status.message.empty());
 }
 
 TEST(StaticNonFinite, SolveStaticFailsNamingTheUnknown) {
-  const System system = rc_cell(1e-20, 1e-20, 1e300);
+  const System system = overflowing_rc_cell();
   const StaticResult rest = solve_static(system);
   ASSERT_FALSE(rest.status.ok);
   EXPECT_NE(rest.status.message.find("non-finite"), std::string::npos) << rest.status.message;
