@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "emnet/analysis/analysis.hpp"
 #include "core/timed.hpp"
+#include "emnet/analysis/analysis.hpp"
 
 namespace emnet {
 
@@ -115,7 +115,9 @@ bool StaticOperator::solve(const Eigen::VectorXcd& rhs, Eigen::VectorXcd& z,
   z = re.cast<std::complex<double>>() +
       std::complex<double>(0.0, 1.0) * im.cast<std::complex<double>>();
   if (!z.allFinite()) {
-    why = "the static solve produced non-finite values (singular network)";
+    why =
+        "the static solve produced non-finite values (a singular network, or values beyond "
+        "double precision)";
     return false;
   }
   return true;
@@ -144,6 +146,14 @@ StaticResult solve_static(const System& system, const StaticOptions& options) {
     system.nonlinear(rest_state(state, linear.mechanical()), g, nullptr);
     return Eigen::VectorXd(linear.matrix() * state + g - b);
   };
+  // A failed solve; when it left a non-finite step, the failure names its first unknown.
+  auto solve_failure = [&](const std::string& why, const Eigen::VectorXcd& step, int iteration) {
+    for (Eigen::Index k = 0; k < step.size() && k < n; ++k)
+      if (!std::isfinite(step[k].real()) || !std::isfinite(step[k].imag()))
+        return Status::failure(why + ": unknown '" + system.unknowns[static_cast<size_t>(k)].name +
+                               "' at Newton iteration " + std::to_string(iteration));
+    return Status::failure(why);
+  };
   const double b_norm = b.norm();
   for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
     // Newton's count is not known ahead (2-5 iterations usually): no total, no estimate.
@@ -163,19 +173,21 @@ StaticResult solve_static(const System& system, const StaticOptions& options) {
       Eigen::VectorXcd complex_step;
       std::string why;
       if (!jacobian.solve(-r.cast<std::complex<double>>(), complex_step, why))
-        return finish(Status::failure(why));
+        return finish(solve_failure(why, complex_step, iteration));
       step = complex_step.real();
     } else {
       Eigen::VectorXcd complex_step;
       std::string why;
       if (!linear.solve(-r.cast<std::complex<double>>(), complex_step, why))
-        return finish(Status::failure(why));
+        return finish(solve_failure(why, complex_step, iteration));
       step = complex_step.real();
     }
     z += step;
-    if (!z.allFinite())
-      return finish(Status::failure("the static solution became non-finite at Newton iteration " +
-                                    std::to_string(iteration)));
+    for (int k = 0; k < n; ++k)
+      if (!std::isfinite(z[k]))
+        return finish(Status::failure("the static solution became non-finite at Newton iteration " +
+                                      std::to_string(iteration) + " (unknown '" +
+                                      system.unknowns[static_cast<size_t>(k)].name + "')"));
     if (step.norm() <= options.tolerance * z.norm() || step.norm() == 0.0) break;
     if (iteration == options.max_iterations)
       return finish(Status::failure("Newton did not converge in " +

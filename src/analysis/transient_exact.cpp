@@ -4,12 +4,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
+#include "core/timed.hpp"
 #include "displacement_form.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/transient.hpp"
 #include "state_space.hpp"
-#include "core/timed.hpp"
+#include "transient_finite.hpp"
 
 namespace emnet {
 
@@ -31,6 +34,28 @@ std::vector<double> interval_ends(const System& system, double end_time) {
   if (!stops.empty() && end_time - stops.back() <= 1e-12 * end_time) stops.pop_back();
   stops.push_back(end_time);
   return stops;
+}
+
+Status check_finite_outputs(const TransientResult& result, const std::vector<Probe>& probes,
+                            const std::string& what) {
+  auto time_text = [](double t) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.9g", t);
+    return std::string(buffer);
+  };
+  for (size_t i = 0; i < result.times.size(); ++i)
+    if (!std::isfinite(result.times[i]))
+      return Status::failure(what + " gave a non-finite output time (output " + std::to_string(i) +
+                             ")");
+  for (size_t p = 0; p < result.values.size(); ++p) {
+    const std::string name = p < probes.size() ? probes[p].name : std::to_string(p);
+    for (size_t i = 0; i < result.values[p].size(); ++i)
+      if (!std::isfinite(result.values[p][i]))
+        return Status::failure(
+            what + " gave a non-finite value of output '" + name + "' at t = " +
+            (i < result.times.size() ? time_text(result.times[i]) : std::string("?")) + " s");
+  }
+  return Status::success();
 }
 
 TransientResult run_transient_exact(const System& system, const std::vector<Probe>& probes,
@@ -121,12 +146,10 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
       t = stop;
     }
     result.statistics.steps = static_cast<long>(cache.size());  // distinct exponentials
-    for (const auto& series : result.values)
-      for (double v : series)
-        if (!std::isfinite(v))
-          return finish(Status::failure(
-              "an output is not finite (values beyond double precision: check the scene's "
-              "magnitudes)"));
+    if (Status finite = check_finite_outputs(result, probes, "the exact method"); !finite.ok)
+      return finish(Status::failure(finite.message +
+                                    " (values beyond double precision: check the scene's "
+                                    "magnitudes)"));
     return finish(Status::success());
   } catch (const std::exception& e) {
     return finish(Status::failure(std::string("exact transient: ") + e.what()));

@@ -10,11 +10,12 @@
 #include <cstdio>
 
 #include "consistent_start.hpp"
+#include "core/timed.hpp"
 #include "displacement_form.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/transient.hpp"
 #include "sundials_handles.hpp"
-#include "core/timed.hpp"
+#include "transient_finite.hpp"
 
 namespace emnet {
 
@@ -301,9 +302,11 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
     }
     accumulate_statistics();
     result.final_state = Eigen::Map<const Eigen::VectorXd>(yy.data(), n);
-    for (const auto& series : result.values)
-      for (double v : series)
-        if (!std::isfinite(v)) return finish(Status::failure("IDA returned a non-finite output"));
+    if (Status finite = check_finite_outputs(result, probes, "IDA"); !finite.ok)
+      return finish(finite);
+    if (!result.final_state.allFinite())
+      return finish(Status::failure(
+          "IDA gave a non-finite state at t = " + format_time(options.end_time) + " s"));
     return finish(Status::success());
   } catch (const std::exception& e) {
     return finish(Status::failure(std::string("transient: ") + e.what()));

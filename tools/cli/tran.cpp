@@ -1,59 +1,23 @@
+// The tran command (tran.hpp): its options, their checks and the call of the transient
+// analysis; tran_report.cpp prints the result. Also the outputs of a transient, shared with
+// sweep-switching (common.hpp: transient_probes, transient_outputs, plotted_outputs).
+#include "cli/tran.hpp"
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cerrno>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <functional>
-#include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
-#include <optional>
-#include <sstream>
 
-#include "cli/common.hpp"
-#include "emnet/analysis/analysis.hpp"
-#include "emnet/analysis/modal_reduction.hpp"
-#include "emnet/analysis/periodic.hpp"
 #include "emnet/analysis/transient.hpp"
 #include "emnet/core/errors.hpp"
-#include "emnet/core/output_file.hpp"
-#include "emnet/core/progress.hpp"
 #include "emnet/core/stopwatch.hpp"
-#include "emnet/core/terminal_text.hpp"
-#include "emnet/core/units.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/model/outputs.hpp"
 #include "emnet/model/validity.hpp"
-#include "emnet/report/plot.hpp"
-#include "emnet/scene/parameter_listing.hpp"
-#include "emnet/scene/parameters.hpp"
-#include "emnet/scene/scene_reader.hpp"
-#include "emnet/spice/spice_netlist.hpp"
-#include "emnet/studies/resolve.hpp"
-#include "emnet/studies/segment_selection.hpp"
-#include "emnet/studies/sensitivity.hpp"
-#include "emnet/verification/crosscheck.hpp"
 
 namespace emnet_cli {
 
 using emnet::InputError;
-using Json = nlohmann::ordered_json;
-
-// ---- tran -----------------------------------------------------------------------------
-
-struct TranOptions {
-  std::optional<double> switching;  // Hz; default: the scene's drive.frequency
-  double periods = 10.0;
-  double rtol = 1e-6;
-  double max_step = 0.0;
-  double atol = 0.0;
-  std::string method = "ida";
-  std::string start = "rest";
-  int points_per_period = 100;
-  std::string plot;
-};
 
 // Outputs of a transient: the scene's probes with P_k replaced by dx_k = P_k − P1 when a probe
 // P1 exists (paper Eqs. 20–22), and each DEA's capacitor voltage and current when it has an
@@ -177,100 +141,8 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
       tran.start == "static"
           ? "the static state under the drive's first half-period"
           : "at rest (every unknown zero before t = 0; the drive switches on at t = 0)";
-
-  auto write_files = [&] {
-    if (!options.csv.empty()) {
-      std::vector<std::string> header{"time_s"};
-      for (const auto& probe : probes) header.push_back(probe.name + "_" + probe.unit);
-      write_csv_rows(options.csv, header, result.times.size(), [&](size_t i, auto& row) {
-        row.push_back(result.times[i]);
-        for (const auto& series : result.values) row.push_back(series[i]);
-      });
-    }
-    if (!tran.plot.empty()) {
-      std::vector<emnet::LineSeries> series;
-      for (size_t k : plotted.indices) {
-        emnet::LineSeries line{probes[k].name + " (" + probes[k].description + ") [" +
-                                   (plotted.unit == "m" ? "mm" : plotted.unit) + "]",
-                               result.times,
-                               {}};
-        for (double v : result.values[k]) line.y.push_back(v * plotted.scale);
-        series.push_back(line);
-      }
-      stop_if_interrupted();
-      check_plot(emnet::write_line_plot(
-          tran.plot, model.scene.name + ": " + drive_summary(model.scene) + ", " + result.method,
-          "time [s]", plotted.axis_label, series));
-    }
-  };
-  const auto& st = result.statistics;
-  if (options.json) {
-    Json out;
-    out["scene"] = model.scene.name;
-    out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
-    out["method"] = result.method;
-    out["start_state"] = start_text;
-    out["switching_frequency_hz"] = frequency;
-    out["periods"] = tran.periods;
-    out["rtol"] = tran.rtol;
-    out["times_s"] = result.times;
-    out["outputs"] = Json::array();
-    for (size_t k = 0; k < probes.size(); ++k)
-      out["outputs"].push_back({{"name", probes[k].name},
-                                {"description", probes[k].description},
-                                {"unit", probes[k].unit},
-                                {"values", result.values[k]}});
-    out["statistics"] = {{"steps", st.steps},
-                         {"residual_evaluations", st.residual_evaluations},
-                         {"jacobian_evaluations", st.jacobian_evaluations},
-                         {"newton_iterations", st.newton_iterations},
-                         {"error_test_failures", st.error_test_failures},
-                         {"convergence_failures", st.convergence_failures},
-                         {"restarts", st.restarts}};
-    out["cost"] = {{"integration_seconds", result.seconds}, {"total_seconds", total}};
-    out["validity"] = validity_json(validity);
-    std::cout << json_text(out) << "\n";
-    write_files();
-    return validity_exit(validity);
-  }
-  print_header(model, system);
-  std::cout << "transient: " << shown(result.method) << ", " << format("%.6g", tran.periods)
-            << " periods of " << si(frequency, "Hz") << " (" << si(transient.end_time, "s")
-            << "), start " << start_text << "\n";
-  if (result.method.rfind("ida", 0) == 0)
-    std::cout << "accuracy: IDA (BDF) rtol " << format("%.1e", tran.rtol)
-              << (tran.atol > 0 ? ", atol " + format("%.1e", tran.atol)
-                                : ", atol scaled per unknown")
-              << "; exact stop and restart at " << st.restarts << " switching edges\n"
-              << "statistics: " << st.steps << " steps, " << st.residual_evaluations
-              << " residual and " << st.jacobian_evaluations << " Jacobian evaluations, "
-              << st.newton_iterations << " Newton iterations, " << st.error_test_failures
-              << " error-test and " << st.convergence_failures << " convergence failures\n";
-  else
-    std::cout << "accuracy: exact (matrix exponential per constant interval; rounding only), "
-              << st.steps << " distinct exponentials\n";
-  std::cout << "cost: integration " << milliseconds(result.seconds) << ", total "
-            << milliseconds(total) << "\n\n";
-  std::printf("%12s", "t [s]");
-  for (const auto& probe : probes)
-    std::printf(" %14s", shown(probe.name + " [" + probe.unit + "]").c_str());
-  std::printf("\n");
-  const size_t stride = std::max<size_t>(1, result.times.size() / 200);
-  for (size_t i = 0; i < result.times.size(); i += stride) {
-    std::printf("%12.7g", result.times[i]);
-    for (const auto& series : result.values) std::printf(" %14.6e", series[i]);
-    std::printf("\n");
-  }
-  if (stride > 1) std::printf("(every %zu-th output shown; --csv writes all)\n", stride);
-  for (size_t k = 0; k < probes.size(); ++k) {
-    const auto [low, high] = std::minmax_element(result.values[k].begin(), result.values[k].end());
-    std::printf("range of %-6s %14.6e .. %14.6e %s\n", shown(probes[k].name).c_str(), *low, *high,
-                shown(probes[k].unit).c_str());
-  }
-  write_files();
-  if (!tran.plot.empty()) std::cout << "plot written to " << shown(tran.plot) << "\n";
-  print_validity(validity);
-  return validity_exit(validity);
+  return report_tran({options, tran, model, system, probes, plotted, result, validity, start_text,
+                      transient.end_time, total});
 }
 
 Command add_tran_command(CLI::App& app, CommonOptions& options) {

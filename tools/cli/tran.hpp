@@ -1,0 +1,47 @@
+// The tran command's two files: tran.cpp parses its options, checks them and calls the
+// transient analysis (emnet/analysis/transient.hpp); tran_report.cpp prints the result (text
+// table, --json, --csv, --plot).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/common.hpp"
+#include "emnet/analysis/transient.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/model/validity.hpp"
+
+namespace emnet_cli {
+
+struct TranOptions {
+  std::optional<double> switching;  // Hz; default: the scene's drive.frequency
+  double periods = 10.0;
+  double rtol = 1e-6;
+  double max_step = 0.0;
+  double atol = 0.0;
+  std::string method = "ida";
+  std::string start = "rest";
+  int points_per_period = 100;
+  std::string plot;
+};
+
+// What the report needs: the command's options, the model, the outputs and the result.
+struct TranReportInput {
+  const CommonOptions& options;
+  const TranOptions& tran;
+  const emnet::Model& model;
+  const emnet::System& system;
+  const std::vector<emnet::Probe>& probes;
+  const PlottedOutputs& plotted;  // what --plot draws (checked before the integration)
+  const emnet::TransientResult& result;
+  const emnet::Validity& validity;
+  std::string start_text;      // the start state in words
+  double end_time = 0.0;       // [s]
+  double total_seconds = 0.0;  // the command from its start
+};
+
+// Prints the result and writes its files; returns the exit status (0, or 5 outside validity).
+int report_tran(const TranReportInput& input);
+
+}  // namespace emnet_cli
