@@ -5,9 +5,9 @@
 #include <cstdio>
 
 #include "complex_klu.hpp"
+#include "core/timed.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "equilibration.hpp"
-#include "core/timed.hpp"
 
 namespace emnet {
 
@@ -18,6 +18,14 @@ std::string hz(double f) {
   char text[40];
   std::snprintf(text, sizeof text, "%.9g Hz", f);
   return text;
+}
+
+// A failed Status when a probe's response is not finite (an overflow, a NaN in a coefficient):
+// the AC result never carries one.
+Status check_finite_response(const std::complex<double>& value, const Probe& probe, double f) {
+  if (std::isfinite(value.real()) && std::isfinite(value.imag())) return Status::success();
+  return Status::failure("non-finite result for an AC response: probe '" + probe.name +
+                         "' at f = " + hz(f));
 }
 }  // namespace
 
@@ -106,6 +114,8 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
           const bool mech = static_operator->mechanical()[static_cast<size_t>(index)];
           if ((mech ? 1 : 0) - probes[p].integrations == 0) sum += coefficient * z[index];
         }
+        if (Status finite = check_finite_response(sum, probes[p], f); !finite.ok)
+          return finish(finite);
         result.values[p].push_back(sum);
       }
       continue;
@@ -139,8 +149,12 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
     if (Status accurate = check_residual(residual, "the AC solve at f = " + hz(f)); !accurate.ok)
       return finish(accurate);
     y = scaling.column.cast<std::complex<double>>().cwiseProduct(y);
-    for (size_t p = 0; p < probes.size(); ++p)
-      result.values[p].push_back(probe_phasor(probes[p], y, omega));
+    for (size_t p = 0; p < probes.size(); ++p) {
+      const std::complex<double> value = probe_phasor(probes[p], y, omega);
+      if (Status finite = check_finite_response(value, probes[p], f); !finite.ok)
+        return finish(finite);
+      result.values[p].push_back(value);
+    }
   }
   return finish(Status::success());
 }

@@ -4,6 +4,7 @@
 // is built in modal_reduction.cpp.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <set>
 
@@ -83,10 +84,14 @@ AcReductionResult run_ac_reduced(const System& system, const Eigen::VectorXd& op
       result.ac.values[p].push_back(result.model.response(probes[p], two_pi * f));
   result.evaluate_seconds = start.seconds();
   result.ac.seconds = result.reduce_seconds + result.evaluate_seconds;
-  for (const auto& series : result.ac.values)
-    for (const Complex& v : series)
-      if (!std::isfinite(std::abs(v)))
-        return finish(Status::failure("the reduced model gave a non-finite response"));
+  for (size_t p = 0; p < probes.size(); ++p)
+    for (size_t f = 0; f < frequencies.size(); ++f)
+      if (!std::isfinite(std::abs(result.ac.values[p][f]))) {
+        char at[40];
+        std::snprintf(at, sizeof at, "%.9g Hz", frequencies[f]);
+        return finish(Status::failure("the reduced model gave a non-finite response: probe '" +
+                                      probes[p].name + "' at f = " + at));
+      }
 
   // The check: the full model at a few frequencies of the sweep.
   start.restart();

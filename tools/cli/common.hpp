@@ -169,7 +169,7 @@ Prepared prepare(const CommonOptions& options, bool require_static = false,
 
 // ---- Shared by several commands, defined in the file named -------------------------------------
 
-// ac.cpp: a frequency option ("6.4", "6.4 Hz"); the AC sweep of the scene's [ac] table with
+// ac_options.cpp: a frequency option ("6.4", "6.4 Hz"); the AC sweep of the scene's [ac] table with
 // --from, --to, --points and --scale applied (ac, netlist --analysis ac); --tolerance and --band
 // of a modal reduction (ac, sweep-switching); the warning when its tolerance is not met.
 double parse_frequency(const std::string& text, const std::string& option);

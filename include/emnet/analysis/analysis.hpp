@@ -106,7 +106,9 @@ struct AcResult {
   double seconds = 0.0;
 };
 
-// A relative residual above kResidualLimit at any frequency is a failed Status naming it.
+// A relative residual above kResidualLimit at any frequency is a failed Status naming it; so is
+// a probe value that is not finite ("non-finite result for an AC response: probe 'x' at
+// f = … Hz"): `values` never holds a NaN or an infinity.
 AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
                 const std::vector<double>& frequencies, const std::vector<Probe>& probes,
                 const AcOptions& options = {});

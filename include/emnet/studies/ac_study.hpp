@@ -1,0 +1,67 @@
+// The AC study: the small-signal response of a prepared model's probes over a frequency grid,
+// with what the program's `ac` command reports beside it.
+//
+//   - The sweep: (G + J_g + jω·C)·Y = B_ac at every frequency (run_ac), or, with `reduction`,
+//     the modal reduction with static correction checked against the full model at a few
+//     frequencies (run_ac_reduced, analysis/modal_reduction.hpp).
+//   - Every response value finite: a NaN or an infinity in the sweep fails the study, naming
+//     the probe and the frequency (run_ac and run_ac_reduced check their values).
+//   - The resonances in the band [sweep.from, sweep.to], for the Bode plot's markers: the
+//     oscillatory kept modes of the reduced model, else the modes of the full model (run_modes
+//     without vectors; at most 10 above the dense method's size limit). f = |Im s|/(2π) [Hz].
+//   - Validity: each deflection probe's largest |response| [m] against the scene's deflection
+//     limit, and the drive's peak DEA voltages against breakdown (model/validity.hpp). Every
+//     drive's AC input has the scene's own amplitude, so these are deflection amplitudes.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/core/progress.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/model/validity.hpp"
+#include "emnet/network/output.hpp"
+#include "emnet/scene/scene.hpp"
+
+namespace emnet {
+
+// Why the scene gives the AC analysis no input (B_ac = 0), in its own terms: "nothing excites
+// the AC analysis: drive.kind = \"none\" and no [[load]], so every response would be zero; …".
+std::string no_ac_input_reason(const Scene& scene);
+
+// An InputError naming the scene's file and drive.kind, with no_ac_input_reason, when the
+// system has no AC input (System::b_ac = 0).
+void require_ac_input(const Model& model, const System& system);
+
+struct AcStudyOptions {
+  AcSpec sweep;               // from, to [Hz], points, log: the grid is frequency_grid of these
+  std::vector<Probe> probes;  // the responses computed
+  std::optional<ReductionOptions> reduction;  // set: evaluate the sweep by modal reduction
+  Progress* progress = nullptr;               // the phases and the full sweep's frequencies
+};
+
+// Which step of the study failed (Status::ok false), so that a caller can name it.
+enum class AcStudyStage { none, reduction, sweep };
+
+struct AcStudyResult {
+  // Failure: the analysis's message (run_ac's, run_ac_reduced's), in `failed_stage`.
+  Status status;
+  AcStudyStage failed_stage = AcStudyStage::none;
+  AcResult ac;                                 // the sweep (the reduced model's with `reduction`)
+  std::optional<AcReductionResult> reduction;  // set when asked for
+  std::vector<double> resonances_hz;           // in [from, to] of the grid, increasing
+  std::vector<DeflectionPeak> peaks;           // per deflection probe, its largest |response|
+  Validity validity;
+};
+
+// The study on a model already built and its operating point (the static state, or zero for
+// a linear network: analysis/operating_point.hpp). A system with no AC input is an InputError
+// (require_ac_input).
+AcStudyResult run_ac_study(const Model& model, const System& system,
+                           const Eigen::VectorXd& operating_point, const AcStudyOptions& options);
+
+}  // namespace emnet

@@ -1,0 +1,112 @@
+// The AC study (studies/ac_study.hpp): the sweep, its finiteness, the resonances in the band
+// and the validity of its deflection amplitudes.
+#include "emnet/studies/ac_study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace emnet {
+
+namespace {
+
+constexpr double two_pi = 6.283185307179586476925286766559;
+
+// A value with its unit, as the program prints scene values: "%.6g unit".
+std::string with_unit(double value, const std::string& unit) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return std::string(text) + " " + unit;
+}
+
+void show_phase(Progress* progress, const char* what) {
+  if (progress) progress->report(0, 0, what);
+}
+
+}  // namespace
+
+std::string no_ac_input_reason(const Scene& scene) {
+  const auto& drive = scene.drive;
+  std::string why;
+  switch (drive.kind) {
+    case DriveKind::none:
+      why = "drive.kind = \"none\"";
+      break;
+    case DriveKind::antagonistic:
+      why = "the antagonistic drive at drive.voltage = " + with_unit(drive.voltage, "V");
+      break;
+    case DriveKind::bias_differential:
+    case DriveKind::single:
+      why = "drive.kind = \"" + std::string(drive_kind_name(drive.kind)) +
+            "\" with drive.bias = " + with_unit(drive.bias, "V") +
+            " and drive.amplitude = " + with_unit(drive.amplitude, "V") +
+            " (at a bias of 0 V a V^2 force has no part linear in v: it acts at 0 and 2f)";
+      break;
+  }
+  return "nothing excites the AC analysis: " + why +
+         (scene.loads.empty() ? " and no [[load]]" : " and loads of zero value") +
+         ", so every response would be zero; set a drive with a small-signal part or a load";
+}
+
+void require_ac_input(const Model& model, const System& system) {
+  if (system.b_ac().norm() == 0.0)
+    throw InputError(model.scene.file, "drive.kind", no_ac_input_reason(model.scene));
+}
+
+AcStudyResult run_ac_study(const Model& model, const System& system,
+                           const Eigen::VectorXd& operating_point, const AcStudyOptions& options) {
+  AcStudyResult result;
+  require_ac_input(model, system);
+  const std::vector<double> grid =
+      frequency_grid(options.sweep.from, options.sweep.to, options.sweep.points, options.sweep.log);
+  const std::vector<Probe>& probes = options.probes;
+  auto fail = [&](AcStudyStage stage, Status status) {
+    result.status = std::move(status);
+    result.failed_stage = stage;
+    return result;
+  };
+  if (options.reduction) {
+    show_phase(options.progress, "modal reduction and its check");
+    result.reduction = run_ac_reduced(system, operating_point, grid, probes, *options.reduction);
+    if (!result.reduction->status.ok)
+      return fail(AcStudyStage::reduction, result.reduction->status);
+    result.ac = result.reduction->ac;
+    if (!result.ac.status.ok) return fail(AcStudyStage::sweep, result.ac.status);
+  } else {
+    AcOptions sweep_options;
+    sweep_options.progress = options.progress;
+    result.ac = run_ac(system, operating_point, grid, probes, sweep_options);
+    if (!result.ac.status.ok) return fail(AcStudyStage::sweep, result.ac.status);
+  }
+
+  // Resonances: the reduced model's kept modes, else the full model's (a failed modal
+  // analysis only leaves the plot without markers).
+  std::vector<double> resonances;
+  if (result.reduction) {
+    for (const auto& kept : result.reduction->model.kept)
+      if (kept.oscillatory) resonances.push_back(std::abs(kept.pole.imag()) / two_pi);
+    std::sort(resonances.begin(), resonances.end());
+  } else {
+    ModalOptions modal_options;
+    modal_options.keep_vectors = false;
+    if (system.size() > modal_options.dense_limit) modal_options.count = 10;
+    show_phase(options.progress, "modes for the resonance markers");
+    const ModalResult modes = run_modes(system, operating_point, modal_options);
+    if (modes.status.ok)
+      for (const auto& mode : modes.modes) resonances.push_back(mode.frequency_hz);
+  }
+  for (double f : resonances)
+    if (f >= options.sweep.from && f <= options.sweep.to) result.resonances_hz.push_back(f);
+
+  for (size_t k = 0; k < probes.size(); ++k)
+    if (probes[k].quantity == ProbeQuantity::deflection) {
+      result.peaks.push_back({probes[k].name, 0.0});
+      for (const auto& v : result.ac.values[k])
+        result.peaks.back().peak = std::max(result.peaks.back().peak, std::abs(v));
+    }
+  result.validity = check_validity(model.scene, result.peaks, drive_peak_voltages(model.scene));
+  result.status = Status::success();
+  return result;
+}
+
+}  // namespace emnet
