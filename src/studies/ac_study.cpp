@@ -33,7 +33,9 @@ std::string no_ac_input_reason(const Scene& scene) {
       why = "drive.kind = \"none\"";
       break;
     case DriveKind::antagonistic:
-      why = "the antagonistic drive at drive.voltage = " + with_unit(drive.voltage, "V");
+    case DriveKind::switched:
+      why = "the " + std::string(drive_kind_name(drive.kind)) +
+            " drive at drive.voltage = " + with_unit(drive.voltage, "V");
       break;
     case DriveKind::bias_differential:
     case DriveKind::single:

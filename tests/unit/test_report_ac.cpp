@@ -146,6 +146,25 @@ TEST(AcStudy, NoAcInputIsAnInputErrorNamingDriveKind) {
   }
 }
 
+// Each drive kind without a small-signal part says why in its own terms: a switched drive at
+// 0 V names itself and its voltage (its reason was once left empty).
+TEST(AcStudy, NoAcInputReasonNamesEveryDriveKind) {
+  Scene scene = testing::cantilever_scene(4);
+  scene.drive.voltage = 0.0;
+  for (const DriveKind kind : {DriveKind::antagonistic, DriveKind::switched}) {
+    scene.drive.kind = kind;
+    const std::string why = no_ac_input_reason(scene);
+    EXPECT_NE(
+        why.find("the " + std::string(drive_kind_name(kind)) + " drive at drive.voltage = 0 V"),
+        std::string::npos)
+        << why;
+  }
+  scene.drive.kind = DriveKind::single;
+  EXPECT_NE(no_ac_input_reason(scene).find("drive.bias"), std::string::npos);
+  scene.drive.kind = DriveKind::none;
+  EXPECT_NE(no_ac_input_reason(scene).find("drive.kind = \"none\""), std::string::npos);
+}
+
 // The study of a cantilever (L = 0.5 m, EI = 2 N·m², ρA = 0.3 kg/m, 20 segments) under a tip
 // force: its resonances in the band are the modes run_modes finds there (an independent
 // computation of the same network), and the tip's peak |deflection| is the largest |value|.
