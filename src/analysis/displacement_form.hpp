@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "emnet/network/output.hpp"
 #include "emnet/network/network.hpp"
+#include "emnet/network/output.hpp"
 
 namespace emnet {
 

@@ -7,9 +7,9 @@
 #include <Eigen/Dense>
 #include <vector>
 
+#include "emnet/analysis/periodic.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/network/network.hpp"
-#include "emnet/analysis/periodic.hpp"
 
 namespace emnet {
 

@@ -10,12 +10,12 @@
 #include <memory>
 #include <stdexcept>
 
+#include "core/timed.hpp"
 #include "displacement_form.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "equilibration.hpp"
 #include "pole_bounds.hpp"
 #include "rigid_body_space.hpp"
-#include "core/timed.hpp"
 
 namespace emnet {
 

@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 
+#include "core/timed.hpp"
 #include "displacement_form.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/transient.hpp"
@@ -16,7 +17,6 @@
 #include "emnet/core/units.hpp"
 #include "exponential_series.hpp"
 #include "state_space.hpp"
-#include "core/timed.hpp"
 
 namespace emnet {
 

@@ -418,4 +418,12 @@ std::string format_number(const char* format, double value) {
   return buffer;
 }
 
+std::string format_with_unit(double value, const std::string& unit) {
+  return format_number("%.6g", value) + (unit.empty() ? "" : " " + unit);
+}
+
+std::string format_duration(double seconds) {
+  return seconds < 1.0 ? format_number("%.3g ms", seconds * 1e3) : format_number("%.3g s", seconds);
+}
+
 }  // namespace emnet

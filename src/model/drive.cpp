@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "emnet/elements/dea.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/units.hpp"
+#include "emnet/elements/dea.hpp"
 #include "emnet/model/model.hpp"
 
 namespace emnet {

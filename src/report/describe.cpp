@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "emnet/core/terminal_text.hpp"
+#include "emnet/core/units.hpp"
 #include "emnet/model/drive.hpp"
 
 namespace emnet {
@@ -16,18 +17,11 @@ namespace {
 constexpr double pi = 3.14159265358979323846;
 
 std::string format(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
+  return format_number(pattern, value);
 }
 
-// A value with six significant digits and its unit: "3000 V".
 std::string si(double value, const std::string& unit) {
-  return format("%.6g", value) + (unit.empty() ? "" : " " + unit);
-}
-
-std::string milliseconds(double seconds) {
-  return seconds < 1.0 ? format("%.3g ms", seconds * 1e3) : format("%.3g s", seconds);
+  return format_with_unit(value, unit);
 }
 
 std::string shown(const std::string& text) {
@@ -75,8 +69,9 @@ std::string ac_input_description(const Scene& scene, double top_hz) {
     out << " The DEAs' RC loops are not in this input, whatever drive.electrical_dynamics: "
            "through them the force's fundamental would be 1/(1 + j*2*pi*f*tau) times it (exact "
            "at duty 0.5; tau = "
-        << milliseconds(tau) << ": at " << si(top_hz, "Hz") << " " << format("%.6g", std::abs(lag))
-        << ", " << format("%.3g", std::arg(lag) * 180.0 / pi) << " deg).";
+        << format_duration(tau) << ": at " << si(top_hz, "Hz") << " "
+        << format("%.6g", std::abs(lag)) << ", " << format("%.3g", std::arg(lag) * 180.0 / pi)
+        << " deg).";
   };
   switch (drive.kind) {
     case DriveKind::antagonistic:

@@ -6,18 +6,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "emnet/core/units.hpp"
+
 namespace emnet {
 
 namespace {
 
 constexpr double two_pi = 6.283185307179586476925286766559;
-
-// A value with its unit, as the program prints scene values: "%.6g unit".
-std::string with_unit(double value, const std::string& unit) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return std::string(text) + " " + unit;
-}
 
 void show_phase(Progress* progress, const char* what) {
   if (progress) progress->report(0, 0, what);
@@ -35,13 +30,13 @@ std::string no_ac_input_reason(const Scene& scene) {
     case DriveKind::antagonistic:
     case DriveKind::switched:
       why = "the " + std::string(drive_kind_name(drive.kind)) +
-            " drive at drive.voltage = " + with_unit(drive.voltage, "V");
+            " drive at drive.voltage = " + format_with_unit(drive.voltage, "V");
       break;
     case DriveKind::bias_differential:
     case DriveKind::single:
       why = "drive.kind = \"" + std::string(drive_kind_name(drive.kind)) +
-            "\" with drive.bias = " + with_unit(drive.bias, "V") +
-            " and drive.amplitude = " + with_unit(drive.amplitude, "V") +
+            "\" with drive.bias = " + format_with_unit(drive.bias, "V") +
+            " and drive.amplitude = " + format_with_unit(drive.amplitude, "V") +
             " (at a bias of 0 V a V^2 force has no part linear in v: it acts at 0 and 2f)";
       break;
   }

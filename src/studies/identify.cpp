@@ -25,10 +25,6 @@ struct FitStopped {
   throw FitStopped{Status::failure(std::move(why))};
 }
 
-std::string si(double value, const std::string& unit) {
-  return format_number("%.6g", value) + (unit.empty() ? "" : " " + unit);
-}
-
 // "%.6g" without the exponent's leading zero: 1e-5, not 1e-05.
 std::string short_number(double value) {
   std::string text = format_number("%.6g", value);
@@ -66,12 +62,12 @@ class Identification {
       if (!std::isfinite(stiffness) || !(stiffness > 0.0))
         stop("identify: the bending stiffness update left the positive numbers (" +
              format_number("%.6g", stiffness) + " N*m^2) at mode " +
-             std::to_string(options_.mode_number) + " = " + si(frequency, "Hz"));
+             std::to_string(options_.mode_number) + " = " + format_with_unit(frequency, "Hz"));
     }
     stop("identify: mode " + std::to_string(options_.mode_number) + " at " +
          format_number("%.10g", frequency) + " Hz after " + std::to_string(limit) +
          " fixed-point iterations of beam.bending_stiffness, target " +
-         si(options_.target_hz, "Hz") + " (relative residual " +
+         format_with_unit(options_.target_hz, "Hz") + " (relative residual " +
          format_number("%.3g", (frequency - options_.target_hz) / options_.target_hz) +
          "): the target is out of reach of the stiffness");
   }
@@ -186,8 +182,8 @@ IdentifyResult identify(const Scene& scene, const IdentifyOptions& options) {
         // The peak falls monotonically with the loss factor: bisection in log η.
         if (peak_at(low) < peak.value || peak_at(high) > peak.value)
           stop("identify --peak: no loss factor in [" + short_number(low) + ", " +
-               short_number(high) + "] gives the peak " + si(peak.value, "m") + " at " +
-               si(options.target_hz, "Hz"));
+               short_number(high) + "] gives the peak " + format_with_unit(peak.value, "m") +
+               " at " + format_with_unit(options.target_hz, "Hz"));
         for (int k = 0; k < options.bisection_steps && high / low > 1 + options.bisection_ratio;
              ++k) {
           const double middle = std::sqrt(low * high);

@@ -14,22 +14,12 @@
 #include "emnet/analysis/operating_point.hpp"
 #include "emnet/analysis/periodic.hpp"
 #include "emnet/core/stopwatch.hpp"
+#include "emnet/core/units.hpp"
 #include "emnet/model/drive.hpp"
 #include "emnet/studies/resolve.hpp"
 
 namespace emnet {
 namespace {
-
-std::string number_text(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
-
-// "6.5 Hz": a value with %.6g and its unit (as the program prints quantities).
-std::string si_text(double value, const std::string& unit) {
-  return number_text("%.6g", value) + (unit.empty() ? "" : " " + unit);
-}
 
 int samples_or_default(const SwitchingSweepOptions& options) {
   if (options.samples != 0) return options.samples;
@@ -44,7 +34,7 @@ std::vector<double> switching_frequencies(const SwitchingSweepOptions& options) 
       if (!(f > 0.0) || !std::isfinite(f))
         throw InputError(
             "frequencies", "frequencies",
-            "every switching frequency must be finite and > 0 Hz, not " + number_text("%.6g", f));
+            "every switching frequency must be finite and > 0 Hz, not " + format_number("%.6g", f));
     if (options.frequencies.size() > 100000)
       throw InputError("frequencies", "frequencies", "at most 100000 frequencies are swept");
     return options.frequencies;
@@ -57,7 +47,7 @@ std::vector<double> switching_frequencies(const SwitchingSweepOptions& options) 
       std::floor((options.to - options.from) / options.step + 1e-9) + 1.0;
   if (!(frequency_count <= 100000))
     throw InputError("--step", "--step",
-                     "gives " + number_text("%.6g", frequency_count) +
+                     "gives " + format_number("%.6g", frequency_count) +
                          " frequencies; at most 100000 (inclusive) are swept");
   const long count = static_cast<long>(frequency_count);
   std::vector<double> frequencies;
@@ -114,7 +104,8 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   if (!(scene.drive.rise_time < 0.5 / highest))
     throw InputError(scene.file, "drive.rise_time",
                      "must be < half the shortest period of the sweep (" +
-                         si_text(0.5 / highest, "s") + " at --to " + si_text(highest, "Hz") + ")");
+                         format_with_unit(0.5 / highest, "s") + " at --to " +
+                         format_with_unit(highest, "Hz") + ")");
   check_overlap_fits(scene, highest, "--to");
 
   // Only the drive's excitation changes with the frequency: `model`'s G and C assembled once,
@@ -204,12 +195,13 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
       r = run_periodic_shooting(system, probes, 1.0 / f, options.rtol, samples, options.progress);
     }
     if (!r.status.ok)
-      return fail("sweep-switching at " + si_text(f, "Hz") + ": " + r.status.message);
+      return fail("sweep-switching at " + format_with_unit(f, "Hz") + ": " + r.status.message);
     for (size_t p = 0; p < probes.size(); ++p)
       if (!std::isfinite(r.minimum[p]) || !std::isfinite(r.maximum[p]))
         return fail("non-finite result for a peak of " + probes[p].name);
     if (!std::isfinite(r.periodicity_residual))
-      return fail("sweep-switching at " + si_text(f, "Hz") + ": non-finite periodicity residual");
+      return fail("sweep-switching at " + format_with_unit(f, "Hz") +
+                  ": non-finite periodicity residual");
     for (size_t p = 0; p < probes.size(); ++p) {
       result.outputs[p].left.push_back(r.minimum[p]);
       result.outputs[p].right.push_back(r.maximum[p]);
@@ -272,12 +264,12 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
       }
       const PeriodicResult exact_there = full->solve(system, probes, 1.0 / f, samples);
       if (!exact_there.status.ok)
-        return fail("sweep-switching --reduce check at " + si_text(f, "Hz") + ": " +
+        return fail("sweep-switching --reduce check at " + format_with_unit(f, "Hz") + ": " +
                     exact_there.status.message);
       const std::optional<PeriodicResult> again = reduced_at(system, f);
       if (!again) return fail(reduction_failure);
       if (!again->status.ok)
-        return fail("sweep-switching --reduce at " + si_text(f, "Hz") + ": " +
+        return fail("sweep-switching --reduce at " + format_with_unit(f, "Hz") + ": " +
                     again->status.message);
       // Per frequency: the fastest check solve (the first also fills per-probe caches).
       check->full_solve_seconds = check->full_solve_seconds > 0.0
@@ -289,7 +281,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
               : std::min(solve_seconds_at[k], again->seconds);
       const double error = periodic_difference(*again, exact_there);
       if (!std::isfinite(error))
-        return fail("sweep-switching --reduce check at " + si_text(f, "Hz") +
+        return fail("sweep-switching --reduce check at " + format_with_unit(f, "Hz") +
                     ": non-finite difference between the reduced and the full solution");
       check->frequencies.push_back(f);
       check->errors.push_back(error);

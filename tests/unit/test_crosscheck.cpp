@@ -1,6 +1,6 @@
-// `emnet crosscheck` (include/emnet/verification/crosscheck.hpp): both checked-in scenes pass against
-// ngspice with the tolerances the header justifies; a perturbed ngspice vector fails the report;
-// ngspice missing gives exit status 3 with a clear message; the peak fit is exact for an
+// `emnet crosscheck` (include/emnet/verification/crosscheck.hpp): both checked-in scenes pass
+// against ngspice with the tolerances the header justifies; a perturbed ngspice vector fails the
+// report; ngspice missing gives exit status 3 with a clear message; the peak fit is exact for an
 // isolated mode.
 #include <gtest/gtest.h>
 
@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "emnet/verification/crosscheck.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene_reader.hpp"
+#include "emnet/verification/crosscheck.hpp"
 
 namespace {
 

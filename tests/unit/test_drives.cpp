@@ -15,11 +15,11 @@
 
 #include "cli_run.hpp"
 #include "emnet/analysis/analysis.hpp"
-#include "emnet/elements/dea.hpp"
 #include "emnet/analysis/periodic.hpp"
+#include "emnet/analysis/transient.hpp"
+#include "emnet/elements/dea.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
-#include "emnet/analysis/transient.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "emnet/analysis/periodic.hpp"
-#include "emnet/scene/scene_reader.hpp"
 #include "emnet/analysis/transient.hpp"
+#include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

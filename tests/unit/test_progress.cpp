@@ -1,5 +1,5 @@
-// The analyses' progress hooks (include/emnet/core/progress.hpp): one report per step with the right
-// counts, and a cancellation honoured at the next step with the Status "cancelled"; and the
+// The analyses' progress hooks (include/emnet/core/progress.hpp): one report per step with the
+// right counts, and a cancellation honoured at the next step with the Status "cancelled"; and the
 // residual limit: a solve that did not solve its system is a failed Status, not a result.
 #include <gtest/gtest.h>
 
@@ -9,10 +9,10 @@
 
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/periodic.hpp"
+#include "emnet/analysis/transient.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/sensitivity.hpp"
-#include "emnet/analysis/transient.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

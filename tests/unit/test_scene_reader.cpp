@@ -1,4 +1,5 @@
-// Tests of the scene reader (emnet/scene/scene_reader.hpp): valid scenes read to the right SI values,
+// Tests of the scene reader (emnet/scene/scene_reader.hpp): valid scenes read to the right SI
+// values,
 // `--set` overrides, and one test per kind of bad input, each checking that the InputError names
 // the file, the line (where there is one) and the key, and says what is wrong; the bounds on
 // every input (scene_limits) and bad input that only the model builder notices.

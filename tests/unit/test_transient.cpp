@@ -3,12 +3,12 @@
 
 #include <cmath>
 
+#include "emnet/analysis/transient.hpp"
 #include "emnet/elements/capacitor.hpp"
 #include "emnet/elements/conductance.hpp"
 #include "emnet/elements/current_source.hpp"
 #include "emnet/elements/inductor.hpp"
 #include "emnet/scene/scene_reader.hpp"
-#include "emnet/analysis/transient.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "emnet/scene/scene_reader.hpp"
 #include "emnet/model/validity.hpp"
+#include "emnet/scene/scene_reader.hpp"
 
 namespace emnet {
 namespace {

@@ -84,11 +84,7 @@ Command add_ac_command(CLI::App& app, CommonOptions& options) {
   ac_command->add_flag("--reduce", ac_options->reduce,
                        "evaluate the sweep by modal reduction (modes below band/sqrt(tolerance), "
                        "static correction for the rest), checked against the full model");
-  ac_command->add_option("--tolerance", ac_options->tolerance,
-                         "--reduce: relative error wanted, in (0, 1) (default: the scene's "
-                         "model.tolerance, 1e-3)");
-  ac_command->add_option("--band", ac_options->band,
-                         "--reduce: highest frequency of interest [Hz] (default: --to)");
+  add_reduction_tolerance_and_band(ac_command, ac_options->tolerance, ac_options->band);
 
   return {ac_command, [ac_options, &options] { return run_ac_command(options, *ac_options); }};
 }

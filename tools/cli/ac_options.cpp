@@ -102,4 +102,13 @@ std::string tolerance_warning(double measured, double tolerance) {
          "note says poles below the cut-off were not found, or run without --reduce.";
 }
 
+void add_reduction_tolerance_and_band(CLI::App* command, std::string& tolerance,
+                                      std::string& band) {
+  command->add_option("--tolerance", tolerance,
+                      "--reduce: relative error wanted, in (0, 1) (default: the scene's "
+                      "model.tolerance, 1e-3)");
+  command->add_option("--band", band,
+                      "--reduce: highest frequency of interest [Hz] (default: --to)");
+}
+
 }  // namespace emnet_cli

@@ -68,17 +68,15 @@ std::string shown(const std::string& text) {
 }
 
 std::string format(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
+  return emnet::format_number(pattern, value);
 }
 
 std::string si(double value, const std::string& unit) {
-  return format("%.6g", value) + (unit.empty() ? "" : " " + unit);
+  return emnet::format_with_unit(value, unit);
 }
 
 std::string milliseconds(double seconds) {
-  return seconds < 1.0 ? format("%.3g ms", seconds * 1e3) : format("%.3g s", seconds);
+  return emnet::format_duration(seconds);
 }
 
 // Upper bound of the values a command stores and prints or writes (time steps × outputs, AC

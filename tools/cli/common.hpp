@@ -179,6 +179,9 @@ emnet::AcSpec checked_ac_spec(emnet::AcSpec spec, const std::string& from_text,
 emnet::ReductionOptions reduction_options(const std::string& tolerance, const std::string& band,
                                           double default_band, double default_tolerance);
 std::string tolerance_warning(double measured, double tolerance);
+// The --tolerance and --band options of --reduce (ac, sweep-switching), as text for
+// reduction_options.
+void add_reduction_tolerance_and_band(CLI::App* command, std::string& tolerance, std::string& band);
 // The reduced model of --reduce in --json (ac, sweep-switching).
 Json reduction_json(const emnet::ModalReduction& m, bool tolerance_met);
 

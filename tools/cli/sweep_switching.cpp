@@ -127,11 +127,7 @@ Command add_sweep_switching_command(CLI::App& app, CommonOptions& options) {
   sweep_command->add_flag("--reduce", sweep_options->reduce,
                           "periodic state of a modal reduction (modes below band/tolerance, "
                           "static correction as a feed-through), checked against the exact one");
-  sweep_command->add_option("--tolerance", sweep_options->tolerance,
-                            "--reduce: relative error wanted, in (0, 1) (default: the scene's "
-                            "model.tolerance, 1e-3)");
-  sweep_command->add_option("--band", sweep_options->band,
-                            "--reduce: highest frequency of interest [Hz] (default: --to)");
+  add_reduction_tolerance_and_band(sweep_command, sweep_options->tolerance, sweep_options->band);
 
   return {sweep_command,
           [sweep_options, &options] { return run_sweep_command(options, *sweep_options); }};

@@ -83,10 +83,10 @@
 #include <vector>
 
 #include "emnet/analysis/analysis.hpp"
-#include "emnet/core/errors.hpp"
-#include "emnet/network/output.hpp"
-#include "emnet/network/network.hpp"
 #include "emnet/analysis/periodic.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/network/network.hpp"
+#include "emnet/network/output.hpp"
 
 namespace emnet {
 

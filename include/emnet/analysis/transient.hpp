@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "emnet/core/errors.hpp"
-#include "emnet/network/output.hpp"
-#include "emnet/network/network.hpp"
 #include "emnet/core/progress.hpp"
+#include "emnet/network/network.hpp"
+#include "emnet/network/output.hpp"
 
 namespace emnet {
 

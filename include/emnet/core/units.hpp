@@ -79,5 +79,10 @@ std::string format_quantity(double value, const Dimension& dimension);
 
 // One number through a printf format ("%.3g", "%.4g Hz"), for messages and notes.
 std::string format_number(const char* format, double value);
+// A value with six significant digits and its unit, as results and messages print quantities:
+// "3000 V", "6.385 Hz" (no unit: the number alone).
+std::string format_with_unit(double value, const std::string& unit);
+// A duration as it is read: "3.2 ms" below a second, "1.4 s" above.
+std::string format_duration(double seconds);
 
 }  // namespace emnet

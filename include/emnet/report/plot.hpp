@@ -5,9 +5,9 @@
 // the gnuplot script that draws them (path + ".gp"). The script names the data and image files
 // relative to its own directory, so a user can edit it and re-run it there with
 // `gnuplot NAME.gp`. Each of the three is written completely or not at all (through a temporary
-// file renamed into place, include/emnet/core/output_file.hpp): a failure leaves the previous file, if
-// any, never a truncated one. gnuplot runs under a time limit; every failure (gnuplot missing, an
-// unwritable directory, a full disk, a gnuplot error, a timeout) is returned as a failed Status,
+// file renamed into place, include/emnet/core/output_file.hpp): a failure leaves the previous file,
+// if any, never a truncated one. gnuplot runs under a time limit; every failure (gnuplot missing,
+// an unwritable directory, a full disk, a gnuplot error, a timeout) is returned as a failed Status,
 // never thrown.
 //
 // Titles and labels are written as single-quoted gnuplot strings with control characters
