@@ -99,15 +99,6 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
     result.seconds = stopwatch.seconds();
     return result;
   };
-  if (exact && !options.reduce)
-    check_periodic_memory(model.network.assemble().size(), "--segments");
-  if (!(scene.drive.rise_time < 0.5 / highest))
-    throw InputError(scene.file, "drive.rise_time",
-                     "must be < half the shortest period of the sweep (" +
-                         format_with_unit(0.5 / highest, "s") + " at --to " +
-                         format_with_unit(highest, "Hz") + ")");
-  check_overlap_fits(scene, highest, "--to");
-
   // Only the drive's excitation changes with the frequency: `model`'s G and C assembled once,
   // the drive sources' waveforms made again per frequency (the same b(t) as a model built at
   // that frequency). With drive.electrical_dynamics = "auto" left in the scene the choice may
@@ -123,6 +114,18 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
     swept = model.network.assemble();
     result.model_seconds += model_stopwatch.seconds();
   }
+  // The exact method's memory is checked on the assembled system (the one the sweep swaps
+  // excitations into; with a model per frequency, the given model's, of the same size).
+  if (exact && !options.reduce)
+    check_periodic_memory(excitation_only ? swept.size() : model.network.assemble().size(),
+                          "--segments");
+  if (!(scene.drive.rise_time < 0.5 / highest))
+    throw InputError(scene.file, "drive.rise_time",
+                     "must be < half the shortest period of the sweep (" +
+                         format_with_unit(0.5 / highest, "s") + " at --to " +
+                         format_with_unit(highest, "Hz") + ")");
+  check_overlap_fits(scene, highest, "--to");
+
   auto system_at = [&](double f) -> const System& {
     if (excitation_only) {
       const Stopwatch excitation_stopwatch;
