@@ -7,9 +7,9 @@
 //
 // State vector y = (w, φ, M, Q) at a cross-section x, beam along +x from x = 0 to x = L:
 //   w  deflection, positive along +z;
-//   φ  rotation of the cross-section, positive when it turns +x towards +z (Euler–Bernoulli: φ =
-//   w'); M  bending moment, M = EI φ' (positive when it makes the beam sag with w'' > 0); Q  = −S
-//   with S = κGA (w' − φ) the transverse shear force; Euler–Bernoulli: Q = M' = EI w'''.
+//   φ  rotation of the cross-section, positive turning +x towards +z (Euler–Bernoulli: φ = w');
+//   M  bending moment, M = EI φ' (positive when it makes the beam sag with w'' > 0);
+//   Q  = −S with S = κGA (w' − φ) the transverse shear force; Euler–Bernoulli: Q = M' = EI w'''.
 // Harmonic motion e^{iωt} turns the equations of motion into y' = A(ω) y with
 //   w' = φ − Q/κGA,   φ' = M/EI,   M' = Q − ρI ω² φ,   Q' = ρA ω² w.
 // κGA = ∞ and ρI = 0 is the Euler–Bernoulli beam; finite κGA with ρI = 0 is the Timoshenko beam
