@@ -79,6 +79,11 @@ const NamedDimension kNamedDimensions[] = {
     {dim::rotary_inertia_per_length, "a rotary inertia per length", "kg*m"},
     {dim::damping_per_length, "a damping per length", "N*s/m^2"},
     {dim::density, "a density", "kg/m^3"},
+    {dim::stiffness, "a stiffness", "N/m"},
+    {dim::damping, "a damping coefficient", "N*s/m"},
+    {dim::rotational_damping, "a rotational damping coefficient", "N*m*s"},
+    {dim::rotary_inertia, "a rotary inertia", "kg*m^2"},
+    {dim::inductance, "an inductance", "H"},
 };
 
 const NamedDimension* find_named_dimension(const Dimension& dimension) {
@@ -111,6 +116,7 @@ const UnitSymbol kUnitSymbols[] = {
     {"J", dim::moment, 0},
     {"Pa", dim::pressure, 0},
     {"rad", dim::none, 0},
+    {"H", dim::inductance, 0},
 };
 
 struct PrefixSymbol {

@@ -3,11 +3,13 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <stdexcept>
 
 #include "emnet/elements/capacitor.hpp"
 #include "emnet/elements/conductance.hpp"
 #include "emnet/elements/inductor.hpp"
 #include "emnet/elements/transformer.hpp"
+#include "emnet/model/mesh.hpp"
 #include "emnet/model/model.hpp"
 
 namespace emnet {
@@ -23,9 +25,15 @@ std::string millimetres(double x) {
 // Segment index and local coordinate ξ ∈ [0, 1] of position x.
 std::pair<int, double> locate(const BeamLayout& beam, double x) {
   const int segments = static_cast<int>(beam.x.size()) - 1;
-  int s = static_cast<int>(std::floor(x / beam.segment_length));
+  int s = 0;
+  if (beam.uniform) {
+    s = static_cast<int>(std::floor(x / beam.segment_length));
+  } else {
+    s = static_cast<int>(std::upper_bound(beam.x.begin(), beam.x.end(), x) - beam.x.begin()) - 1;
+  }
   s = std::clamp(s, 0, segments - 1);
-  double xi = (x - beam.x[static_cast<size_t>(s)]) / beam.segment_length;
+  const double l = beam.segment_lengths[static_cast<size_t>(s)];
+  double xi = (x - beam.x[static_cast<size_t>(s)]) / l;
   // A position on a node within rounding is that node exactly (no 1e-17 coefficients).
   if (std::abs(xi - 1.0) < 1e-9 && s + 1 < segments) ++s, xi = 0.0;
   if (std::abs(xi) < 1e-9) xi = 0.0;
@@ -43,40 +51,170 @@ LinearTerms merge(const std::vector<std::pair<NodeId, double>>& raw) {
   return out;
 }
 
+// Shape-function coefficients of (w_a, ψ_a, w_b, ψ_b) at ξ: the exact solution of a massless
+// segment loaded at its ends. Euler–Bernoulli: the cubic Hermite functions. With shear
+// (Φ = 12·EI/(κGA·l²), μ = 1/(1 + Φ)): the shear-corrected cubics, whose shear strain
+// w' − ψ is constant along the segment, as the constant shear force of a massless segment makes
+// it:
+//   w: μ(2ξ³ − 3ξ² − Φξ + 1 + Φ), μl(ξ³ − (2 + Φ/2)ξ² + (1 + Φ/2)ξ), μ(−2ξ³ + 3ξ² + Φξ),
+//      μl(ξ³ − (1 − Φ/2)ξ² − (Φ/2)ξ);
+//   ψ: 6μ(ξ² − ξ)/l, μ(3ξ² − (4 + Φ)ξ + 1 + Φ), −6μ(ξ² − ξ)/l, μ(3ξ² − (2 − Φ)ξ).
+// Φ = 0 gives the Hermite functions and their derivatives.
+struct Shape {
+  double w_a, psi_a, w_b, psi_b;
+};
+
+enum class ShapeOf { deflection, rotation, curvature };
+
+Shape shape(ShapeOf what, double xi, double l, double phi) {
+  if (phi == 0.0) {
+    switch (what) {
+      case ShapeOf::deflection:
+        return {1 - 3 * xi * xi + 2 * xi * xi * xi, l * (xi - 2 * xi * xi + xi * xi * xi),
+                3 * xi * xi - 2 * xi * xi * xi, l * (-xi * xi + xi * xi * xi)};
+      case ShapeOf::rotation:
+        return {(-6 * xi + 6 * xi * xi) / l, 1 - 4 * xi + 3 * xi * xi, (6 * xi - 6 * xi * xi) / l,
+                -2 * xi + 3 * xi * xi};
+      case ShapeOf::curvature:
+        return {(-6 + 12 * xi) / (l * l), (-4 + 6 * xi) / l, (6 - 12 * xi) / (l * l),
+                (-2 + 6 * xi) / l};
+    }
+  }
+  const double mu = 1.0 / (1.0 + phi), xi2 = xi * xi, xi3 = xi2 * xi;
+  switch (what) {
+    case ShapeOf::deflection:
+      return {mu * (2 * xi3 - 3 * xi2 - phi * xi + 1 + phi),
+              mu * l * (xi3 - (2 + phi / 2) * xi2 + (1 + phi / 2) * xi),
+              mu * (-2 * xi3 + 3 * xi2 + phi * xi),
+              mu * l * (xi3 - (1 - phi / 2) * xi2 - (phi / 2) * xi)};
+    case ShapeOf::rotation:
+      return {6 * mu * (xi2 - xi) / l, mu * (3 * xi2 - (4 + phi) * xi + 1 + phi),
+              -6 * mu * (xi2 - xi) / l, mu * (3 * xi2 - (2 - phi) * xi)};
+    case ShapeOf::curvature:
+      return {6 * mu * (2 * xi - 1) / (l * l), mu * (6 * xi - (4 + phi)) / l,
+              -6 * mu * (2 * xi - 1) / (l * l), mu * (6 * xi - (2 - phi)) / l};
+  }
+  return {0, 0, 0, 0};
+}
+
+LinearTerms shape_terms(const BeamLayout& beam, ShapeOf what, double x) {
+  const auto [s, xi] = locate(beam, x);
+  const size_t a = static_cast<size_t>(s), b = a + 1;
+  const Shape c = shape(what, xi, beam.segment_lengths[a], beam.shear_parameter[a]);
+  return merge({{beam.velocity[a], c.w_a},
+                {beam.angular_velocity[a], c.psi_a},
+                {beam.velocity[b], c.w_b},
+                {beam.angular_velocity[b], c.psi_b}});
+}
+
 }  // namespace
 
 LinearTerms BeamLayout::deflection_terms(double x) const {
-  const auto [s, xi] = locate(*this, x);
-  const double l = segment_length;
-  const size_t a = static_cast<size_t>(s), b = a + 1;
-  return merge({{velocity[a], 1 - 3 * xi * xi + 2 * xi * xi * xi},
-                {angular_velocity[a], l * (xi - 2 * xi * xi + xi * xi * xi)},
-                {velocity[b], 3 * xi * xi - 2 * xi * xi * xi},
-                {angular_velocity[b], l * (-xi * xi + xi * xi * xi)}});
+  return shape_terms(*this, ShapeOf::deflection, x);
 }
 
 LinearTerms BeamLayout::slope_terms(double x) const {
-  const auto [s, xi] = locate(*this, x);
-  const double l = segment_length;
-  const size_t a = static_cast<size_t>(s), b = a + 1;
-  return merge({{velocity[a], (-6 * xi + 6 * xi * xi) / l},
-                {angular_velocity[a], 1 - 4 * xi + 3 * xi * xi},
-                {velocity[b], (6 * xi - 6 * xi * xi) / l},
-                {angular_velocity[b], -2 * xi + 3 * xi * xi}});
+  return shape_terms(*this, ShapeOf::rotation, x);
 }
 
+LinearTerms BeamLayout::curvature_terms(double x) const {
+  return shape_terms(*this, ShapeOf::curvature, x);
+}
+
+int BeamLayout::node_at(double position) const {
+  const double tolerance = 1e-9 * length;
+  const auto above = std::lower_bound(x.begin(), x.end(), position - tolerance);
+  if (above != x.end() && std::abs(*above - position) <= tolerance)
+    return static_cast<int>(above - x.begin());
+  return -1;
+}
+
+namespace {
+
+// Point masses and springs on the beam's nodes (see model.hpp).
+void add_attachments(Network& network, const BeamSpec& spec, const BeamLayout& beam,
+                     ModelStructure* structure) {
+  auto node_of = [&](double position, const std::string& what) {
+    const int node = beam.node_at(position);
+    if (node < 0)
+      throw std::logic_error("add_beam: no node at " + millimetres(position) + " for " + what);
+    return static_cast<size_t>(node);
+  };
+  for (size_t m = 0; m < spec.masses.size(); ++m) {
+    const MassSpec& mass = spec.masses[m];
+    const std::string id = mass.name.empty() ? std::to_string(m) : mass.name;
+    const size_t k = node_of(mass.at, "mass " + id);
+    auto record = [&](ElementPart part, const std::string& what) {
+      return ElementRecord{Component::point_mass,
+                           part,
+                           static_cast<int>(m),
+                           "",
+                           -1,
+                           -1,
+                           what + " of point mass " + id + " at " + millimetres(mass.at)};
+    };
+    if (beam.velocity[k] != ground && mass.mass > 0.0)
+      add_recorded<Capacitor>(network, structure, record(ElementPart::point_mass, "mass [kg]"),
+                              "pm" + std::to_string(m), beam.velocity[k], ground, mass.mass);
+    if (beam.angular_velocity[k] != ground && mass.rotary_inertia > 0.0)
+      add_recorded<Capacitor>(
+          network, structure, record(ElementPart::point_rotary_inertia, "rotary inertia [kg*m^2]"),
+          "pj" + std::to_string(m), beam.angular_velocity[k], ground, mass.rotary_inertia);
+  }
+  for (size_t n = 0; n < spec.springs.size(); ++n) {
+    const SpringSpec& spring = spec.springs[n];
+    const std::string id = spring.name.empty() ? std::to_string(n) : spring.name;
+    const bool rotational = spring.kind == SpringKind::rotational;
+    const std::vector<NodeId>& nodes = rotational ? beam.angular_velocity : beam.velocity;
+    const NodeId a = nodes[node_of(spring.at, "spring " + id)];
+    const NodeId b = spring.to ? nodes[node_of(*spring.to, "spring " + id)] : ground;
+    if (a == b) continue;  // both ends held (or the same node): no force
+    const Domain domain = rotational ? Domain::rotational : Domain::translational;
+    const std::string where = "spring " + id + " (" +
+                              (rotational ? "rotational" : "translational") + ") at " +
+                              millimetres(spring.at);
+    add_recorded<Inductor>(
+        network, structure,
+        {Component::spring, ElementPart::spring_compliance, static_cast<int>(n), "", -1, -1,
+         "compliance 1/k " + std::string(rotational ? "[rad/(N*m)]" : "[m/N]") + " of " + where},
+        "ks" + std::to_string(n), a, b, 1.0 / spring.stiffness, domain);
+    if (spring.damping > 0.0)
+      add_recorded<Conductance>(
+          network, structure,
+          {Component::spring, ElementPart::spring_damper, static_cast<int>(n), "", -1, -1,
+           "dashpot " + std::string(rotational ? "[N*m*s/rad]" : "[N*s/m]") + " of " + where},
+          "cs" + std::to_string(n), a, b, spring.damping);
+  }
+}
+
+}  // namespace
+
 BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& damping,
-                    ModelStructure* structure) {
+                    const std::vector<double>& attachments, ModelStructure* structure) {
   BeamLayout beam;
-  const int n = spec.segments;
-  const double l = spec.length / n;
-  const double ei = spec.bending_stiffness;
+  const BeamMesh mesh = mesh_beam(spec, attachments);
+  const std::vector<SectionSpec> sections = effective_sections(spec);
+  const int n = mesh.segments();
   beam.length = spec.length;
-  beam.segment_length = l;
+  beam.segment_length = spec.length / n;
+  beam.uniform = mesh.uniform;
+  beam.x = mesh.x;
+  beam.raised_from = mesh.raised_from;
+  beam.segment_section = mesh.section;
+  const bool timoshenko = spec.theory == BeamTheory::timoshenko;
+  const double default_tau = damping.effective_kelvin_voigt_time();
+  for (int k = 0; k < n; ++k) {
+    const size_t i = static_cast<size_t>(k);
+    const SectionSpec& section = sections[static_cast<size_t>(mesh.section[i])];
+    const double l = mesh.uniform ? beam.segment_length : mesh.x[i + 1] - mesh.x[i];
+    beam.segment_lengths.push_back(l);
+    const double shear = section.shear_stiffness.value_or(spec.shear_stiffness);
+    beam.shear_parameter.push_back(
+        timoshenko && shear > 0.0 ? 12.0 * section.bending_stiffness / (shear * l * l) : 0.0);
+  }
 
   for (int k = 0; k <= n; ++k) {
-    const double x = spec.length * k / n;
-    beam.x.push_back(x);
+    const double x = beam.x[static_cast<size_t>(k)];
     const bool left = k == 0, right = k == n;
     const EndCondition end = left ? spec.left : spec.right;
     const bool at_end = left || right;
@@ -95,10 +233,19 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
                                    "angular velocity at " + where + " [rad/s]"));
   }
 
-  // Lumped mass, rotary inertia and viscous damping: half a segment's share at each end.
+  // Lumped mass, rotary inertia and viscous damping: half of each adjacent segment's share.
   for (int k = 0; k <= n; ++k) {
-    const double share = (k == 0 || k == n) ? 0.5 * l : l;
     const size_t i = static_cast<size_t>(k);
+    double mass = 0.0, inertia = 0.0, viscous = 0.0;
+    for (const int segment : {k - 1, k}) {
+      if (segment < 0 || segment >= n) continue;
+      const size_t s = static_cast<size_t>(segment);
+      const SectionSpec& section = sections[static_cast<size_t>(mesh.section[s])];
+      const double half = 0.5 * beam.segment_lengths[s];
+      mass += section.mass_per_length * half;
+      inertia += section.rotary_inertia_per_length * half;
+      viscous += section.viscous_per_length.value_or(damping.viscous_per_length) * half;
+    }
     const std::string id = std::to_string(k);
     auto record = [&](ElementPart part, const std::string& what) {
       return ElementRecord{
@@ -106,23 +253,29 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
     };
     if (beam.velocity[i] != ground) {
       add_recorded<Capacitor>(network, structure, record(ElementPart::mass, "mass [kg]"),
-                              "mass" + id, beam.velocity[i], ground, spec.mass_per_length * share);
-      if (damping.viscous_per_length > 0.0)
-        add_recorded<Conductance>(
-            network, structure, record(ElementPart::viscous_damper, "viscous damper [N*s/m]"),
-            "damper" + id, beam.velocity[i], ground, damping.viscous_per_length * share);
+                              "mass" + id, beam.velocity[i], ground, mass);
+      if (viscous > 0.0)
+        add_recorded<Conductance>(network, structure,
+                                  record(ElementPart::viscous_damper, "viscous damper [N*s/m]"),
+                                  "damper" + id, beam.velocity[i], ground, viscous);
     }
-    if (beam.angular_velocity[i] != ground && spec.rotary_inertia_per_length > 0.0)
-      add_recorded<Capacitor>(
-          network, structure, record(ElementPart::rotary_inertia, "rotary inertia [kg*m^2]"),
-          "inertia" + id, beam.angular_velocity[i], ground, spec.rotary_inertia_per_length * share);
+    if (beam.angular_velocity[i] != ground && inertia > 0.0)
+      add_recorded<Capacitor>(network, structure,
+                              record(ElementPart::rotary_inertia, "rotary inertia [kg*m^2]"),
+                              "inertia" + id, beam.angular_velocity[i], ground, inertia);
   }
 
-  const double tau = damping.effective_kelvin_voigt_time();
-  const double rotational_compliance = l / ei;
-  const double translational_compliance = l * l * l / (12.0 * ei);
   for (int k = 0; k < n; ++k) {
     const size_t a = static_cast<size_t>(k), b = a + 1;
+    const SectionSpec& section = sections[static_cast<size_t>(mesh.section[a])];
+    const double l = beam.segment_lengths[a];
+    const double ei = section.bending_stiffness;
+    const double tau = section.kelvin_voigt_time.value_or(default_tau);
+    const double rotational_compliance = l / ei;
+    double translational_compliance = l * l * l / (12.0 * ei);
+    const bool sheared = beam.shear_parameter[a] > 0.0;
+    if (sheared)
+      translational_compliance += l / section.shear_stiffness.value_or(spec.shear_stiffness);
     const std::string id = std::to_string(k);
     const NodeId middle = add_recorded_node(
         network, structure, {NodeRole::segment_middle, k, ""}, "m" + id, Domain::translational,
@@ -139,7 +292,9 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
         Domain::rotational, tau / rotational_compliance);
     add_recorded<Inductor>(
         network, structure,
-        record(ElementPart::translational_compliance, "translational compliance l^3/(12*EI) [m/N]"),
+        record(ElementPart::translational_compliance,
+               sheared ? "translational compliance l^3/(12*EI) + l/(kappa*G*A) [m/N]"
+                       : "translational compliance l^3/(12*EI) [m/N]"),
         "nT" + id, beam.velocity[a], middle, translational_compliance, Domain::translational,
         tau / translational_compliance);
     add_recorded<Transformer>(
@@ -149,6 +304,7 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
                                        {beam.angular_velocity[b], ground, 0.5 * l}},
         Domain::translational);
   }
+  add_attachments(network, spec, beam, structure);
   return beam;
 }
 

@@ -28,19 +28,29 @@
 
 namespace emnet {
 
+double mean_mass_per_length(const BeamSpec& beam) {
+  if (beam.sections.empty()) return beam.mass_per_length;
+  double mass = 0.0;
+  for (const SectionSpec& section : beam.sections) mass += section.mass_per_length * section.length;
+  return mass / beam.length;
+}
+
+void add_distributed_loading(BeamSpec& beam, DampingSpec& damping, double mass_per_length,
+                             double damping_per_length) {
+  beam.mass_per_length += mass_per_length;
+  damping.viscous_per_length += damping_per_length;
+  for (SectionSpec& section : beam.sections) {
+    section.mass_per_length += mass_per_length;
+    if (section.viscous_per_length) *section.viscous_per_length += damping_per_length;
+  }
+}
+
 namespace {
 
 std::string position_text(double x) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "x = %.4g mm", x * 1e3);
   return buffer;
-}
-
-bool same_beam(const BeamSpec& a, const BeamSpec& b) {
-  return a.length == b.length && a.segments == b.segments && a.auto_segments == b.auto_segments &&
-         a.bending_stiffness == b.bending_stiffness && a.mass_per_length == b.mass_per_length &&
-         a.rotary_inertia_per_length == b.rotary_inertia_per_length && a.left == b.left &&
-         a.right == b.right;
 }
 
 bool chosen_automatically(const Scene& scene, const std::string& key) {
@@ -93,25 +103,25 @@ Model::AppliedFluidLoading apply_fluid_loading(const Scene& scene, BeamSpec& bea
             format_number("%.4g", applied.vacuum_frequency) + " Hz)";
   }
   const FluidLoading& loading = applied.loading;
-  notes.push_back(std::string("fluid loading, ") + fluid_name(environment.fluid) +
-                  " (rho = " + format_number("%.5g", environment.density) +
-                  " kg/m^3, eta = " + format_number("%.4g", environment.dynamic_viscosity) +
-                  " Pa*s, plate width " + format_number("%.4g", environment.width * 1e3) +
-                  " mm), Sader 1998: at " + format_number("%.5g", loading.frequency) + " Hz, " +
-                  where + ": Re = " + format_number("%.4g", loading.reynolds) +
-                  ", Gamma = " + format_number("%.5g", loading.hydrodynamic.real()) + " + " +
-                  format_number("%.4g", loading.hydrodynamic.imag()) + "i; added mass " +
-                  format_number("%.4g", loading.added_mass_per_length * 1e3) + " g/m (" +
-                  format_number("%.3g", loading.added_mass_per_length / beam.mass_per_length) +
-                  " x the beam's), damping " + format_number("%.4g", loading.damping_per_length) +
-                  " N*s/m^2 to ground");
+  notes.push_back(
+      std::string("fluid loading, ") + fluid_name(environment.fluid) +
+      " (rho = " + format_number("%.5g", environment.density) +
+      " kg/m^3, eta = " + format_number("%.4g", environment.dynamic_viscosity) +
+      " Pa*s, plate width " + format_number("%.4g", environment.width * 1e3) +
+      " mm), Sader 1998: at " + format_number("%.5g", loading.frequency) + " Hz, " + where +
+      ": Re = " + format_number("%.4g", loading.reynolds) +
+      ", Gamma = " + format_number("%.5g", loading.hydrodynamic.real()) + " + " +
+      format_number("%.4g", loading.hydrodynamic.imag()) + "i; added mass " +
+      format_number("%.4g", loading.added_mass_per_length * 1e3) + " g/m (" +
+      format_number("%.3g", loading.added_mass_per_length / mean_mass_per_length(beam)) +
+      " x the beam's" + (beam.sections.empty() ? "" : " mean") + "), damping " +
+      format_number("%.4g", loading.damping_per_length) + " N*s/m^2 to ground");
   if (loading.reynolds < kSaderCorrectionMinimumReynolds ||
       loading.reynolds > kSaderCorrectionMaximumReynolds)
     notes.push_back("fluid loading: Re = " + format_number("%.3g", loading.reynolds) +
                     " lies outside [1e-6, 1e4], where Sader's rectangular correction is fitted; "
                     "it is extrapolated");
-  beam.mass_per_length += loading.added_mass_per_length;
-  damping.viscous_per_length += loading.damping_per_length;
+  add_distributed_loading(beam, damping, loading.added_mass_per_length, loading.damping_per_length);
   return applied;
 }
 
@@ -182,8 +192,18 @@ Model build_model(const Scene& scene) {
     model.fluid = apply_fluid_loading(scene, beam_spec, damping, model.notes);
   for (const AutomaticChoice& choice : model.automatic_choices)
     model.notes.push_back(choice.reason);
-  model.beam = add_beam(network, beam_spec, damping, structure);
+  model.beam = add_beam(network, beam_spec, damping, scene_attachment_points(scene), structure);
   const BeamLayout& beam = model.beam;
+  if (beam.raised_from > 0)
+    model.notes.push_back(
+        "beam mesh: " + std::to_string(beam.x.size() - 1) +
+        " segments, more than beam.segments = " + std::to_string(beam.raised_from) +
+        ", so that every section boundary, mass, spring, DEA end and load sits "
+        "on a node");
+  else if (!beam.uniform)
+    model.notes.push_back("beam mesh: " + std::to_string(beam.x.size() - 1) +
+                          " segments spread by length between the section boundaries, masses, "
+                          "springs, DEA ends and loads");
 
   // Point loads: consistent nodal loads from the Hermite shape functions, exact at the nodes.
   int load_index = 0;

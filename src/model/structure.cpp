@@ -17,6 +17,10 @@ const char* component_name(Component component) {
       return "DEA";
     case Component::drive_source:
       return "drive source";
+    case Component::point_mass:
+      return "point mass";
+    case Component::spring:
+      return "spring";
   }
   return "?";
 }
@@ -45,6 +49,14 @@ const char* element_part_name(ElementPart part) {
       return "source voltage";
     case ElementPart::ideal_force:
       return "ideal force";
+    case ElementPart::point_mass:
+      return "point mass";
+    case ElementPart::point_rotary_inertia:
+      return "point rotary inertia";
+    case ElementPart::spring_compliance:
+      return "spring compliance";
+    case ElementPart::spring_damper:
+      return "spring damper";
   }
   return "?";
 }

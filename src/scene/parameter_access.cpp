@@ -160,6 +160,14 @@ std::string parameter_unused_reason(const ParameterInfo& info, const Scene& scen
            drive_kind_meaning(kind) + "); it is used by drive kind" +
            (users.size() == 1 ? " " : "s ") + quoted_list(users) + hint;
   }
+  if (info.table == "beam" && !scene.beam.sections.empty() &&
+      (info.name == "bending_stiffness" || info.name == "mass_per_length" ||
+       info.name == "rotary_inertia_per_length"))
+    return "is given per section when the beam has [[section]] entries (section[]." + info.name +
+           ")";
+  if ((info.table == "beam" || info.table == "section") && info.name == "shear_stiffness" &&
+      scene.beam.theory != BeamTheory::timoshenko)
+    return "is only used with beam.theory = \"timoshenko\"";
   if (info.table == "environment" && info.name != "fluid" && scene.environment.fluid == Fluid::none)
     return "is only used with environment.fluid = \"air\" or \"water\"";
   if (info.table == "probe" && entry < scene.probes.size()) {
@@ -188,6 +196,11 @@ Dimension parameter_dimension(const ParameterInfo& info, const Scene& scene, std
   if (info.table == "load" && info.name == "value" && entry < scene.loads.size() &&
       scene.loads[entry].kind == LoadKind::moment)
     return dim::moment;
+  if (info.table == "spring" && entry < scene.beam.springs.size() &&
+      scene.beam.springs[entry].kind == SpringKind::rotational) {
+    if (info.name == "stiffness") return dim::moment;  // N*m/rad
+    if (info.name == "damping") return dim::rotational_damping;
+  }
   return info.dimension;
 }
 
@@ -206,6 +219,14 @@ std::vector<std::optional<std::string>> entry_names(const Scene& scene, const st
   if (table == "probe")
     for (const ProbeSpec& probe : scene.probes) names.emplace_back(probe.name);
   if (table == "load") names.resize(scene.loads.size());
+  if (table == "section") names.resize(scene.beam.sections.size());
+  if (table == "mass")
+    for (const MassSpec& mass : scene.beam.masses)
+      names.emplace_back(mass.name.empty() ? std::nullopt : std::optional<std::string>(mass.name));
+  if (table == "spring")
+    for (const SpringSpec& spring : scene.beam.springs)
+      names.emplace_back(spring.name.empty() ? std::nullopt
+                                             : std::optional<std::string>(spring.name));
   return names;
 }
 
@@ -241,6 +262,11 @@ void snap_positions_to_the_beam(Scene& scene) {
   }
   for (LoadSpec& load : scene.loads) snap(load.at);
   for (ProbeSpec& probe : scene.probes) snap(probe.at);
+  for (MassSpec& mass : scene.beam.masses) snap(mass.at);
+  for (SpringSpec& spring : scene.beam.springs) {
+    snap(spring.at);
+    if (spring.to) snap(*spring.to);
+  }
 }
 
 }  // namespace

@@ -77,8 +77,43 @@ bool beam_quantity(ProbeQuantity quantity) {
 
 }  // namespace
 
+std::string sections_length_violation(const BeamSpec& beam) {
+  if (beam.sections.empty()) return "";
+  double total = 0.0;
+  for (const SectionSpec& section : beam.sections) total += section.length;
+  if (std::abs(total - beam.length) <= kBeamEndTolerance * beam.length) return "";
+  return "the " + std::to_string(beam.sections.size()) + " [[section]] lengths add up to " +
+         format_quantity(total, dim::length) +
+         ", not beam.length = " + format_quantity(beam.length, dim::length);
+}
+
+std::string spring_ends_violation(const SpringSpec& spring, double beam_length) {
+  if (!spring.to) return "";
+  if (std::abs(*spring.to - spring.at) <= kBeamEndTolerance * beam_length)
+    return "is the spring's own position at = " + format_quantity(spring.at, dim::length) +
+           " (a spring to ground leaves spring[].to out)";
+  return "";
+}
+
 std::optional<KeyMessage> scene_relation_violation(const Scene& scene) {
   const double length = scene.beam.length;
+  if (std::string why = sections_length_violation(scene.beam); !why.empty())
+    return KeyMessage{"beam.length", why};
+  for (std::size_t k = 0; k < scene.beam.masses.size(); ++k)
+    if (std::string why = beam_position_violation(scene.beam.masses[k].at, length); !why.empty())
+      return KeyMessage{entry_prefix("mass", scene.beam.masses[k].name, k) + ".at", why};
+  for (std::size_t k = 0; k < scene.beam.springs.size(); ++k) {
+    const SpringSpec& spring = scene.beam.springs[k];
+    const std::string prefix = entry_prefix("spring", spring.name, k);
+    if (std::string why = beam_position_violation(spring.at, length); !why.empty())
+      return KeyMessage{prefix + ".at", why};
+    if (spring.to) {
+      if (std::string why = beam_position_violation(*spring.to, length); !why.empty())
+        return KeyMessage{prefix + ".to", why};
+      if (std::string why = spring_ends_violation(spring, length); !why.empty())
+        return KeyMessage{prefix + ".to", why};
+    }
+  }
   for (std::size_t k = 0; k < scene.deas.size(); ++k) {
     const DeaSpec& dea = scene.deas[k];
     if (auto violation = dea_span_violation(dea.name, dea.from, dea.to, length))

@@ -29,6 +29,10 @@ std::string beam_position_violation(double position, double beam_length);
 // A DEA's span [from, to] off the beam or empty: the key it is reported on ("from" or "to").
 std::optional<KeyMessage> dea_span_violation(const std::string& dea_name, double from, double to,
                                              double beam_length);
+// "" when the beam has no sections or their lengths add up to beam.length (to kBeamEndTolerance).
+std::string sections_length_violation(const BeamSpec& beam);
+// "" for a spring to ground or to another point; the message for spring[].to at its own `at`.
+std::string spring_ends_violation(const SpringSpec& spring, double beam_length);
 // drive.rise_time at least half a period of drive.frequency; "" otherwise.
 std::string rise_time_violation(double rise_time, double frequency);
 // drive.overlap that makes DEA A's on-time leave the period (with the rise time at both

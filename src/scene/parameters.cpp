@@ -81,6 +81,18 @@ void entry_field(ParameterInfo& info, std::vector<Spec> Scene::*entries, double 
   };
 }
 
+// A field of the beam's [[section]], [[mass]] or [[spring]] entries (held in BeamSpec).
+template <typename Spec, typename Field>
+void beam_entry_field(ParameterInfo& info, std::vector<Spec> BeamSpec::*entries,
+                      Field Spec::*member) {
+  info.get = [entries, member](const Scene& scene, std::size_t entry) -> std::optional<double> {
+    return (scene.beam.*entries)[entry].*member;
+  };
+  info.set = [entries, member](Scene& scene, std::size_t entry, double value) {
+    (scene.beam.*entries)[entry].*member = value;
+  };
+}
+
 std::string bool_text(bool value) {
   return value ? "true" : "false";
 }
@@ -92,7 +104,7 @@ ParameterInfo key(const char* table, const char* name, ParameterKind kind, const
   ParameterInfo info;
   info.table = table;
   info.name = name;
-  for (const char* entries_table : {"dea", "load", "probe"})
+  for (const char* entries_table : {"section", "mass", "spring", "dea", "load", "probe"})
     if (info.table == entries_table) info.in_entries = true;
   info.kind = kind;
   info.used_by = used_by;
@@ -199,6 +211,138 @@ std::vector<ParameterInfo> scene_keys() {
       [](const Scene& scene, std::size_t) {
         return std::string(end_condition_name(scene.beam.right));
       };
+
+  add(choice("beam", "theory", {"euler_bernoulli", "timoshenko"}, false, "beam",
+             "what a segment realises: bending only, or bending and shear (the shear compliance "
+             "l/(kappa*G*A) of each segment)"))
+      .text = [](const Scene& scene, std::size_t) {
+    return std::string(beam_theory_name(scene.beam.theory));
+  };
+  plain_field(add(quantity("beam", "shear_stiffness", dim::force, positive(), false,
+                           "beam theory 'timoshenko'",
+                           "kappa*G*A, the shear stiffness (shear correction factor times shear "
+                           "modulus times cross-section)")),
+              &Scene::beam, &BeamSpec::shear_stiffness);
+  keys.back().sensitivity = true;
+  keys.back().constraint = "with beam.theory = \"timoshenko\"";
+  keys.back().default_note =
+      "required with beam.theory = \"timoshenko\" (unless every section "
+      "gives its own)";
+
+  // [[section]]
+  const char* section_users = "beam sections";
+  beam_entry_field(add(quantity("section", "length", dim::length, positive(), true, section_users,
+                                "the section's length; the sections follow each other from x = 0 "
+                                "and add up to beam.length")),
+                   &BeamSpec::sections, &SectionSpec::length);
+  keys.back().constraint = "the lengths add up to beam.length";
+  beam_entry_field(add(quantity("section", "bending_stiffness", dim::bending_stiffness, positive(),
+                                true, section_users, "EI of the section")),
+                   &BeamSpec::sections, &SectionSpec::bending_stiffness);
+  keys.back().sensitivity = true;
+  beam_entry_field(add(quantity("section", "mass_per_length", dim::mass_per_length, positive(),
+                                true, section_users, "rho*A of the section")),
+                   &BeamSpec::sections, &SectionSpec::mass_per_length);
+  keys.back().sensitivity = true;
+  beam_entry_field(
+      add(quantity("section", "rotary_inertia_per_length", dim::rotary_inertia_per_length,
+                   non_negative(), false, section_users, "rho*I of the section")),
+      &BeamSpec::sections, &SectionSpec::rotary_inertia_per_length);
+  keys.back().sensitivity = true;
+  beam_entry_field(add(quantity("section", "shear_stiffness", dim::force, positive(), false,
+                                section_users, "kappa*G*A of the section (Timoshenko)")),
+                   &BeamSpec::sections, &SectionSpec::shear_stiffness);
+  keys.back().sensitivity = true;
+  keys.back().constraint = "with beam.theory = \"timoshenko\"";
+  keys.back().default_note = "unset: beam.shear_stiffness";
+  beam_entry_field(
+      add(quantity("section", "viscous_per_length", dim::damping_per_length, non_negative(), false,
+                   section_users, "the section's viscous damping to ground per length")),
+      &BeamSpec::sections, &SectionSpec::viscous_per_length);
+  keys.back().sensitivity = true;
+  keys.back().default_note = "unset: damping.viscous_per_length";
+  beam_entry_field(add(quantity("section", "kelvin_voigt_time", dim::time, non_negative(), false,
+                                section_users, "the section's Kelvin-Voigt time tau")),
+                   &BeamSpec::sections, &SectionSpec::kelvin_voigt_time);
+  keys.back().sensitivity = true;
+  keys.back().default_note = "unset: the [damping] table's tau";
+  {
+    ParameterInfo& segments =
+        add(key("section", "segments", K::integer, section_users,
+                "the section's own number of segments; unset or \"auto\": its share of "
+                "beam.segments by length"));
+    segments.range = {Limit::inclusive,       1.0,
+                      Limit::inclusive,       100000.0,
+                      "must be >= 1, got {}", "{} segments is absurdly large (at most 100000)"};
+    segments.constraint = "or \"auto\"";
+    segments.default_note = "auto (a share of beam.segments by length)";
+    segments.get = [](const Scene& scene, std::size_t entry) -> std::optional<double> {
+      const int count = scene.beam.sections[entry].segments;
+      if (count == 0) return std::nullopt;
+      return static_cast<double>(count);
+    };
+    segments.set = [](Scene& scene, std::size_t entry, double value) {
+      scene.beam.sections[entry].segments = static_cast<int>(value);
+    };
+    segments.text = [](const Scene& scene, std::size_t entry) {
+      const int count = scene.beam.sections[entry].segments;
+      return count == 0 ? std::string("auto") : std::to_string(count);
+    };
+  }
+
+  // [[mass]]
+  add(key("mass", "name", K::name, "point masses", "the mass's name (optional; outputs name it)"));
+  keys.back().constraint = "letters, digits and '_', at most 64 characters, unique";
+  keys.back().default_note = "none (addressed by index: mass[0])";
+  keys.back().text = [](const Scene& scene, std::size_t entry) {
+    return scene.beam.masses[entry].name;
+  };
+  beam_entry_field(add(quantity("mass", "at", dim::length, unbounded(), true, "point masses",
+                                "where the mass sits along the beam (a node is put there)")),
+                   &BeamSpec::masses, &MassSpec::at);
+  keys.back().constraint = "on the beam: 0 <= at <= beam.length";
+  beam_entry_field(add(quantity("mass", "mass", dim::mass, non_negative(), true, "point masses",
+                                "the point mass (a sensor, a clamp's moving part)")),
+                   &BeamSpec::masses, &MassSpec::mass);
+  keys.back().sensitivity = true;
+  beam_entry_field(
+      add(quantity("mass", "rotary_inertia", dim::rotary_inertia, non_negative(), false,
+                   "point masses", "its rotary inertia about the beam's axis of bending")),
+      &BeamSpec::masses, &MassSpec::rotary_inertia);
+  keys.back().sensitivity = true;
+
+  // [[spring]]
+  add(key("spring", "name", K::name, "springs", "the spring's name (optional; outputs name it)"));
+  keys.back().constraint = "letters, digits and '_', at most 64 characters, unique";
+  keys.back().default_note = "none (addressed by index: spring[0])";
+  keys.back().text = [](const Scene& scene, std::size_t entry) {
+    return scene.beam.springs[entry].name;
+  };
+  beam_entry_field(add(quantity("spring", "at", dim::length, unbounded(), true, "springs",
+                                "where the spring holds the beam (a node is put there)")),
+                   &BeamSpec::springs, &SpringSpec::at);
+  keys.back().constraint = "on the beam: 0 <= at <= beam.length";
+  add(choice("spring", "kind", {"translational", "rotational"}, true, "springs",
+             "a force k*(w(at) - w(to)) or a moment k*(phi(at) - phi(to))"))
+      .text = [](const Scene& scene, std::size_t entry) {
+    return std::string(scene.beam.springs[entry].kind == SpringKind::rotational ? "rotational"
+                                                                                : "translational");
+  };
+  beam_entry_field(add(quantity("spring", "stiffness", dim::stiffness, positive(), true, "springs",
+                                "k: N/m (translational) or N*m/rad (rotational)")),
+                   &BeamSpec::springs, &SpringSpec::stiffness);
+  keys.back().sensitivity = true;
+  keys.back().unit_note = "N/m (translational), N*m/rad (rotational)";
+  beam_entry_field(add(quantity("spring", "damping", dim::damping, non_negative(), false, "springs",
+                                "the dashpot in parallel with the spring")),
+                   &BeamSpec::springs, &SpringSpec::damping);
+  keys.back().sensitivity = true;
+  keys.back().unit_note = "N*s/m (translational), N*m*s/rad (rotational)";
+  beam_entry_field(add(quantity("spring", "to", dim::length, unbounded(), false, "springs",
+                                "the spring's other end on the beam; unset: ground")),
+                   &BeamSpec::springs, &SpringSpec::to);
+  keys.back().constraint = "on the beam: 0 <= to <= beam.length, not at";
+  keys.back().default_note = "unset (to ground)";
 
   // [damping]
   plain_field(add(quantity("damping", "viscous_per_length", dim::damping_per_length, non_negative(),
@@ -495,6 +639,24 @@ std::vector<SceneTableInfo> tables_of(const std::vector<ParameterInfo>& keys) {
   std::vector<SceneTableInfo> tables = {
       {"scene", false, false, 0, {}, "the scene's name and title (required)"},
       {"beam", false, false, 0, {}, "the beam (required)"},
+      {"section",
+       true,
+       false,
+       scene_limits::sections,
+       {},
+       "beam sections from x = 0, one [[section]] entry each (none: a uniform beam)"},
+      {"mass",
+       true,
+       false,
+       scene_limits::masses,
+       {},
+       "point masses on the beam, one [[mass]] each"},
+      {"spring",
+       true,
+       false,
+       scene_limits::springs,
+       {},
+       "springs and dashpots to ground or between two points, one [[spring]] each"},
       {"damping", false, false, 0, {}, "the beam's damping"},
       {"dea", true, false, scene_limits::deas, {}, "the DEAs, one [[dea]] entry each"},
       {"drive", false, false, 0, {}, "what drives the DEAs"},

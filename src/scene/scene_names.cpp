@@ -17,6 +17,58 @@ const char* end_condition_name(EndCondition end) {
   return "?";
 }
 
+const char* beam_theory_name(BeamTheory theory) {
+  return theory == BeamTheory::timoshenko ? "timoshenko" : "euler_bernoulli";
+}
+
+std::vector<SectionSpec> effective_sections(const BeamSpec& beam) {
+  if (!beam.sections.empty()) return beam.sections;
+  SectionSpec uniform;
+  uniform.length = beam.length;
+  uniform.bending_stiffness = beam.bending_stiffness;
+  uniform.mass_per_length = beam.mass_per_length;
+  uniform.rotary_inertia_per_length = beam.rotary_inertia_per_length;
+  return {uniform};
+}
+
+namespace {
+
+bool same_section(const SectionSpec& a, const SectionSpec& b) {
+  return a.length == b.length && a.bending_stiffness == b.bending_stiffness &&
+         a.mass_per_length == b.mass_per_length &&
+         a.rotary_inertia_per_length == b.rotary_inertia_per_length &&
+         a.shear_stiffness == b.shear_stiffness && a.viscous_per_length == b.viscous_per_length &&
+         a.kelvin_voigt_time == b.kelvin_voigt_time && a.segments == b.segments;
+}
+
+bool same_mass(const MassSpec& a, const MassSpec& b) {
+  return a.at == b.at && a.mass == b.mass && a.rotary_inertia == b.rotary_inertia;
+}
+
+bool same_spring(const SpringSpec& a, const SpringSpec& b) {
+  return a.at == b.at && a.kind == b.kind && a.stiffness == b.stiffness && a.damping == b.damping &&
+         a.to == b.to;
+}
+
+template <typename Item, typename Same>
+bool same_lists(const std::vector<Item>& a, const std::vector<Item>& b, Same same) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (!same(a[k], b[k])) return false;
+  return true;
+}
+
+}  // namespace
+
+bool same_beam(const BeamSpec& a, const BeamSpec& b) {
+  return a.length == b.length && a.segments == b.segments && a.auto_segments == b.auto_segments &&
+         a.bending_stiffness == b.bending_stiffness && a.mass_per_length == b.mass_per_length &&
+         a.rotary_inertia_per_length == b.rotary_inertia_per_length && a.left == b.left &&
+         a.right == b.right && a.theory == b.theory && a.shear_stiffness == b.shear_stiffness &&
+         same_lists(a.sections, b.sections, same_section) &&
+         same_lists(a.masses, b.masses, same_mass) && same_lists(a.springs, b.springs, same_spring);
+}
+
 const char* fluid_name(Fluid fluid) {
   switch (fluid) {
     case Fluid::none:

@@ -64,7 +64,10 @@ class SceneReader {
 
   void check_top_level(const toml::table& root) const;
   void read_scene_table(const toml::table& root, Scene& scene) const;
-  void read_beam(const toml::table& root, BeamSpec& beam) const;
+  void read_beam(const toml::table& root, Scene& scene) const;
+  void read_sections(const toml::table& root, Scene& scene) const;
+  void read_masses(const toml::table& root, Scene& scene) const;
+  void read_springs(const toml::table& root, Scene& scene) const;
   void read_damping(const toml::table& root, Scene& scene) const;
   void read_deas(const toml::table& root, Scene& scene) const;
   void read_drive(const toml::table& root, Scene& scene) const;
@@ -151,9 +154,11 @@ void SceneReader::read_scene_table(const toml::table& root, Scene& scene) const 
   section_reader.optional_string("description");
 }
 
-void SceneReader::read_beam(const toml::table& root, BeamSpec& beam) const {
+void SceneReader::read_beam(const toml::table& root, Scene& scene) const {
+  BeamSpec& beam = scene.beam;
   const Section reader = section(root, "beam");
   auto key = [](const char* name) -> const ParameterInfo& { return parameter_info("beam", name); };
+  const bool sections = root.contains("section");
   beam.length = reader.quantity(key("length"));
   beam.auto_segments = false;
   if (const toml::node* node = reader.find("segments"); node != nullptr && node->is_string()) {
@@ -164,16 +169,155 @@ void SceneReader::read_beam(const toml::table& root, BeamSpec& beam) const {
     beam.segments = 0;  // chosen by the resolve step (emnet/studies/segment_selection.hpp)
   } else {
     const std::optional<long long> segments = reader.optional_integer(key("segments"));
-    if (!segments) reader.fail_missing("segments");
-    beam.segments = static_cast<int>(*segments);
+    // With sections that each give their own count, beam.segments is their sum (read_sections).
+    if (!segments && !sections) reader.fail_missing("segments");
+    beam.segments = static_cast<int>(segments.value_or(0));
   }
-  beam.bending_stiffness = reader.quantity(key("bending_stiffness"));
-  beam.mass_per_length = reader.quantity(key("mass_per_length"));
-  beam.rotary_inertia_per_length = reader.quantity(key("rotary_inertia_per_length"));
+  if (sections) {
+    // The bending stiffness and mass per length are per section: the beam's are refused.
+    beam.sections.emplace_back();  // so that parameter_unused_reason sees a sectioned beam
+    for (const char* name : {"bending_stiffness", "mass_per_length", "rotary_inertia_per_length"})
+      reader.reject_if_unused(key(name), scene, 0);
+    beam.sections.clear();
+  } else {
+    beam.bending_stiffness = reader.quantity(key("bending_stiffness"));
+    beam.mass_per_length = reader.quantity(key("mass_per_length"));
+    beam.rotary_inertia_per_length = reader.quantity(key("rotary_inertia_per_length"));
+  }
   const std::vector<EndCondition> ends = {EndCondition::clamped, EndCondition::free,
                                           EndCondition::pinned, EndCondition::sliding};
   beam.left = reader.optional_choice(key("left"), ends).value_or(BeamSpec{}.left);
   beam.right = reader.optional_choice(key("right"), ends).value_or(BeamSpec{}.right);
+  beam.theory =
+      reader
+          .optional_choice(key("theory"), std::vector<BeamTheory>{BeamTheory::euler_bernoulli,
+                                                                  BeamTheory::timoshenko})
+          .value_or(BeamSpec{}.theory);
+  reader.reject_if_unused(key("shear_stiffness"), scene, 0);
+  beam.shear_stiffness = reader.optional_quantity(key("shear_stiffness")).value_or(0.0);
+}
+
+// [[section]]: in order from x = 0, adding up to beam.length; under Timoshenko theory each needs
+// a shear stiffness, its own or the beam's.
+void SceneReader::read_sections(const toml::table& root, Scene& scene) const {
+  const SceneTableInfo& table = *find_scene_table("section");
+  auto key = [](const char* name) -> const ParameterInfo& {
+    return parameter_info("section", name);
+  };
+  BeamSpec& beam = scene.beam;
+  const std::vector<Entry> list = entries(root, table);
+  if (root.contains("section") && list.empty())
+    locator_.fail(root.get("section"), "section", "has no entries: give at least one [[section]]");
+  int fixed_segments = 0;
+  bool every_section_fixed = true;
+  for (const Entry& entry : list) {
+    const Section reader(locator_, entry.table, entry.prefix);
+    reader.reject_unknown_keys(table.keys);
+    beam.sections.emplace_back();
+    const std::size_t index = beam.sections.size() - 1;
+    SectionSpec& section = beam.sections.back();
+    section.length = reader.quantity(key("length"));
+    section.bending_stiffness = reader.quantity(key("bending_stiffness"));
+    section.mass_per_length = reader.quantity(key("mass_per_length"));
+    section.rotary_inertia_per_length = reader.quantity(key("rotary_inertia_per_length"));
+    reader.reject_if_unused(key("shear_stiffness"), scene, index);
+    section.shear_stiffness = reader.optional_quantity(key("shear_stiffness"));
+    if (beam.theory == BeamTheory::timoshenko && !section.shear_stiffness &&
+        !(beam.shear_stiffness > 0.0))
+      reader.fail("shear_stiffness",
+                  "missing: beam.theory = \"timoshenko\" needs a shear stiffness kappa*G*A for "
+                  "every section (give it here or as beam.shear_stiffness)");
+    section.viscous_per_length = reader.optional_quantity(key("viscous_per_length"));
+    section.kelvin_voigt_time = reader.optional_quantity(key("kelvin_voigt_time"));
+    section.segments = 0;
+    if (const toml::node* node = reader.find("segments"); node != nullptr && node->is_string()) {
+      if (node->as_string()->get() != "auto")
+        reader.fail("segments",
+                    "must be an integer >= 1 or \"auto\", got '" + node->as_string()->get() + "'");
+    } else if (const std::optional<long long> count = reader.optional_integer(key("segments"))) {
+      section.segments = static_cast<int>(*count);
+    }
+    if (section.segments > 0) {
+      fixed_segments += section.segments;
+      if (beam.auto_segments) {
+        const Section owner = this->section(root, "beam");
+        owner.fail("segments", "\"auto\" chooses every segment count, but section[" +
+                                   std::to_string(index) +
+                                   "].segments gives its own: give beam.segments as an "
+                                   "integer, or leave the sections' counts out");
+      }
+    } else {
+      every_section_fixed = false;
+    }
+  }
+  if (list.empty()) {
+    if (beam.theory == BeamTheory::timoshenko && !(beam.shear_stiffness > 0.0)) {
+      const Section owner = section(root, "beam");
+      owner.fail("shear_stiffness",
+                 "missing: beam.theory = \"timoshenko\" needs the shear stiffness kappa*G*A");
+    }
+    return;
+  }
+  const Section owner = section(root, "beam");
+  if (!beam.auto_segments && beam.segments == 0) {
+    if (!every_section_fixed) owner.fail_missing("segments");
+    beam.segments = fixed_segments;
+  }
+  if (const std::string why = sections_length_violation(beam); !why.empty())
+    owner.fail("length", why);
+}
+
+// [[mass]] and [[spring]]: attachments at positions on the beam, names unique when given.
+void SceneReader::read_masses(const toml::table& root, Scene& scene) const {
+  const SceneTableInfo& table = *find_scene_table("mass");
+  auto key = [](const char* name) -> const ParameterInfo& { return parameter_info("mass", name); };
+  std::set<std::string> names;
+  for (const Entry& entry : entries(root, table)) {
+    const Section reader(locator_, entry.table, entry.prefix);
+    reader.reject_unknown_keys(table.keys);
+    MassSpec mass;
+    if (reader.has("name")) {
+      mass.name = reader.identifier("name");
+      if (!names.insert(mass.name).second)
+        reader.fail("name", "duplicate mass name '" + mass.name + "'");
+    }
+    mass.at = reader.position_on_beam(key("at"), scene.beam.length);
+    mass.mass = reader.quantity(key("mass"));
+    mass.rotary_inertia = reader.quantity(key("rotary_inertia"));
+    scene.beam.masses.push_back(mass);
+  }
+}
+
+void SceneReader::read_springs(const toml::table& root, Scene& scene) const {
+  const SceneTableInfo& table = *find_scene_table("spring");
+  auto key = [](const char* name) -> const ParameterInfo& {
+    return parameter_info("spring", name);
+  };
+  std::set<std::string> names;
+  for (const Entry& entry : entries(root, table)) {
+    const Section reader(locator_, entry.table, entry.prefix);
+    reader.reject_unknown_keys(table.keys);
+    scene.beam.springs.emplace_back();
+    const std::size_t index = scene.beam.springs.size() - 1;
+    SpringSpec& spring = scene.beam.springs.back();
+    if (reader.has("name")) {
+      spring.name = reader.identifier("name");
+      if (!names.insert(spring.name).second)
+        reader.fail("name", "duplicate spring name '" + spring.name + "'");
+    }
+    spring.at = reader.position_on_beam(key("at"), scene.beam.length);
+    spring.kind = reader.choice(
+        key("kind"), std::vector<SpringKind>{SpringKind::translational, SpringKind::rotational});
+    const ParameterInfo& stiffness = key("stiffness");
+    spring.stiffness = reader.quantity(stiffness, parameter_dimension(stiffness, scene, index));
+    const ParameterInfo& damping = key("damping");
+    spring.damping = reader.quantity(damping, parameter_dimension(damping, scene, index));
+    if (reader.has("to")) {
+      spring.to = reader.position_on_beam(key("to"), scene.beam.length);
+      if (const std::string why = spring_ends_violation(spring, scene.beam.length); !why.empty())
+        reader.fail("to", why);
+    }
+  }
 }
 
 void SceneReader::read_damping(const toml::table& root, Scene& scene) const {
@@ -521,7 +665,10 @@ Scene SceneReader::read(const toml::table& root) const {
   scene.file = locator_.display_name();
   check_top_level(root);
   read_scene_table(root, scene);
-  read_beam(root, scene.beam);
+  read_beam(root, scene);
+  read_sections(root, scene);
+  read_masses(root, scene);
+  read_springs(root, scene);
   read_damping(root, scene);
   read_deas(root, scene);
   read_drive(root, scene);

@@ -21,9 +21,8 @@ std::vector<Group> DeckWriter::groups() const {
     list.push_back({key, {}, {}});
     return list.back();
   };
-  const double l = model_.beam.segment_length;
-  const double ei = scene_.beam.bending_stiffness;
-  const double tau = scene_.damping.effective_kelvin_voigt_time();
+  const std::vector<SectionSpec> sections = effective_sections(scene_.beam);
+  const double default_tau = scene_.damping.effective_kelvin_voigt_time();
   const auto& elements = network_.elements();
   for (size_t e = 0; e < elements.size(); ++e) {
     const ElementRecord* record = model_.structure.element(e);
@@ -33,15 +32,30 @@ std::vector<Group> DeckWriter::groups() const {
       const size_t k = static_cast<size_t>(record->index);
       const std::string id = std::to_string(record->index);
       key = "segment " + id;
-      if (k + 1 < model_.beam.x.size())
-        title = {"segment " + id + ": x = " + millimetres(model_.beam.x[k]) + " .. " +
-                     millimetres(model_.beam.x[k + 1]) + ", l = " + number(l) +
-                     " m, EI = " + number(ei) + " N*m^2",
-                 "  nR: rotational compliance n_R = l/EI [rad/(N*m)] between the rotation "
-                 "nodes; nT: translational compliance n_T = l^3/(12*EI) [m/N]",
-                 "  lever: ideal transformer, v_right - m = (l/2)*(Omega_left + Omega_right); "
-                 "its force F returns as torques (l/2)*F into both rotation nodes"};
-      if (tau > 0.0 && k + 1 < model_.beam.x.size())
+      const BeamLayout& beam = model_.beam;
+      const bool known = k < beam.segment_lengths.size() && k < beam.segment_section.size();
+      const SectionSpec* section =
+          known ? &sections[static_cast<size_t>(beam.segment_section[k])] : nullptr;
+      const double l = known ? beam.segment_lengths[k] : 0.0;
+      const double ei = section ? section->bending_stiffness : 0.0;
+      const double tau = section ? section->kelvin_voigt_time.value_or(default_tau) : default_tau;
+      const bool sheared = known && beam.shear_parameter[k] > 0.0;
+      if (known && k + 1 < model_.beam.x.size())
+        title = {
+            "segment " + id + ": x = " + millimetres(model_.beam.x[k]) + " .. " +
+                millimetres(model_.beam.x[k + 1]) + ", l = " + number(l) +
+                " m, EI = " + number(ei) + " N*m^2",
+            std::string("  nR: rotational compliance n_R = l/EI [rad/(N*m)] between the "
+                        "rotation nodes; nT: translational compliance n_T = l^3/(12*EI)") +
+                (sheared
+                     ? " + l/(kappa*G*A), kappa*G*A = " +
+                           number(section->shear_stiffness.value_or(scene_.beam.shear_stiffness)) +
+                           " N (Timoshenko)"
+                     : std::string()) +
+                " [m/N]",
+            "  lever: ideal transformer, v_right - m = (l/2)*(Omega_left + Omega_right); "
+            "its force F returns as torques (l/2)*F into both rotation nodes"};
+      if (known && tau > 0.0 && k + 1 < model_.beam.x.size())
         title.push_back(
             "  Kelvin-Voigt damping: a resistor n/tau (a damper tau/n) across each "
             "compliance, tau = " +
@@ -63,6 +77,29 @@ std::vector<Group> DeckWriter::groups() const {
                                                : "moment " + number(load.value) + " N*m") +
                  " at x = " + millimetres(load.at) +
                  ", as consistent nodal loads from the Hermite shape functions"};
+      }
+    } else if (record && record->component == Component::point_mass) {
+      const size_t k = static_cast<size_t>(record->index);
+      key = "mass " + std::to_string(record->index);
+      if (k < scene_.beam.masses.size()) {
+        const MassSpec& mass = scene_.beam.masses[k];
+        title = {"point mass " + (mass.name.empty() ? std::to_string(k) : mass.name) + ": " +
+                 number(mass.mass) + " kg, rotary inertia " + number(mass.rotary_inertia) +
+                 " kg*m^2 at x = " + millimetres(mass.at) + ", capacitors to ground"};
+      }
+    } else if (record && record->component == Component::spring) {
+      const size_t k = static_cast<size_t>(record->index);
+      key = "spring " + std::to_string(record->index);
+      if (k < scene_.beam.springs.size()) {
+        const SpringSpec& spring = scene_.beam.springs[k];
+        const bool rotational = spring.kind == SpringKind::rotational;
+        title = {std::string(rotational ? "rotational" : "translational") + " spring " +
+                 (spring.name.empty() ? std::to_string(k) : spring.name) +
+                 ": k = " + number(spring.stiffness) + (rotational ? " N*m/rad" : " N/m") +
+                 ", damping " + number(spring.damping) + (rotational ? " N*m*s/rad" : " N*s/m") +
+                 ", x = " + millimetres(spring.at) + " to " +
+                 (spring.to ? "x = " + millimetres(*spring.to) : std::string("ground")) +
+                 "; an inductor 1/k with a resistor 1/damping across it"};
       }
     } else if (record && (record->component == Component::dea ||
                           record->component == Component::drive_source)) {

@@ -140,11 +140,26 @@ void DeckWriter::write_header(std::ostringstream& out) const {
           "(through); clamp = node 0");
   out << "*\n";
   const BeamSpec& beam = scene_.beam;
-  comment(out, "beam: " + std::to_string(beam.segments) + " segments, L = " + number(beam.length) +
-                   " m, EI = " + number(beam.bending_stiffness) +
-                   " N*m^2, rhoA = " + number(beam.mass_per_length) +
-                   " kg/m, rhoI = " + number(beam.rotary_inertia_per_length) + " kg*m, left " +
-                   end_condition_name(beam.left) + ", right " + end_condition_name(beam.right));
+  if (beam.sections.empty()) {
+    comment(out, "beam: " + std::to_string(beam.segments) + " segments, L = " +
+                     number(beam.length) + " m, EI = " + number(beam.bending_stiffness) +
+                     " N*m^2, rhoA = " + number(beam.mass_per_length) +
+                     " kg/m, rhoI = " + number(beam.rotary_inertia_per_length) + " kg*m, left " +
+                     end_condition_name(beam.left) + ", right " + end_condition_name(beam.right) +
+                     (beam.theory == BeamTheory::timoshenko ? ", timoshenko" : ""));
+  } else {
+    comment(out, "beam: " + std::to_string(model_.beam.x.size() - 1) + " segments, L = " +
+                     number(beam.length) + " m in " + std::to_string(beam.sections.size()) +
+                     " sections, left " + end_condition_name(beam.left) + ", right " +
+                     end_condition_name(beam.right) + ", " + beam_theory_name(beam.theory));
+    for (size_t s = 0; s < beam.sections.size(); ++s) {
+      const SectionSpec& section = beam.sections[s];
+      comment(out, "  section " + std::to_string(s) + ": l = " + number(section.length) +
+                       " m, EI = " + number(section.bending_stiffness) +
+                       " N*m^2, rhoA = " + number(section.mass_per_length) +
+                       " kg/m, rhoI = " + number(section.rotary_inertia_per_length) + " kg*m");
+    }
+  }
   const double tau = scene_.damping.effective_kelvin_voigt_time();
   comment(out, "damping: viscous " + number(scene_.damping.viscous_per_length) +
                    " N*s/m^2, Kelvin-Voigt tau = " + number(tau) + " s");

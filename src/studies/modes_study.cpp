@@ -32,6 +32,7 @@ Status refined_frequencies(const Scene& scene, const ModesStudyOptions& options,
   Scene doubled = scene;
   doubled.beam.segments = 2 * scene.beam.segments;
   doubled.beam.auto_segments = false;
+  for (SectionSpec& section : doubled.beam.sections) section.segments *= 2;
   show_phase(options.progress, "building the network");
   const Model fine_model = prepare_model(doubled, options.prepare);
   const System fine_system = fine_model.network.assemble();

@@ -22,7 +22,7 @@ constexpr double pi = 3.14159265358979323846;
 // First undamped resonance [Hz] of the bare beam chain (no damping, no DEAs).
 double first_beam_resonance(const Scene& scene, const BeamSpec& beam) {
   Network network;
-  add_beam(network, beam, DampingSpec{});
+  add_beam(network, beam, DampingSpec{}, scene_attachment_points(scene));
   const System system = network.assemble();
   ModalOptions options;
   options.count = 1;
@@ -49,7 +49,9 @@ EnvironmentSpec::Resonance find_fluid_resonance(const Scene& scene, const BeamSp
   constexpr double kRelativeChange = 1e-10;
   for (int step = 1; step <= kMaximumSteps; ++step) {
     BeamSpec loaded = beam;
-    loaded.mass_per_length += scene_fluid_loading(scene, frequency).added_mass_per_length;
+    DampingSpec no_damping;
+    add_distributed_loading(loaded, no_damping,
+                            scene_fluid_loading(scene, frequency).added_mass_per_length, 0.0);
     const double next = first_beam_resonance(scene, loaded);
     resonance.fixed_point_steps = step;
     const bool converged = std::abs(next - frequency) <= kRelativeChange * next;
@@ -70,7 +72,8 @@ AutomaticChoice choose_segments(const Scene& scene, BeamSpec& beam, const std::s
   const BandOfInterest band = band_of_interest(scene, "beam.segments");
   SegmentSelection selection;
   try {
-    selection = select_segments(beam, band.from, band.to, scene.model.tolerance);
+    selection = select_segments(beam, band.from, band.to, scene.model.tolerance, 20000,
+                                scene_attachment_points(scene));
   } catch (const InputError&) {
     throw;
   } catch (const std::runtime_error& error) {
@@ -176,7 +179,9 @@ ResolvedScene resolve_scene(const Scene& scene, const ResolveOptions& options) {
         frequency = resonance->frequency;
       }
       BeamSpec loaded = beam;
-      loaded.mass_per_length += scene_fluid_loading(scene, frequency).added_mass_per_length;
+      DampingSpec no_damping;
+      add_distributed_loading(loaded, no_damping,
+                              scene_fluid_loading(scene, frequency).added_mass_per_length, 0.0);
       loaded.auto_segments = true;
       resolved.automatic_choices.back() =
           choose_segments(scene, loaded, " on the fluid-loaded beam");

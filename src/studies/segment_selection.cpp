@@ -70,12 +70,13 @@ BandOfInterest band_of_interest(const Scene& scene, const std::string& key) {
   return band;
 }
 
-std::vector<double> beam_frequencies(const BeamSpec& beam, int segments, int count) {
+std::vector<double> beam_frequencies(const BeamSpec& beam, int segments, int count,
+                                     const std::vector<double>& attachments) {
   BeamSpec spec = beam;
   spec.segments = segments;
   spec.auto_segments = false;
   Network network;
-  add_beam(network, spec, DampingSpec{});
+  add_beam(network, spec, DampingSpec{}, attachments);
   const System system = network.assemble();
   ModalOptions options;
   options.count = count;
@@ -102,7 +103,8 @@ std::string SegmentSelection::summary() const {
 }
 
 SegmentSelection select_segments(const BeamSpec& beam, double band_from, double band_to,
-                                 double tolerance, int maximum_segments) {
+                                 double tolerance, int maximum_segments,
+                                 const std::vector<double>& attachments) {
   const auto start = std::chrono::steady_clock::now();
   SegmentSelection selection;
   std::map<int, std::vector<double>> cache;
@@ -111,7 +113,8 @@ SegmentSelection select_segments(const BeamSpec& beam, double band_from, double 
     auto found = cache.find(segments);
     if (found != cache.end()) return found->second;
     ++selection.modal_solves;
-    return cache.emplace(segments, beam_frequencies(beam, segments, wanted)).first->second;
+    return cache.emplace(segments, beam_frequencies(beam, segments, wanted, attachments))
+        .first->second;
   };
 
   // How many modes lie up to the band's top: count on a chain fine enough to have a mode

@@ -125,6 +125,12 @@ Scene with_parameter(const Scene& scene, const std::string& key, double value) {
     }
     for (auto& probe : copy.probes) probe.at *= stretch;
     for (auto& load : copy.loads) load.at *= stretch;
+    for (auto& section : copy.beam.sections) section.length *= stretch;
+    for (auto& mass : copy.beam.masses) mass.at *= stretch;
+    for (auto& spring : copy.beam.springs) {
+      spring.at *= stretch;
+      if (spring.to) *spring.to *= stretch;
+    }
   }
   address.info->set(copy, address.entry, value);
   return copy;

@@ -188,11 +188,18 @@ int validity_exit(const emnet::Validity& validity) {
 
 void print_header(const emnet::Model& model, const emnet::System& system) {
   const auto& scene = model.scene;
+  const auto& beam = scene.beam;
   std::cout << "scene " << shown(scene.name) << " (" << shown(scene.file)
-            << "): " << scene.beam.segments << " segments, L = " << si(scene.beam.length, "m")
-            << ", EI = " << si(scene.beam.bending_stiffness, "N*m^2")
-            << ", rhoA = " << si(scene.beam.mass_per_length, "kg/m") << ", " << scene.deas.size()
-            << " DEA(s), " << drive_summary(scene) << "\n"
+            << "): " << model.beam.x.size() - 1 << " segments, L = " << si(beam.length, "m");
+  if (beam.sections.empty())
+    std::cout << ", EI = " << si(beam.bending_stiffness, "N*m^2")
+              << ", rhoA = " << si(beam.mass_per_length, "kg/m");
+  else
+    std::cout << " in " << beam.sections.size() << " sections";
+  if (!beam.masses.empty()) std::cout << ", " << beam.masses.size() << " point mass(es)";
+  if (!beam.springs.empty()) std::cout << ", " << beam.springs.size() << " spring(s)";
+  if (beam.theory == emnet::BeamTheory::timoshenko) std::cout << ", Timoshenko";
+  std::cout << ", " << scene.deas.size() << " DEA(s), " << drive_summary(scene) << "\n"
             << "network: " << model.network.nodes().size() << " nodes, "
             << model.network.elements().size() << " elements, " << system.size() << " unknowns\n";
   for (const auto& note : model.notes) std::cout << "note: " << shown(note) << "\n";

@@ -49,6 +49,11 @@ inline constexpr Dimension rotary_inertia_per_length{1, 1, 0, 0};  // kg*m
 inline constexpr Dimension damping_per_length{1, -1, -1, 0};       // N*s/m^2
 inline constexpr Dimension dynamic_viscosity{1, -1, -1, 0};        // Pa*s (= N*s/m^2)
 inline constexpr Dimension density{1, -3, 0, 0};                   // kg/m^3
+inline constexpr Dimension stiffness{1, 0, -2, 0};                 // N/m
+inline constexpr Dimension damping{1, 0, -1, 0};                   // N*s/m
+inline constexpr Dimension rotational_damping{1, 2, -1, 0};        // N*m*s (per rad)
+inline constexpr Dimension rotary_inertia{1, 2, 0, 0};             // kg*m^2
+inline constexpr Dimension inductance{1, 2, -2, -2};               // H
 }  // namespace dim
 
 // The conventional SI symbol of a dimension: "m", "V", "N*m^2", "kg/m"; the base-unit text for

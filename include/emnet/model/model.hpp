@@ -1,19 +1,33 @@
 // From a resolved Scene to a Network: the beam chain, the DEA patches and their drive, loads,
 // probes, with a record of what each element is (emnet/model/structure.hpp).
 //
-// The beam: N equal massless segments of length l = L/N, each realised exactly as
+// The beam: N massless segments between the nodes the mesher places (emnet/model/mesh.hpp: a
+// node at every section boundary, point mass, spring end, DEA end and load; equal segments
+// when nothing needs another grid). Segment k of length l, in section s (EI, ρA, ρI, κGA), is
+// realised exactly as
 //   - a rotational compliance n_R = l/EI between the rotation nodes r_k and r_k+1;
-//   - a translational branch v_k → n_T = l³/(12·EI) → m_k → lever → v_k+1, the lever being an
-//     ideal transformer whose secondary adds (l/2)·(Ω_k + Ω_k+1) and whose primaries feed the
-//     branch force back as torques (l/2)·F into both rotation nodes.
-// Its flexibility equals the cubic Hermite element's, so nodal statics are exact for every N.
+//   - a translational branch v_k → n_T → m_k → lever → v_k+1, the lever being an ideal
+//     transformer whose secondary adds (l/2)·(Ω_k + Ω_k+1) and whose primaries feed the branch
+//     force back as torques (l/2)·F into both rotation nodes;
+//   - n_T = l³/(12·EI) (beam.theory = "euler_bernoulli"), or n_T = l³/(12·EI) + l/(κGA)
+//     ("timoshenko": the shear compliance of the segment, a pure shear term in the cantilever
+//     flexibility w = l³/(3EI)·F + l²/(2EI)·M + l/(κGA)·F with φ unchanged).
+// Its flexibility equals the cubic Hermite element's (Timoshenko: the shear-corrected
+// element's), so nodal statics are exact for every N. The rotation nodes carry the
+// cross-section rotation ψ (= dw/dx for Euler–Bernoulli).
 // Mass lumping rule: half of each segment's mass ρA·l to each of its two end nodes (a
 // capacitor from the velocity node to ground); optional rotary inertia ρI·l lumped the same
 // way onto the rotation nodes. Damping: viscous damping to ground c·l (lumped like the mass)
 // and/or Kelvin–Voigt material damping τ, realised as a damper τ/n in parallel with every
 // compliance n (the inductor's parallel conductance, stamped as τ times the rate of the
-// spring force: elements/inductor.hpp), which gives exactly the damping matrix τ·K.
+// spring force: elements/inductor.hpp), which gives exactly the damping matrix τ·K; a section
+// may set its own c and τ.
 // Ends: clamped (v = Ω = 0), pinned (v = 0), sliding (Ω = 0), free: tied to ground or left open.
+// Point masses ([[mass]]): m on the velocity node, J on the rotation node at their position.
+// Springs ([[spring]]): an inductor of compliance 1/k (with its dashpot as a conductance in
+// parallel) between the node at `at` and ground or the node at `to`; translational between
+// velocity nodes, rotational between rotation nodes. An end held by its support holds the
+// spring's end there too (a spring between two held nodes does nothing and is left out).
 //
 // The model builder runs no analysis: the scene's "auto" keys (beam.segments, the fluid
 // loading's resonance without environment.frequency, drive.electrical_dynamics) are resolved
@@ -29,6 +43,7 @@
 #include "emnet/elements/dea.hpp"
 #include "emnet/model/drive.hpp"
 #include "emnet/model/fluid_loading.hpp"
+#include "emnet/model/mesh.hpp"
 #include "emnet/model/structure.hpp"
 #include "emnet/network/network.hpp"
 #include "emnet/network/output.hpp"
@@ -39,20 +54,34 @@ namespace emnet {
 
 struct BeamLayout {
   double length = 0.0;
+  // The uniform grid's segment length L/N (every segment's, when `uniform`); the mean otherwise.
   double segment_length = 0.0;
-  std::vector<double> x;                 // node positions [m]
+  bool uniform = true;
+  std::vector<double> x;                // node positions [m]
+  std::vector<double> segment_lengths;  // per segment [m]
+  std::vector<int> segment_section;     // per segment: its index in effective_sections(beam)
+  // Per segment: Φ = 12·EI/(κGA·l²), the shear parameter of its shape functions (0: Euler–
+  // Bernoulli).
+  std::vector<double> shear_parameter;
   std::vector<NodeId> velocity;          // translational node per position (ground if held)
   std::vector<NodeId> angular_velocity;  // rotational node per position (ground if held)
-  // Cubic Hermite interpolation over the segment holding x:
-  // w(x) = Σ c·(w, φ at the segment's ends); the same coefficients map v, Ω to v(x).
+  int raised_from = 0;                   // BeamMesh::raised_from
+  // The segment's shape functions over the segment holding x (cubic Hermite; with shear the
+  // shear-corrected cubics of the same exact massless segment):
+  // w(x) = Σ c·(w, ψ at the segment's ends); the same coefficients map v, Ω to v(x).
   LinearTerms deflection_terms(double x) const;
-  // φ(x) = dw/dx from the derivatives of the same shape functions.
+  // ψ(x), the cross-section rotation (dw/dx without shear), from the same segment's solution.
   LinearTerms slope_terms(double x) const;
+  // dψ/dx, the curvature: the face strain is ∓z·dψ/dx.
+  LinearTerms curvature_terms(double x) const;
+  // The node at x (to 1e-9 of the beam length); -1 when x is inside a segment.
+  int node_at(double x) const;
 };
 
-// Adds the beam chain to `network`, and the record of each node and element to `structure`
-// when given.
+// Adds the beam chain, its point masses and springs to `network` (nodes from mesh_beam(beam,
+// attachments)), and the record of each node and element to `structure` when given.
 BeamLayout add_beam(Network& network, const BeamSpec& beam, const DampingSpec& damping,
+                    const std::vector<double>& attachments = {},
                     ModelStructure* structure = nullptr);
 
 struct DeaLayout {
@@ -101,6 +130,13 @@ bool fluid_resonance_current(const Scene& scene);
 // Sader's loading (emnet/model/fluid_loading.hpp) of the scene's [environment] at `frequency`
 // [Hz]; an InputError naming "environment" when the values overflow it.
 FluidLoading scene_fluid_loading(const Scene& scene, double frequency);
+
+// The beam's mass per length averaged over its length (its sections').
+double mean_mass_per_length(const BeamSpec& beam);
+// A load spread along the whole beam: mass and viscous damping per length added to the beam's
+// and every section's (a section's own viscous damping, where it has one, too).
+void add_distributed_loading(BeamSpec& beam, DampingSpec& damping, double mass_per_length,
+                             double damping_per_length);
 
 // The [environment] fluid loading of a resolved scene (at environment.frequency, else at
 // environment.resonance) applied to `beam` and `damping`: its added mass and damping per length

@@ -30,6 +30,8 @@ enum class Component {
   dea,           // a DEA's electrical loop: electrode resistance, capacitor and transducer
   drive_source,  // what the scene's drive applies to a DEA: its source voltage, or the ideal
                  // drive's force k_F·V(t)² along one coupling node
+  point_mass,    // a [[mass]] entry: its mass and rotary inertia at one beam node
+  spring,        // a [[spring]] entry: its compliance 1/k and its dashpot
 };
 const char* component_name(Component component);
 
@@ -45,13 +47,17 @@ enum class ElementPart {
   transducer,                // DEA: capacitor C₀ and force k_F·u² (the Dea element)
   source_voltage,            // drive source: the DEA's source voltage V(t), a voltage source
   ideal_force,               // drive source: one part of k_F·V(t)² on one coupling node
+  point_mass,                // [[mass]]: m [kg], a capacitor from the velocity node to ground
+  point_rotary_inertia,      // [[mass]]: J [kg·m²], a capacitor from the rotation node to ground
+  spring_compliance,         // [[spring]]: n = 1/k [m/N or rad/(N·m)], an inductor
+  spring_damper,             // [[spring]]: its dashpot [N·s/m or N·m·s/rad], a conductance
 };
 const char* element_part_name(ElementPart part);
 
 struct ElementRecord {
   Component component = Component::beam_node;
   ElementPart part = ElementPart::mass;
-  int index = -1;   // beam node or segment index, load index; -1 for the DEA parts
+  int index = -1;   // beam node or segment index, load, mass or spring index; -1 for the DEA parts
   std::string dea;  // dea, drive_source: the DEA's name
   // ideal_force: which waveform of k_F·V(t)² it carries (0: the level or fundamental, 1: a sine
   // drive's 2f part) and on which coupling node (index into DeaLayout::coupling).

@@ -18,18 +18,76 @@ namespace emnet {
 enum class EndCondition { clamped, free, pinned, sliding };
 const char* end_condition_name(EndCondition end);
 
+// beam.theory: what one segment realises. Euler–Bernoulli: bending only; Timoshenko: bending
+// plus the shear compliance l/(κGA) of each segment (emnet/model/model.hpp).
+enum class BeamTheory { euler_bernoulli, timoshenko };
+const char* beam_theory_name(BeamTheory theory);
+
+// [[section]]: a uniform stretch of the beam, in order from x = 0; the sections' lengths add up
+// to beam.length. A beam without sections is one uniform section of the [beam] values.
+struct SectionSpec {
+  double length = 0.0;                     // section[].length [m]
+  double bending_stiffness = 0.0;          // section[].bending_stiffness EI [N·m²]
+  double mass_per_length = 0.0;            // section[].mass_per_length ρA [kg/m]
+  double rotary_inertia_per_length = 0.0;  // section[].rotary_inertia_per_length ρI [kg·m]
+  // section[].shear_stiffness κGA [N] (Timoshenko); unset: beam.shear_stiffness.
+  std::optional<double> shear_stiffness;
+  // section[].viscous_per_length [N·s/m²] and section[].kelvin_voigt_time τ [s]; unset: the
+  // [damping] table's.
+  std::optional<double> viscous_per_length;
+  std::optional<double> kelvin_voigt_time;
+  // section[].segments: this section's own segment count; 0 (unset or "auto"): a share of
+  // beam.segments by length.
+  int segments = 0;
+};
+
+// [[mass]]: a rigid point mass fixed to the beam at `at` (a capacitor to ground on the velocity
+// node there; its rotary inertia one on the rotation node).
+struct MassSpec {
+  std::string name;             // mass[].name (optional; "" addresses it by index)
+  double at = 0.0;              // mass[].at [m]
+  double mass = 0.0;            // mass[].mass [kg]
+  double rotary_inertia = 0.0;  // mass[].rotary_inertia [kg·m²]
+};
+
+// [[spring]]: a linear spring (and dashpot in parallel) from the beam at `at` to ground, or to
+// the beam at `to`. Translational: a force k·(w(at) − w(to)); rotational: a moment
+// k·(φ(at) − φ(to)). An elastic clamp is a free (or pinned) end with springs at x = 0.
+enum class SpringKind { translational, rotational };
+struct SpringSpec {
+  std::string name;                             // spring[].name (optional)
+  double at = 0.0;                              // spring[].at [m]
+  SpringKind kind = SpringKind::translational;  // spring[].kind
+  double stiffness = 0.0;                       // spring[].stiffness k [N/m] or [N·m/rad]
+  double damping = 0.0;                         // spring[].damping [N·s/m] or [N·m·s/rad]
+  std::optional<double> to;                     // spring[].to [m]; unset: ground
+};
+
 struct BeamSpec {
   double length = 0.0;  // beam.length [m]
   int segments = 0;     // beam.segments [-]
   // beam.segments = "auto": the resolve step chooses N from [model] (segments is 0 until
   // then; emnet/studies/segment_selection.hpp). An integer, or --segments N, sets it false.
   bool auto_segments = false;
-  double bending_stiffness = 0.0;             // beam.bending_stiffness EI [N·m²]
-  double mass_per_length = 0.0;               // beam.mass_per_length ρA [kg/m]
-  double rotary_inertia_per_length = 0.0;     // beam.rotary_inertia_per_length ρI [kg·m]
-  EndCondition left = EndCondition::clamped;  // beam.left  (x = 0)
-  EndCondition right = EndCondition::free;    // beam.right (x = length)
+  double bending_stiffness = 0.0;                   // beam.bending_stiffness EI [N·m²]
+  double mass_per_length = 0.0;                     // beam.mass_per_length ρA [kg/m]
+  double rotary_inertia_per_length = 0.0;           // beam.rotary_inertia_per_length ρI [kg·m]
+  EndCondition left = EndCondition::clamped;        // beam.left  (x = 0)
+  EndCondition right = EndCondition::free;          // beam.right (x = length)
+  BeamTheory theory = BeamTheory::euler_bernoulli;  // beam.theory
+  double shear_stiffness = 0.0;  // beam.shear_stiffness κGA [N] (Timoshenko); 0: not given
+  // The structure on the beam, read from [[section]], [[mass]] and [[spring]]. With sections,
+  // bending_stiffness, mass_per_length and rotary_inertia_per_length above are unused (0).
+  std::vector<SectionSpec> sections;
+  std::vector<MassSpec> masses;
+  std::vector<SpringSpec> springs;
 };
+
+// The beam's sections as built: its [[section]] entries, or one section of the [beam] values
+// (with the [damping] table's defaults left unset).
+std::vector<SectionSpec> effective_sections(const BeamSpec& beam);
+// Whether two beams are the same structure (every field, sections, masses and springs).
+bool same_beam(const BeamSpec& a, const BeamSpec& b);
 
 struct DampingSpec {
   double viscous_per_length = 0.0;  // damping.viscous_per_length [N·s/m²], to ground

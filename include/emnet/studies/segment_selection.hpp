@@ -43,9 +43,11 @@ struct BandOfInterest {
 };
 BandOfInterest band_of_interest(const Scene& scene, const std::string& key);
 
-// Undamped modal frequencies [Hz] of the bare beam chain `beam` cut into `segments`, the
-// lowest `count` (all, for a small chain).
-std::vector<double> beam_frequencies(const BeamSpec& beam, int segments, int count);
+// Undamped modal frequencies [Hz] of the bare beam chain `beam` (with its point masses and
+// springs) cut into `segments`, with a node at each of `attachments` (the scene's DEA ends and
+// loads, scene_attachment_points), the lowest `count` (all, for a small chain).
+std::vector<double> beam_frequencies(const BeamSpec& beam, int segments, int count,
+                                     const std::vector<double>& attachments = {});
 
 struct SegmentSelection {
   int segments = 0;
@@ -61,6 +63,7 @@ struct SegmentSelection {
 // Smallest N whose band modes meet `tolerance` (see the top comment). Throws
 // std::runtime_error when the modal solve fails or N would exceed `maximum_segments`.
 SegmentSelection select_segments(const BeamSpec& beam, double band_from, double band_to,
-                                 double tolerance, int maximum_segments = 20000);
+                                 double tolerance, int maximum_segments = 20000,
+                                 const std::vector<double>& attachments = {});
 
 }  // namespace emnet
