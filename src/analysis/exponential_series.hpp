@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <optional>
 #include <vector>
 
 #include "emnet/analysis/periodic.hpp"
@@ -22,6 +23,18 @@ struct ExponentialSeries {
   std::vector<double> slope;  // as many as offset, or empty: all 0
   std::vector<Eigen::VectorXcd> coefficient;
 };
+
+// The system with its sources over one period of their periodic regime, or nullopt when [0, T)
+// already is one. A periodic pulse with a delay stays at its low level before it, so the first
+// period need not be a period of the drive the network settles to: a pulse reaching past the
+// end of its period (the antagonistic drive's second DEA, delay T/2 and width T/2 − t_r, falls
+// during [T, T + t_r)) is missing from [0, t_r) of the first period only. The periodic state is
+// the long-time limit, so the periodic solvers take the sources shifted by k·T, the first
+// multiple of T at or past every periodic pulse's delay (its delay becomes delay − k·T ≤ 0, and
+// value(t) follows the pulse train from its past). Sources that are not periodic (dc, pwl, a
+// single pulse) are kept as they are. With zero rise time no pulse reaches past its period and
+// nothing changes.
+std::optional<System> steady_period_system(const System& system, double period);
 
 // 0, the breakpoints of `system` inside (0, period), and period: its intervals on which every
 // source is affine (constant or a ramp).

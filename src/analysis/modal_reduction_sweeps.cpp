@@ -151,8 +151,10 @@ ReducedPeriodicSolver::ReducedPeriodicSolver(const System& system,
   reduction_ = reduce_modal(system, Eigen::VectorXd::Zero(system.size()), inputs, periodic);
 }
 
-PeriodicResult ReducedPeriodicSolver::solve(const System& system, const std::vector<Probe>& probes,
+PeriodicResult ReducedPeriodicSolver::solve(const System& given, const std::vector<Probe>& probes,
                                             double period, int samples) const {
+  const std::optional<System> steady = steady_period_system(given, period);
+  const System& system = steady ? *steady : given;
   Timed<PeriodicResult> timed;
   PeriodicResult& result = timed.result;
   result.method = "reduced";

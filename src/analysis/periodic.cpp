@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "core/timed.hpp"
@@ -46,6 +47,25 @@ void fill_extremes(PeriodicResult& result, const Refine& refine) {
 }
 
 }  // namespace
+
+std::optional<System> steady_period_system(const System& system, double period) {
+  double latest_delay = 0.0;
+  bool shift = false;
+  for (const Waveform& w : system.excitation.waveforms) {
+    if (w.shape != Waveform::Shape::pulse || !(w.period > 0.0) || !(w.delay > 0.0)) continue;
+    latest_delay = std::max(latest_delay, w.delay);
+    // The pulse of the period before the delay reaches over t = 0 (beyond rounding), or the
+    // first period has no pulse at all.
+    const double reach = w.delay - w.period + w.rise + w.width + w.fall;
+    shift |= reach > 1e-12 * w.period || w.delay >= w.period;
+  }
+  if (!shift) return std::nullopt;
+  const double offset = std::ceil(latest_delay / period) * period;
+  Excitation excitation = system.excitation;
+  for (Waveform& w : excitation.waveforms)
+    if (w.shape == Waveform::Shape::pulse && w.period > 0.0) w.delay -= offset;
+  return system.with_excitation(std::move(excitation));
+}
 
 std::vector<double> constant_intervals(const System& system, double period) {
   std::vector<double> edges{0.0};
@@ -295,8 +315,10 @@ PeriodicSolver::PeriodicSolver(const System& system) {
 
 PeriodicSolver::~PeriodicSolver() = default;
 
-PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Probe>& probes,
+PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Probe>& probes,
                                      double period, int samples) const {
+  const std::optional<System> steady = steady_period_system(given, period);
+  const System& system = steady ? *steady : given;
   Timed<PeriodicResult> timed;
   PeriodicResult& result = timed.result;
   result.method = "exact";
@@ -417,9 +439,11 @@ PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Pro
   return finish(Status::success());
 }
 
-PeriodicResult run_periodic_shooting(const System& system, const std::vector<Probe>& probes,
+PeriodicResult run_periodic_shooting(const System& given, const std::vector<Probe>& probes,
                                      double period, double rtol, int samples,
                                      const Progress* progress) {
+  const std::optional<System> steady = steady_period_system(given, period);
+  const System& system = steady ? *steady : given;
   Timed<PeriodicResult> timed;
   PeriodicResult& result = timed.result;
   result.method = "shooting";

@@ -49,7 +49,10 @@ class PeriodicSolver {
   // Decomposes the network's state equation once; `system` fixes G and C.
   explicit PeriodicSolver(const System& system);
   ~PeriodicSolver();
-  // The periodic state of `system` (same G and C, sources of period `period`).
+  // The periodic state of `system` (same G and C, sources of period `period`): the long-time
+  // limit, so a delayed pulse train is taken in its periodic regime, not in its first period
+  // (a pulse whose fall reaches into the next period is there from the start; shooting the
+  // same).
   PeriodicResult solve(const System& system, const std::vector<Probe>& probes, double period,
                        int samples = 256) const;
 
