@@ -1,10 +1,11 @@
-// A probe of a linear network under piecewise-constant sources, in modal coordinates: inside
-// each constant interval a sum of exponentials. Shared by the exact periodic method
-// (PeriodicSolver) and the reduced one (ReducedPeriodicSolver), which differ only in how they
-// get the poles and the coefficients.
+// A probe of a linear network under piecewise-linear sources, in modal coordinates: inside
+// each interval between breakpoints an affine part plus a sum of exponentials. Shared by the exact
+// periodic method (PeriodicSolver) and the reduced one (ReducedPeriodicSolver), which differ only
+// in how they get the poles and the coefficients.
 #pragma once
 
 #include <Eigen/Dense>
+#include <optional>
 #include <vector>
 
 #include "emnet/analysis/periodic.hpp"
@@ -13,22 +14,43 @@
 
 namespace emnet {
 
-// p(t) = offset[i] + Re Σ_k coefficient[i]_k·e^{λ_k·(t − edges[i])} for edges[i] ≤ t < edges[i+1].
+// p(t) = offset[i] + slope[i]·h + Re Σ_k coefficient[i]_k·e^{λ_k·h}, h = t − edges[i], for
+// edges[i] ≤ t < edges[i+1]. The affine part comes from the sources' ramps (slope 0 where they
+// are constant); it adds nothing to p'', so the curvature bounds of the extremum search hold as
+// they are.
 struct ExponentialSeries {
   std::vector<double> offset;
+  std::vector<double> slope;  // as many as offset, or empty: all 0
   std::vector<Eigen::VectorXcd> coefficient;
 };
 
-// 0, the switching instants of `system` inside (0, period), and period: its constant intervals.
+// The system with its sources over one period of their periodic regime, or nullopt when [0, T)
+// already is one. A periodic pulse with a delay stays at its low level before it, so the first
+// period need not be a period of the drive the network settles to: a pulse reaching past the
+// end of its period (the antagonistic drive's second DEA, delay T/2 and width T/2 − t_r, falls
+// during [T, T + t_r)) is missing from [0, t_r) of the first period only. The periodic state is
+// the long-time limit, so the periodic solvers take the sources shifted by k·T, the first
+// multiple of T at or past every periodic pulse's delay (its delay becomes delay − k·T ≤ 0, and
+// value(t) follows the pulse train from its past). Sources that are not periodic (dc, pwl, a
+// single pulse) are kept as they are. With zero rise time no pulse reaches past its period and
+// nothing changes.
+std::optional<System> steady_period_system(const System& system, double period);
+
+// 0, the breakpoints of `system` inside (0, period), and period: its intervals on which every
+// source is affine (constant or a ramp).
 std::vector<double> constant_intervals(const System& system, double period);
 
-// The periodic state of ξ' = Λ·ξ + forcing, the forcing constant in each interval with
-// particular state particular[i] (ξ_p,i = −Λ⁻¹·forcing_i): ξ at the start of every interval,
-// from one period from ξ = 0 (c) and ξ₀ = c/(1 − e^{ΛT}). Coordinates with `fixed_at_zero`
-// (a constraint's invariants) stay 0. The periodicity residual ‖ξ(T) − ξ₀‖/‖ξ₀‖ into
-// `residual`. Failure: an undamped mode in exact resonance with the drive.
+// The periodic state of ξ' = Λ·ξ + q₀,i + q₁,i·h, the forcing affine in each interval with the
+// affine particular state ξ_p,i(h) = particular[i] + h·particular_slope[i] — with
+// ξ_p' = Λ·ξ_p + q₀ + q₁·h, particular_slope = −Λ⁻¹·q₁ and particular = −Λ⁻¹·(q₀ −
+// particular_slope) (particular_slope empty: every interval constant): ξ at the start of every
+// interval, from one period from ξ = 0 (c) and ξ₀ = c/(1 − e^{ΛT}), each interval advancing ξ ↦
+// ξ_p,i(h_i) + e^{Λh_i}·(ξ − ξ_p,i(0)). Coordinates with `fixed_at_zero` (a constraint's
+// invariants) stay 0. The periodicity residual ‖ξ(T) − ξ₀‖/‖ξ₀‖ into `residual`. Failure: an
+// undamped mode in exact resonance with the drive.
 Status periodic_interval_starts(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
                                 const std::vector<Eigen::VectorXcd>& particular,
+                                const std::vector<Eigen::VectorXcd>& particular_slope,
                                 const std::vector<bool>& fixed_at_zero,
                                 std::vector<Eigen::VectorXcd>& start_of, double& residual);
 

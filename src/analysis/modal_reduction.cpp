@@ -15,7 +15,7 @@
 
 namespace emnet {
 
-Status require_piecewise_constant(const System& system);  // transient_exact.cpp
+Status require_piecewise_linear(const System& system);  // transient_exact.cpp
 
 namespace {
 

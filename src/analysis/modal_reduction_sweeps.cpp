@@ -16,7 +16,7 @@
 
 namespace emnet {
 
-Status require_piecewise_constant(const System& system);  // transient_exact.cpp
+Status require_piecewise_linear(const System& system);  // transient_exact.cpp
 
 namespace {
 constexpr double two_pi = 6.283185307179586476925286766559;
@@ -151,15 +151,17 @@ ReducedPeriodicSolver::ReducedPeriodicSolver(const System& system,
   reduction_ = reduce_modal(system, Eigen::VectorXd::Zero(system.size()), inputs, periodic);
 }
 
-PeriodicResult ReducedPeriodicSolver::solve(const System& system, const std::vector<Probe>& probes,
+PeriodicResult ReducedPeriodicSolver::solve(const System& given, const std::vector<Probe>& probes,
                                             double period, int samples) const {
+  const std::optional<System> steady = steady_period_system(given, period);
+  const System& system = steady ? *steady : given;
   Timed<PeriodicResult> timed;
   PeriodicResult& result = timed.result;
   result.method = "reduced";
   result.period = period;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   if (!reduction_.status.ok) return finish(reduction_.status);
-  if (Status pieces = require_piecewise_constant(system); !pieces.ok) return finish(pieces);
+  if (Status pieces = require_piecewise_linear(system); !pieces.ok) return finish(pieces);
   if (system.size() != reduction_.full_unknowns || system.is_nonlinear())
     return finish(Status::failure("the network differs from the one that was reduced"));
   for (const Probe& probe : probes)
@@ -176,28 +178,50 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& system, const std::vec
   const size_t modes = kept.size(), inputs = waveforms_.size();
   const std::vector<double> edges = constant_intervals(system, period);
   const size_t intervals = edges.size() - 1;
+  // Each input affine on each interval, u_j = u₀,ij + h·u₁,ij (u₁ = 0 where it is constant);
+  // each kept modal coordinate then has the affine particular state a_ik + h·b_ik with
+  // b = −q₁/λ, a = −(q₀ − b)/λ for its forcing q = Σ_j β_kj·u_j (exponential_series.hpp).
   std::vector<std::vector<double>> u(intervals, std::vector<double>(inputs));
+  std::vector<std::vector<double>> u_slope(intervals, std::vector<double>(inputs, 0.0));
   std::vector<Eigen::VectorXcd> particular(intervals, Eigen::VectorXcd::Zero(modes));
+  std::vector<Eigen::VectorXcd> particular_slope;
   Eigen::VectorXcd lambda(modes);
   for (size_t k = 0; k < modes; ++k) lambda[k] = kept[k].pole;
+  std::vector<bool> ramp(intervals, false);
   for (size_t i = 0; i < intervals; ++i) {
     const double middle = 0.5 * (edges[i] + edges[i + 1]);
-    for (size_t j = 0; j < inputs; ++j)
-      u[i][j] = system.excitation.waveforms[static_cast<size_t>(waveforms_[j])].value(middle);
+    for (size_t j = 0; j < inputs; ++j) {
+      const Waveform& waveform = system.excitation.waveforms[static_cast<size_t>(waveforms_[j])];
+      u[i][j] = waveform.value(middle);
+      u_slope[i][j] = waveform.slope(middle);
+      if (u_slope[i][j] != 0.0) {
+        u[i][j] -= (middle - edges[i]) * u_slope[i][j];
+        ramp[i] = true;
+      }
+    }
     for (size_t k = 0; k < modes; ++k) {
       Complex forcing = 0.0;
       for (size_t j = 0; j < inputs; ++j) forcing += reduction_.beta[k][j] * u[i][j];
       particular[i][k] = -forcing / lambda[k];
     }
+    if (!ramp[i]) continue;
+    if (particular_slope.empty()) particular_slope.assign(intervals, Eigen::VectorXcd::Zero(modes));
+    for (size_t k = 0; k < modes; ++k) {
+      Complex forcing_slope = 0.0;
+      for (size_t j = 0; j < inputs; ++j) forcing_slope += reduction_.beta[k][j] * u_slope[i][j];
+      particular_slope[i][k] = -forcing_slope / lambda[k];
+      particular[i][k] += particular_slope[i][k] / lambda[k];
+    }
   }
   std::vector<Eigen::VectorXcd> start_of;
-  if (Status periodic = periodic_interval_starts(lambda, edges, particular, {}, start_of,
-                                                 result.periodicity_residual);
+  if (Status periodic = periodic_interval_starts(lambda, edges, particular, particular_slope, {},
+                                                 start_of, result.periodicity_residual);
       !periodic.ok)
     return finish(periodic);
 
-  // Probe p in interval i at offset h: offset_pi + Re Σ_k a_pik·e^{λ_k h} (one pole of each
-  // conjugate pair kept, its coefficient doubled).
+  // Probe p in interval i at offset h: offset_pi + slope_pi·h + Re Σ_k a_pik·e^{λ_k h} (one pole
+  // of each conjugate pair kept, its coefficient doubled); the static correction D·u(t) follows
+  // the inputs' ramps as a feed-through.
   std::vector<ExponentialSeries> series(probes.size());
   for (size_t p = 0; p < probes.size(); ++p) {
     Eigen::VectorXcd g = Eigen::VectorXcd::Zero(modes);
@@ -211,6 +235,12 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& system, const std::vec
       double value = 0.0;
       for (size_t j = 0; j < inputs; ++j) value += d[j].real() * u[i][j];
       series[p].offset.push_back(value + g.cwiseProduct(particular[i]).sum().real());
+      double slope = 0.0;
+      if (ramp[i]) {
+        for (size_t j = 0; j < inputs; ++j) slope += d[j].real() * u_slope[i][j];
+        slope += g.cwiseProduct(particular_slope[i]).sum().real();
+      }
+      series[p].slope.push_back(slope);
       series[p].coefficient.push_back(g.cwiseProduct(start_of[i] - particular[i]));
     }
   }

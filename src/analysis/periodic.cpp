@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "core/timed.hpp"
@@ -20,7 +21,7 @@
 
 namespace emnet {
 
-Status require_piecewise_constant(const System& system);  // transient_exact.cpp
+Status require_piecewise_linear(const System& system);  // transient_exact.cpp
 
 namespace {
 
@@ -47,6 +48,25 @@ void fill_extremes(PeriodicResult& result, const Refine& refine) {
 
 }  // namespace
 
+std::optional<System> steady_period_system(const System& system, double period) {
+  double latest_delay = 0.0;
+  bool shift = false;
+  for (const Waveform& w : system.excitation.waveforms) {
+    if (w.shape != Waveform::Shape::pulse || !(w.period > 0.0) || !(w.delay > 0.0)) continue;
+    latest_delay = std::max(latest_delay, w.delay);
+    // The pulse of the period before the delay reaches over t = 0 (beyond rounding), or the
+    // first period has no pulse at all.
+    const double reach = w.delay - w.period + w.rise + w.width + w.fall;
+    shift |= reach > 1e-12 * w.period || w.delay >= w.period;
+  }
+  if (!shift) return std::nullopt;
+  const double offset = std::ceil(latest_delay / period) * period;
+  Excitation excitation = system.excitation;
+  for (Waveform& w : excitation.waveforms)
+    if (w.shape == Waveform::Shape::pulse && w.period > 0.0) w.delay -= offset;
+  return system.with_excitation(std::move(excitation));
+}
+
 std::vector<double> constant_intervals(const System& system, double period) {
   std::vector<double> edges{0.0};
   for (double t : system.breakpoints(0.0, period))
@@ -57,12 +77,17 @@ std::vector<double> constant_intervals(const System& system, double period) {
 
 Status periodic_interval_starts(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
                                 const std::vector<Eigen::VectorXcd>& particular,
+                                const std::vector<Eigen::VectorXcd>& particular_slope,
                                 const std::vector<bool>& fixed_at_zero,
                                 std::vector<Eigen::VectorXcd>& start_of, double& residual) {
   const size_t intervals = edges.size() - 1;
   auto advance = [&](const Eigen::VectorXcd& xi, size_t i) {
     const double h = edges[i + 1] - edges[i];
-    return Eigen::VectorXcd(particular[i] +
+    // ξ_p(h) + e^{Λh}·(ξ − ξ_p(0)); ξ_p(h) = ξ_p(0) on a constant interval.
+    const Eigen::VectorXcd particular_end =
+        particular_slope.empty() ? particular[i]
+                                 : Eigen::VectorXcd(particular[i] + h * particular_slope[i]);
+    return Eigen::VectorXcd(particular_end +
                             ((lambda * h).array().exp() * (xi - particular[i]).array()).matrix());
   };
   Eigen::VectorXcd xi = Eigen::VectorXcd::Zero(lambda.size());
@@ -97,16 +122,21 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
     while (i + 1 < intervals && t >= edges[i + 1]) ++i;
     return i;
   };
+  // The affine part's slope of probe p in interval i (0 where the sources are constant).
+  auto slope_of = [&](size_t p, size_t i) {
+    return series[p].slope.empty() ? 0.0 : series[p].slope[i];
+  };
   // Value and two derivatives of probe p at offset h into interval i.
   auto evaluate = [&](size_t p, size_t i, double h, double* d1, double* d2) {
     const Eigen::VectorXcd e = (lambda * h).array().exp();
     const Eigen::VectorXcd terms = series[p].coefficient[i].cwiseProduct(e);
-    if (d1) *d1 = terms.cwiseProduct(lambda).sum().real();
+    if (d1) *d1 = terms.cwiseProduct(lambda).sum().real() + slope_of(p, i);
     if (d2) *d2 = terms.cwiseProduct(lambda).cwiseProduct(lambda).sum().real();
-    return series[p].offset[i] + terms.sum().real();
+    return series[p].offset[i] + slope_of(p, i) * h + terms.sum().real();
   };
 
-  // The global extremes, not only the sampled ones. Inside interval i, for h ≥ a,
+  // The global extremes, not only the sampled ones. Inside interval i, for h ≥ a (the affine
+  // part of a ramp has no curvature, so the bound is the exponentials' alone),
   // |p''(h)| ≤ K_i(a) = Σ_k |a_ik|·|λ_k|²·e^{Re λ_k·a} (Re λ_k ≤ 0), so on a gap [a, b] p exceeds
   // max(p(a), p(b)) by at most K_i(a)·(b − a)²/8. Gaps whose bound passes the best value found
   // are halved until it does not (to 1e-11 of the largest |p|), and the best point is then
@@ -142,7 +172,7 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
     current_h = h;
     result.times.push_back(t);
     for (size_t p = 0; p < series.size(); ++p)
-      result.values[p].push_back(series[p].offset[i] +
+      result.values[p].push_back(series[p].offset[i] + slope_of(p, i) * h +
                                  series[p].coefficient[i].cwiseProduct(e).sum().real());
   }
   fill_extremes(result, [&](size_t p, size_t sample, bool maximum) {
@@ -285,15 +315,17 @@ PeriodicSolver::PeriodicSolver(const System& system) {
 
 PeriodicSolver::~PeriodicSolver() = default;
 
-PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Probe>& probes,
+PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Probe>& probes,
                                      double period, int samples) const {
+  const std::optional<System> steady = steady_period_system(given, period);
+  const System& system = steady ? *steady : given;
   Timed<PeriodicResult> timed;
   PeriodicResult& result = timed.result;
   result.method = "exact";
   result.period = period;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   if (!impl_) return finish(status_);
-  if (Status pieces = require_piecewise_constant(system); !pieces.ok) return finish(pieces);
+  if (Status pieces = require_piecewise_linear(system); !pieces.ok) return finish(pieces);
   if (system.size() != impl_->system.size() || system.is_nonlinear())
     return finish(Status::failure("the network differs from the one the solver decomposed"));
   const DisplacementForm& form = impl_->form;  // E, A and probes as for `system`
@@ -301,49 +333,76 @@ PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Pro
   const Eigen::VectorXcd& lambda = impl_->lambda;
   const Eigen::Index nd = space.state_size();
 
-  // Constant intervals over one period, and the particular state ξ_p = −Λ⁻¹V⁻¹N·f of each.
+  // The intervals over one period on which the sources are affine, f = f₀,i + h·f₁,i, and the
+  // particular state of each, affine too: in modal coordinates q = V⁻¹·N·f,
+  // ξ_p,i(h) = a_i + h·b_i with b_i = −Λ⁻¹·q₁,i and a_i = −Λ⁻¹·(q₀,i − b_i) (b_i = 0 on a
+  // constant interval, a_i = −Λ⁻¹·q₀,i as before).
   const std::vector<double> edges = constant_intervals(system, period);
   const size_t intervals = edges.size() - 1;
-  std::vector<Eigen::VectorXd> f(intervals);
-  std::vector<Eigen::VectorXcd> particular(intervals);
+  std::vector<AffinePiece> f(intervals);
+  std::vector<Eigen::VectorXcd> particular(intervals), particular_slope;
+  bool any_ramp = false;
+  for (size_t i = 0; i < intervals; ++i) {
+    // this system's sources, as form.f would give them
+    f[i] = affine_piece(system, form.size(), edges[i], edges[i + 1]);
+    any_ramp |= f[i].ramp();
+  }
+  if (any_ramp) particular_slope.assign(intervals, Eigen::VectorXcd::Zero(nd));
   // Poles at s = 0 up to the number of hidden constraints are their invariants, which no drive
   // excites: whatever forcing reaches them is rounding (it grows with V's condition: 1.1e-9 of
   // the forcing's scale on the 100-segment fish fin). More zero poles than that mean a free body,
   // which has no periodic state when the drive reaches it.
   const bool free_body =
       impl_->zero_poles > static_cast<Eigen::Index>(form.hidden_constraints().size());
+  const auto free_body_failure = Status::failure(
+      "the network has a pole at s = 0 that the drive excites "
+      "(a free body): no periodic state");
   for (size_t i = 0; i < intervals; ++i) {
-    f[i] = Eigen::VectorXd::Zero(form.size());  // this system's sources, as form.f would
-    f[i].head(system.size()) = system.b(0.5 * (edges[i] + edges[i + 1]));
     const Eigen::VectorXcd modal_forcing =
-        impl_->vectors_lu.solve(space.forcing(f[i]).cast<Complex>());
+        impl_->vectors_lu.solve(space.forcing(f[i].start).cast<Complex>());
     particular[i] = Eigen::VectorXcd::Zero(nd);
     const double forcing_scale = modal_forcing.cwiseAbs().maxCoeff();
     for (Eigen::Index k = 0; k < nd; ++k) {
       if (!impl_->invariant[static_cast<size_t>(k)]) {
         particular[i][k] = -modal_forcing[k] / lambda[k];
       } else if (free_body && std::abs(modal_forcing[k]) > 1e-9 * forcing_scale) {
-        return finish(
-            Status::failure("the network has a pole at s = 0 that the drive excites "
-                            "(a free body): no periodic state"));
+        return finish(free_body_failure);
+      }
+    }
+    if (!f[i].ramp()) continue;
+    const Eigen::VectorXcd modal_slope =
+        impl_->vectors_lu.solve(space.forcing(f[i].slope).cast<Complex>());
+    const double slope_scale = modal_slope.cwiseAbs().maxCoeff();
+    for (Eigen::Index k = 0; k < nd; ++k) {
+      if (!impl_->invariant[static_cast<size_t>(k)]) {
+        particular_slope[i][k] = -modal_slope[k] / lambda[k];
+        particular[i][k] += particular_slope[i][k] / lambda[k];
+      } else if (free_body && std::abs(modal_slope[k]) > 1e-9 * slope_scale) {
+        return finish(free_body_failure);
       }
     }
   }
   std::vector<Eigen::VectorXcd> start_of;
-  if (Status periodic = periodic_interval_starts(lambda, edges, particular, impl_->invariant,
-                                                 start_of, result.periodicity_residual);
+  if (Status periodic =
+          periodic_interval_starts(lambda, edges, particular, particular_slope, impl_->invariant,
+                                   start_of, result.periodicity_residual);
       !periodic.ok)
     return finish(periodic);
 
-  // Each probe is linear in (x, f): p = gᵀx + p(0, f). In modal coordinates, inside interval i,
-  // p(h) = p_i + Re Σ_k a_ik·e^{λ_k h} with a_ik = (gᵀV)_k·(ξ_i − ξ_p,i)_k.
+  // Each probe is linear in (x, f, f'): p = gᵀx + c(f) + d(f'). In modal coordinates, inside
+  // interval i, p(h) = p_i + s_i·h + Re Σ_k a_ik·e^{λ_k h} with a_ik = (gᵀV)_k·(ξ_i − a_i)_k,
+  // p_i = p(V·a_i, f₀,i, f₁,i) and s_i = Re (gᵀV)·b_i + c(f₁,i).
   Eigen::VectorXd u, up;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nd);
+  const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(form.size());
   auto probe_at = [&](const Probe& probe, const Eigen::VectorXd& x, const Eigen::VectorXd& fi) {
     space.full_state(x, fi, u, up);
     return form.probe(probe, u, up);
   };
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nd);
-  const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(form.size());
+  auto probe_on_ramp = [&](const Probe& probe, const Eigen::VectorXd& x, const AffinePiece& fi) {
+    space.full_state(x, fi.start, fi.slope, u, up);
+    return form.probe(probe, u, up);
+  };
   std::vector<ExponentialSeries> series(probes.size());
   for (size_t p = 0; p < probes.size(); ++p) {
     // gᵀV depends on the probe and the decomposition only: computed once per solver.
@@ -364,7 +423,14 @@ PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Pro
     const Eigen::RowVectorXcd& g_modes = cached->second;
     for (size_t i = 0; i < intervals; ++i) {
       const Eigen::VectorXd x_particular = (impl_->vectors * particular[i]).real();
-      series[p].offset.push_back(probe_at(probes[p], x_particular, f[i]));
+      if (!f[i].ramp()) {
+        series[p].offset.push_back(probe_at(probes[p], x_particular, f[i].start));
+        series[p].slope.push_back(0.0);
+      } else {
+        series[p].offset.push_back(probe_on_ramp(probes[p], x_particular, f[i]));
+        series[p].slope.push_back((g_modes * particular_slope[i]).value().real() +
+                                  probe_at(probes[p], zero, f[i].slope));
+      }
       series[p].coefficient.push_back(
           g_modes.transpose().cwiseProduct(start_of[i] - particular[i]));
     }
@@ -373,9 +439,11 @@ PeriodicResult PeriodicSolver::solve(const System& system, const std::vector<Pro
   return finish(Status::success());
 }
 
-PeriodicResult run_periodic_shooting(const System& system, const std::vector<Probe>& probes,
+PeriodicResult run_periodic_shooting(const System& given, const std::vector<Probe>& probes,
                                      double period, double rtol, int samples,
                                      const Progress* progress) {
+  const std::optional<System> steady = steady_period_system(given, period);
+  const System& system = steady ? *steady : given;
   Timed<PeriodicResult> timed;
   PeriodicResult& result = timed.result;
   result.method = "shooting";

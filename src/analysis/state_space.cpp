@@ -29,6 +29,15 @@ Eigen::MatrixXd completed_basis(const Eigen::MatrixXd& leading) {
 
 }  // namespace
 
+AffinePiece affine_piece(const System& system, int size, double t0, double t1) {
+  const double middle = 0.5 * (t0 + t1);
+  AffinePiece piece{Eigen::VectorXd::Zero(size), Eigen::VectorXd::Zero(size)};
+  piece.slope.head(system.size()) = system.b_slope(middle);
+  piece.start.head(system.size()) = system.b(middle);
+  if (piece.ramp()) piece.start -= (middle - t0) * piece.slope;
+  return piece;
+}
+
 double characteristic_angular_frequency(const System& system, double end_time) {
   double frequency = end_time > 0.0 ? 1.0 / end_time : 0.0;
   for (const auto& w : system.excitation.waveforms)
@@ -138,6 +147,20 @@ LinearStateSpace::Propagator LinearStateSpace::propagator(double h) const {
           balance_.cwiseInverse().asDiagonal()};
 }
 
+LinearStateSpace::Propagator LinearStateSpace::ramp_propagator(double h) const {
+  // exp([[M_b, I, 0], [0, 0, I], [0, 0, 0]]·h) = [[Φ, Γ, Γ₂], [0, I, h·I], [0, 0, I]]; with
+  // diag(D, D, D) the similarity to M's blocks, Γ = D·Γ_b·D⁻¹ and Γ₂ = D·Γ₂_b·D⁻¹.
+  Eigen::MatrixXd augmented = Eigen::MatrixXd::Zero(3 * nd_, 3 * nd_);
+  augmented.topLeftCorner(nd_, nd_) = balanced_m_ * h;
+  augmented.block(0, nd_, nd_, nd_) = Eigen::MatrixXd::Identity(nd_, nd_) * h;
+  augmented.block(nd_, 2 * nd_, nd_, nd_) = Eigen::MatrixXd::Identity(nd_, nd_) * h;
+  const Eigen::MatrixXd exponential = augmented.exp();
+  const auto d = balance_.asDiagonal();
+  const auto d_inverse = balance_.cwiseInverse().asDiagonal();
+  return {d * exponential.block(0, nd_, nd_, nd_) * d_inverse,
+          d * exponential.block(0, 2 * nd_, nd_, nd_) * d_inverse};
+}
+
 const LinearStateSpace::ModalBasis* LinearStateSpace::modal_basis() const {
   if (modes_state_ == 0) {
     modes_state_ = -1;
@@ -168,6 +191,42 @@ Eigen::VectorXcd LinearStateSpace::ModalBasis::increments(double h) const {
   return out;
 }
 
+Eigen::VectorXcd LinearStateSpace::ModalBasis::ramp_increments(double h) const {
+  Eigen::VectorXcd out(values.size());
+  for (Eigen::Index k = 0; k < values.size(); ++k) {
+    const std::complex<double> z = values[k] * h;
+    // φ₂(z) = Σ_m z^m/(m + 2)! below |z| = 1, where (e^z − 1 − z)/z² would lose up to
+    // ε/|z|² to cancellation; 17 terms (Horner from the highest) leave |z|¹⁷/19! < 1e-17.
+    // From |z| = 1 on the quotient is fine: |e^z − 1 − z| ≥ e⁻¹ on the unit circle against
+    // terms of at most e + 2, so its rounding stays near 10 ε.
+    std::complex<double> phi = 0.0;
+    if (std::abs(z) < 1.0) {
+      double coefficient = 1.0;  // 1/(m + 2)! for m = 16
+      for (int j = 2; j <= 18; ++j) coefficient /= j;
+      for (int m = 16; m >= 0; --m) {
+        phi = phi * z + coefficient;
+        coefficient *= m + 2;
+      }
+    } else {
+      phi = (std::exp(z) - 1.0 - z) / (z * z);
+    }
+    out[k] = h * h * phi;
+  }
+  return out;
+}
+
+void LinearStateSpace::full_state(const Eigen::VectorXd& x, const Eigen::VectorXd& f,
+                                  const Eigen::VectorXd& f_slope, Eigen::VectorXd& u,
+                                  Eigen::VectorXd& up) const {
+  full_state(x, f, u, up);
+  if (na_ == 0) return;
+  // The algebraic rates' part from the sources' slope: w₂' += Â₂₂⁻¹·f̂₂'.
+  const Eigen::VectorXd slope_hat = left_.transpose() * row_scale_.cwiseProduct(f_slope);
+  Eigen::VectorXd wp = Eigen::VectorXd::Zero(n_);
+  wp.tail(na_) = a22_lu_.solve(slope_hat.tail(na_));
+  up += column_scale_.cwiseProduct(right_ * wp);
+}
+
 void LinearStateSpace::full_state(const Eigen::VectorXd& x, const Eigen::VectorXd& f,
                                   Eigen::VectorXd& u, Eigen::VectorXd& up) const {
   const Eigen::VectorXd xp = m_ * x + forcing(f);
@@ -192,6 +251,13 @@ const LinearStateSpace::Propagator& PropagatorCache::get(double h) {
   auto found = cache_.find(key);
   if (found != cache_.end()) return found->second;
   return cache_.emplace(key, space_.propagator(h)).first->second;
+}
+
+const LinearStateSpace::Propagator& PropagatorCache::get_ramp(double h) {
+  const long long key = std::llround(h / quantum_);
+  auto found = ramp_cache_.find(key);
+  if (found != ramp_cache_.end()) return found->second;
+  return ramp_cache_.emplace(key, space_.ramp_propagator(h)).first->second;
 }
 
 }  // namespace emnet

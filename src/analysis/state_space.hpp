@@ -1,13 +1,21 @@
 // The linear displacement form E·u' + A·u = f as an explicit state equation, for exact
-// solutions under piecewise-constant sources (transient and periodic).
+// solutions under piecewise-linear sources (transient and periodic).
 //
 // With E = U·S·Vᵀ (rank r), u = V·w and Â = Uᵀ·A·V, f̂ = Uᵀ·f, index 1 means Â₂₂ is invertible:
 //   w₂ = Â₂₂⁻¹·(f̂₂ − Â₂₁·w₁),   x' = M·x + N·f  for the state x = w₁,
-//   M = S₁⁻¹·(Â₁₂·Â₂₂⁻¹·Â₂₁ − Â₁₁),   N·f = S₁⁻¹·(f̂₁ − Â₁₂·Â₂₂⁻¹·f̂₂).
+//   M = S₁⁻¹·(Â₁₂·Â₂₂⁻¹·Â₂₁ − Â₁₁),   N·f = S₁⁻¹·(f̂₁ − Â₁₂·Â₂₂⁻¹·f̂₂),
+// and, differentiating the algebraic part, w₂' = Â₂₂⁻¹·(f̂₂' − Â₂₁·x'): on a ramp of the sources
+// the algebraic unknowns' rates carry the sources' slope (full_state).
 // Over an interval of constant f and length h: x(t+h) = x(t) + Γ(h)·(M·x(t) + N·f), with
-// Γ = ∫₀ʰ e^{Ms} ds (so Φ = e^{Mh} = I + Γ·M) from one exponential of [[M, I], [0, 0]]·h
-// (Van Loan). Written as an increment, a state at equilibrium (M·x + N·f = 0) stays there to
-// the rounding of M·x + N·f, not of Φ·x + Γ·N·f, whose terms are each far larger.
+// Γ = ∫₀ʰ e^{Ms} ds = h·φ₁(M·h) (so Φ = e^{Mh} = I + Γ·M) from one exponential of
+// [[M, I], [0, 0]]·h (Van Loan). Written as an increment, a state at equilibrium (M·x + N·f = 0)
+// stays there to the rounding of M·x + N·f, not of Φ·x + Γ·N·f, whose terms are each far larger.
+// Over an interval where the sources are affine, f(t + s) = f₀ + s·f₁ (a ramp of a pulse or of a
+// piecewise-linear source), variation of constants gives
+//   x(t+h) = x(t) + Γ(h)·(M·x(t) + N·f₀) + Γ₂(h)·N·f₁,   Γ₂ = ∫₀ʰ ∫₀ˢ e^{Mr} dr ds = h²·φ₂(M·h),
+// φ₂(z) = (e^z − 1 − z)/z², with Γ and Γ₂ from one exponential of [[M, I, 0], [0, 0, I],
+// [0, 0, 0]]·h (its top-right blocks are Γ and Γ₂). That exponential is only taken for
+// intervals with a slope; constant intervals keep the smaller one.
 //
 // E and A are equilibrated first (equilibration.hpp: rows, columns and a time unit ω₀), so the
 // rank decision on E and the exponentials do not depend on the units: the reduction works on
@@ -23,13 +31,28 @@
 
 namespace emnet {
 
+// A source vector on one interval between breakpoints, affine there: value(t) = start +
+// slope·(t − t₀), start being the right limit at t₀. The slope is exactly zero when every
+// source is constant on the interval.
+struct AffinePiece {
+  Eigen::VectorXd start, slope;
+  bool ramp() const { return (slope.array() != 0.0).any(); }
+  Eigen::VectorXd at(double offset) const { return start + offset * slope; }
+};
+
+// b(t) of `system` on [t0, t1] (no breakpoint inside), in the displacement form's rows (`size`
+// entries, zero beyond the system's): value and slope at the midpoint, so that a jump at either
+// end is not seen, and start = b(mid) − slope·(mid − t0) (b(mid) itself when the slope is 0).
+AffinePiece affine_piece(const System& system, int size, double t0, double t1);
+
 // 2π × the highest drive frequency of the system's periodic sources, at least 2π/end_time.
 double characteristic_angular_frequency(const System& system, double end_time);
 
 class LinearStateSpace {
  public:
   struct Propagator {
-    Eigen::MatrixXd gamma;  // Γ(h); Φ(h) = I + Γ(h)·M is never formed
+    Eigen::MatrixXd gamma;   // Γ(h); Φ(h) = I + Γ(h)·M is never formed
+    Eigen::MatrixXd gamma2;  // Γ₂(h) for ramps (ramp_propagator); empty from propagator()
   };
   // Throws std::runtime_error when the form is nonlinear or not of index 1. angular_frequency
   // [rad/s]: the time unit ω₀ of the equilibration, the rate the solution is wanted at (the
@@ -44,28 +67,42 @@ class LinearStateSpace {
   // N·f for a constant f.
   Eigen::VectorXd forcing(const Eigen::VectorXd& f) const;
   Propagator propagator(double h) const;
+  // Γ and Γ₂ together, for an interval where the sources ramp.
+  Propagator ramp_propagator(double h) const;
   // The state after h from x under constant forcing nf = forcing(f), with p = propagator(h).
   Eigen::VectorXd advance(const Propagator& p, const Eigen::VectorXd& x,
                           const Eigen::VectorXd& nf) const {
     return x + p.gamma * (m_ * x + nf);
   }
+  // The same under the affine forcing nf + s·nf_slope (nf_slope = forcing(f₁)), with
+  // p = ramp_propagator(h).
+  Eigen::VectorXd advance(const Propagator& p, const Eigen::VectorXd& x, const Eigen::VectorXd& nf,
+                          const Eigen::VectorXd& nf_slope) const {
+    return x + p.gamma * (m_ * x + nf) + p.gamma2 * nf_slope;
+  }
   // M = V·Λ·V⁻¹, for evaluating many outputs cheaply: over a constant interval,
   // x(t₀ + h) = x₀ + V·diag(increments(h))·V⁻¹·(M·x₀ + N·f), increments(h)_k = h·φ₁(λ_k h),
   // φ₁(z) = (e^z − 1)/z: O(n) exponentials and O(n²) products per time instead of an
-  // exponential of M. Null (made on first use, then kept) when V's condition exceeds 1e6, so
-  // that rounding stays below ~1e-10; use propagator() then.
+  // exponential of M; over a ramp, plus V·diag(ramp_increments(h))·V⁻¹·N·f₁,
+  // ramp_increments(h)_k = h²·φ₂(λ_k h). Null (made on first use, then kept) when V's condition
+  // exceeds 1e6, so that rounding stays below ~1e-10; use propagator() then.
   struct ModalBasis {
     Eigen::VectorXcd values;
     Eigen::MatrixXcd vectors;
     Eigen::PartialPivLU<Eigen::MatrixXcd> vectors_lu;
     Eigen::VectorXcd increments(double h) const;
+    Eigen::VectorXcd ramp_increments(double h) const;
   };
   const ModalBasis* modal_basis() const;
   // x moved along M's null vectors until the hidden constraints hold (no-op without them).
   Eigen::VectorXd project(const Eigen::VectorXd& x, const Eigen::VectorXd& f) const;
-  // u and u' from the state x at a time where the sources are f.
+  // u and u' from the state x at a time where the sources are f (and constant).
   void full_state(const Eigen::VectorXd& x, const Eigen::VectorXd& f, Eigen::VectorXd& u,
                   Eigen::VectorXd& up) const;
+  // The same where the sources are f with slope f' = f_slope: the algebraic unknowns' rates
+  // w₂' = Â₂₂⁻¹·(f̂₂' − Â₂₁·x') include the sources' slope.
+  void full_state(const Eigen::VectorXd& x, const Eigen::VectorXd& f,
+                  const Eigen::VectorXd& f_slope, Eigen::VectorXd& u, Eigen::VectorXd& up) const;
   // The state of a consistent u.
   Eigen::VectorXd state_of(const Eigen::VectorXd& u) const;
 
@@ -91,12 +128,14 @@ class PropagatorCache {
   PropagatorCache(const LinearStateSpace& space, double quantum)
       : space_(space), quantum_(quantum) {}
   const LinearStateSpace::Propagator& get(double h);
-  size_t size() const { return cache_.size(); }
+  // Γ and Γ₂ (LinearStateSpace::ramp_propagator), cached apart.
+  const LinearStateSpace::Propagator& get_ramp(double h);
+  size_t size() const { return cache_.size() + ramp_cache_.size(); }
 
  private:
   const LinearStateSpace& space_;
   double quantum_;
-  std::map<long long, LinearStateSpace::Propagator> cache_;
+  std::map<long long, LinearStateSpace::Propagator> cache_, ramp_cache_;
 };
 
 }  // namespace emnet

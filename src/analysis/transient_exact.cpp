@@ -1,6 +1,7 @@
-// Exact transient of a linear network under piecewise-constant sources: the state equation of
+// Exact transient of a linear network under piecewise-linear sources: the state equation of
 // state_space.hpp stepped by matrix exponentials from breakpoint to breakpoint and to every
-// output time. Rounding is the only error.
+// output time, the sources affine on each interval (constant, or a ramp of a pulse's edge or of
+// a piecewise-linear source). Rounding is the only error.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,15 +17,12 @@
 
 namespace emnet {
 
-Status require_piecewise_constant(const System& system) {
-  for (const auto& w : system.excitation.waveforms) {
-    const bool constant_pieces =
-        w.shape == Waveform::Shape::dc ||
-        (w.shape == Waveform::Shape::pulse && w.rise == 0.0 && w.fall == 0.0);
-    if (!constant_pieces)
+Status require_piecewise_linear(const System& system) {
+  for (const auto& w : system.excitation.waveforms)
+    if (!w.piecewise_linear())
       return Status::failure(
-          "the exact method needs piecewise-constant sources (zero rise and fall times)");
-  }
+          "the exact method needs piecewise-linear sources (dc, pulse, pwl): sine sources are "
+          "not piecewise linear; use --method ida");
   return Status::success();
 }
 
@@ -65,7 +63,7 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
   result.method = "exact";
   result.values.assign(probes.size(), {});
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
-  if (Status pieces = require_piecewise_constant(system); !pieces.ok) return finish(pieces);
+  if (Status pieces = require_piecewise_linear(system); !pieces.ok) return finish(pieces);
   try {
     const DisplacementForm form(system);
     const LinearStateSpace space(form, characteristic_angular_frequency(system, options.end_time));
@@ -86,13 +84,15 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
     for (auto& series : result.values) series.reserve(outputs.size());
     double t = 0.0;
     Eigen::VectorXd u, up;
-    // Outputs: each probe is linear in (x, f), p = gᵀ·x + c(f), so with M's eigen-basis an
-    // output inside an interval starting at x₀ costs n exponentials and a dot product per probe:
-    // p(t₀ + h) = p(x₀, f) + Re Σ_k (gᵀV)_k·r_k·h·φ₁(λ_k h),  r = V⁻¹·(M·x₀ + N·f).
+    // Outputs: each probe is linear in (x, f, f'), p = gᵀ·x + c(f) + d(f'), so with M's
+    // eigen-basis an output inside an interval starting at x₀, where f = f₀ + s·f₁, costs n
+    // exponentials and a dot product per probe:
+    //   p(t₀ + h) = p(x₀, f₀, f₁) + Re Σ_k (gᵀV)_k·(r_k·h·φ₁(λ_k h) + q_k·h²·φ₂(λ_k h)) + h·c(f₁),
+    //   r = V⁻¹·(M·x₀ + N·f₀),  q = V⁻¹·N·f₁ (the ramp terms only where f₁ ≠ 0).
     const LinearStateSpace::ModalBasis* basis = space.modal_basis();
     std::vector<Eigen::RowVectorXcd> probe_modes;
+    const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(form.size());
     if (basis) {
-      const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(form.size());
       for (const Probe& probe : probes) {
         Eigen::RowVectorXd g(space.state_size());
         for (Eigen::Index k = 0; k < space.state_size(); ++k) {
@@ -104,19 +104,35 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
         probe_modes.push_back(g.cast<std::complex<double>>() * basis->vectors);
       }
     }
+    const Eigen::VectorXd no_state = Eigen::VectorXd::Zero(space.state_size());
     for (double stop : stops) {
       if (stop <= t) continue;
-      const Eigen::VectorXd f = form.f(0.5 * (t + stop));  // constant inside the interval
-      const Eigen::VectorXd nf = space.forcing(f);
-      std::vector<double> start_values;
-      std::vector<Eigen::RowVectorXcd> weights;
+      // The sources on [t, stop]: f₀ + (τ − t)·f₁, f₁ = 0 on a constant interval.
+      const AffinePiece f = affine_piece(system, form.size(), t, stop);
+      const bool ramp = f.ramp();
+      const Eigen::VectorXd nf = space.forcing(f.start);
+      const Eigen::VectorXd nf_slope = ramp ? space.forcing(f.slope) : Eigen::VectorXd();
+      std::vector<double> start_values, ramp_values;
+      std::vector<Eigen::RowVectorXcd> weights, ramp_weights;
       if (basis && next_output < outputs.size() && outputs[next_output] <= stop) {
-        space.full_state(x, f, u, up);
+        if (ramp)
+          space.full_state(x, f.start, f.slope, u, up);
+        else
+          space.full_state(x, f.start, u, up);
         const Eigen::VectorXcd rate =
             basis->vectors_lu.solve((space.m() * x + nf).cast<std::complex<double>>());
         for (size_t k = 0; k < probes.size(); ++k) {
           start_values.push_back(form.probe(probes[k], u, up));
           weights.push_back(probe_modes[k].cwiseProduct(rate.transpose()));
+        }
+        if (ramp) {
+          const Eigen::VectorXcd ramp_rate =
+              basis->vectors_lu.solve(nf_slope.cast<std::complex<double>>());
+          space.full_state(no_state, f.slope, u, up);  // c(f₁)
+          for (size_t k = 0; k < probes.size(); ++k) {
+            ramp_values.push_back(form.probe(probes[k], u, up));
+            ramp_weights.push_back(probe_modes[k].cwiseProduct(ramp_rate.transpose()));
+          }
         }
       }
       while (next_output < outputs.size() && outputs[next_output] <= stop) {
@@ -125,11 +141,26 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
           result.times.push_back(outputs[next_output]);
           if (basis) {
             const Eigen::VectorXcd increments = basis->increments(h);
+            if (!ramp) {
+              for (size_t k = 0; k < probes.size(); ++k)
+                result.values[k].push_back(start_values[k] +
+                                           (weights[k] * increments).value().real());
+            } else {
+              const Eigen::VectorXcd ramp_increments = basis->ramp_increments(h);
+              for (size_t k = 0; k < probes.size(); ++k)
+                result.values[k].push_back(
+                    start_values[k] + (weights[k] * increments).value().real() +
+                    (ramp_weights[k] * ramp_increments).value().real() + h * ramp_values[k]);
+            }
+          } else if (!ramp) {
+            space.full_state(space.project(space.advance(cache.get(h), x, nf), f.start), f.start, u,
+                             up);
             for (size_t k = 0; k < probes.size(); ++k)
-              result.values[k].push_back(start_values[k] +
-                                         (weights[k] * increments).value().real());
+              result.values[k].push_back(form.probe(probes[k], u, up));
           } else {
-            space.full_state(space.project(space.advance(cache.get(h), x, nf), f), f, u, up);
+            const Eigen::VectorXd f_h = f.at(h);
+            space.full_state(space.project(space.advance(cache.get_ramp(h), x, nf, nf_slope), f_h),
+                             f_h, f.slope, u, up);
             for (size_t k = 0; k < probes.size(); ++k)
               result.values[k].push_back(form.probe(probes[k], u, up));
           }
@@ -140,8 +171,10 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
           return finish(cancelled_status());
       }
       if (cancel_requested(options.progress)) return finish(cancelled_status());
-      const auto& p = cache.get(stop - t);
-      x = space.project(space.advance(p, x, nf), f);
+      if (!ramp)
+        x = space.project(space.advance(cache.get(stop - t), x, nf), f.start);
+      else
+        x = space.project(space.advance(cache.get_ramp(stop - t), x, nf, nf_slope), f.at(stop - t));
       ++result.statistics.restarts;
       t = stop;
     }

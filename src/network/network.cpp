@@ -144,6 +144,16 @@ Eigen::VectorXd System::b(double t) const {
   return rhs;
 }
 
+Eigen::VectorXd System::b_slope(double t) const {
+  const auto& waveforms = excitation.waveforms;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size());
+  std::vector<double> slopes(waveforms.size());
+  for (size_t w = 0; w < waveforms.size(); ++w) slopes[w] = waveforms[w].slope(t);
+  for (const auto& term : excitation.source_terms)
+    rhs[term.row] += term.coefficient * slopes[term.waveform];
+  return rhs;
+}
+
 Eigen::VectorXcd System::b_ac() const {
   Eigen::VectorXcd rhs = excitation.ac;
   for (const auto& term : excitation.source_terms)

@@ -41,6 +41,33 @@ double Waveform::value(double t) const {
   return dc;
 }
 
+double Waveform::slope(double t) const {
+  switch (shape) {
+    case Shape::dc:
+      return 0.0;
+    case Shape::sine:
+      if (t < delay) return 0.0;
+      return amplitude * two_pi * frequency * std::cos(two_pi * frequency * (t - delay) + phase);
+    case Shape::pwl: {
+      if (points.empty() || t < points.front().first || t >= points.back().first) return 0.0;
+      auto upper = std::upper_bound(points.begin(), points.end(), t,
+                                    [](double time, const auto& p) { return time < p.first; });
+      auto lower = upper - 1;
+      return (upper->second - lower->second) / (upper->first - lower->first);
+    }
+    case Shape::pulse: {
+      if (t < delay) return 0.0;
+      double local = t - delay;
+      if (period > 0.0) local = std::fmod(local, period);
+      if (local < rise) return (pulse_high - dc) / rise;
+      if (local < rise + width) return 0.0;
+      if (local < rise + width + fall) return (dc - pulse_high) / fall;
+      return 0.0;
+    }
+  }
+  return 0.0;
+}
+
 void Waveform::breakpoints(double t_begin, double t_end, std::vector<double>& out) const {
   auto add = [&](double t) {
     if (t > t_begin && t <= t_end) out.push_back(t);

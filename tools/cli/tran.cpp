@@ -150,7 +150,8 @@ Command add_tran_command(CLI::App& app, CommonOptions& options) {
   auto* tran_command = app.add_subcommand(
       "tran",
       "time response to the scene's drive (square-wave DEA switching) with SUNDIALS IDA, or\n"
-      "exactly (--method exact) for linear networks under piecewise-constant sources");
+      "exactly (--method exact) for linear networks under piecewise-linear sources (any rise\n"
+      "time)");
   add_common(tran_command, options);
   tran_command->add_option("--switching", tran_options->switching,
                            "switching frequency [Hz] (default: the scene's drive.frequency)");

@@ -61,16 +61,18 @@
 // (left_eigenvector.hpp). A group whose Wᵀ·C·V is singular (rcond < 1e-10 after scaling)
 // goes to the static correction.
 //
-// Periodic (piecewise-constant drive b(t) = Σ_w b_w·u_w(t)): each kept pole is a modal
-// coordinate q_k' = s_k·q_k + Σ_w β_kw·u_w(t), and z(t) = Σ_k v^z_k·q_k + c.c. + Σ_w D_w·u_w(t)
-// (the static correction as a direct feed-through of the forcing). The periodic state of each
-// q_k is exact (one period from 0, then q(0) = c/(1 − e^{s_k·T})); only the truncated modes'
-// transients after each switching edge are lost — their amplitude is their static part, decayed
-// by their own damping, and no band argument makes it smaller: a square wave's edges excite
-// every pole. So the periodic cut-off is f_c = f_band/tol (f_band: the highest switching
-// frequency), chosen from measurement, not derived: on the fish fin (N = 7, 5 Hz) f_c = band/√tol
-// left 1.1e-2 at tol 1e-3 (the relaxation poles at 252 and 435 Hz carry 0.2 % and 0.13 % of
-// the tip's static deflection, more of P2's), band/tol 6e-4 at tol 1e-2. The error is measured
+// Periodic (piecewise-linear drive b(t) = Σ_w b_w·u_w(t): constant or ramping between edges):
+// each kept pole is a modal coordinate q_k' = s_k·q_k + Σ_w β_kw·u_w(t), and
+// z(t) = Σ_k v^z_k·q_k + c.c. + Σ_w D_w·u_w(t) (the static correction as a direct feed-through
+// of the forcing, following its ramps). The periodic state of each q_k is exact (one period from
+// 0, then q(0) = c/(1 − e^{s_k·T}), with an affine particular state on a ramp); only the
+// truncated modes' dynamics are lost: on a ramp their lag behind the static value (of order
+// u_w'/|s_k|), and their transients after each switching edge — whose amplitude is their static
+// part, decayed by their own damping, and no band argument makes it smaller: a square wave's
+// edges excite every pole. So the periodic cut-off is f_c = f_band/tol (f_band: the highest
+// switching frequency), chosen from measurement, not derived: on the fish fin (N = 7, 5 Hz) f_c =
+// band/√tol left 1.1e-2 at tol 1e-3 (the relaxation poles at 252 and 435 Hz carry 0.2 % and 0.13 %
+// of the tip's static deflection, more of P2's), band/tol 6e-4 at tol 1e-2. The error is measured
 // against the exact solution (periodic_difference), never assumed. The poles come from a dense
 // eigen-decomposition up to 600 unknowns, as PeriodicSolver's (the Kelvin–Voigt cluster at
 // −1/τ lies below f_c and stops Arnoldi). Probes must be displacement-like (deflections,
@@ -195,7 +197,7 @@ std::vector<double> check_frequencies(const std::vector<double>& grid,
 
 // ---- periodic ----------------------------------------------------------------------------
 
-// The reduced counterpart of PeriodicSolver (linear network, piecewise-constant sources).
+// The reduced counterpart of PeriodicSolver (linear network, piecewise-linear sources).
 class ReducedPeriodicSolver {
  public:
   ReducedPeriodicSolver(const System& system, const ReductionOptions& options);

@@ -2,13 +2,17 @@
 // against the switching frequency), computed directly — never by integrating until it looks
 // settled.
 //
-// Exact method (linear network, piecewise-constant sources): with the state equation
-// x' = M·x + N·f (src/analysis/state_space.hpp) the state after one period is
-// x(T) = Φ·x(0) + c, so the periodic state solves (I − Φ)·x(0) = c. Inside each constant
-// interval x(t) = x_p + V·e^{Λ(t − t_i)}·V⁻¹·(x_i − x_p) with M = V·Λ·V⁻¹ and x_p = −M⁻¹·N·f, so
-// every probe is a sum of exponentials. Its global extrema come from the samples, a search that
-// halves every gap between them where a bound on p'' still allows a higher value (to 1e-11 of
-// the largest |p|), and Newton on the derivative to rounding: O(n) per evaluation, and the same
+// Exact method (linear network, piecewise-linear sources: dc, pulses with any rise and fall,
+// pwl): with the state equation x' = M·x + N·f (src/analysis/state_space.hpp) the state after
+// one period is x(T) = Φ·x(0) + c, c holding the constant and the ramp intervals'
+// contributions, so the periodic state solves (I − Φ)·x(0) = c. Inside each interval between
+// breakpoints the sources are affine, f = f₀ + h·f₁, and with M = V·Λ·V⁻¹
+// x(t) = x_p(h) + V·e^{Λh}·V⁻¹·(x_i − x_p(0)) (h = t − t_i) for the affine particular state
+// x_p(h) = a + h·b, b = −M⁻¹·N·f₁, a = −M⁻¹·(N·f₀ − b) (per mode; b = 0 on a constant
+// interval), so every probe is an affine function plus a sum of exponentials. Its global
+// extrema come from the samples, a search that halves every gap between them where a bound on
+// p'' (the exponentials' alone: the affine part has none) still allows a higher value (to 1e-11
+// of the largest |p|), and Newton on the derivative to rounding: O(n) per evaluation, and the same
 // extremes whatever the number of samples. M and its eigen-decomposition depend only on
 // the network, not on the drive, so a sweep over switching frequencies decomposes once.
 //
@@ -45,7 +49,10 @@ class PeriodicSolver {
   // Decomposes the network's state equation once; `system` fixes G and C.
   explicit PeriodicSolver(const System& system);
   ~PeriodicSolver();
-  // The periodic state of `system` (same G and C, sources of period `period`).
+  // The periodic state of `system` (same G and C, sources of period `period`): the long-time
+  // limit, so a delayed pulse train is taken in its periodic regime, not in its first period
+  // (a pulse whose fall reaches into the next period is there from the start; shooting the
+  // same).
   PeriodicResult solve(const System& system, const std::vector<Probe>& probes, double period,
                        int samples = 256) const;
 

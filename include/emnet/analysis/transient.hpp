@@ -1,5 +1,5 @@
 // Time-domain analysis: SUNDIALS IDA on the network's DAE, and the exact solution of linear
-// networks under piecewise-constant sources.
+// networks under piecewise-linear sources.
 //
 // Both integrate the displacement form of C·y' + G·y + g(y) = b(t) (src/analysis/
 // displacement_form.hpp): mechanical across unknowns become displacements z (with a velocity
@@ -66,13 +66,15 @@ struct TransientResult {
 TransientResult run_transient_ida(const System& system, const std::vector<Probe>& probes,
                                   const TransientOptions& options);
 
-// The ends of the constant (or smooth) intervals of the sources over (0, end_time]: every
-// source breakpoint, the last one being end_time itself.
+// The ends of the constant, affine (or smooth) intervals of the sources over (0, end_time]:
+// every source breakpoint, the last one being end_time itself.
 std::vector<double> interval_ends(const System& system, double end_time);
 
-// Exact solution for a linear network whose sources are piecewise constant (zero rise time):
-// a matrix exponential per constant interval. Fails (status) for other networks, and when an
-// output is not finite.
+// Exact solution for a linear network whose sources are piecewise linear (dc, pulses with any
+// rise and fall, pwl): per interval between breakpoints, where every source is affine, one
+// matrix exponential (a larger one on a ramp; state_space.hpp). Fails (status) for a nonlinear
+// network, a sine source ("not piecewise linear; use --method ida"), and when an output is not
+// finite.
 TransientResult run_transient_exact(const System& system, const std::vector<Probe>& probes,
                                     const TransientOptions& options);
 

@@ -140,6 +140,9 @@ class System {
 
   Eigen::VectorXd b(double t) const;
   Eigen::VectorXd b_at_rest() const { return b(0.0); }
+  // db/dt on the source pieces that hold t (Waveform::slope): zero for piecewise-constant
+  // sources, so that b(t₀) + b_slope(t)·(t − t₀) is b on a piece of piecewise-linear ones.
+  Eigen::VectorXd b_slope(double t) const;
   // AC right-hand side: source phasors plus the direct excitation.
   Eigen::VectorXcd b_ac() const;
   bool is_nonlinear() const { return !nonlinear_elements.empty(); }

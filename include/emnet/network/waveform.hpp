@@ -38,6 +38,12 @@ struct Waveform {
   double ac_phase = 0.0;  // rad
 
   double value(double t) const;
+  // d value/dt on the piece that holds t, taken from the right at a breakpoint as value() is
+  // (0 on constant pieces, so that a piecewise-constant source has slope 0 exactly). For dc,
+  // pulse and pwl the value is affine between breakpoints: value(t) = value(t₀) + slope·(t − t₀).
+  double slope(double t) const;
+  // Affine between breakpoints (dc, pulse, pwl); a sine is not.
+  bool piecewise_linear() const { return shape != Shape::sine; }
   double value_at_rest() const { return value(0.0); }
   std::complex<double> ac_phasor() const { return std::polar(ac_magnitude, ac_phase); }
   // Instants in (t_begin, t_end] where the value or its slope jumps.
