@@ -56,7 +56,8 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
                 const AcOptions& options) {
   // The small-signal part of each probe (a square 2·k·u₀·U, emnet/network/output.hpp).
   std::vector<Probe> probes;
-  for (const Probe& probe : given_probes) probes.push_back(linearised_probe(probe, operating_point));
+  for (const Probe& probe : given_probes)
+    probes.push_back(linearised_probe(probe, operating_point));
   Timed<AcResult> timed;
   AcResult& result = timed.result;
   result.frequencies = frequencies;

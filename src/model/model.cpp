@@ -362,11 +362,9 @@ int recorded_branch(const Model& model, Component component, ElementPart part, i
 }
 
 std::string electrical_dynamics_missing(const Model& model, const std::string& what) {
-  const bool automatic =
-      std::any_of(model.automatic_choices.begin(), model.automatic_choices.end(),
-                  [](const AutomaticChoice& choice) {
-                    return choice.key == "drive.electrical_dynamics";
-                  });
+  const bool automatic = std::any_of(
+      model.automatic_choices.begin(), model.automatic_choices.end(),
+      [](const AutomaticChoice& choice) { return choice.key == "drive.electrical_dynamics"; });
   return what + " (drive.electrical_dynamics = " +
          (automatic ? std::string("\"auto\" chose false") : "false") +
          "; set it true, e.g. --set drive.electrical_dynamics=true)";
@@ -465,8 +463,8 @@ void reaction_terms(const Model& model, const ProbeSpec& spec, Probe& probe) {
                                          ElementPart::rotational_compliance, segment);
     const auto& compliance =
         static_cast<const Inductor&>(*model.network.elements()[static_cast<std::size_t>(element)]);
-    probe.terms.emplace_back(
-        model.network.branch_unknown_index(static_cast<std::size_t>(element)), left ? 1.0 : -1.0);
+    probe.terms.emplace_back(model.network.branch_unknown_index(static_cast<std::size_t>(element)),
+                             left ? 1.0 : -1.0);
     const NodeId other = left ? compliance.b() : compliance.a();
     if (compliance.parallel_conductance() != 0.0 && other != ground)
       probe.terms.emplace_back(other, -compliance.parallel_conductance());
@@ -480,20 +478,21 @@ void reaction_terms(const Model& model, const ProbeSpec& spec, Probe& probe) {
       if (!from_here && !to_here) continue;
       const DeaLayout* layout = model.find_dea(dea.name);
       if (!layout || layout->electrode_node == ground)
-        throw InputError(
-            "probe " + spec.name, "quantity",
-            electrical_dynamics_missing(
-                model, "DEA '" + dea.name + "' ends on the held end; its moment there is the "
-                                            "ideal drive's k_F*V(t)^2, no output of the network"));
+        throw InputError("probe " + spec.name, "quantity",
+                         electrical_dynamics_missing(
+                             model, "DEA '" + dea.name +
+                                        "' ends on the held end; its moment there is the "
+                                        "ideal drive's k_F*V(t)^2, no output of the network"));
       // Coupling at the held rotation node (ψ there has coefficient 1): −s·z at `from`, +s·z at
       // `to`, s = −1 on the top face (model.cpp dea_layout).
       const double face_sign = dea.face == Face::top ? -1.0 : 1.0;
       const double coupling = (to_here ? 1.0 : -1.0) * face_sign * dea.lever_arm;
-      probe.squares.push_back({-coupling * layout->force_constant, {{layout->electrode_node, 1.0}}});
+      probe.squares.push_back(
+          {-coupling * layout->force_constant, {{layout->electrode_node, 1.0}}});
     }
   probe.description = std::string("reaction ") + kind + " of the " + end_name + " support at " +
-                       position_text(spec.at) + " on the beam (" +
-                       (moment ? "positive as +psi" : "positive along +w") + ")";
+                      position_text(spec.at) + " on the beam (" +
+                      (moment ? "positive as +psi" : "positive along +w") + ")";
 }
 
 Probe make_probe_on(const Model& model, const ProbeSpec& spec, const DeaLayout* dea) {
@@ -544,8 +543,9 @@ Probe make_probe_on(const Model& model, const ProbeSpec& spec, const DeaLayout* 
     case ProbeQuantity::dea_force:
       electrical_dea();
       probe.squares.push_back({dea->force_constant, {{dea->electrode_node, 1.0}}});
-      probe.description = "force k_F*u^2 of DEA " + spec.dea + " on its face (k_F = " +
-                          format_number("%.6g", dea->force_constant) + " N/V^2)";
+      probe.description = "force k_F*u^2 of DEA " + spec.dea +
+                          " on its face (k_F = " + format_number("%.6g", dea->force_constant) +
+                          " N/V^2)";
       break;
     case ProbeQuantity::reaction_force:
     case ProbeQuantity::reaction_moment:
@@ -585,7 +585,8 @@ Probe make_probe_on(const Model& model, const ProbeSpec& spec, const DeaLayout* 
       // ε = ∓z·dψ/dx: −z on the top face (+w side), +z on the bottom; the time integral of the
       // curvature rate from the velocities.
       const double z = spec.face == Face::top ? -spec.distance : spec.distance;
-      for (const auto& [node, c] : beam.curvature_terms(spec.at)) probe.terms.emplace_back(node, z * c);
+      for (const auto& [node, c] : beam.curvature_terms(spec.at))
+        probe.terms.emplace_back(node, z * c);
       probe.integrations = 1;
       probe.description = std::string("strain of the ") +
                           (spec.face == Face::top ? "top" : "bottom") + " face at " + where +
@@ -617,10 +618,9 @@ Probe Model::parse_probe(const std::string& text) const {
       spec.quantity = q;
       known = true;
     }
-  const bool named = spec.quantity == ProbeQuantity::dea_voltage ||
-                     spec.quantity == ProbeQuantity::dea_current ||
-                     spec.quantity == ProbeQuantity::dea_force ||
-                     spec.quantity == ProbeQuantity::spring_force;
+  const bool named =
+      spec.quantity == ProbeQuantity::dea_voltage || spec.quantity == ProbeQuantity::dea_current ||
+      spec.quantity == ProbeQuantity::dea_force || spec.quantity == ProbeQuantity::spring_force;
   if (!known || (named ? colon == std::string::npos || colon + 1 == text.size()
                        : at_sign == std::string::npos))
     throw InputError("--probe", text,

@@ -26,8 +26,8 @@ Probe linearised_probe(const Probe& probe, const Eigen::VectorXd& operating_poin
   linear.squares.clear();
   std::string levels;
   for (const SquaredTerm& square : probe.squares) {
-    const double level = operating_point.size() > 0 ? linear_value(square.terms, operating_point)
-                                                    : 0.0;
+    const double level =
+        operating_point.size() > 0 ? linear_value(square.terms, operating_point) : 0.0;
     for (const auto& [index, d] : square.terms)
       linear.terms.emplace_back(index, 2.0 * square.factor * level * d);
     char text[48];

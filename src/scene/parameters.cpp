@@ -521,15 +521,15 @@ std::vector<ParameterInfo> scene_keys() {
       .required = true;
   keys.back().constraint = "letters, digits and '_', at most 64 characters, unique";
   keys.back().text = [](const Scene& scene, std::size_t entry) { return scene.probes[entry].name; };
-  add(choice("probe", "quantity",
-             {"deflection", "velocity", "rotation", "angular_velocity", "dea_voltage",
-              "dea_current", "reaction_force", "reaction_moment", "spring_force", "strain",
-              "dea_force"},
-             true, "probes",
-             "what the probe measures: a beam quantity at probe[].at (reaction_force and "
-             "reaction_moment: the support's force or moment on the beam at a held end, at = 0 "
-             "or beam.length; strain: at a face, probe[].face and probe[].distance), a spring's "
-             "force (probe[].spring), or a DEA's voltage, current or force k_F*u^2 (probe[].dea)"))
+  add(choice(
+          "probe", "quantity",
+          {"deflection", "velocity", "rotation", "angular_velocity", "dea_voltage", "dea_current",
+           "reaction_force", "reaction_moment", "spring_force", "strain", "dea_force"},
+          true, "probes",
+          "what the probe measures: a beam quantity at probe[].at (reaction_force and "
+          "reaction_moment: the support's force or moment on the beam at a held end, at = 0 "
+          "or beam.length; strain: at a face, probe[].face and probe[].distance), a spring's "
+          "force (probe[].spring), or a DEA's voltage, current or force k_F*u^2 (probe[].dea)"))
       .text = [](const Scene& scene, std::size_t entry) {
     return std::string(probe_quantity_name(scene.probes[entry].quantity));
   };

@@ -522,7 +522,8 @@ void SceneReader::read_probes(const toml::table& root, Scene& scene) const {
     }
     if (used("at")) read.at = reader.position_on_beam(key("at"), scene.beam.length);
     if (used("spring")) read.spring = read_probe_spring(reader, scene);
-    if (used("face")) read.face = reader.choice(key("face"), std::vector<Face>{Face::top, Face::bottom});
+    if (used("face"))
+      read.face = reader.choice(key("face"), std::vector<Face>{Face::top, Face::bottom});
     if (used("distance")) read.distance = reader.quantity(key("distance"));
   }
 }
@@ -533,9 +534,8 @@ std::string SceneReader::read_probe_spring(const Section& reader, const Scene& s
   for (std::size_t k = 0; k < springs.size(); ++k)
     names += (k == 0 ? "" : ", ") + std::to_string(k) +
              (springs[k].name.empty() ? "" : " ('" + springs[k].name + "')");
-  const std::string defined =
-      springs.empty() ? "the scene has no [[spring]]"
-                      : "the scene's springs are, by index: " + names;
+  const std::string defined = springs.empty() ? "the scene has no [[spring]]"
+                                              : "the scene's springs are, by index: " + names;
   if (!reader.has("spring")) reader.fail_missing("spring");
   const toml::node& node = *reader.find("spring");
   if (const auto* integer = node.as_integer()) {

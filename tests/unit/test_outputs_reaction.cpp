@@ -69,8 +69,7 @@ TEST(Reaction, CantileverTipForce) {
     const Built built = build(beam("clamped", "free", segments) + load(length, force));
     EXPECT_NEAR(static_value(built, "reaction_force@0"), -force, 1e-10 * force)
         << "N = " << segments;
-    EXPECT_NEAR(static_value(built, "reaction_moment@0"), -force * length,
-                1e-10 * force * length)
+    EXPECT_NEAR(static_value(built, "reaction_moment@0"), -force * length, 1e-10 * force * length)
         << "N = " << segments;
   }
 }
@@ -82,8 +81,7 @@ TEST(Reaction, CantileverClampedOnTheRight) {
   for (int segments : {1, 4}) {
     const Built built = build(beam("free", "clamped", segments) + load(0.0, force));
     EXPECT_NEAR(static_value(built, "reaction_force@0.5"), -force, 1e-10 * force);
-    EXPECT_NEAR(static_value(built, "reaction_moment@0.5"), force * length,
-                1e-10 * force * length);
+    EXPECT_NEAR(static_value(built, "reaction_moment@0.5"), force * length, 1e-10 * force * length);
   }
 }
 
@@ -125,9 +123,9 @@ TEST(Reaction, EquilibriumOfAStaticallyIndeterminateBeam) {
 TEST(SpringForce, PinnedBeamOnASpringUnderATipForce) {
   const double force = 1.3, length = 0.5, a = 0.3;
   for (int segments : {1, 5}) {
-    const Built built = build(
-        beam("pinned", "free", segments) + load(length, force) +
-        "[[spring]]\nname = \"prop\"\nat = 0.3\nkind = \"translational\"\nstiffness = 500\n");
+    const Built built =
+        build(beam("pinned", "free", segments) + load(length, force) +
+              "[[spring]]\nname = \"prop\"\nat = 0.3\nkind = \"translational\"\nstiffness = 500\n");
     const double spring = force * length / a;
     EXPECT_NEAR(static_value(built, "spring_force:prop"), spring, 1e-10 * spring);
     EXPECT_NEAR(static_value(built, "spring_force:0"), spring, 1e-10 * spring);
@@ -149,10 +147,9 @@ TEST(SpringForce, RotationalSpringAtAPinnedRoot) {
 
 // A free end on springs is no support: the reaction there is refused, naming the spring.
 TEST(SpringForce, ReactionAtAFreeEndIsRefused) {
-  const Built built =
-      build(beam("free", "free", 2) + load(0.5, 1.0) +
-            "[[spring]]\nat = 0\nkind = \"translational\"\nstiffness = 30\n"
-            "[[spring]]\nat = 0\nkind = \"rotational\"\nstiffness = 30\n");
+  const Built built = build(beam("free", "free", 2) + load(0.5, 1.0) +
+                            "[[spring]]\nat = 0\nkind = \"translational\"\nstiffness = 30\n"
+                            "[[spring]]\nat = 0\nkind = \"rotational\"\nstiffness = 30\n");
   try {
     built.model.parse_probe("reaction_force@0");
     ADD_FAILURE() << "expected an InputError";
@@ -186,10 +183,9 @@ TEST(Reaction, AcOfATipMassOnASegmentWithAndWithoutMaterialDamping) {
   const double length = 0.5, ei = 2.0, rho_a = 0.3, mass = 0.2, force = 1.0;
   const double k = 3 * ei / std::pow(length, 3), tip_mass = mass + rho_a * length / 2;
   for (double tau : {0.0, 2e-3}) {
-    const Built built =
-        build(beam("clamped", "free", 1,
-                   "[damping]\nkelvin_voigt_time = " + std::to_string(tau) + "\n") +
-              load(length, force) + "[[mass]]\nat = 0.5\nmass = 0.2\n");
+    const Built built = build(
+        beam("clamped", "free", 1, "[damping]\nkelvin_voigt_time = " + std::to_string(tau) + "\n") +
+        load(length, force) + "[[mass]]\nat = 0.5\nmass = 0.2\n");
     const std::vector<Probe> probes = {built.model.parse_probe("reaction_force@0"),
                                        built.model.parse_probe("reaction_moment@0")};
     const std::vector<double> frequencies = {1.0, 3.0, 7.5, 20.0};
@@ -198,7 +194,8 @@ TEST(Reaction, AcOfATipMassOnASegmentWithAndWithoutMaterialDamping) {
     for (size_t i = 0; i < frequencies.size(); ++i) {
       const double omega = 2 * pi * frequencies[i];
       const std::complex<double> stiffness = k * std::complex<double>(1.0, omega * tau);
-      const std::complex<double> carried = stiffness * force / (stiffness - tip_mass * omega * omega);
+      const std::complex<double> carried =
+          stiffness * force / (stiffness - tip_mass * omega * omega);
       EXPECT_LT(std::abs(ac.values[0][i] + carried), 1e-9 * std::abs(carried))
           << "tau = " << tau << ", f = " << frequencies[i];
       EXPECT_LT(std::abs(ac.values[1][i] + length * carried), 1e-9 * std::abs(length * carried))

@@ -14,9 +14,9 @@ enum class ProbeQuantity {
   dea_current,       // i [A] into a DEA
   reaction_force,    // R [N]: the force a support exerts on the beam, positive along +w
   reaction_moment,   // M_R [N·m]: the moment a support exerts on the beam, positive as +ψ
-  spring_force,      // k·Δ + c·Δ' [N or N·m] a [[spring]] carries (positive stretched, see model)
-  strain,            // ε [-] at a face: ∓z·dψ/dx (top face compressed bending toward +w)
-  dea_force          // k_F·u² [N] a DEA pushes its face with
+  spring_force,  // k·Δ + c·Δ' [N or N·m] a [[spring]] carries (positive stretched, see model)
+  strain,        // ε [-] at a face: ∓z·dψ/dx (top face compressed bending toward +w)
+  dea_force      // k_F·u² [N] a DEA pushes its face with
 };
 const char* probe_quantity_name(ProbeQuantity quantity);  // "deflection", …
 // "m", "m/s", "rad", …; "" for the dimensionless strain. spring_force: "N" (a rotational
