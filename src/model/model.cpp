@@ -25,7 +25,6 @@
 #include "emnet/elements/current_source.hpp"
 #include "emnet/elements/dea.hpp"
 #include "emnet/elements/inductor.hpp"
-#include "emnet/elements/transformer.hpp"
 #include "emnet/elements/voltage_source.hpp"
 
 namespace emnet {
@@ -558,8 +557,7 @@ Probe make_probe_on(const Model& model, const ProbeSpec& spec, const DeaLayout* 
       probe.unit = rotational ? "N*m" : "N";
       const std::string id = spring.name.empty() ? std::to_string(n) : spring.name;
       const std::string what = rotational ? "moment" : "force";
-      const std::string to =
-          spring.to ? position_text(*spring.to) : std::string(rotational ? "ground" : "ground");
+      const std::string to = spring.to ? position_text(*spring.to) : std::string("ground");
       probe.description = "spring " + id + "'s " + what + " k*(" + (rotational ? "phi" : "w") +
                           "(" + position_text(spring.at) + ") - " + (rotational ? "phi" : "w") +
                           "(" + to + ")) + c*rate: positive stretched along +" +
