@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "complex_klu.hpp"
 #include "core/timed.hpp"
@@ -41,6 +42,9 @@ std::vector<double> frequency_grid(double from, double to, int points, bool log)
 }
 
 std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y, double omega) {
+  if (!is_linear(probe))
+    throw std::invalid_argument("probe_phasor: probe '" + probe.name +
+                                "' has squares; take linearised_probe about the operating point");
   std::complex<double> sum = 0.0;
   for (const auto& [index, coefficient] : probe.terms) sum += coefficient * y[index];
   for (int k = 0; k < probe.integrations; ++k) sum /= std::complex<double>(0.0, omega);
@@ -48,8 +52,12 @@ std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y,
 }
 
 AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
-                const std::vector<double>& frequencies, const std::vector<Probe>& probes,
+                const std::vector<double>& frequencies, const std::vector<Probe>& given_probes,
                 const AcOptions& options) {
+  // The small-signal part of each probe (a square 2·k·u₀·U, emnet/network/output.hpp).
+  std::vector<Probe> probes;
+  for (const Probe& probe : given_probes)
+    probes.push_back(linearised_probe(probe, operating_point));
   Timed<AcResult> timed;
   AcResult& result = timed.result;
   result.frequencies = frequencies;

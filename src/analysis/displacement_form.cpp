@@ -211,7 +211,8 @@ double DisplacementForm::probe(const Probe& probe, const Eigen::VectorXd& u,
     else
       throw std::runtime_error("probe '" + probe.name + "' integrates an electrical quantity");
   }
-  return value;
+  // Squares (a DEA's k_F·u²) of electrical voltages, which u holds as they are.
+  return value + squares_value(probe, u);
 }
 
 }  // namespace emnet

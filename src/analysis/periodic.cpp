@@ -328,6 +328,10 @@ PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Prob
   if (Status pieces = require_piecewise_linear(system); !pieces.ok) return finish(pieces);
   if (system.size() != impl_->system.size() || system.is_nonlinear())
     return finish(Status::failure("the network differs from the one the solver decomposed"));
+  for (const Probe& probe : probes)
+    if (!is_linear(probe))
+      return finish(Status::failure("the exact periodic state takes linear outputs; probe '" +
+                                    probe.name + "' squares a voltage"));
   const DisplacementForm& form = impl_->form;  // E, A and probes as for `system`
   const LinearStateSpace& space = impl_->space;
   const Eigen::VectorXcd& lambda = impl_->lambda;

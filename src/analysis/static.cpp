@@ -209,7 +209,8 @@ double static_probe_value(const System& system, const StaticResult& result, cons
     const int power_of_s = (mech ? 1 : 0) - probe.integrations;
     if (power_of_s == 0) value += coefficient * result.state[index];
   }
-  return value;
+  // Squares (a DEA's k_F·u²) of electrical voltages, which z holds as they are.
+  return value + squares_value(probe, result.state);
 }
 
 }  // namespace emnet

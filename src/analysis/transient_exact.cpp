@@ -64,6 +64,10 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
   result.values.assign(probes.size(), {});
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   if (Status pieces = require_piecewise_linear(system); !pieces.ok) return finish(pieces);
+  for (const Probe& probe : probes)
+    if (!is_linear(probe))
+      return finish(Status::failure("the exact method takes linear outputs; probe '" + probe.name +
+                                    "' squares a voltage (use IDA)"));
   try {
     const DisplacementForm form(system);
     const LinearStateSpace space(form, characteristic_angular_frequency(system, options.end_time));

@@ -17,6 +17,16 @@ const char* probe_quantity_name(ProbeQuantity quantity) {
       return "dea_voltage";
     case ProbeQuantity::dea_current:
       return "dea_current";
+    case ProbeQuantity::reaction_force:
+      return "reaction_force";
+    case ProbeQuantity::reaction_moment:
+      return "reaction_moment";
+    case ProbeQuantity::spring_force:
+      return "spring_force";
+    case ProbeQuantity::strain:
+      return "strain";
+    case ProbeQuantity::dea_force:
+      return "dea_force";
   }
   return "?";
 }
@@ -35,6 +45,14 @@ const char* probe_unit(ProbeQuantity quantity) {
       return "V";
     case ProbeQuantity::dea_current:
       return "A";
+    case ProbeQuantity::reaction_force:
+    case ProbeQuantity::spring_force:
+    case ProbeQuantity::dea_force:
+      return "N";
+    case ProbeQuantity::reaction_moment:
+      return "N*m";
+    case ProbeQuantity::strain:
+      return "";
   }
   return "?";
 }

@@ -78,7 +78,8 @@ std::vector<ModelOutput> transient_output_list(const Model& model) {
 
 std::vector<ModelOutput> deck_output_list(const Model& model) {
   std::vector<ModelOutput> outputs;
-  for (size_t k = 0; k < model.probes.size(); ++k) outputs.push_back(scene_probe_output(model, k));
+  for (size_t k = 0; k < model.probes.size(); ++k)
+    if (deck_exports(model, model.probes[k])) outputs.push_back(scene_probe_output(model, k));
   for (ModelOutput& output : speckle_point_differences(model)) outputs.push_back(std::move(output));
   for (ModelOutput& output : dea_electrical_outputs(model)) outputs.push_back(std::move(output));
   return outputs;
@@ -100,6 +101,30 @@ std::vector<Probe> probes_of(const std::vector<ModelOutput>& outputs) {
   probes.reserve(outputs.size());
   for (const ModelOutput& output : outputs) probes.push_back(output.probe);
   return probes;
+}
+
+std::string deck_export_refusal(const Model& model, const Probe& probe) {
+  if (!is_linear(probe))
+    return "it squares a voltage (k_F*u^2), which the deck's G sources cannot weigh";
+  const int nodes = static_cast<int>(model.network.nodes().size());
+  for (const auto& [index, c] : probe.terms)
+    if (index < 0 || index >= nodes)
+      return "it takes a branch through quantity (a compliance's or a lever's current), which "
+             "the deck does not carry as a node voltage";
+  return "";
+}
+
+bool deck_exports(const Model& model, const Probe& probe) {
+  return deck_export_refusal(model, probe).empty();
+}
+
+std::vector<std::string> deck_left_out_notes(const Model& model) {
+  std::vector<std::string> notes;
+  for (const Probe& probe : model.probes)
+    if (const std::string why = deck_export_refusal(model, probe); !why.empty())
+      notes.push_back("probe " + probe.name + " (" + probe_quantity_name(probe.quantity) +
+                      ") is not exported to SPICE decks and not cross-checked: " + why);
+  return notes;
 }
 
 }  // namespace emnet

@@ -52,6 +52,17 @@ const Element* Network::find(const std::string& name) const {
   return nullptr;
 }
 
+int Network::branch_unknown_index(std::size_t element, int k) const {
+  if (element >= elements_.size() ||
+      k >= static_cast<int>(elements_[element]->branch_unknowns().size()) || k < 0)
+    throw std::out_of_range("branch_unknown_index: element " + std::to_string(element) +
+                            " has no branch unknown " + std::to_string(k));
+  int index = static_cast<int>(nodes_.size());
+  for (std::size_t e = 0; e < element; ++e)
+    index += static_cast<int>(elements_[e]->branch_unknowns().size());
+  return index + k;
+}
+
 namespace {
 
 // Stamps every element of `elements` into `system` (whose unknowns are set): its excitation

@@ -140,7 +140,8 @@ const char* drive_kind_meaning(DriveKind kind) {
 }
 
 bool on_dea(ProbeQuantity quantity) {
-  return quantity == ProbeQuantity::dea_voltage || quantity == ProbeQuantity::dea_current;
+  return quantity == ProbeQuantity::dea_voltage || quantity == ProbeQuantity::dea_current ||
+         quantity == ProbeQuantity::dea_force;
 }
 
 }  // namespace
@@ -175,9 +176,16 @@ std::string parameter_unused_reason(const ParameterInfo& info, const Scene& scen
     const std::string quantity_name = probe_quantity_name(quantity);
     if (info.name == "at" && on_dea(quantity))
       return "is not used by probe quantity '" + quantity_name + "' (it names a DEA)";
+    if (info.name == "at" && quantity == ProbeQuantity::spring_force)
+      return "is not used by probe quantity 'spring_force' (it names a spring: probe[].spring)";
     if (info.name == "dea" && !on_dea(quantity))
-      return "is only used by probe quantities 'dea_voltage' and 'dea_current', not '" +
+      return "is only used by probe quantities 'dea_voltage', 'dea_current' and 'dea_force', "
+             "not '" +
              quantity_name + "'";
+    if (info.name == "spring" && quantity != ProbeQuantity::spring_force)
+      return "is only used by probe quantity 'spring_force', not '" + quantity_name + "'";
+    if ((info.name == "face" || info.name == "distance") && quantity != ProbeQuantity::strain)
+      return "is only used by probe quantity 'strain', not '" + quantity_name + "'";
   }
   if (info.table == "damping") {
     const DampingSpec& damping = scene.damping;

@@ -72,7 +72,8 @@ std::string entry_prefix(const std::string& table, const std::string& name, std:
 }
 
 bool beam_quantity(ProbeQuantity quantity) {
-  return quantity != ProbeQuantity::dea_voltage && quantity != ProbeQuantity::dea_current;
+  return quantity != ProbeQuantity::dea_voltage && quantity != ProbeQuantity::dea_current &&
+         quantity != ProbeQuantity::dea_force && quantity != ProbeQuantity::spring_force;
 }
 
 }  // namespace

@@ -73,6 +73,9 @@ class SceneReader {
   void read_drive(const toml::table& root, Scene& scene) const;
   void read_loads(const toml::table& root, Scene& scene) const;
   void read_probes(const toml::table& root, Scene& scene) const;
+  // probe[].spring: a spring's name or its index (an integer, or digits in a string), checked
+  // against the scene's [[spring]] entries; returned as written (an index as its digits).
+  std::string read_probe_spring(const Section& reader, const Scene& scene) const;
   void read_ac(const toml::table& root, AcSpec& ac) const;
   void read_environment(const toml::table& root, Scene& scene) const;
   void read_model(const toml::table& root, Scene& scene) const;
@@ -494,25 +497,60 @@ void SceneReader::read_probes(const toml::table& root, Scene& scene) const {
     }
     probe.quantity = reader.choice(
         key("quantity"),
-        std::vector<ProbeQuantity>{ProbeQuantity::deflection, ProbeQuantity::velocity,
-                                   ProbeQuantity::rotation, ProbeQuantity::angular_velocity,
-                                   ProbeQuantity::dea_voltage, ProbeQuantity::dea_current});
+        std::vector<ProbeQuantity>{
+            ProbeQuantity::deflection, ProbeQuantity::velocity, ProbeQuantity::rotation,
+            ProbeQuantity::angular_velocity, ProbeQuantity::dea_voltage, ProbeQuantity::dea_current,
+            ProbeQuantity::reaction_force, ProbeQuantity::reaction_moment,
+            ProbeQuantity::spring_force, ProbeQuantity::strain, ProbeQuantity::dea_force});
     scene.probes.push_back(probe);
     const std::size_t index = scene.probes.size() - 1;
-    // probe[].at belongs to the beam quantities, probe[].dea to the DEA ones.
-    reader.reject_if_unused(key("at"), scene, index);
-    reader.reject_if_unused(key("dea"), scene, index);
+    // Each key belongs to the quantities that use it (parameter_unused_reason): probe[].at to
+    // the beam quantities, probe[].dea to the DEA ones, probe[].spring to spring_force,
+    // probe[].face and probe[].distance to strain.
+    for (const char* name : {"at", "dea", "spring", "face", "distance"})
+      reader.reject_if_unused(key(name), scene, index);
     ProbeSpec& read = scene.probes.back();
-    if (parameter_unused_reason(key("dea"), scene, index).empty()) {
+    auto used = [&](const char* name) {
+      return parameter_unused_reason(key(name), scene, index).empty();
+    };
+    if (used("dea")) {
       read.dea = reader.string("dea");
       if (known_deas.count(read.dea) == 0) {
         reader.fail("dea", "unknown DEA '" + read.dea + "'" + did_you_mean(read.dea, known) + "; " +
                                defined_deas(known));
       }
-    } else {
-      read.at = reader.position_on_beam(key("at"), scene.beam.length);
     }
+    if (used("at")) read.at = reader.position_on_beam(key("at"), scene.beam.length);
+    if (used("spring")) read.spring = read_probe_spring(reader, scene);
+    if (used("face"))
+      read.face = reader.choice(key("face"), std::vector<Face>{Face::top, Face::bottom});
+    if (used("distance")) read.distance = reader.quantity(key("distance"));
   }
+}
+
+std::string SceneReader::read_probe_spring(const Section& reader, const Scene& scene) const {
+  const std::vector<SpringSpec>& springs = scene.beam.springs;
+  std::string names;
+  for (std::size_t k = 0; k < springs.size(); ++k)
+    names += (k == 0 ? "" : ", ") + std::to_string(k) +
+             (springs[k].name.empty() ? "" : " ('" + springs[k].name + "')");
+  const std::string defined = springs.empty() ? "the scene has no [[spring]]"
+                                              : "the scene's springs are, by index: " + names;
+  if (!reader.has("spring")) reader.fail_missing("spring");
+  const toml::node& node = *reader.find("spring");
+  if (const auto* integer = node.as_integer()) {
+    const long long k = integer->get();
+    if (k < 0 || k >= static_cast<long long>(springs.size()))
+      reader.fail("spring", "no spring of index " + std::to_string(k) + "; " + defined);
+    return std::to_string(k);
+  }
+  const std::string name = reader.string("spring");
+  for (std::size_t k = 0; k < springs.size(); ++k)
+    if (springs[k].name == name) return name;
+  // An index written as a string ("0") names the spring of that index too.
+  for (std::size_t k = 0; k < springs.size(); ++k)
+    if (name == std::to_string(k)) return name;
+  reader.fail("spring", "unknown spring '" + name + "'; " + defined);
 }
 
 void SceneReader::read_ac(const toml::table& root, AcSpec& ac) const {

@@ -64,6 +64,7 @@ void DeckWriter::write_outputs() {
   comment(out,
           "---- outputs: one node per probe, fed by G sources with emnet's weights "
           "(Probe::terms: cubic Hermite between nodes)");
+  for (const std::string& note : deck_left_out_notes(model_)) comment(out, note);
   for (const Probe& probe : outputs_) {
     if (probe.integrations > 1)
       throw InputError(where(), "probe " + probe.name, "a double integral is not written");

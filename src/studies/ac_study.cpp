@@ -56,7 +56,10 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
   require_ac_input(model, system);
   const std::vector<double> grid =
       frequency_grid(options.sweep.from, options.sweep.to, options.sweep.points, options.sweep.log);
-  const std::vector<Probe>& probes = options.probes;
+  // The small-signal part of each probe (a DEA force's 2·k_F·u₀·U), as the sweep evaluates it.
+  std::vector<Probe> probes;
+  for (const Probe& probe : options.probes)
+    probes.push_back(linearised_probe(probe, operating_point));
   auto fail = [&](AcStudyStage stage, Status status) {
     result.status = std::move(status);
     result.failed_stage = stage;

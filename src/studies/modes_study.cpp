@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "emnet/analysis/operating_point.hpp"
 #include "emnet/core/stopwatch.hpp"
@@ -73,6 +74,9 @@ ModeShape mode_shape(const Model& model, const Mode& mode) {
 }
 
 std::complex<double> mode_probe_value(const Model& model, const Mode& mode, const Probe& probe) {
+  if (!is_linear(probe))
+    throw std::invalid_argument("mode_probe_value: probe '" + probe.name +
+                                "' has squares; pass linearised_probe(probe, operating point)");
   const std::complex<double> divisor = mode_shape(model, mode).divisor;
   std::complex<double> value = 0.0;
   for (const auto& [index, c] : probe.terms) value += c * mode.vector[index];

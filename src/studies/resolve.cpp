@@ -106,7 +106,7 @@ AutomaticChoice choose_electrical_dynamics(const Scene& scene, bool electrical_p
   std::string asking;
   for (const ProbeSpec& probe : scene.probes)
     if (probe.quantity == ProbeQuantity::dea_voltage ||
-        probe.quantity == ProbeQuantity::dea_current)
+        probe.quantity == ProbeQuantity::dea_current || probe.quantity == ProbeQuantity::dea_force)
       asking = "probe " + probe.name + " asks for " + probe_quantity_name(probe.quantity);
   if (asking.empty() && electrical_probe_requested)
     asking = "a --probe asks for an electrical quantity";

@@ -15,6 +15,7 @@
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/operating_point.hpp"
 #include "emnet/core/output_file.hpp"
+#include "emnet/model/outputs.hpp"
 #include "emnet/spice/spice_netlist.hpp"
 #include "emnet/verification/crosscheck.hpp"
 
@@ -80,6 +81,7 @@ class CrosscheckSession {
 
   CrosscheckReport run() {
     check_options();
+    for (std::string& note : deck_left_out_notes(model_)) report_.notes.push_back(std::move(note));
     try {
       for (const auto analysis : options_.analyses) {
         switch (analysis) {

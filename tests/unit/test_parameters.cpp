@@ -189,7 +189,15 @@ std::map<std::string, SetCase> fishfin_set_cases() {
       {"probe[].at", {"probe.P4.at=60 mm", 0.06, ""}},
       // The fin's probes are deflections, which name no DEA.
       {"probe[].dea",
-       {"probe.tip.dea=A", {}, "is only used by probe quantities 'dea_voltage' and 'dea_current'"}},
+       {"probe.tip.dea=A",
+        {},
+        "is only used by probe quantities 'dea_voltage', 'dea_current' and 'dea_force'"}},
+      // Nor a spring, a face or a distance from the neutral plane.
+      {"probe[].spring",
+       {"probe.tip.spring=k", {}, "is only used by probe quantity 'spring_force'"}},
+      {"probe[].face", {"probe.tip.face=top", {}, "is only used by probe quantity 'strain'"}},
+      {"probe[].distance",
+       {"probe.tip.distance=1 mm", {}, "is only used by probe quantity 'strain'"}},
       {"ac.from", {"ac.from=1 Hz", 1.0, ""}},
       {"ac.to", {"ac.to=20 Hz", 20.0, ""}},
       {"ac.points", {"ac.points=50", 50.0, ""}},

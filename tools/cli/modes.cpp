@@ -26,8 +26,12 @@ int run_modes_command(const CommonOptions& options, const emnet::ModesStudyOptio
   const double total = stopwatch.seconds();
   const emnet::Model& model = study.model;
   const emnet::ModalResult& result = study.modal;
-  const std::vector<emnet::Probe> probes =
+  // A probe with squares (dea_force) in a mode shape: its small-signal part about the operating
+  // point, as its description says.
+  std::vector<emnet::Probe> probes =
       options.probes.empty() ? std::vector<emnet::Probe>{} : selected_probes(model, options);
+  for (emnet::Probe& probe : probes)
+    probe = emnet::linearised_probe(probe, study.rest.operating_point);
   const std::vector<std::string>& rigid_names = study.rigid_body_motions;
   // Each mode's rounding error bound, relative to its damped frequency.
   auto frequency_error = [](const emnet::Mode& mode) {

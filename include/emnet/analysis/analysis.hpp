@@ -50,7 +50,8 @@ struct StaticResult {
 };
 
 StaticResult solve_static(const System& system, const StaticOptions& options = {});
-// Value of a probe at rest (deflections and rotations; velocities are zero).
+// Value of a probe at rest (deflections and rotations; velocities are zero; through quantities
+// as solved; rate terms zero; squares evaluated as they are).
 double static_probe_value(const System& system, const StaticResult& result, const Probe& probe);
 
 // Which unknowns are mechanical across values (velocities), and which rows have no s⁰ part
@@ -112,6 +113,8 @@ struct AcResult {
 AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
                 const std::vector<double>& frequencies, const std::vector<Probe>& probes,
                 const AcOptions& options = {});
+// Probes with squares are linearised about `operating_point` (linearised_probe) by run_ac;
+// probe_phasor takes linear probes only (std::invalid_argument otherwise).
 std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y, double omega);
 
 // ---- modal -------------------------------------------------------------------------------

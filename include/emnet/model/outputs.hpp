@@ -15,7 +15,12 @@
 //     what the paper measures), then the DEA outputs;
 //   deck_output_list  (SPICE decks, spice_output_probes): the scene's probes as they are, P1
 //     included (a deck's outputs are compared with emnet probe by probe, the raw P_k as well),
-//     then every dx_k, then the DEA outputs.
+//     then every dx_k, then the DEA outputs; a probe a deck cannot carry is left out of it
+//     (deck_exports), with a note (deck_left_out_notes) that the cross-check repeats.
+// A deck writes an output as node voltages weighted by G sources: a probe whose terms name a
+// branch unknown (reaction_force, reaction_moment, spring_force: an inductor's or a lever's
+// current) or that has squares (dea_force, and a reaction moment with a DEA end on the held
+// end) is not exported.
 #pragma once
 
 #include <string>
@@ -58,5 +63,11 @@ std::vector<ModelOutput> deck_output_list(const Model& model);
 const ModelOutput* default_deflection_output(const std::vector<ModelOutput>& outputs);
 
 std::vector<Probe> probes_of(const std::vector<ModelOutput>& outputs);
+
+// Whether a SPICE deck carries `probe` of `model` (see above); when not, why, in words.
+bool deck_exports(const Model& model, const Probe& probe);
+std::string deck_export_refusal(const Model& model, const Probe& probe);
+// "probe NAME (QUANTITY) is not exported to SPICE decks: WHY" for every scene probe left out.
+std::vector<std::string> deck_left_out_notes(const Model& model);
 
 }  // namespace emnet

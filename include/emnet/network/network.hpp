@@ -94,6 +94,10 @@ class Network {
   const Node& node(NodeId id) const { return nodes_.at(static_cast<size_t>(id)); }
   const std::vector<std::shared_ptr<Element>>& elements() const { return elements_; }
   const Element* find(const std::string& name) const;
+  // Index in y of the k-th branch unknown of element `element` (an index into elements()) as
+  // assemble() numbers them: after every node, in element order. Valid for the network as it
+  // is: a node added later moves every branch unknown (elements added later do not).
+  int branch_unknown_index(std::size_t element, int k = 0) const;
 
   System assemble() const;
   // The excitation alone, as assemble() stamps it (no G, no C).

@@ -173,8 +173,11 @@ struct LoadSpec {
 struct ProbeSpec {
   std::string name;                                    // probe[].name
   ProbeQuantity quantity = ProbeQuantity::deflection;  // probe[].quantity
-  double at = 0.0;                                     // probe[].at [m] (beam quantities)
-  std::string dea;                                     // probe[].dea (dea_voltage, dea_current)
+  double at = 0.0;        // probe[].at [m] (beam quantities; a reaction: 0 or beam.length)
+  std::string dea;        // probe[].dea (dea_voltage, dea_current, dea_force)
+  std::string spring;     // probe[].spring (spring_force): a spring's name, or its index
+  Face face = Face::top;  // probe[].face (strain)
+  double distance = 0.0;  // probe[].distance z [m] from the neutral plane (strain)
 };
 
 struct AcSpec {
