@@ -212,6 +212,15 @@ Dimension parameter_dimension(const ParameterInfo& info, const Scene& scene, std
   return info.dimension;
 }
 
+std::string parameter_unit(const ParameterInfo& info, const Scene& scene, std::size_t entry) {
+  if (info.kind != ParameterKind::quantity) return "";
+  const std::string unit = si_unit_symbol(parameter_dimension(info, scene, entry));
+  const bool rotational_spring = info.table == "spring" && entry < scene.beam.springs.size() &&
+                                 scene.beam.springs[entry].kind == SpringKind::rotational;
+  return rotational_spring && (info.name == "stiffness" || info.name == "damping") ? unit + "/rad"
+                                                                                   : unit;
+}
+
 // ---- parameters of a Scene ------------------------------------------------------------
 
 namespace {

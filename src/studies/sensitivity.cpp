@@ -36,7 +36,8 @@ double value_of(const Scene& scene, const SceneParameterAddress& address) {
 }
 
 SceneParameter parameter_of(const Scene& scene, const SceneParameterAddress& address) {
-  return {address.key, address.info->unit(), value_of(scene, address)};
+  return {address.key, parameter_unit(*address.info, scene, address.entry),
+          value_of(scene, address)};
 }
 
 // The parameter `key` names ("dea.A.x", "dea[A].x", "dea.0.x", "dea[0].x" or a plain key).

@@ -7,7 +7,10 @@
 // and a bisection to 1e-12 in log η inside a fixed point converged to 1e-9, and the targets are
 // printed with 17 digits, so 1e-6 relative leaves a margin for the targets' rounding; (2) the
 // two scenes in netlists/ that come from identify, re-identified from perturbed starts: their
-// values are written with 7 significant digits, so they come back within 1e-6 relative.
+// values are written with 7 significant digits, so they come back within 1e-6 relative; (3) --fit
+// of an elastic clamp's rotational stiffness: the target is f1 at k = 4 N*m/rad (`modes`,
+// printed with 17 digits), the fit starts from 40 N*m/rad and must print k = 4.000000e+00 (7
+// digits; the study's tolerance, test_identify_study.cpp, is far finer).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -115,6 +118,60 @@ TEST(Identify, GivenValuesAreNotFitted) {
   std::remove(path.c_str());
   EXPECT_EQ(run.status, 2) << run.err;
   EXPECT_NE(run.err.find("provenance.beam.bending_stiffness"), std::string::npos) << run.err;
+}
+
+TEST(Identify, FitsAnElasticClampStiffnessAndPrintsWhereItsLineGoes) {
+  const std::string path =
+      ::testing::TempDir() + "emnet_elastic_clamp_" + std::to_string(getpid()) + ".toml";
+  std::ofstream(path) << "[scene]\nname = \"elastic_clamp\"\n[beam]\nlength = 0.5\n"
+                         "segments = 10\nbending_stiffness = 2.0\nmass_per_length = 0.3\n"
+                         "left = \"pinned\"\n[[spring]]\nname = \"clamp\"\nat = 0\n"
+                         "kind = \"rotational\"\nstiffness = 40\n";
+  const Json modes = run_json("modes " + path + " --set spring.clamp.stiffness=4 --count 1");
+  ASSERT_FALSE(modes.is_null());
+  const std::string f1 = number(modes["modes"][0]["frequency_hz"].get<double>());
+  const std::string arguments =
+      "identify " + path + " --resonance " + f1 + " --fit spring.clamp.stiffness";
+  const auto run = run_emnet(arguments);
+  const Json fit = run_json(arguments);
+  std::remove(path.c_str());
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("identified spring[clamp].stiffness = 4.000000e+00 N*m/rad: mode 1 at "),
+            std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("scene lines (in the [[spring]] entry name = \"clamp\"):\n"
+                         "  stiffness = \"4.000000e+00 N*m/rad\"\n"),
+            std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("\"spring[clamp].stiffness\" = \"identified: emnet identify " + path +
+                         " --resonance "),
+            std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find(" --fit spring.clamp.stiffness\"\n"), std::string::npos) << run.out;
+  ASSERT_FALSE(fit.is_null());
+  EXPECT_EQ(fit["parameter"], "spring[clamp].stiffness");
+  EXPECT_EQ(fit["unit"], "N*m/rad");
+  EXPECT_NEAR(fit["value"].get<double>(), 4.0, 4.0 * 1e-6);
+}
+
+TEST(Identify, DefaultOutputNamesTheBendingStiffnessAsBefore) {
+  const auto run = run_emnet("identify " + scene("fishfin.toml") + " --resonance 6.385");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_EQ(run.out.rfind("identified beam.bending_stiffness = ", 0), 0u) << run.out;
+  EXPECT_NE(run.out.find(" N*m^2: mode 1 at "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("scene lines:\n  bending_stiffness = \""), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("provenance:\n  \"beam.bending_stiffness\" = \"identified: emnet "
+                         "identify " +
+                         scene("fishfin.toml") + " --resonance 6.385\"\n"),
+            std::string::npos)
+      << run.out;
+}
+
+TEST(Identify, UnknownFitKeyExitsTwoNamingIt) {
+  const auto run = run_emnet("identify " + scene("fishfin.toml") +
+                             " --resonance 6 --fit spring.clamp.stiffness");
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_NE(run.err.find("spring.clamp.stiffness"), std::string::npos) << run.err;
 }
 
 }  // namespace

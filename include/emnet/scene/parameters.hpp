@@ -127,6 +127,10 @@ std::string parameter_range_text(const ParameterInfo& info);
 // What the unit parser expects of a quantity key in `scene` (its entry `entry`): the entry's
 // dimension, except load[].value, a moment (N*m) for a moment load and a force (N) otherwise.
 Dimension parameter_dimension(const ParameterInfo& info, const Scene& scene, std::size_t entry);
+// The SI unit of a quantity key in `scene` (its entry `entry`) as a scene file writes it:
+// "N*m/rad" for a rotational spring's stiffness, "N*m*s/rad" for its damping, "N*m" for a moment
+// load's value; "" for a dimensionless key and a key that is not a quantity.
+std::string parameter_unit(const ParameterInfo& info, const Scene& scene, std::size_t entry);
 
 // The value as the reader's messages show it: a quantity with its SI unit ("0.07 m"), an integer
 // without a decimal point.
