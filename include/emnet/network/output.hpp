@@ -44,8 +44,8 @@ struct Probe {
   std::string unit;
   LinearTerms terms;
   int integrations = 0;
-  std::vector<SquaredTerm> squares;  // empty for a linear probe
   std::string description;           // "deflection at x = 70.0 mm"
+  std::vector<SquaredTerm> squares;  // empty for a linear probe
 };
 
 inline bool is_linear(const Probe& probe) {
