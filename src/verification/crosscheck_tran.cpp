@@ -17,8 +17,9 @@ namespace emnet::crosscheck_detail {
 void CrosscheckSession::tran() {
   Scene scene = model_.scene;
   bool ideal_drive = false;
+  // (A scene with a [[circuit]] keeps its electrical loops, which the circuit drives.)
   if (scene.drive.electrical_dynamics && !scene.deas.empty() &&
-      scene.drive.kind != DriveKind::none) {
+      scene.drive.kind != DriveKind::none && scene.circuit.empty()) {
     set_electrical_dynamics(scene, false);
     ideal_drive = true;
   }
