@@ -58,8 +58,8 @@ Waveform circuit_waveform(const CircuitSpec& element) {
       waveform = Waveform::constant(element.value);
       break;
     case WaveformKind::square: {
-      waveform = Waveform::square(spec.low, spec.high, spec.frequency, spec.duty, spec.delay,
-                                  spec.rise);
+      waveform =
+          Waveform::square(spec.low, spec.high, spec.frequency, spec.duty, spec.delay, spec.rise);
       waveform.fall = spec.fall_time();
       break;
     }
@@ -118,10 +118,9 @@ std::map<std::string, NodeId> add_circuit(Network& network, ModelStructure* stru
         return found->second;
       }
       if (const auto found = nodes.find(name); found != nodes.end()) return found->second;
-      const NodeId id = add_recorded_node(network, structure,
-                                          {NodeRole::circuit, static_cast<int>(nodes.size()), ""},
-                                          name, Domain::electrical,
-                                          "circuit node " + name + " [V]");
+      const NodeId id = add_recorded_node(
+          network, structure, {NodeRole::circuit, static_cast<int>(nodes.size()), ""}, name,
+          Domain::electrical, "circuit node " + name + " [V]");
       nodes.emplace(name, id);
       return id;
     };

@@ -573,7 +573,8 @@ std::vector<ParameterInfo> scene_keys() {
                 : "the node of the element's second end (as circuit[].from); a voltage source's "
                   "- terminal, where a current source's current enters"))
         .required = true;
-    keys.back().constraint = "a node touched by two element ends at least, with a DC path to ground";
+    keys.back().constraint =
+        "a node touched by two element ends at least, with a DC path to ground";
     const bool first = std::string(end) == "from";
     keys.back().text = [first](const Scene& scene, std::size_t entry) {
       return first ? scene.circuit[entry].from : scene.circuit[entry].to;
@@ -595,16 +596,17 @@ std::vector<ParameterInfo> scene_keys() {
   const char* level_unit = "V (voltage_source), A (current_source)";
   auto level = [&](const char* name, const char* users, bool required, const char* meaning,
                    double WaveformSpec::*member) {
-    waveform_field(add(quantity("circuit", name, dim::voltage, unbounded(), required, users,
-                                meaning)),
-                   member);
+    waveform_field(
+        add(quantity("circuit", name, dim::voltage, unbounded(), required, users, meaning)),
+        member);
     keys.back().unit_note = level_unit;
   };
   level("low", "source waveforms square, pulse", true, "the level before and between the pulses",
         &WaveformSpec::low);
   level("high", "source waveforms square, pulse", true, "the pulses' level", &WaveformSpec::high);
   waveform_field(add(quantity("circuit", "frequency", dim::frequency, positive(), true,
-                              "source waveforms square, sine", "the square wave's or sine's "
+                              "source waveforms square, sine",
+                              "the square wave's or sine's "
                               "frequency")),
                  &WaveformSpec::frequency);
   waveform_field(add(quantity("circuit", "duty", dim::none,
@@ -618,8 +620,9 @@ std::vector<ParameterInfo> scene_keys() {
                               "source waveforms square, pulse", "the rising edge's time")),
                  &WaveformSpec::rise);
   {
-    ParameterInfo& fall = add(quantity("circuit", "fall", dim::time, non_negative(), false,
-                                       "source waveforms square, pulse", "the falling edge's time"));
+    ParameterInfo& fall =
+        add(quantity("circuit", "fall", dim::time, non_negative(), false,
+                     "source waveforms square, pulse", "the falling edge's time"));
     fall.get = [](const Scene& scene, std::size_t entry) -> std::optional<double> {
       return scene.circuit[entry].waveform.fall_time();
     };
@@ -640,15 +643,14 @@ std::vector<ParameterInfo> scene_keys() {
                               "source waveform pulse", "the pulse's period (0: one pulse)")),
                  &WaveformSpec::period);
   keys.back().constraint = "0 or at least rise + width + fall";
-  level("offset", "source waveform sine", false, "the sine's constant part",
-        &WaveformSpec::offset);
+  level("offset", "source waveform sine", false, "the sine's constant part", &WaveformSpec::offset);
   level("amplitude", "source waveform sine", true,
         "the sine's amplitude: offset + amplitude*sin(2*pi*f*(t - delay) + phase)",
         &WaveformSpec::amplitude);
-  waveform_field(add(quantity("circuit", "phase", dim::none, unbounded(), false,
-                              "source waveform sine",
-                              "the sine's phase at t = delay, in degrees (a plain number)")),
-                 &WaveformSpec::phase_degrees);
+  waveform_field(
+      add(quantity("circuit", "phase", dim::none, unbounded(), false, "source waveform sine",
+                   "the sine's phase at t = delay, in degrees (a plain number)")),
+      &WaveformSpec::phase_degrees);
   keys.back().unit_note = "deg";
   add(key("circuit", "points", K::text, "source waveform pwl",
           "the piecewise-linear waveform inline: [[\"0 s\", \"0 V\"], [\"1 ms\", \"3 kV\"], ...], "

@@ -87,9 +87,9 @@ std::vector<std::pair<double, double>> read_pwl_csv(const std::string& scene_pat
     ++line_number;
     bytes += line.size() + 1;
     if (bytes > scene_limits::file_bytes)
-      throw InputError(shown, key,
-                       "the pwl file is larger than " + std::to_string(scene_limits::file_bytes) +
-                           " bytes");
+      throw InputError(
+          shown, key,
+          "the pwl file is larger than " + std::to_string(scene_limits::file_bytes) + " bytes");
     const std::string where = shown + ":" + std::to_string(line_number);
     std::string text = trim(line);
     if (text.empty() || text[0] == '#') continue;
@@ -120,8 +120,7 @@ std::vector<std::pair<double, double>> read_pwl_csv(const std::string& scene_pat
     if (!std::isfinite(time) || !std::isfinite(value))
       throw InputError(where, key, "the time and value must be finite, got '" + trim(line) + "'");
     if (time < 0.0)
-      throw InputError(where, key,
-                       "the time must be >= 0 s, got " + format_number(time) + " s");
+      throw InputError(where, key, "the time must be >= 0 s, got " + format_number(time) + " s");
     if (!points.empty() && !(time > points.back().first))
       throw InputError(where, key,
                        "the time " + format_number(time) + " s is not after the previous line's " +
@@ -650,17 +649,18 @@ std::string SceneReader::read_circuit_node(const Section& reader, const std::str
     const DriveSpec& drive = scene.drive;
     if (drive.kind != DriveKind::none &&
         std::find(drive.deas.begin(), drive.deas.end(), dea) != drive.deas.end())
-      reader.fail(end, "'" + node + "': DEA '" + dea + "' is driven by the [drive] (drive.deas, drive.kind = '" +
+      reader.fail(end, "'" + node + "': DEA '" + dea +
+                           "' is driven by the [drive] (drive.deas, drive.kind = '" +
                            drive_kind_name(drive.kind) +
                            "'); a DEA is driven by the drive or by a circuit, not both: take it "
                            "out of drive.deas, or the circuit off its terminal");
     return node;
   }
   if (!is_identifier(node) || node.size() > scene_limits::name_bytes)
-    reader.fail(end, "must be \"ground\" (or \"0\"), \"dea.NAME\" or a node name of letters, "
-                     "digits and '_' (at most " +
-                         std::to_string(scene_limits::name_bytes) + " characters), got '" + node +
-                         "'");
+    reader.fail(end,
+                "must be \"ground\" (or \"0\"), \"dea.NAME\" or a node name of letters, "
+                "digits and '_' (at most " +
+                    std::to_string(scene_limits::name_bytes) + " characters), got '" + node + "'");
   return node;
 }
 
@@ -704,11 +704,13 @@ void SceneReader::read_waveform(const Section& reader, const toml::table& entry,
     case WaveformKind::pwl: {
       const bool inline_points = reader.has("points"), from_file = reader.has("file");
       if (inline_points && from_file)
-        reader.fail("file", "give the pwl waveform's points inline (points) or from a file "
-                            "(file), not both");
+        reader.fail("file",
+                    "give the pwl waveform's points inline (points) or from a file "
+                    "(file), not both");
       if (!inline_points && !from_file)
-        reader.fail("points", "missing: waveform \"pwl\" needs points = [[\"0 s\", \"0 V\"], "
-                              "...] or file = \"NAME.csv\"");
+        reader.fail("points",
+                    "missing: waveform \"pwl\" needs points = [[\"0 s\", \"0 V\"], "
+                    "...] or file = \"NAME.csv\"");
       if (from_file) {
         waveform.file = reader.string("file");
         waveform.points = read_pwl_csv(locator_.display_name(), waveform.file, reader.key("file"));
@@ -716,9 +718,10 @@ void SceneReader::read_waveform(const Section& reader, const toml::table& entry,
       }
       const toml::array* array = entry.get_as<toml::array>("points");
       if (array == nullptr)
-        reader.fail("points", "must be an array of [time, value] pairs such as [[\"0 s\", \"0 V\"], "
-                              "[\"1 ms\", \"3 kV\"]], got " +
-                                  describe_node(*reader.find("points")));
+        reader.fail("points",
+                    "must be an array of [time, value] pairs such as [[\"0 s\", \"0 V\"], "
+                    "[\"1 ms\", \"3 kV\"]], got " +
+                        describe_node(*reader.find("points")));
       if (array->size() > scene_limits::pwl_points)
         reader.fail("points", std::to_string(array->size()) +
                                   " points; a pwl waveform may have at most " +
@@ -731,8 +734,10 @@ void SceneReader::read_waveform(const Section& reader, const toml::table& entry,
         if (pair == nullptr || pair->size() != 2)
           locator_.fail(&point, reader.key("points"),
                         which + " must be a pair [time, value], got " + describe_node(point));
-        const double time = reader.node_quantity(*pair->get(0), "points", dim::time, which + "'s time");
-        const double value = reader.node_quantity(*pair->get(1), "points", unit, which + "'s value");
+        const double time =
+            reader.node_quantity(*pair->get(0), "points", dim::time, which + "'s time");
+        const double value =
+            reader.node_quantity(*pair->get(1), "points", unit, which + "'s value");
         if (time < 0.0)
           locator_.fail(&point, reader.key("points"),
                         which + "'s time must be >= 0 s, got " + format_quantity(time, dim::time));
@@ -759,10 +764,9 @@ void SceneReader::read_circuit(const toml::table& root, Scene& scene) const {
     if (!names.insert(element.name).second)
       reader.fail("name", "duplicate circuit element name '" + element.name + "'");
     element.kind = reader.choice(
-        key("kind"),
-        std::vector<CircuitKind>{CircuitKind::resistor, CircuitKind::capacitor,
-                                 CircuitKind::inductor, CircuitKind::voltage_source,
-                                 CircuitKind::current_source});
+        key("kind"), std::vector<CircuitKind>{CircuitKind::resistor, CircuitKind::capacitor,
+                                              CircuitKind::inductor, CircuitKind::voltage_source,
+                                              CircuitKind::current_source});
     if (is_source(element.kind))
       element.waveform.kind =
           reader
@@ -844,9 +848,10 @@ void SceneReader::check_circuit_topology(const toml::table& root, const Scene& s
     direct_current.join(ends[k].first, ends[k].second);
     if (kind == CircuitKind::resistor) continue;
     if (!sources_and_inductors.join(ends[k].first, ends[k].second))
-      fail_at({k, "to"}, "closes a loop of voltage sources and inductors only: at DC the "
-                         "inductors are shorts, so the loop has no static state; put a resistor "
-                         "in it");
+      fail_at({k, "to"},
+              "closes a loop of voltage sources and inductors only: at DC the "
+              "inductors are shorts, so the loop has no static state; put a resistor "
+              "in it");
   }
   for (const auto& [name, index] : index_of)
     if (direct_current.find(index) != direct_current.find(0))

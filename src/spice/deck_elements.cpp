@@ -105,17 +105,17 @@ std::vector<Group> DeckWriter::groups() const {
     } else if (record && record->component == Component::circuit) {
       const size_t k = static_cast<size_t>(record->index);
       key = "circuit";
-      title = {"circuit ([[circuit]] entries): electrical elements between named nodes, ground "
-               "(0) and the DEAs' source terminals s_X; a voltage source holds V(from) - V(to), a "
-               "current source drives its current from `from` through itself into `to`"};
+      title = {
+          "circuit ([[circuit]] entries): electrical elements between named nodes, ground "
+          "(0) and the DEAs' source terminals s_X; a voltage source holds V(from) - V(to), a "
+          "current source drives its current from `from` through itself into `to`"};
       if (k < scene_.circuit.size()) {
         const CircuitSpec& element = scene_.circuit[k];
         title.push_back("  " + element.name + ": " + circuit_kind_name(element.kind) + " from " +
                         element.from + " to " + element.to +
-                        (is_source(element.kind)
-                             ? std::string(", waveform ") +
-                                   waveform_kind_name(element.waveform.kind)
-                             : std::string()));
+                        (is_source(element.kind) ? std::string(", waveform ") +
+                                                       waveform_kind_name(element.waveform.kind)
+                                                 : std::string()));
       }
     } else if (record && (record->component == Component::dea ||
                           record->component == Component::drive_source)) {

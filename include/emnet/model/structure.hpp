@@ -63,8 +63,8 @@ const char* element_part_name(ElementPart part);
 struct ElementRecord {
   Component component = Component::beam_node;
   ElementPart part = ElementPart::mass;
-  int index = -1;  // beam node or segment index, load, mass, spring or circuit entry index;
-                   // -1 for the DEA parts
+  int index = -1;   // beam node or segment index, load, mass, spring or circuit entry index;
+                    // -1 for the DEA parts
   std::string dea;  // dea, drive_source: the DEA's name
   // ideal_force: which waveform of k_F·V(t)² it carries (0: the level or fundamental, 1: a sine
   // drive's 2f part) and on which coupling node (index into DeaLayout::coupling).

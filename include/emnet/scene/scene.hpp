@@ -3,7 +3,8 @@
 // The reader (src/scene/scene_reader.cpp) turns a TOML file plus `--set key=value` overrides into
 // a Scene, checking every key, unit and range; the resolve step (src/studies/resolve.cpp) makes
 // its "auto" choices; the model builder (src/model/) turns the resolved Scene into a Network.
-// Every quantity here is SI; the comments name the scene key.
+// Every quantity here is SI; the comments name the scene key. The syntax of [[circuit]]
+// elements and their source waveforms is written out at CircuitSpec below.
 #pragma once
 
 #include <map>
@@ -205,11 +206,11 @@ const char* waveform_kind_name(WaveformKind kind);
 // A source's time function, as the scene gives it (circuit[].waveform and its keys), SI.
 struct WaveformSpec {
   WaveformKind kind = WaveformKind::dc;
-  double low = 0.0;        // square, pulse: the level before and between pulses [V or A]
-  double high = 0.0;       // square, pulse: the pulse's level
-  double frequency = 0.0;  // square, sine [Hz]
-  double duty = 0.5;       // square: fraction of the period at `high` (rise included) [-]
-  double rise = 0.0;       // square, pulse [s]
+  double low = 0.0;            // square, pulse: the level before and between pulses [V or A]
+  double high = 0.0;           // square, pulse: the pulse's level
+  double frequency = 0.0;      // square, sine [Hz]
+  double duty = 0.5;           // square: fraction of the period at `high` (rise included) [-]
+  double rise = 0.0;           // square, pulse [s]
   std::optional<double> fall;  // square, pulse [s]; unset: square's rise, pulse's 0
   double delay = 0.0;          // square, pulse, sine [s]
   double width = 0.0;          // pulse: time at `high` [s]
@@ -223,13 +224,13 @@ struct WaveformSpec {
 };
 
 struct CircuitSpec {
-  std::string name;                            // circuit[].name
-  CircuitKind kind = CircuitKind::resistor;    // circuit[].kind
-  std::string from;                            // circuit[].from, a node name as written
-  std::string to;                              // circuit[].to
-  double value = 0.0;                          // circuit[].value [Ohm, F, H; V or A]
-  WaveformSpec waveform;                       // circuit[].waveform and its keys
-  double ac = 0.0;                             // circuit[].ac [V or A]
+  std::string name;                          // circuit[].name
+  CircuitKind kind = CircuitKind::resistor;  // circuit[].kind
+  std::string from;                          // circuit[].from, a node name as written
+  std::string to;                            // circuit[].to
+  double value = 0.0;                        // circuit[].value [Ohm, F, H; V or A]
+  WaveformSpec waveform;                     // circuit[].waveform and its keys
+  double ac = 0.0;                           // circuit[].ac [V or A]
 };
 
 // Circuit node names: ground ("ground" or "0"), a DEA terminal ("dea.X": the DEA's name, else
