@@ -35,6 +35,10 @@ void CrosscheckSession::tran() {
   if (scene.drive.frequency > 0.0 && scene.drive.kind != DriveKind::none) {
     period = 1.0 / scene.drive.frequency;
     period_from = "the drive's period";
+  } else if (scene.drive.frequency > 0.0 && !scene.circuit.empty()) {
+    // drive.frequency with drive kind none: the period of tran --periods, the circuit's own.
+    period = 1.0 / scene.drive.frequency;
+    period_from = "the period of drive.frequency (the circuit's)";
   } else {
     const OperatingPoint operating = operating_point(sys);
     if (!operating.status.ok) throw CrosscheckFailure("emnet " + operating.status.message);
