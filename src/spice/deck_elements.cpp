@@ -108,7 +108,7 @@ std::vector<Group> DeckWriter::groups() const {
       title = {
           "circuit ([[circuit]] entries): electrical elements between named nodes, ground "
           "(0) and the DEAs' source terminals s_X; a voltage source holds V(from) - V(to), a "
-          "current source drives its current from `from` through itself into `to`"};
+          "current source drives its current from its first node through itself into its second"};
       if (k < scene_.circuit.size()) {
         const CircuitSpec& element = scene_.circuit[k];
         title.push_back("  " + element.name + ": " + circuit_kind_name(element.kind) + " from " +

@@ -369,7 +369,7 @@ TEST(CircuitSpice, DeckHoldsTheCircuitElements) {
   options.end_time = 0.2;
   options.output_step = 1e-4;
   const SpiceDeck deck = write_spice_deck(model, options);
-  for (const char* line : {"* circuit ([[circuit]] entries)", "\nR_R_amp out s_A 10000000\n",
+  for (const char* line : {"circuit ([[circuit]] entries)", "\nR_R_amp out s_A 10000000\n",
                            "\nV_amp out 0 PULSE(", "driven by the circuit at its terminal s_A"})
     EXPECT_NE(deck.text.find(line), std::string::npos) << line << "\n" << deck.text;
   // DEA A's terminal has no source of the drive: the circuit drives it.
