@@ -5,7 +5,9 @@
 // With drive.electrical_dynamics = false the loop is left out and the DEA's force k_F·V(t)² of
 // its source voltage is entered directly along its coupling (a linear network). What each drive
 // applies, and its AC input: emnet/model/drive.hpp. A DEA not named by the drive has its source
-// node tied to ground through its resistance.
+// node tied to ground through its resistance (a 0 V source), unless a [[circuit]] element ends on
+// its terminal "dea.X": then the circuit drives s_X and no source is added there
+// (emnet/model/circuit.hpp).
 //
 // [environment] fluid loading: Sader's added mass m_a and damping c_a per length
 // (emnet/model/fluid_loading.hpp), added to the beam's mass and viscous damping per length, at
@@ -26,6 +28,7 @@
 #include "emnet/elements/dea.hpp"
 #include "emnet/elements/inductor.hpp"
 #include "emnet/elements/voltage_source.hpp"
+#include "emnet/model/circuit.hpp"
 
 namespace emnet {
 
@@ -229,6 +232,10 @@ Model build_model(const Scene& scene) {
   }
 
   const DriveSpec& drive = scene.drive;
+  if (!scene.circuit.empty() && !drive.electrical_dynamics)
+    throw InputError(scene.file, "drive.electrical_dynamics",
+                     "is false, but the scene has [[circuit]] elements, which act through the "
+                     "DEAs' electrical loops: a circuit needs drive.electrical_dynamics = true");
   for (const DeaSpec& spec : scene.deas) {
     DeaLayout layout = dea_layout(spec, beam);
     if (!drive.electrical_dynamics) {
@@ -264,16 +271,18 @@ Model build_model(const Scene& scene) {
     layout.electrode_node =
         add_recorded_node(network, structure, electrode_node, "e_" + spec.name, Domain::electrical,
                           "DEA " + spec.name + " capacitor voltage [V]");
-    ElementRecord source{Component::drive_source,
-                         ElementPart::source_voltage,
-                         -1,
-                         spec.name,
-                         -1,
-                         -1,
-                         "DEA " + spec.name + "'s source voltage V(t) [V]"};
-    const Waveform voltage = drive_source_waveform(drive, layout, source);
-    add_recorded<VoltageSource>(network, structure, std::move(source), "V_" + spec.name,
-                                layout.source_node, ground, voltage, Domain::electrical);
+    if (!circuit_drives_dea(scene, spec.name)) {
+      ElementRecord source{Component::drive_source,
+                           ElementPart::source_voltage,
+                           -1,
+                           spec.name,
+                           -1,
+                           -1,
+                           "DEA " + spec.name + "'s source voltage V(t) [V]"};
+      const Waveform voltage = drive_source_waveform(drive, layout, source);
+      add_recorded<VoltageSource>(network, structure, std::move(source), "V_" + spec.name,
+                                  layout.source_node, ground, voltage, Domain::electrical);
+    }
     add_recorded<Conductance>(network, structure,
                               {Component::dea, ElementPart::electrode_resistance, -1, spec.name, -1,
                                -1, "DEA " + spec.name + "'s electrode resistance R_e [Ohm]"},
@@ -286,6 +295,18 @@ Model build_model(const Scene& scene) {
                       layout.force_constant, layout.coupling, spec.back_coupling,
                       dea_ac_force(drive, layout));
     model.deas.push_back(layout);
+  }
+  if (!scene.circuit.empty()) {
+    std::map<std::string, NodeId> terminals;
+    for (const DeaLayout& layout : model.deas) terminals.emplace(layout.name, layout.source_node);
+    model.circuit_nodes = add_circuit(network, structure, scene, terminals);
+    std::string driven;
+    for (const DeaSpec& spec : scene.deas)
+      if (circuit_drives_dea(scene, spec.name)) driven += " " + spec.name;
+    model.notes.push_back("circuit: " + std::to_string(scene.circuit.size()) + " element(s), " +
+                          std::to_string(model.circuit_nodes.size()) + " node(s) of its own" +
+                          (driven.empty() ? std::string("; it drives no DEA")
+                                          : "; it drives DEA(s)" + driven + " at their terminals"));
   }
   if (!drive.electrical_dynamics && !scene.deas.empty())
     model.notes.push_back(

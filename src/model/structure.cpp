@@ -21,6 +21,8 @@ const char* component_name(Component component) {
       return "point mass";
     case Component::spring:
       return "spring";
+    case Component::circuit:
+      return "circuit";
   }
   return "?";
 }
@@ -57,6 +59,16 @@ const char* element_part_name(ElementPart part) {
       return "spring compliance";
     case ElementPart::spring_damper:
       return "spring damper";
+    case ElementPart::resistor:
+      return "resistor";
+    case ElementPart::capacitor:
+      return "capacitor";
+    case ElementPart::inductor:
+      return "inductor";
+    case ElementPart::voltage_source:
+      return "voltage source";
+    case ElementPart::current_source:
+      return "current source";
   }
   return "?";
 }

@@ -110,6 +110,15 @@ std::string ac_input_description(const Scene& scene, double top_hz) {
   }
   if (drive.kind != DriveKind::none && !scene.loads.empty())
     out << " Plus the scene's loads, each with its value as amplitude.";
+  std::string sources;
+  for (const CircuitSpec& element : scene.circuit)
+    if (is_source(element.kind) && element.ac != 0.0)
+      sources += (sources.empty() ? "" : ", ") + element.name;
+  if (!scene.circuit.empty())
+    out << " Circuit sources: "
+        << (sources.empty() ? std::string("none has an AC magnitude (circuit[].ac)")
+                            : "each with its circuit[].ac as magnitude (" + sources + ")")
+        << ", the network linearised at the static state (the sources at t = 0).";
   return out.str();
 }
 

@@ -144,6 +144,58 @@ bool on_dea(ProbeQuantity quantity) {
          quantity == ProbeQuantity::dea_force;
 }
 
+// The waveforms of a [[circuit]] source that use the waveform key `name`; empty for a key that is
+// no waveform key (name, kind, from, to, value, waveform, ac).
+std::vector<WaveformKind> waveforms_using(const std::string& name) {
+  using W = WaveformKind;
+  if (name == "low" || name == "high" || name == "rise" || name == "fall")
+    return {W::square, W::pulse};
+  if (name == "frequency") return {W::square, W::sine};
+  if (name == "duty") return {W::square};
+  if (name == "delay") return {W::square, W::pulse, W::sine};
+  if (name == "width" || name == "period") return {W::pulse};
+  if (name == "offset" || name == "amplitude" || name == "phase") return {W::sine};
+  if (name == "points" || name == "file") return {W::pwl};
+  return {};
+}
+
+const char* waveform_meaning(WaveformKind kind) {
+  switch (kind) {
+    case WaveformKind::dc:
+      return "the constant circuit[].value";
+    case WaveformKind::sine:
+      return "offset + amplitude*sin(2*pi*frequency*(t - delay) + phase)";
+    case WaveformKind::square:
+      return "low/high at frequency, duty, rise, fall, delay";
+    case WaveformKind::pulse:
+      return "SPICE PULSE: low, high, delay, rise, fall, width, period";
+    case WaveformKind::pwl:
+      return "piecewise linear: points or file";
+  }
+  return "?";
+}
+
+std::string circuit_unused_reason(const ParameterInfo& info, const CircuitSpec& element) {
+  const std::string& name = info.name;
+  const bool source = is_source(element.kind);
+  const std::string kind = circuit_kind_name(element.kind);
+  const std::vector<WaveformKind> users = waveforms_using(name);
+  if (!source && (name == "waveform" || name == "ac" || !users.empty()))
+    return "is only used by sources (voltage_source, current_source), not by a " + kind;
+  if (name == "value" && source && element.waveform.kind != WaveformKind::dc)
+    return std::string("is not used by waveform '") + waveform_kind_name(element.waveform.kind) +
+           "' (" + waveform_meaning(element.waveform.kind) +
+           "); a source's value is its constant level with waveform = \"dc\"";
+  if (users.empty()) return "";
+  for (WaveformKind user : users)
+    if (user == element.waveform.kind) return "";
+  std::vector<std::string> names;
+  for (WaveformKind user : users) names.push_back(waveform_kind_name(user));
+  return std::string("is not used by waveform '") + waveform_kind_name(element.waveform.kind) +
+         "' (" + waveform_meaning(element.waveform.kind) + "); it is used by waveform" +
+         (names.size() == 1 ? " " : "s ") + quoted_list(names);
+}
+
 }  // namespace
 
 std::string parameter_unused_reason(const ParameterInfo& info, const Scene& scene,
@@ -187,6 +239,8 @@ std::string parameter_unused_reason(const ParameterInfo& info, const Scene& scen
     if ((info.name == "face" || info.name == "distance") && quantity != ProbeQuantity::strain)
       return "is only used by probe quantity 'strain', not '" + quantity_name + "'";
   }
+  if (info.table == "circuit" && entry < scene.circuit.size())
+    return circuit_unused_reason(info, scene.circuit[entry]);
   if (info.table == "damping") {
     const DampingSpec& damping = scene.damping;
     if (info.name == "kelvin_voigt_time" && damping.loss_factor)
@@ -208,6 +262,25 @@ Dimension parameter_dimension(const ParameterInfo& info, const Scene& scene, std
       scene.beam.springs[entry].kind == SpringKind::rotational) {
     if (info.name == "stiffness") return dim::moment;  // N*m/rad
     if (info.name == "damping") return dim::rotational_damping;
+  }
+  if (info.table == "circuit" && entry < scene.circuit.size()) {
+    const CircuitKind kind = scene.circuit[entry].kind;
+    const bool level = info.name == "value" || info.name == "low" || info.name == "high" ||
+                       info.name == "offset" || info.name == "amplitude" || info.name == "ac";
+    if (level) {
+      switch (kind) {
+        case CircuitKind::resistor:
+          return info.name == "value" ? dim::resistance : dim::voltage;
+        case CircuitKind::capacitor:
+          return info.name == "value" ? dim::capacitance : dim::voltage;
+        case CircuitKind::inductor:
+          return info.name == "value" ? dim::inductance : dim::voltage;
+        case CircuitKind::voltage_source:
+          return dim::voltage;
+        case CircuitKind::current_source:
+          return dim::current;
+      }
+    }
   }
   return info.dimension;
 }
@@ -236,6 +309,8 @@ std::vector<std::optional<std::string>> entry_names(const Scene& scene, const st
   if (table == "probe")
     for (const ProbeSpec& probe : scene.probes) names.emplace_back(probe.name);
   if (table == "load") names.resize(scene.loads.size());
+  if (table == "circuit")
+    for (const CircuitSpec& element : scene.circuit) names.emplace_back(element.name);
   if (table == "section") names.resize(scene.beam.sections.size());
   if (table == "mass")
     for (const MassSpec& mass : scene.beam.masses)

@@ -90,6 +90,7 @@ const Scene& default_scene() {
     defaults.deas.resize(1);
     defaults.loads.resize(1);
     defaults.probes.resize(1);
+    defaults.circuit.resize(1);
     defaults.beam.sections.resize(1);
     defaults.beam.masses.resize(1);
     defaults.beam.springs.resize(1);

@@ -64,6 +64,67 @@ std::string ac_to_violation(double from, double to, bool default_to) {
          format_quantity(to, dim::frequency) + (default_to ? " (the default)" : "");
 }
 
+std::optional<KeyMessage> circuit_element_violation(const CircuitSpec& element) {
+  const WaveformSpec& waveform = element.waveform;
+  switch (element.kind) {
+    case CircuitKind::resistor:
+    case CircuitKind::capacitor:
+    case CircuitKind::inductor: {
+      const Dimension unit = element.kind == CircuitKind::resistor    ? dim::resistance
+                             : element.kind == CircuitKind::capacitor ? dim::capacitance
+                                                                      : dim::inductance;
+      if (!(element.value > 0.0))
+        return KeyMessage{"value", std::string("must be > 0 for a ") +
+                                       circuit_kind_name(element.kind) + ", got " +
+                                       format_quantity(element.value, unit)};
+      return std::nullopt;
+    }
+    case CircuitKind::voltage_source:
+    case CircuitKind::current_source:
+      break;
+  }
+  const double fall = waveform.fall_time();
+  switch (waveform.kind) {
+    case WaveformKind::square: {
+      if (!(waveform.frequency > 0.0)) return std::nullopt;  // the key's range says why
+      const double period = 1.0 / waveform.frequency, on_time = waveform.duty * period;
+      if (waveform.rise > on_time)
+        return KeyMessage{"rise", "must fit the high part of the period (duty/frequency = " +
+                                      format_quantity(on_time, dim::time) + "), got " +
+                                      format_quantity(waveform.rise, dim::time)};
+      if (on_time + fall > period)
+        return KeyMessage{"fall", "must fit the low part of the period ((1 - duty)/frequency = " +
+                                      format_quantity(period - on_time, dim::time) + "), got " +
+                                      format_quantity(fall, dim::time)};
+      return std::nullopt;
+    }
+    case WaveformKind::pulse: {
+      const double length = waveform.rise + waveform.width + fall;
+      if (waveform.period != 0.0 && waveform.period < length)
+        return KeyMessage{"period", "must be 0 (one pulse) or at least rise + width + fall = " +
+                                        format_quantity(length, dim::time) + ", got " +
+                                        format_quantity(waveform.period, dim::time)};
+      return std::nullopt;
+    }
+    case WaveformKind::pwl: {
+      const std::string key = waveform.file.empty() ? "points" : "file";
+      if (waveform.points.empty()) return KeyMessage{key, "has no points"};
+      for (std::size_t k = 1; k < waveform.points.size(); ++k)
+        if (!(waveform.points[k].first > waveform.points[k - 1].first))
+          return KeyMessage{key, "point " + std::to_string(k + 1) + "'s time " +
+                                     format_quantity(waveform.points[k].first, dim::time) +
+                                     " is not after the previous point's " +
+                                     format_quantity(waveform.points[k - 1].first, dim::time) +
+                                     " (times must increase)"};
+      return std::nullopt;
+    }
+    case WaveformKind::dc:
+    case WaveformKind::sine:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 namespace {
 
 // "dea[A]", "load[0]": how the reader names an entry (by its name where it is one).
@@ -139,6 +200,10 @@ std::optional<KeyMessage> scene_relation_violation(const Scene& scene) {
     if (std::string why = beam_position_violation(probe.at, length); !why.empty())
       return KeyMessage{entry_prefix("probe", probe.name, k) + ".at", why};
   }
+  for (std::size_t k = 0; k < scene.circuit.size(); ++k)
+    if (auto violation = circuit_element_violation(scene.circuit[k]))
+      return KeyMessage{entry_prefix("circuit", scene.circuit[k].name, k) + "." + violation->name,
+                        violation->message};
   if (std::string why = ac_log_from_violation(scene.ac.log, scene.ac.from); !why.empty())
     return KeyMessage{"ac.from", why};
   if (std::string why = ac_to_violation(scene.ac.from, scene.ac.to, false); !why.empty())

@@ -43,6 +43,12 @@ std::string ac_log_from_violation(bool log, double from);
 // ac.to must be above ac.from; `default_to`: ac.to was not given.
 std::string ac_to_violation(double from, double to, bool default_to);
 
+// A [[circuit]] element's value and waveform: a resistor, capacitor or inductor value > 0; a
+// square wave's edges inside its period (rise <= duty/frequency, duty/frequency + fall <=
+// 1/frequency); a pulse's period 0 or at least rise + width + fall; a pwl's times increasing
+// (from at least one point). The key it is reported on ("value", "rise", ...), or nullopt.
+std::optional<KeyMessage> circuit_element_violation(const CircuitSpec& element);
+
 // The first of these conditions `scene` breaks, named by its canonical key ("dea[A].to",
 // "probe[tip].at", "drive.rise_time"), or nullopt.
 std::optional<KeyMessage> scene_relation_violation(const Scene& scene);

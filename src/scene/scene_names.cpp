@@ -97,6 +97,51 @@ const char* drive_kind_name(DriveKind kind) {
   return "?";
 }
 
+const char* circuit_kind_name(CircuitKind kind) {
+  switch (kind) {
+    case CircuitKind::resistor:
+      return "resistor";
+    case CircuitKind::capacitor:
+      return "capacitor";
+    case CircuitKind::inductor:
+      return "inductor";
+    case CircuitKind::voltage_source:
+      return "voltage_source";
+    case CircuitKind::current_source:
+      return "current_source";
+  }
+  return "?";
+}
+
+bool is_source(CircuitKind kind) {
+  return kind == CircuitKind::voltage_source || kind == CircuitKind::current_source;
+}
+
+const char* waveform_kind_name(WaveformKind kind) {
+  switch (kind) {
+    case WaveformKind::dc:
+      return "dc";
+    case WaveformKind::sine:
+      return "sine";
+    case WaveformKind::square:
+      return "square";
+    case WaveformKind::pulse:
+      return "pulse";
+    case WaveformKind::pwl:
+      return "pwl";
+  }
+  return "?";
+}
+
+bool is_ground_node_name(const std::string& node) {
+  return node == "ground" || node == "0";
+}
+
+std::string dea_of_node_name(const std::string& node) {
+  const std::string prefix = "dea.";
+  return node.compare(0, prefix.size(), prefix) == 0 ? node.substr(prefix.size()) : std::string();
+}
+
 double DampingSpec::effective_kelvin_voigt_time() const {
   if (!loss_factor.has_value()) return kelvin_voigt_time;
   constexpr double two_pi = 6.283185307179586476925286766559;

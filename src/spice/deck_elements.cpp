@@ -10,6 +10,7 @@
 #include "emnet/elements/inductor.hpp"
 #include "emnet/elements/transformer.hpp"
 #include "emnet/elements/voltage_source.hpp"
+#include "emnet/model/circuit.hpp"
 
 namespace emnet::spice_deck {
 
@@ -101,6 +102,21 @@ std::vector<Group> DeckWriter::groups() const {
                  (spring.to ? "x = " + millimetres(*spring.to) : std::string("ground")) +
                  "; an inductor 1/k with a resistor 1/damping across it"};
       }
+    } else if (record && record->component == Component::circuit) {
+      const size_t k = static_cast<size_t>(record->index);
+      key = "circuit";
+      title = {
+          "circuit ([[circuit]] entries): electrical elements between named nodes, ground "
+          "(0) and the DEAs' source terminals s_X; a voltage source holds V(from) - V(to), a "
+          "current source drives its current from its first node through itself into its second"};
+      if (k < scene_.circuit.size()) {
+        const CircuitSpec& element = scene_.circuit[k];
+        title.push_back("  " + element.name + ": " + circuit_kind_name(element.kind) + " from " +
+                        element.from + " to " + element.to +
+                        (is_source(element.kind) ? std::string(", waveform ") +
+                                                       waveform_kind_name(element.waveform.kind)
+                                                 : std::string()));
+      }
     } else if (record && (record->component == Component::dea ||
                           record->component == Component::drive_source)) {
       const DeaLayout* dea = model_.find_dea(record->dea);
@@ -118,7 +134,12 @@ std::vector<Group> DeckWriter::groups() const {
       if (dea) {
         title.push_back("  force F = k_F*u^2, k_F = " + number(dea->force_constant) +
                         " N/V^2 (paper Eq. 16), as the moment pair -/+z*F at the span's ends");
-        if (scene_.drive.electrical_dynamics)
+        if (scene_.drive.electrical_dynamics && circuit_drives_dea(scene_, n))
+          title.push_back("  electrical: driven by the circuit at its terminal s_" + n +
+                          ", electrode resistance " + number(dea->electrode_resistance) +
+                          " Ohm, capacitor C0 = " + number(dea->capacitance) +
+                          " F; the force follows the capacitor voltage u = V(e_" + n + ")");
+        else if (scene_.drive.electrical_dynamics)
           title.push_back("  electrical: source V_V_" + n + ", electrode resistance " +
                           number(dea->electrode_resistance) +
                           " Ohm, capacitor C0 = " + number(dea->capacitance) +
@@ -130,7 +151,10 @@ std::vector<Group> DeckWriter::groups() const {
       }
     }
     Group& group = group_for(key);
-    if (group.title.empty()) group.title = title;
+    if (group.title.empty())
+      group.title = title;
+    else if (key == "circuit" && title.size() > 1)
+      group.title.push_back(title.back());  // one line per circuit element
     group.elements.push_back(elements[e].get());
   }
   for (Group& g : list)

@@ -17,8 +17,9 @@ namespace emnet::crosscheck_detail {
 void CrosscheckSession::tran() {
   Scene scene = model_.scene;
   bool ideal_drive = false;
+  // (A scene with a [[circuit]] keeps its electrical loops, which the circuit drives.)
   if (scene.drive.electrical_dynamics && !scene.deas.empty() &&
-      scene.drive.kind != DriveKind::none) {
+      scene.drive.kind != DriveKind::none && scene.circuit.empty()) {
     set_electrical_dynamics(scene, false);
     ideal_drive = true;
   }
@@ -34,6 +35,10 @@ void CrosscheckSession::tran() {
   if (scene.drive.frequency > 0.0 && scene.drive.kind != DriveKind::none) {
     period = 1.0 / scene.drive.frequency;
     period_from = "the drive's period";
+  } else if (scene.drive.frequency > 0.0 && !scene.circuit.empty()) {
+    // drive.frequency with drive kind none: the period of tran --periods, the circuit's own.
+    period = 1.0 / scene.drive.frequency;
+    period_from = "the period of drive.frequency (the circuit's)";
   } else {
     const OperatingPoint operating = operating_point(sys);
     if (!operating.status.ok) throw CrosscheckFailure("emnet " + operating.status.message);

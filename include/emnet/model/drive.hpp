@@ -9,7 +9,8 @@
 //   bias_differential  V_A = V₀ + v·sin(2πft), V_B = V₀ − v·sin(2πft); AC input: v on A, −v on
 //                      B, the network linearised at V₀ (moment exactly linear in v).
 //   single             V = V₀ + v·sin(2πft) on one DEA; AC input v, linearised at V₀.
-// A DEA the drive does not name gets the constant 0 V.
+// A DEA the drive does not name gets the constant 0 V (the model builder adds no source at all
+// on a DEA that a [[circuit]] element drives: emnet/model/circuit.hpp).
 //
 // AC input of the square-wave drives. A voltage switched between 0 and V is two-level, so its
 // square is V times itself: the force k_F·V(t)² = k_F·V·V(t) is exactly a 0/k_F·V² square wave,

@@ -35,6 +35,7 @@
 // a scene that still has one.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -102,6 +103,9 @@ struct Model {
   ModelStructure structure;  // what each node and element of `network` is
   BeamLayout beam;
   std::vector<DeaLayout> deas;
+  // The [[circuit]]'s own nodes by their scene names (emnet/model/circuit.hpp); ground and the
+  // DEA terminals "dea.X" are not in it.
+  std::map<std::string, NodeId> circuit_nodes;
   std::vector<Probe> probes;       // the scene's probes (a tip deflection probe if it has none)
   std::vector<std::string> notes;  // what was built and why, for the user
   std::vector<AutomaticChoice> automatic_choices;  // resolved "auto" keys, in the notes too

@@ -32,6 +32,7 @@ enum class Component {
                  // drive's force k_F·V(t)² along one coupling node
   point_mass,    // a [[mass]] entry: its mass and rotary inertia at one beam node
   spring,        // a [[spring]] entry: its compliance 1/k and its dashpot
+  circuit,       // a [[circuit]] entry: one resistor, capacitor, inductor or source
 };
 const char* component_name(Component component);
 
@@ -51,13 +52,19 @@ enum class ElementPart {
   point_rotary_inertia,      // [[mass]]: J [kg·m²], a capacitor from the rotation node to ground
   spring_compliance,         // [[spring]]: n = 1/k [m/N or rad/(N·m)], an inductor
   spring_damper,             // [[spring]]: its dashpot [N·s/m or N·m·s/rad], a conductance
+  resistor,                  // [[circuit]]: R [Ω], a conductance 1/R
+  capacitor,                 // [[circuit]]: C [F], a capacitor
+  inductor,                  // [[circuit]]: L [H], an inductor
+  voltage_source,            // [[circuit]]: v(t) [V], V(from) − V(to) = v(t)
+  current_source,            // [[circuit]]: i(t) [A] from `from` through it into `to`
 };
 const char* element_part_name(ElementPart part);
 
 struct ElementRecord {
   Component component = Component::beam_node;
   ElementPart part = ElementPart::mass;
-  int index = -1;   // beam node or segment index, load, mass or spring index; -1 for the DEA parts
+  int index = -1;   // beam node or segment index, load, mass, spring or circuit entry index;
+                    // -1 for the DEA parts
   std::string dea;  // dea, drive_source: the DEA's name
   // ideal_force: which waveform of k_F·V(t)² it carries (0: the level or fundamental, 1: a sine
   // drive's 2f part) and on which coupling node (index into DeaLayout::coupling).
@@ -72,11 +79,13 @@ enum class NodeRole {
   segment_middle,         // m_k: segment k between its spring and its lever [m/s]
   dea_source,             // s_X: DEA X's source terminal [V]
   dea_electrode,          // e_X: DEA X's capacitor voltage [V]
+  circuit,                // a [[circuit]] node; the network's node has the scene's name [V]
 };
 
 struct NodeRecord {
   NodeRole role = NodeRole::beam_velocity;
-  int index = -1;   // beam node or segment index; -1 for DEA nodes
+  int index = -1;   // beam node or segment index, circuit node in order of appearance; -1 for
+                    // DEA nodes
   std::string dea;  // DEA nodes: the DEA's name
 };
 

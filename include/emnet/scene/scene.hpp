@@ -3,12 +3,14 @@
 // The reader (src/scene/scene_reader.cpp) turns a TOML file plus `--set key=value` overrides into
 // a Scene, checking every key, unit and range; the resolve step (src/studies/resolve.cpp) makes
 // its "auto" choices; the model builder (src/model/) turns the resolved Scene into a Network.
-// Every quantity here is SI; the comments name the scene key.
+// Every quantity here is SI; the comments name the scene key. The syntax of [[circuit]]
+// elements and their source waveforms is written out at CircuitSpec below.
 #pragma once
 
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "emnet/core/quantity.hpp"
@@ -163,6 +165,79 @@ struct DriveSpec {
   bool electrical_dynamics_auto = false;
 };
 
+// [[circuit]]: an electrical network around the DEAs, written element by element.
+//
+//   [[circuit]]
+//   name = "amp"              # required, unique (it names the element in SPICE decks)
+//   kind = "voltage_source"   # resistor | capacitor | inductor | voltage_source | current_source
+//   from = "out"              # node names: any identifier is a node of the circuit; "ground"
+//   to = "ground"             #   (or "0") is ground; "dea.A" is DEA A's terminal s_A, in
+//                             #   front of its electrode resistance
+//   value = "10 MOhm"         # resistor [Ohm], capacitor [F], inductor [H]; a source's
+//                             #   constant value [V or A] with waveform = "dc"
+//   waveform = "square"       # sources only: dc (default) | sine | square | pulse | pwl
+//   ac = "1 V"                # sources only: the AC analysis' magnitude (default 0)
+//
+// Waveform keys (a key the waveform does not use is refused, with the waveforms that use it);
+// levels are V for a voltage source, A for a current source:
+//   square  low, high, frequency, duty (0.5), rise (0), fall (= rise), delay (0): high for the
+//           first duty/frequency of each period from `delay` (rise included), then low;
+//   pulse   low, high, delay, rise, fall, width, period (SPICE PULSE; period 0: one pulse);
+//   sine    offset, amplitude, frequency, phase [degrees, a plain number] (0), delay (0):
+//           offset + amplitude*sin(2*pi*frequency*(t - delay) + phase);
+//   pwl     points = [["0 s", "0 V"], ["1 ms", "3 kV"]] (times increasing; constant before the
+//           first and after the last), or file = "drive.csv": two columns, time [s] and value
+//           [SI], separated by a comma (or spaces), one header line allowed, relative to the
+//           scene file's folder.
+// Signs: a voltage source holds V(from) - V(to) = value(t); a current source drives value(t)
+// out of node `from`, through itself, into node `to` (SPICE's I from to).
+// Rules (the reader's): every node other than ground is touched by at least two element ends
+// (a DEA terminal counts its DEA); every node has a DC path to ground through resistors,
+// inductors and voltage sources, and voltage sources with inductors form no loop (else the
+// static state is undefined); "dea.X" names a DEA the [drive] does not drive; a circuit needs
+// drive.electrical_dynamics = true ("auto" keeps it).
+enum class CircuitKind { resistor, capacitor, inductor, voltage_source, current_source };
+const char* circuit_kind_name(CircuitKind kind);
+bool is_source(CircuitKind kind);
+
+enum class WaveformKind { dc, sine, square, pulse, pwl };
+const char* waveform_kind_name(WaveformKind kind);
+
+// A source's time function, as the scene gives it (circuit[].waveform and its keys), SI.
+struct WaveformSpec {
+  WaveformKind kind = WaveformKind::dc;
+  double low = 0.0;            // square, pulse: the level before and between pulses [V or A]
+  double high = 0.0;           // square, pulse: the pulse's level
+  double frequency = 0.0;      // square, sine [Hz]
+  double duty = 0.5;           // square: fraction of the period at `high` (rise included) [-]
+  double rise = 0.0;           // square, pulse [s]
+  std::optional<double> fall;  // square, pulse [s]; unset: square's rise, pulse's 0
+  double delay = 0.0;          // square, pulse, sine [s]
+  double width = 0.0;          // pulse: time at `high` [s]
+  double period = 0.0;         // pulse [s]; 0: a single pulse
+  double offset = 0.0;         // sine [V or A]
+  double amplitude = 0.0;      // sine [V or A]
+  double phase_degrees = 0.0;  // sine [deg]
+  std::vector<std::pair<double, double>> points;  // pwl: (time [s], value) pairs
+  std::string file;  // pwl: the CSV file as written in the scene ("" for inline points)
+  double fall_time() const { return fall.value_or(kind == WaveformKind::square ? rise : 0.0); }
+};
+
+struct CircuitSpec {
+  std::string name;                          // circuit[].name
+  CircuitKind kind = CircuitKind::resistor;  // circuit[].kind
+  std::string from;                          // circuit[].from, a node name as written
+  std::string to;                            // circuit[].to
+  double value = 0.0;                        // circuit[].value [Ohm, F, H; V or A]
+  WaveformSpec waveform;                     // circuit[].waveform and its keys
+  double ac = 0.0;                           // circuit[].ac [V or A]
+};
+
+// Circuit node names: ground ("ground" or "0"), a DEA terminal ("dea.X": the DEA's name, else
+// ""), any other name is a node of the circuit.
+bool is_ground_node_name(const std::string& node);
+std::string dea_of_node_name(const std::string& node);
+
 enum class LoadKind { force, moment };
 struct LoadSpec {
   LoadKind kind = LoadKind::force;  // load[].kind
@@ -251,6 +326,7 @@ struct Scene {
   DriveSpec drive;
   std::vector<LoadSpec> loads;
   std::vector<ProbeSpec> probes;
+  std::vector<CircuitSpec> circuit;  // [[circuit]] elements, in the file's order
   AcSpec ac;
   EnvironmentSpec environment;
   ModelSpec model;

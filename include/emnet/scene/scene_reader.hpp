@@ -34,6 +34,8 @@ inline constexpr std::size_t masses = 10000;                  // [[mass]] entrie
 inline constexpr std::size_t springs = 10000;                 // [[spring]] entries
 inline constexpr std::size_t loads = 10000;                   // [[load]] entries
 inline constexpr std::size_t probes = 10000;                  // [[probe]] entries
+inline constexpr std::size_t circuit_elements = 10000;        // [[circuit]] entries
+inline constexpr std::size_t pwl_points = 100000;             // points of one pwl waveform
 inline constexpr std::size_t provenance_entries = 10000;      // keys in [provenance]
 inline constexpr std::size_t overrides = 1000;                // --set KEY=VALUE
 }  // namespace scene_limits

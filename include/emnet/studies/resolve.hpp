@@ -19,7 +19,8 @@
 // Its amplitude is |V_C/V_s| = 1/√(1 + (ωτ)²) ≈ 1 − (ωτ)²/2, so the ideal drive (V_C = V_s)
 // overstates the voltage amplitude at ω by about (ωτ)²/2 relative (the phase lag ωτ is a
 // delay of about τ, which shifts a periodic response in time but not its amplitude). The
-// RC dynamics are kept when (a) a probe asks for dea_voltage or dea_current, or (b) this
+// RC dynamics are kept when the scene has [[circuit]] elements (they act through the loops
+// only), when (a) a probe asks for dea_voltage or dea_current, or (b) this
 // error at the band's top, (2π·f_high·τ)²/2 with the largest τ of the driven DEAs, exceeds
 // model.tolerance; otherwise the ideal drive is built. (About a bias the force's alternating
 // part 2k_F·V₀·v_C has the voltage's relative error; for a 0/V pulse, whose square follows

@@ -91,8 +91,9 @@ struct CrosscheckOptions {
   int modal_count = 2;
   double modal_half_width = 0.01;  // fine grid: f_p·(1 ± this)
   int modal_points = 200;          // even, so that f_p falls between two grid points
-  // tran: end time = tran_periods × the drive's period (or, without a drive frequency, the
-  // first mode's period); output step = period / tran_points_per_period.
+  // tran: end time = tran_periods × the drive's period (a scene with a [[circuit]] and drive
+  // kind none: that of drive.frequency, when given; without a drive frequency, the first
+  // mode's period); output step = period / tran_points_per_period.
   double tran_periods = 2.0;
   int tran_points_per_period = 2000;  // also ngspice's max step: period / this
   // ngspice's time points compared: at most this many, evenly strided (emnet's exact method
