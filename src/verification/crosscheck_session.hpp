@@ -189,9 +189,11 @@ class CrosscheckSession {
   }
 
   // A row from a group: differences relative to the group's largest emnet magnitude (or
-  // absolute, in SI units, when the group is zero in emnet).
+  // absolute, in SI units, when the group is zero in emnet). `floor` [SI]: a magnitude below
+  // which the group's values are rounding, not results (static currents through capacitors
+  // and open loops); the differences are then relative to the floor.
   void add_group_row(CrosscheckAnalysis analysis, const std::string& quantity, const Group& group,
-                     const std::string& where_suffix = "") {
+                     const std::string& where_suffix = "", double floor = 0.0) {
     if (group.names.empty()) return;
     double scale = 0.0;
     for (const auto& e : group.emnet) scale = std::max(scale, std::abs(e));
@@ -199,8 +201,14 @@ class CrosscheckSession {
     row.analysis = analysis;
     row.quantity = quantity;
     row.tolerance = options_.same_network_tolerance;
-    row.basis = scale > 0.0 ? "relative to the group's largest |value| " + number("%.4g", scale)
-                            : "absolute in SI units (zero in emnet)";
+    if (scale > 0.0 && scale < floor) {
+      row.basis = "relative to the rounding floor " + number("%.4g", floor) +
+                  " (the group's largest |value| " + number("%.4g", scale) + " is below it)";
+      scale = floor;
+    } else {
+      row.basis = scale > 0.0 ? "relative to the group's largest |value| " + number("%.4g", scale)
+                              : "absolute in SI units (zero in emnet)";
+    }
     if (!(scale > 0.0)) scale = 1.0;
     std::size_t worst = 0;
     for (std::size_t k = 0; k < group.names.size(); ++k) {

@@ -30,6 +30,18 @@ void CrosscheckSession::tran() {
     report_.notes.push_back(
         "tran: compared with the ideal drive (drive.electrical_dynamics = false: force "
         "k_F*V(t)^2 from the source), the linear network emnet's exact method solves");
+  // The first oscillatory mode's period (0 without one): ngspice's max step must resolve it
+  // even where the drive's period is far longer (a slow switching cycle of a stiff device),
+  // since its trapezoidal rule's phase error grows as (ω·h)² per cycle of every mode the drive
+  // excites.
+  double first_mode_period = 0.0;
+  {
+    const OperatingPoint operating = operating_point(sys);
+    if (!operating.status.ok) throw CrosscheckFailure("emnet " + operating.status.message);
+    const ModalResult modes = run_modes(sys, operating.rest.operating_point);
+    if (modes.status.ok && !modes.modes.empty())
+      first_mode_period = 1.0 / modes.modes.front().frequency_hz;
+  }
   double period = 0.0;
   std::string period_from;
   if (scene.drive.frequency > 0.0 && scene.drive.kind != DriveKind::none) {
@@ -40,19 +52,22 @@ void CrosscheckSession::tran() {
     period = 1.0 / scene.drive.frequency;
     period_from = "the period of drive.frequency (the circuit's)";
   } else {
-    const OperatingPoint operating = operating_point(sys);
-    if (!operating.status.ok) throw CrosscheckFailure("emnet " + operating.status.message);
-    const ModalResult modes = run_modes(sys, operating.rest.operating_point);
-    if (!modes.status.ok || modes.modes.empty()) {
+    if (!(first_mode_period > 0.0)) {
       report_.notes.push_back("tran: no drive frequency and no oscillatory mode; not compared");
       return;
     }
-    period = 1.0 / modes.modes.front().frequency_hz;
+    period = first_mode_period;
     period_from = "the first mode's period";
   }
+  // The max step: the shorter of the run's period and the first mode's, over the points per
+  // period (the drive's period where it is the shorter, as for the fish fin driven below f1).
+  const double step_period = first_mode_period > 0.0 ? std::min(period, first_mode_period) : period;
+  if (step_period < period)
+    report_.notes.push_back("tran: ngspice's max step from the first mode's period " +
+                            number("%.4g s", step_period) + ", shorter than " + period_from);
   SpiceDeckOptions d = deck_options(SpiceAnalysis::tran);
   d.end_time = options_.tran_periods * period;
-  d.output_step = period / options_.tran_points_per_period;
+  d.output_step = step_period / options_.tran_points_per_period;
   d.max_step = 0.0;  // the output step
   d.relative_tolerance = options_.tran_reltol;
   d.edge_fraction = options_.tran_edge_fraction;
@@ -72,7 +87,7 @@ void CrosscheckSession::tran() {
     report_.notes.push_back("tran: ngspice gave up (" + last_error_line(ng) + ") with max step T/" +
                             std::to_string(options_.tran_points_per_period) +
                             "; retried with T/200");
-    d.output_step = period / 200;
+    d.output_step = step_period / 200;
     deck = write_spice_deck(m, d);
     ng = run_deck(CrosscheckAnalysis::tran, deck, "tran");
   } else if (!ng.status.ok) {
@@ -118,11 +133,22 @@ void CrosscheckSession::tran() {
   if (linear) {
     reference = run_transient_exact(sys, probes, t);
   } else {
-    t.relative_tolerance = 1e-10;
-    reference = run_transient_ida(sys, probes, t);
-    report_.notes.push_back(
-        "tran: the network is nonlinear; the reference is IDA at rtol 1e-10, not the exact "
-        "method");
+    // IDA at rtol 1e-10; where rounding stops its corrector first (stiff networks whose
+    // unknowns span many decades), at 1e-9 or 1e-8: its error stays ~100x below the tolerance
+    // of 100 x reltol = 1e-4 either way.
+    std::string failures;
+    for (const double rtol : {1e-10, 1e-9, 1e-8}) {
+      t.relative_tolerance = rtol;
+      reference = run_transient_ida(sys, probes, t);
+      if (reference.status.ok) {
+        report_.notes.push_back("tran: the network is nonlinear; the reference is IDA at rtol " +
+                                number("%.0e", rtol) + ", not the exact method" +
+                                (failures.empty() ? std::string() : " (" + failures + ")"));
+        break;
+      }
+      failures += (failures.empty() ? "" : "; ") + std::string("rtol ") + number("%.0e", rtol) +
+                  " failed: " + reference.status.message;
+    }
   }
   const double emnet_seconds = stopwatch.seconds();
   if (!reference.status.ok)
@@ -206,8 +232,10 @@ void CrosscheckSession::tran() {
   }
   report_.timings.push_back(
       {CrosscheckAnalysis::tran, ng.ngspice_seconds, ng.seconds, emnet_seconds,
-       std::string(linear ? "run_transient_exact" : "run_transient_ida (rtol 1e-10)") + " at " +
-           std::to_string(unique_times.size()) + " of ngspice's time points"});
+       std::string(linear
+                       ? "run_transient_exact"
+                       : "run_transient_ida (rtol " + number("%.0e", t.relative_tolerance) + ")") +
+           " at " + std::to_string(unique_times.size()) + " of ngspice's time points"});
 }
 
 }  // namespace emnet::crosscheck_detail

@@ -40,6 +40,21 @@ TEST(Crosscheck, FishFinPassesAgainstNgspice) {
 
 // The switched drive (a 0/V square wave on DEA A alone; B undriven) in every deck: op (A on),
 // ac (its force level), tran (its PULSE source), all within the tolerances above.
+// The gripper finger (netlists/gripper-finger.toml): two sections, an elastic clamp of two
+// springs, a tip mass, and a DEA charged through an amplifier's 10 MOhm by a 0/3 kV square wave
+// ([[circuit]]): every analysis within the same tolerances (its tran against IDA, the network
+// being nonlinear; ngspice's max step from its 14.9 Hz first mode, not the 2 Hz switching).
+TEST(Crosscheck, GripperFingerPassesAgainstNgspice) {
+  if (!ngspice_available()) GTEST_SKIP() << "ngspice is not installed";
+  const auto run = emnet::testing::run_emnet(
+      "crosscheck " + source_path("netlists/gripper-finger.toml") + " --timeout 60",
+      "timeout 120 ");
+  EXPECT_EQ(run.status, 0) << run.out << run.err;
+  EXPECT_NE(run.out.find("crosscheck passed"), std::string::npos) << run.out;
+  for (const char* analysis : {"\nop ", "\nac ", "\nmodal ", "\ntran "})
+    EXPECT_NE(run.out.find(analysis), std::string::npos) << analysis << "\n" << run.out;
+}
+
 TEST(Crosscheck, SwitchedDrivePassesAgainstNgspice) {
   if (!ngspice_available()) GTEST_SKIP() << "ngspice is not installed";
   const auto run = emnet::testing::run_emnet(

@@ -41,11 +41,12 @@
 //  * tran: emnet's exact method (matrix exponentials; rounding only, run_transient_exact)
 //    evaluated at ngspice's own time points (at most 2000 of them, evenly strided), against
 //    ngspice with `.options reltol` 1e-6, vntol 1e-12, abstol 1e-15 and max step = period /
-//    2000 (period: the drive's, or the first mode's without a drive frequency), over 2 periods
-//    from rest. The exact method needs a linear network: a scene whose DEAs have their
+//    2000 (period: the shorter of the drive's and the first mode's; the first mode's without a
+//    drive frequency), over 2 periods of the drive (or of the first mode) from rest. The exact method needs a linear network: a scene whose DEAs have their
 //    electrical model (RC loop, force on the capacitor voltage) is checked with the ideal drive
 //    (drive.electrical_dynamics = false, force k_F·V(t)² from the source), said in a note; a
-//    network that is still nonlinear uses IDA at rtol 1e-10 as the reference. The deck switches
+//    network that is still nonlinear uses IDA at rtol 1e-10 as the reference (at 1e-9 or 1e-8
+//    where rounding stops IDA's corrector at 1e-10, said in the note). The deck switches
 //    with linear edges of width ε centred on emnet's instants (ε = 1e-5 × the shorter level
 //    time); points within ±10ε of an edge are excluded (stated). Outside, the edge's effect is
 //    a zero-mean pulse, of second order: ~(ε·2π·f)² relative, 1e-9 at 40 Hz for ε = 1 µs.
