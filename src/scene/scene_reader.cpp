@@ -384,7 +384,16 @@ void SceneReader::read_sections(const toml::table& root, Scene& scene) const {
   const Section owner = section(root, "beam");
   if (!beam.auto_segments && beam.segments == 0) {
     if (!every_section_fixed) owner.fail_missing("segments");
+    const ParameterInfo& count = parameter_info("beam", "segments");
+    if (!count.range.contains(fixed_segments))
+      owner.fail("segments", "the sections' own segment counts add up to " +
+                                 std::to_string(fixed_segments) + ", more than the 100000 a "
+                                 "beam may have");
     beam.segments = fixed_segments;
+  } else if (!beam.auto_segments && fixed_segments > beam.segments) {
+    owner.fail("segments", "is the beam's total, " + std::to_string(beam.segments) +
+                               ", but the sections' own segment counts add up to " +
+                               std::to_string(fixed_segments));
   }
   if (const std::string why = sections_length_violation(beam); !why.empty())
     owner.fail("length", why);
