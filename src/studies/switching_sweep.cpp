@@ -57,6 +57,18 @@ std::vector<double> switching_frequencies(const SwitchingSweepOptions& options) 
   return frequencies;
 }
 
+void check_swept_drive(const Scene& scene) {
+  if (scene.drive.kind == DriveKind::none)
+    throw InputError(
+        scene.file, "drive.kind",
+        "the switching sweep varies the frequency of the [drive]'s square wave, but "
+        "the scene's drive.kind is \"none\"" +
+            std::string(scene.circuit.empty() ? ""
+                                              : " (its [[circuit]] sources keep their own "
+                                                "waveforms): sweep a source's frequency with "
+                                                "--set circuit.NAME.frequency=F and tran instead"));
+}
+
 void check_switching_sweep_options(const SwitchingSweepOptions& options) {
   switching_frequencies(options);
   const int samples = samples_or_default(options);
@@ -80,6 +92,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   const std::vector<Probe>& probes = options.outputs;
   if (probes.empty())
     throw InputError(model.scene.file, "probe", "the switching sweep needs at least one output");
+  check_swept_drive(scene);
   if (options.reduce)
     for (const auto& probe : probes)
       if (probe.quantity != ProbeQuantity::deflection && probe.quantity != ProbeQuantity::rotation)

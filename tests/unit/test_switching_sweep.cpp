@@ -242,5 +242,21 @@ TEST(SwitchingSweep, BadOptionsAreInputErrors) {
   }
 }
 
+// A scene driven by its [[circuit]] sources (drive.kind = "none") has no drive frequency to
+// sweep: an InputError naming drive.kind, which points to the circuit's own frequency key.
+TEST(SwitchingSweep, ASceneWithoutASwitchedDriveIsRefusedByName) {
+  const Scene gripper = read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/gripper-finger.toml");
+  try {
+    check_swept_drive(gripper);
+    FAIL() << "accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("drive.kind"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("circuit.NAME.frequency"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_NO_THROW(
+      check_swept_drive(read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml")));
+}
+
 }  // namespace
 }  // namespace emnet

@@ -50,6 +50,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   show_phase(options, "building the network");
   // The exact method needs a linear network: DEAs as ideal voltage-driven forces.
   emnet::Model model = resolved_model(load_scene(options), options);
+  emnet::check_swept_drive(model.scene);
   std::vector<std::string> notes;
   if (sweep.method == "exact") {
     for (const auto& text : options.probes)
@@ -58,6 +59,11 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
                          "the exact periodic method models the DEAs as ideal voltage-driven "
                          "forces, without the RC loop whose voltage and current this probe asks "
                          "for; use --method shooting");
+    if (model.network.assemble().is_nonlinear() && !model.scene.circuit.empty())
+      throw InputError(model.scene.file, "circuit",
+                       "the exact periodic method models the DEAs as ideal voltage-driven forces, "
+                       "but this scene drives them through its [[circuit]] elements, whose "
+                       "electrical loops it needs; use --method shooting");
     if (model.network.assemble().is_nonlinear()) {
       double tau = 0.0;
       for (const auto& dea : model.deas)
