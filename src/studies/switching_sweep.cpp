@@ -58,15 +58,14 @@ std::vector<double> switching_frequencies(const SwitchingSweepOptions& options) 
 }
 
 void check_swept_drive(const Scene& scene) {
-  if (scene.drive.kind == DriveKind::none)
-    throw InputError(
-        scene.file, "drive.kind",
-        "the switching sweep varies the frequency of the [drive]'s square wave, but "
-        "the scene's drive.kind is \"none\"" +
-            std::string(scene.circuit.empty() ? ""
-                                              : " (its [[circuit]] sources keep their own "
-                                                "waveforms): sweep a source's frequency with "
-                                                "--set circuit.NAME.frequency=F and tran instead"));
+  // (A scene of loads alone, drive kind none without a circuit, keeps its periodic state of
+  // constant loads, as before.)
+  if (scene.drive.kind == DriveKind::none && !scene.circuit.empty())
+    throw InputError(scene.file, "drive.kind",
+                     "the switching sweep varies the frequency of the [drive]'s square wave, but "
+                     "the scene's drive.kind is \"none\" and its [[circuit]] sources keep their "
+                     "own waveforms: sweep a source's frequency with --set "
+                     "circuit.NAME.frequency=F and tran instead");
 }
 
 void check_switching_sweep_options(const SwitchingSweepOptions& options) {

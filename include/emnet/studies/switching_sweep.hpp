@@ -113,8 +113,8 @@ struct SwitchingSweepResult {
 std::vector<double> switching_frequencies(const SwitchingSweepOptions& options);
 // The checks of the options alone (the frequencies, samples from 8 to 1000000 after the
 // default, reduce with the exact method only), as run_switching_sweep makes them first.
-// InputError naming drive.kind for a scene whose [drive] has no frequency to sweep (kind none,
-// e.g. a scene driven by its [[circuit]] sources).
+// InputError naming drive.kind for a scene driven by its [[circuit]] sources (drive kind none):
+// the sweep has no drive frequency to vary there.
 void check_swept_drive(const Scene& scene);
 void check_switching_sweep_options(const SwitchingSweepOptions& options);
 
