@@ -35,6 +35,7 @@
 #include "emnet/studies/resolve.hpp"
 #include "emnet/studies/segment_selection.hpp"
 #include "emnet/studies/sensitivity.hpp"
+#include "emnet/studies/static_study.hpp"
 #include "emnet/verification/crosscheck.hpp"
 
 namespace emnet_cli {
@@ -50,25 +51,11 @@ int run_static(const CommonOptions& options) {
   const emnet::Stopwatch stopwatch;
   Prepared p = prepare(options, true);
   const auto probes = selected_probes(p.model, options);
-  const auto& beam = p.model.beam;
-  std::vector<std::vector<double>> rows;
-  for (size_t k = 0; k < beam.x.size(); ++k) {
-    emnet::ProbeSpec w{"w", emnet::ProbeQuantity::deflection, beam.x[k], ""};
-    emnet::ProbeSpec phi{"phi", emnet::ProbeQuantity::rotation, beam.x[k], ""};
-    rows.push_back({beam.x[k], emnet::static_probe_value(p.system, p.rest, p.model.make_probe(w)),
-                    emnet::static_probe_value(p.system, p.rest, p.model.make_probe(phi))});
-  }
-  std::vector<double> probe_values;
-  for (const auto& probe : probes)
-    probe_values.push_back(emnet::static_probe_value(p.system, p.rest, probe));
-  // Validity: the nodal deflections and the deflection probes, the sources at t = 0.
-  std::vector<emnet::DeflectionPeak> peaks{{"the beam's nodes", 0.0}};
-  for (const auto& row : rows) peaks[0].peak = std::max(peaks[0].peak, std::abs(row[1]));
-  for (size_t k = 0; k < probes.size(); ++k)
-    if (probes[k].quantity == emnet::ProbeQuantity::deflection)
-      peaks.push_back({probes[k].name, std::abs(probe_values[k])});
-  const emnet::Validity validity =
-      emnet::check_validity(p.model.scene, peaks, emnet::drive_voltages_at_start(p.model.scene));
+  const emnet::StaticStudyValues values =
+      emnet::static_study_values(p.model, p.system, p.rest, probes);
+  const auto& rows = values.nodes;
+  const auto& probe_values = values.probe_values;
+  const emnet::Validity& validity = values.validity;
   const double total = stopwatch.seconds();
   end_progress(options);
   auto write_files = [&] {

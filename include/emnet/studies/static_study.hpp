@@ -1,0 +1,27 @@
+// The static study: what `emnet static` reports of a model's static state (solve_static, through
+// the operating point with require_static): the deflection w [m] and rotation φ [rad] at every
+// beam node, each probe's static value (static_probe_value) and the validity of the deflections
+// (the nodes' largest and each deflection probe's) with the drive's voltages at t = 0.
+// Nodal values are exact for any N (Hermite statics); between nodes the segment's shape
+// functions.
+#pragma once
+
+#include <vector>
+
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/model/validity.hpp"
+
+namespace emnet {
+
+struct StaticStudyValues {
+  std::vector<std::vector<double>> nodes;  // per beam node: {x [m], w [m], φ [rad]}
+  std::vector<double> probe_values;        // one per probe, in the probe's unit
+  Validity validity;
+};
+
+// From a solved static state `rest` of `system` (model.network.assemble()).
+StaticStudyValues static_study_values(const Model& model, const System& system,
+                                      const StaticResult& rest, const std::vector<Probe>& probes);
+
+}  // namespace emnet

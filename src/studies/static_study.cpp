@@ -1,0 +1,32 @@
+// The static study's values (emnet/studies/static_study.hpp).
+#include "emnet/studies/static_study.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "emnet/model/drive.hpp"
+
+namespace emnet {
+
+StaticStudyValues static_study_values(const Model& model, const System& system,
+                                      const StaticResult& rest, const std::vector<Probe>& probes) {
+  StaticStudyValues values;
+  const auto& beam = model.beam;
+  for (size_t k = 0; k < beam.x.size(); ++k) {
+    ProbeSpec w{"w", ProbeQuantity::deflection, beam.x[k], ""};
+    ProbeSpec phi{"phi", ProbeQuantity::rotation, beam.x[k], ""};
+    values.nodes.push_back({beam.x[k], static_probe_value(system, rest, model.make_probe(w)),
+                            static_probe_value(system, rest, model.make_probe(phi))});
+  }
+  for (const auto& probe : probes)
+    values.probe_values.push_back(static_probe_value(system, rest, probe));
+  std::vector<DeflectionPeak> peaks{{"the beam's nodes", 0.0}};
+  for (const auto& row : values.nodes) peaks[0].peak = std::max(peaks[0].peak, std::abs(row[1]));
+  for (size_t k = 0; k < probes.size(); ++k)
+    if (probes[k].quantity == ProbeQuantity::deflection)
+      peaks.push_back({probes[k].name, std::abs(values.probe_values[k])});
+  values.validity = check_validity(model.scene, peaks, drive_voltages_at_start(model.scene));
+  return values;
+}
+
+}  // namespace emnet
