@@ -187,7 +187,6 @@ Json reduction_json(const emnet::ModalReduction& m, bool tolerance_met);
 
 // tran.cpp: the outputs of a transient (dx_k = P_k - P1, DEA voltages and currents); with
 // --probe those (tran, sweep-switching); the outputs a --plot draws, on one axis.
-std::vector<emnet::Probe> transient_probes(const emnet::Model& model);
 std::vector<emnet::Probe> transient_outputs(const emnet::Model& model,
                                             const CommonOptions& options);
 struct PlottedOutputs {
@@ -209,6 +208,7 @@ Command add_sensitivity_command(CLI::App& app, CommonOptions& options);
 Command add_mismatch_command(CLI::App& app, CommonOptions& options);
 Command add_netlist_command(CLI::App& app, CommonOptions& options);
 Command add_crosscheck_command(CLI::App& app, CommonOptions& options);
+Command add_study_command(CLI::App& app, CommonOptions& options);
 Command add_schema_command(CLI::App& app);
 
 }  // namespace emnet_cli

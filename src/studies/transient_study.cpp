@@ -1,0 +1,117 @@
+// The transient study (emnet/studies/transient_study.hpp).
+#include "emnet/studies/transient_study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "emnet/core/errors.hpp"
+#include "emnet/core/stopwatch.hpp"
+#include "emnet/model/drive.hpp"
+#include "emnet/model/outputs.hpp"
+#include "emnet/scene/parameters.hpp"
+
+namespace emnet {
+
+std::vector<Probe> transient_outputs(const Model& model, const std::vector<std::string>& texts) {
+  std::vector<Probe> outputs = probes_of(transient_output_list(model));
+  if (texts.empty()) return outputs;
+  std::vector<Probe> probes;
+  for (const auto& text : texts) {
+    const auto named = std::find_if(outputs.begin(), outputs.end(),
+                                    [&](const Probe& probe) { return probe.name == text; });
+    probes.push_back(named != outputs.end() ? *named : model.parse_probe(text));
+  }
+  return probes;
+}
+
+TransientStudyResult run_transient_study(Scene scene, const TransientStudyOptions& options) {
+  const Stopwatch stopwatch;
+  const std::string& p = options.option_prefix;
+  auto refuse = [&](const std::string& name, const std::string& why) {
+    throw InputError(p + name, p + name, why);
+  };
+  if (options.switching_hz) {
+    if (!(*options.switching_hz > 0.0) || !std::isfinite(*options.switching_hz))
+      refuse("switching", "must be a positive frequency in Hz (> 0)");
+    set_parameter(scene, "drive.frequency", *options.switching_hz);
+  }
+  if (!(options.periods > 0.0) || options.periods > 1e6)
+    refuse("periods", "must be > 0 and at most 1e6 (inclusive)");
+  if (!(options.rtol >= 1e-13 && options.rtol < 1.0))
+    refuse("rtol",
+           "must be >= 1e-13 (below that, double-precision rounding of the residual exceeds the "
+           "tolerance) and < 1");
+  if (!(options.atol >= 0.0) || !std::isfinite(options.atol)) refuse("atol", "must be >= 0");
+  if (!(options.max_step >= 0.0) || !std::isfinite(options.max_step))
+    refuse("max-step", "must be >= 0 (0: no limit)");
+  if (options.points_per_period < 2 || options.points_per_period > 100000)
+    refuse("points-per-period", "must be from 2 to 100000 (inclusive)");
+  TransientStudyResult study;
+  study.model = prepare_model(scene, options.prepare);
+  study.system = study.model.network.assemble();
+  const Model& model = study.model;
+  study.frequency_hz = model.scene.drive.frequency;
+  if (!(study.frequency_hz > 0.0))
+    throw InputError(model.scene.file, "drive.frequency",
+                     "a transient needs a drive with a frequency > 0 (or " + p + "switching)");
+  if (options.method == TransientMethod::exact && study.system.is_nonlinear())
+    refuse("method",
+           "the exact method needs a linear network, and this scene's DEAs have their "
+           "electrical model (nonlinear); set drive.electrical_dynamics=false for ideal "
+           "voltage-driven DEAs, or use the ida method");
+  study.outputs = transient_outputs(model, options.outputs);
+  if (options.check_outputs) options.check_outputs(study.outputs);
+  const double count = std::round(options.periods * options.points_per_period);
+  if (count < 1.0)
+    refuse("periods",
+           "periods x points-per-period must be >= 0.5, for at least one output step after t = 0");
+  const double stored = (count + 1.0) * (static_cast<double>(study.outputs.size()) + 1.0);
+  if (stored > kTransientMaximumStoredValues) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "%.0f output times x (%zu outputs + the time) would store %.3g values (%.3g GB "
+                  "of doubles); at most %.0f values (%.0f MB) are stored (inclusive): lower the "
+                  "periods or the points per period, or ask fewer outputs",
+                  count + 1.0, study.outputs.size(), stored, 8.0 * stored / 1e9,
+                  kTransientMaximumStoredValues, 8.0 * kTransientMaximumStoredValues / 1e6);
+    refuse("periods", text);
+  }
+  const double period = 1.0 / study.frequency_hz;
+  TransientOptions transient;
+  transient.end_time = options.periods * period;
+  transient.relative_tolerance = options.rtol;
+  transient.absolute_tolerance = options.atol;
+  transient.max_step = options.max_step;
+  transient.start = options.start;
+  transient.progress = options.progress;
+  const long outputs = static_cast<long>(count);
+  transient.output_times.reserve(static_cast<size_t>(outputs) + 1);
+  for (long k = 0; k <= outputs; ++k)
+    transient.output_times.push_back(transient.end_time * static_cast<double>(k) / outputs);
+  study.end_time = transient.end_time;
+  study.result = options.method == TransientMethod::exact
+                     ? run_transient_exact(study.system, study.outputs, transient)
+                     : run_transient_ida(study.system, study.outputs, transient);
+  study.start_text =
+      options.start == StartState::static_
+          ? "the static state under the drive's first half-period"
+          : "at rest (every unknown zero before t = 0; the drive switches on at t = 0)";
+  if (!study.result.status.ok) {
+    study.status = Status::failure("tran: " + study.result.status.message);
+    study.seconds = stopwatch.seconds();
+    return study;
+  }
+  std::vector<DeflectionPeak> peaks;
+  for (size_t k = 0; k < study.outputs.size(); ++k)
+    if (study.outputs[k].quantity == ProbeQuantity::deflection) {
+      peaks.push_back({study.outputs[k].name, 0.0});
+      for (double v : study.result.values[k])
+        peaks.back().peak = std::max(peaks.back().peak, std::abs(v));
+    }
+  study.validity = check_validity(model.scene, peaks, drive_peak_voltages(model.scene));
+  study.seconds = stopwatch.seconds();
+  return study;
+}
+
+}  // namespace emnet
