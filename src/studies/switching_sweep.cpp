@@ -16,7 +16,10 @@
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/model/drive.hpp"
+#include "emnet/model/outputs.hpp"
+#include "emnet/scene/parameters.hpp"
 #include "emnet/studies/resolve.hpp"
+#include "emnet/studies/transient_study.hpp"
 
 namespace emnet {
 namespace {
@@ -323,6 +326,51 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   }
   result.seconds = stopwatch.seconds();
   return result;
+}
+
+SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
+                               const std::vector<std::string>& probe_texts,
+                               const PrepareOptions& prepare, double highest_hz,
+                               const std::string& probe_option) {
+  SweptModel swept{prepare_model(scene, prepare), scene, {}};
+  check_swept_drive(swept.model.scene);
+  if (method != SwitchingSweepMethod::exact) return swept;
+  for (const auto& text : probe_texts)
+    if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0)
+      throw InputError(probe_option, text,
+                       "the exact periodic method models the DEAs as ideal voltage-driven "
+                       "forces, without the RC loop whose voltage and current this probe asks "
+                       "for; use the shooting method");
+  const bool nonlinear = swept.model.network.assemble().is_nonlinear();
+  if (nonlinear && !swept.model.scene.circuit.empty())
+    throw InputError(swept.model.scene.file, "circuit",
+                     "the exact periodic method models the DEAs as ideal voltage-driven forces, "
+                     "but this scene drives them through its [[circuit]] elements, whose "
+                     "electrical loops it needs; use the shooting method");
+  if (nonlinear) {
+    double tau = 0.0;
+    for (const auto& dea : swept.model.deas)
+      tau = std::max(tau, dea.electrode_resistance * dea.capacitance);
+    swept.notes.push_back(
+        "exact method: DEAs as ideal voltage-driven forces (their RC time "
+        "constant " +
+        format_with_unit(tau, "s") + " is " + format_number("%.2g", tau * highest_hz) +
+        " of the shortest period); the shooting method integrates the full "
+        "model");
+    set_electrical_dynamics(swept.scene, false);
+    swept.model = prepare_model(swept.scene, prepare);
+  }
+  return swept;
+}
+
+std::vector<Probe> switching_sweep_outputs(const Model& model,
+                                           const std::vector<std::string>& probe_texts) {
+  std::vector<Probe> outputs;
+  for (const auto& probe : transient_outputs(model, probe_texts))
+    if (!probe_texts.empty() || probe.unit == "m") outputs.push_back(probe);
+  if (outputs.empty())
+    throw InputError(model.scene.file, "probe", "the scene has no deflection output");
+  return outputs;
 }
 
 }  // namespace emnet

@@ -48,38 +48,13 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   if (!sweep.reduce && (!sweep.tolerance.empty() || !sweep.band.empty()))
     throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
   show_phase(options, "building the network");
-  // The exact method needs a linear network: DEAs as ideal voltage-driven forces.
-  emnet::Model model = resolved_model(load_scene(options), options);
-  emnet::check_swept_drive(model.scene);
-  std::vector<std::string> notes;
-  if (sweep.method == "exact") {
-    for (const auto& text : options.probes)
-      if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0)
-        throw InputError("--probe", text,
-                         "the exact periodic method models the DEAs as ideal voltage-driven "
-                         "forces, without the RC loop whose voltage and current this probe asks "
-                         "for; use --method shooting");
-    if (model.network.assemble().is_nonlinear() && !model.scene.circuit.empty())
-      throw InputError(model.scene.file, "circuit",
-                       "the exact periodic method models the DEAs as ideal voltage-driven forces, "
-                       "but this scene drives them through its [[circuit]] elements, whose "
-                       "electrical loops it needs; use --method shooting");
-    if (model.network.assemble().is_nonlinear()) {
-      double tau = 0.0;
-      for (const auto& dea : model.deas)
-        tau = std::max(tau, dea.electrode_resistance * dea.capacitance);
-      notes.push_back("exact method: DEAs as ideal voltage-driven forces (their RC time constant " +
-                      si(tau, "s") + " is " + format("%.2g", tau * sweep.to) +
-                      " of the shortest period); --method shooting integrates the full model");
-      options.overrides.push_back("drive.electrical_dynamics=false");
-      model = resolved_model(load_scene(options), options);
-    }
-  }
-  // The default outputs: the deflections; with --probe, every probe given.
-  for (const auto& probe : transient_outputs(model, options))
-    if (!options.probes.empty() || probe.unit == "m") study.outputs.push_back(probe);
-  if (study.outputs.empty())
-    throw InputError(model.scene.file, "probe", "the scene has no deflection output");
+  emnet::PrepareOptions prepare;
+  prepare.electrical_probe_requested = electrical_probe_requested(options);
+  emnet::SweptModel swept = emnet::prepare_swept_model(load_scene(options), study.method,
+                                                       options.probes, prepare, sweep.to);
+  const emnet::Model& model = swept.model;
+  std::vector<std::string>& notes = swept.notes;
+  study.outputs = emnet::switching_sweep_outputs(model, options.probes);
   const PlottedOutputs plotted =
       sweep.plot.empty() ? PlottedOutputs{} : plotted_outputs(study.outputs, options, "peak ");
   const double count = static_cast<double>(emnet::switching_frequencies(study).size());
@@ -92,9 +67,8 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
         reduction_options(sweep.tolerance, sweep.band, sweep.to, model.scene.model.tolerance);
   study.progress = progress_of(options);
   study.phase = [&options](const std::string& what) { show_phase(options, what); };
-  // The scene read once (with the override above); only the drive frequency varies.
-  const emnet::Scene base_scene = load_scene(options);
-  const emnet::SwitchingSweepResult result = emnet::run_switching_sweep(model, base_scene, study);
+  // The scene read once; only the drive frequency varies.
+  const emnet::SwitchingSweepResult result = emnet::run_switching_sweep(model, swept.scene, study);
   if (result.cancelled) throw Interrupted("interrupted");
   if (!result.status.ok) throw NumericalFailure(result.status.message);
   SweepReportInput report{options, model, result, notes};

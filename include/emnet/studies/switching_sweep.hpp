@@ -34,6 +34,7 @@
 #include "emnet/model/model.hpp"
 #include "emnet/model/validity.hpp"
 #include "emnet/scene/scene.hpp"
+#include "emnet/studies/resolve.hpp"
 
 namespace emnet {
 
@@ -117,6 +118,29 @@ std::vector<double> switching_frequencies(const SwitchingSweepOptions& options);
 // the sweep has no drive frequency to vary there.
 void check_swept_drive(const Scene& scene);
 void check_switching_sweep_options(const SwitchingSweepOptions& options);
+
+// The model a sweep runs on, and the scene it varies. For the exact method the network must be
+// linear: when the scene's DEAs have their electrical model (a nonlinear network), the model is
+// rebuilt with drive.electrical_dynamics = false (ideal voltage-driven DEAs) and `notes` says so
+// with the RC time constant against the shortest period (1/highest_hz). InputError: the swept
+// drive (check_swept_drive); with the exact method an electrical probe among `probe_texts`
+// (dea_voltage, dea_current: naming `probe_option`), or a nonlinear scene driven through its
+// [[circuit]] (naming "circuit").
+struct SweptModel {
+  Model model;
+  Scene scene;  // the read scene, with drive.electrical_dynamics = false where it was set so
+  std::vector<std::string> notes;
+};
+SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
+                               const std::vector<std::string>& probe_texts,
+                               const PrepareOptions& prepare, double highest_hz,
+                               const std::string& probe_option = "--probe");
+
+// The outputs a sweep follows: the deflections of the recorded outputs (transient_output_list),
+// or, given `probe_texts`, each of those (an output name or a probe of parse_probe). InputError
+// naming "probe" when there is none.
+std::vector<Probe> switching_sweep_outputs(const Model& model,
+                                           const std::vector<std::string>& probe_texts);
 
 // The sweep of `model` (outputs, f1 and validity are of it). `scene`: the scene the sweep
 // varies, normally model's own read scene with segments chosen; when its
