@@ -1,6 +1,7 @@
 // Output files written completely or not at all; see include/emnet/core/output_file.hpp.
 #include "emnet/core/output_file.hpp"
 
+#include <atomic>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -49,7 +50,7 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
   const std::filesystem::path directory = target.parent_path();
   const std::string name = target.filename().string();
   for (int attempt = 0; attempt < 100 && descriptor_ < 0; ++attempt) {
-    static int counter = 0;
+    static std::atomic<int> counter{0};
     const std::string candidate = (directory / ("." + name + "." + std::to_string(::getpid()) +
                                                 "-" + std::to_string(counter++) + ".tmp"))
                                       .string();
