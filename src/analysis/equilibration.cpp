@@ -33,12 +33,14 @@ void sinkhorn(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<do
     };
     visit(a, 1.0);
     if (b) visit(*b, weight);
-    double worst = 0.0;
-    for (Eigen::Index k = 0; k < rows; ++k)
-      if (row_sum[k] > 0.0) worst = std::max(worst, std::abs(std::log(row_sum[k])));
-    for (Eigen::Index k = 0; k < columns; ++k)
-      if (column_sum[k] > 0.0) worst = std::max(worst, std::abs(std::log(column_sum[k])));
-    if (worst < 0.02 || sweep == sweeps) break;
+    // Every non-zero sum s within 2 %: |log s| < 0.02, tested without a logarithm.
+    static const double low = std::exp(-0.02), high = std::exp(0.02);
+    auto balanced = [](const Eigen::VectorXd& sums) {
+      for (Eigen::Index k = 0; k < sums.size(); ++k)
+        if (sums[k] > 0.0 && !(sums[k] > low && sums[k] < high)) return false;
+      return true;
+    };
+    if ((balanced(row_sum) && balanced(column_sum)) || sweep == sweeps) break;
     for (Eigen::Index k = 0; k < rows; ++k)
       if (row_sum[k] > 0.0) row[k] /= std::sqrt(row_sum[k]);
     for (Eigen::Index k = 0; k < columns; ++k)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -126,13 +127,45 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
   auto slope_of = [&](size_t p, size_t i) {
     return series[p].slope.empty() ? 0.0 : series[p].slope[i];
   };
+  // Where each term has decayed below rounding: beyond h = cutoff[p][i][k] the term
+  // a_ik·e^{λ_k h} is smaller than 2⁻⁶⁰ of S_p = max_i (|p_i| + Σ_k |a_ik|), a bound on |p| and
+  // on the sum's own rounding scale, so leaving it out changes a value by less than n·2⁻⁶⁰·S_p,
+  // far below the n·2⁻⁵³·S_p rounding of the sum itself (Kelvin–Voigt damping makes the higher
+  // modes decay fast: far from a switching edge a few terms are left).
+  std::vector<std::vector<Eigen::VectorXd>> cutoff(series.size());
+  for (size_t p = 0; p < series.size(); ++p) {
+    double scale = 0.0;
+    for (size_t i = 0; i < intervals; ++i)
+      scale = std::max(scale,
+                       std::abs(series[p].offset[i]) + series[p].coefficient[i].cwiseAbs().sum());
+    const double negligible = std::ldexp(scale, -60);
+    for (size_t i = 0; i < intervals; ++i) {
+      Eigen::VectorXd after(lambda.size());
+      for (Eigen::Index k = 0; k < lambda.size(); ++k) {
+        const double size = std::abs(series[p].coefficient[i][k]);
+        const double rate = -lambda[k].real();
+        after[k] = size <= negligible ? -1.0
+                   : rate > 0.0       ? std::log(size / negligible) / rate
+                                      : std::numeric_limits<double>::infinity();
+      }
+      cutoff[p].push_back(std::move(after));
+    }
+  }
   // Value and two derivatives of probe p at offset h into interval i.
   auto evaluate = [&](size_t p, size_t i, double h, double* d1, double* d2) {
-    const Eigen::VectorXcd e = (lambda * h).array().exp();
-    const Eigen::VectorXcd terms = series[p].coefficient[i].cwiseProduct(e);
-    if (d1) *d1 = terms.cwiseProduct(lambda).sum().real() + slope_of(p, i);
-    if (d2) *d2 = terms.cwiseProduct(lambda).cwiseProduct(lambda).sum().real();
-    return series[p].offset[i] + slope_of(p, i) * h + terms.sum().real();
+    const Eigen::VectorXcd& a = series[p].coefficient[i];
+    const Eigen::VectorXd& after = cutoff[p][i];
+    Complex sum = 0.0, first = 0.0, second = 0.0;
+    for (Eigen::Index k = 0; k < a.size(); ++k) {
+      if (h > after[k]) continue;
+      const Complex term = a[k] * std::exp(lambda[k] * h);
+      sum += term;
+      first += term * lambda[k];
+      second += term * lambda[k] * lambda[k];
+    }
+    if (d1) *d1 = first.real() + slope_of(p, i);
+    if (d2) *d2 = second.real();
+    return series[p].offset[i] + slope_of(p, i) * h + sum.real();
   };
 
   // The global extremes, not only the sampled ones. Inside interval i, for h ≥ a (the affine
@@ -295,8 +328,18 @@ struct PeriodicSolver::Impl {
   }
   std::vector<bool> invariant;
   Eigen::Index zero_poles = 0;
-  // gᵀ·V of each probe seen so far (by name and terms), reused across solves.
-  mutable std::map<std::string, Eigen::RowVectorXcd> probe_modes;
+  // Per probe seen so far (by name and terms), reused across solves: gᵀ·V, the probe's row on
+  // the modal coordinates, and h, its row on the sources (p = gᵀ·x + h·f on a constant
+  // interval).
+  struct ProbeRows {
+    Eigen::RowVectorXcd modes;
+    Eigen::RowVectorXd sources;
+  };
+  mutable std::map<std::string, ProbeRows> probe_rows;
+  // The state space's maps (u, u' and N·f as matrices) and V⁻¹·N, the sources' forcing in modal
+  // coordinates (q = V⁻¹·N·f), made at the first solve.
+  mutable LinearStateSpace::StateMaps maps;
+  mutable Eigen::MatrixXcd modal_forcing;
   System system;
   DisplacementForm form;
   LinearStateSpace space;
@@ -361,9 +404,12 @@ PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Prob
   const auto free_body_failure = Status::failure(
       "the network has a pole at s = 0 that the drive excites "
       "(a free body): no periodic state");
+  if (impl_->modal_forcing.size() == 0) {
+    impl_->maps = space.state_maps();
+    impl_->modal_forcing = impl_->vectors_lu.solve(impl_->maps.forcing_matrix.cast<Complex>());
+  }
   for (size_t i = 0; i < intervals; ++i) {
-    const Eigen::VectorXcd modal_forcing =
-        impl_->vectors_lu.solve(space.forcing(f[i].start).cast<Complex>());
+    const Eigen::VectorXcd modal_forcing = impl_->modal_forcing * f[i].start;
     particular[i] = Eigen::VectorXcd::Zero(nd);
     const double forcing_scale = modal_forcing.cwiseAbs().maxCoeff();
     for (Eigen::Index k = 0; k < nd; ++k) {
@@ -374,8 +420,7 @@ PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Prob
       }
     }
     if (!f[i].ramp()) continue;
-    const Eigen::VectorXcd modal_slope =
-        impl_->vectors_lu.solve(space.forcing(f[i].slope).cast<Complex>());
+    const Eigen::VectorXcd modal_slope = impl_->modal_forcing * f[i].slope;
     const double slope_scale = modal_slope.cwiseAbs().maxCoeff();
     for (Eigen::Index k = 0; k < nd; ++k) {
       if (!impl_->invariant[static_cast<size_t>(k)]) {
@@ -413,24 +458,30 @@ PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Prob
     std::string key = probes[p].name + "/" + std::to_string(probes[p].integrations);
     for (const auto& [index, coefficient] : probes[p].terms)
       key += "/" + std::to_string(index) + ":" + std::to_string(coefficient);
-    auto cached = impl_->probe_modes.find(key);
-    if (cached == impl_->probe_modes.end()) {
+    auto cached = impl_->probe_rows.find(key);
+    if (cached == impl_->probe_rows.end()) {
+      // The probe is linear in (u, u'): its value on each column of the maps.
+      const LinearStateSpace::StateMaps& maps = impl_->maps;
       Eigen::VectorXd g(nd);
-      for (Eigen::Index k = 0; k < nd; ++k) {
-        Eigen::VectorXd unit = zero;
-        unit[k] = 1.0;
-        g[k] = probe_at(probes[p], unit, no_force);
-      }
-      cached =
-          impl_->probe_modes.emplace(key, g.transpose().cast<Complex>() * impl_->vectors).first;
+      for (Eigen::Index k = 0; k < nd; ++k)
+        g[k] = form.probe(probes[p], maps.u_x.col(k), maps.up_x.col(k));
+      Eigen::RowVectorXd sources(form.size());
+      for (Eigen::Index j = 0; j < form.size(); ++j)
+        sources[j] = form.probe(probes[p], maps.u_f.col(j), maps.up_f.col(j));
+      cached = impl_->probe_rows
+                   .emplace(key, Impl::ProbeRows{g.transpose().cast<Complex>() * impl_->vectors,
+                                                 sources})
+                   .first;
     }
-    const Eigen::RowVectorXcd& g_modes = cached->second;
+    const Eigen::RowVectorXcd& g_modes = cached->second.modes;
     for (size_t i = 0; i < intervals; ++i) {
-      const Eigen::VectorXd x_particular = (impl_->vectors * particular[i]).real();
       if (!f[i].ramp()) {
-        series[p].offset.push_back(probe_at(probes[p], x_particular, f[i].start));
+        // gᵀ·Re(V·a) + h·f = Re(gᵀV·a) + h·f: the probe's rows, no state rebuilt.
+        series[p].offset.push_back((g_modes * particular[i]).value().real() +
+                                   cached->second.sources.dot(f[i].start));
         series[p].slope.push_back(0.0);
       } else {
+        const Eigen::VectorXd x_particular = (impl_->vectors * particular[i]).real();
         series[p].offset.push_back(probe_on_ramp(probes[p], x_particular, f[i]));
         series[p].slope.push_back((g_modes * particular_slope[i]).value().real() +
                                   probe_at(probes[p], zero, f[i].slope));

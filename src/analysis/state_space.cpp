@@ -105,25 +105,32 @@ LinearStateSpace::LinearStateSpace(const DisplacementForm& form, double angular_
     Eigen::MatrixXd h(k, n_);
     const Eigen::SparseMatrix<double, Eigen::RowMajor> e_rows = form.e();
     for (Eigen::Index i = 0; i < k; ++i) h.row(i) = Eigen::RowVectorXd(e_rows.row(hidden[i]));
-    constraint_ = h;
-    const Eigen::BDCSVD<Eigen::MatrixXd> m_svd(balanced_m_,
-                                               Eigen::ComputeFullU | Eigen::ComputeFullV);
-    null_vectors_ =
-        balance_.asDiagonal() * completed_basis(m_svd.matrixV().leftCols(nd_ - k)).rightCols(k);
-    Eigen::VectorXd u, up;
-    Eigen::MatrixXd h_null(k, k);
-    const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(n_);
-    for (Eigen::Index j = 0; j < k; ++j) {
-      full_state(null_vectors_.col(j), no_force, u, up);
-      h_null.col(j) = constraint_ * u;
-    }
-    constraint_lu_.compute(h_null);
-    if (constraint_lu_.rcond() < 1e-12) constraint_.resize(0, 0);  // not the invariants
+    constraint_ = h;  // its null vectors are found on the first project()
   }
+}
+
+void LinearStateSpace::prepare_projection() const {
+  projection_prepared_ = true;
+  const Eigen::Index k = constraint_.rows();
+  if (k == 0) return;
+  const Eigen::BDCSVD<Eigen::MatrixXd> m_svd(balanced_m_,
+                                             Eigen::ComputeFullU | Eigen::ComputeFullV);
+  null_vectors_ =
+      balance_.asDiagonal() * completed_basis(m_svd.matrixV().leftCols(nd_ - k)).rightCols(k);
+  Eigen::VectorXd u, up;
+  Eigen::MatrixXd h_null(k, k);
+  const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(n_);
+  for (Eigen::Index j = 0; j < k; ++j) {
+    full_state(null_vectors_.col(j), no_force, u, up);
+    h_null.col(j) = constraint_ * u;
+  }
+  constraint_lu_.compute(h_null);
+  if (constraint_lu_.rcond() < 1e-12) constraint_.resize(0, 0);  // not the invariants
 }
 
 Eigen::VectorXd LinearStateSpace::project(const Eigen::VectorXd& x,
                                           const Eigen::VectorXd& f) const {
+  if (!projection_prepared_) prepare_projection();
   if (constraint_.size() == 0) return x;
   Eigen::VectorXd u, up;
   full_state(x, f, u, up);
@@ -240,6 +247,34 @@ void LinearStateSpace::full_state(const Eigen::VectorXd& x, const Eigen::VectorX
   }
   u = column_scale_.cwiseProduct(right_ * w);
   up = column_scale_.cwiseProduct(right_ * wp);
+}
+
+LinearStateSpace::StateMaps LinearStateSpace::state_maps() const {
+  // The same steps as forcing and full_state, on the identity's columns at once.
+  const Eigen::Index sources = row_scale_.size();
+  const Eigen::MatrixXd f_hat = left_.transpose() * row_scale_.asDiagonal();  // n × sources
+  StateMaps maps;
+  Eigen::MatrixXd a22_inv_f2;
+  if (na_ > 0) a22_inv_f2 = a22_lu_.solve(f_hat.bottomRows(na_));
+  maps.forcing_matrix =
+      sigma_inv_.asDiagonal() * (na_ > 0 ? Eigen::MatrixXd(f_hat.topRows(nd_) - a12_ * a22_inv_f2)
+                                         : Eigen::MatrixXd(f_hat.topRows(nd_)));
+  Eigen::MatrixXd w_x = Eigen::MatrixXd::Zero(n_, nd_), w_f = Eigen::MatrixXd::Zero(n_, sources);
+  Eigen::MatrixXd wp_x(n_, nd_), wp_f(n_, sources);
+  w_x.topRows(nd_).setIdentity();
+  wp_x.topRows(nd_) = m_;
+  wp_f.topRows(nd_) = maps.forcing_matrix;
+  if (na_ > 0) {
+    w_x.bottomRows(na_) = -a22_inv_a21_;
+    w_f.bottomRows(na_) = a22_inv_f2;
+    wp_x.bottomRows(na_) = -a22_inv_a21_ * m_;
+    wp_f.bottomRows(na_) = -a22_inv_a21_ * maps.forcing_matrix;
+  }
+  maps.u_x = column_scale_.asDiagonal() * (right_ * w_x);
+  maps.u_f = column_scale_.asDiagonal() * (right_ * w_f);
+  maps.up_x = column_scale_.asDiagonal() * (right_ * wp_x);
+  maps.up_f = column_scale_.asDiagonal() * (right_ * wp_f);
+  return maps;
 }
 
 Eigen::VectorXd LinearStateSpace::state_of(const Eigen::VectorXd& u) const {

@@ -105,6 +105,12 @@ class LinearStateSpace {
                   const Eigen::VectorXd& f_slope, Eigen::VectorXd& u, Eigen::VectorXd& up) const;
   // The state of a consistent u.
   Eigen::VectorXd state_of(const Eigen::VectorXd& u) const;
+  // full_state and forcing as matrices, for many outputs at once: under constant sources f,
+  // u = u_x·x + u_f·f, u' = up_x·x + up_f·f, and forcing(f) = forcing_matrix·f (N).
+  struct StateMaps {
+    Eigen::MatrixXd u_x, u_f, up_x, up_f, forcing_matrix;
+  };
+  StateMaps state_maps() const;
 
  private:
   Eigen::Index n_ = 0, nd_ = 0, na_ = 0;
@@ -113,8 +119,13 @@ class LinearStateSpace {
   Eigen::MatrixXd left_, right_, m_, a12_, a22_inv_a21_;
   Eigen::VectorXd balance_;  // D of the balanced D⁻¹·M·D
   Eigen::MatrixXd balanced_m_;
-  Eigen::MatrixXd constraint_, null_vectors_;           // H (hidden constraints), M's null vectors
-  Eigen::PartialPivLU<Eigen::MatrixXd> constraint_lu_;  // of H·(u of the null vectors)
+  // H (hidden constraints); M's null vectors and the LU of H·(u of them), made on the first
+  // project() (an SVD of M that only the exact transient needs). Like modal_basis(), a lazy
+  // member: one LinearStateSpace is not shared between threads.
+  mutable Eigen::MatrixXd constraint_, null_vectors_;
+  mutable Eigen::PartialPivLU<Eigen::MatrixXd> constraint_lu_;
+  mutable bool projection_prepared_ = false;
+  void prepare_projection() const;
   // Eigen-decomposition of M for modal_basis(), made on first use.
   mutable int modes_state_ = 0;  // 0 not tried, 1 usable, −1 ill-conditioned
   mutable ModalBasis basis_;
