@@ -156,7 +156,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
     return swept;
   };
 
-  std::unique_ptr<PeriodicSolver> solver;
+  std::shared_ptr<const PeriodicSolver> solver = options.solver;
   std::unique_ptr<ReducedPeriodicSolver> reduced;
   std::optional<SwitchingSweepReductionCheck> check;
   if (options.reduce) check.emplace();
@@ -195,7 +195,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
       phase("eigen-decomposition of the state matrix (" + std::to_string(system.size()) +
             " unknowns, dense; one step, no estimate inside it)");
       const Stopwatch decomposition_stopwatch;
-      solver = std::make_unique<PeriodicSolver>(system);
+      solver = std::make_shared<const PeriodicSolver>(system);
       result.decomposition_seconds += decomposition_stopwatch.seconds();
     }
     if (!keep_going(options.progress, k, count, "switching frequencies")) {
@@ -232,6 +232,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
     ++result.solves;
   }
 
+  result.solver = solver;
   // The resonance of the sweep: the frequency of the largest peak-to-peak at the last output
   // (dx4 or the tip).
   const size_t main_output = probes.size() - 1;

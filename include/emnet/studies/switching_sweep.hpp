@@ -24,11 +24,13 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/analysis/periodic.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/model/model.hpp"
@@ -58,6 +60,10 @@ struct SwitchingSweepOptions {
   Progress* progress = nullptr;
   // Told each step without counts ("eigen-decomposition of the state matrix (…)"), if set.
   std::function<void(const std::string&)> phase;
+  // The exact method: a PeriodicSolver already made for the model's network (its G and C), so
+  // that several sweeps of one network decompose it once (a design study's variant); made here
+  // when null. A solver of another network fails the sweep ("the network differs").
+  std::shared_ptr<const PeriodicSolver> solver;
 };
 
 // The periodic extremes of one output over the sweep: left[k], right[k] at frequencies[k].
@@ -92,6 +98,8 @@ struct SwitchingSweepResult {
   size_t peak_output = 0;                                 // outputs.size() - 1
   std::optional<SwitchingSweepReductionCheck> reduction;  // with `reduce`
   std::optional<double> first_mode_hz;                    // f1, when asked and found
+  // The exact method's solver (made here or given), for another sweep of the same network.
+  std::shared_ptr<const PeriodicSolver> solver;
   Validity validity;  // of the deflection peaks over the sweep and the drive's voltages
   // Accuracy: the largest periodicity residual of the periodic solves.
   double worst_periodicity_residual = 0.0;
