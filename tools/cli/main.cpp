@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
                                          add_mismatch_command(app, options),
                                          add_netlist_command(app, options),
                                          add_crosscheck_command(app, options),
+                                         add_study_command(app, options),
                                          add_schema_command(app)};
   const CLI::App* crosscheck_command = commands[9].app;
 

@@ -1,0 +1,612 @@
+// Design studies (emnet/studies/design_study.hpp): variants of a scene's numeric keys, run on a
+// pool of threads, one row per variant.
+#include "emnet/studies/design_study.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/operating_point.hpp"
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/core/stopwatch.hpp"
+#include "emnet/core/units.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/model/outputs.hpp"
+#include "emnet/scene/parameters.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "emnet/studies/resolve.hpp"
+#include "emnet/studies/switching_sweep.hpp"
+
+namespace emnet {
+
+namespace {
+
+std::string trim(const std::string& text) {
+  const auto begin = text.find_first_not_of(" \t\r\n");
+  if (begin == std::string::npos) return "";
+  const auto end = text.find_last_not_of(" \t\r\n");
+  return text.substr(begin, end - begin + 1);
+}
+
+std::vector<std::string> split(const std::string& text, const std::string& separators) {
+  std::vector<std::string> parts;
+  std::string part;
+  for (char c : text) {
+    if (separators.find(c) != std::string::npos) {
+      parts.push_back(trim(part));
+      part.clear();
+    } else {
+      part += c;
+    }
+  }
+  parts.push_back(trim(part));
+  return parts;
+}
+
+// A number, a quantity of the key's dimension, or a percentage of `nominal`.
+double parse_study_value(const std::string& text, const Dimension& dimension,
+                         std::optional<double> nominal, bool fraction_only) {
+  const std::string value = trim(text);
+  if (!value.empty() && value.back() == '%') {
+    const double percent = parse_quantity(trim(value.substr(0, value.size() - 1)), Dimension{});
+    if (fraction_only) return percent / 100.0;
+    if (!nominal)
+      throw std::invalid_argument(
+          "a percentage needs the key's value in the scene, which is not "
+          "set; give the value itself");
+    return *nominal * percent / 100.0;
+  }
+  // A plain number is in the key's SI unit.
+  char* end = nullptr;
+  errno = 0;
+  const double number = std::strtod(value.c_str(), &end);
+  if (!value.empty() && end == value.c_str() + value.size() && errno != ERANGE &&
+      std::isfinite(number))
+    return number;
+  return parse_quantity(value, fraction_only ? Dimension{} : dimension);
+}
+
+std::string unit_suffix(const std::string& unit) {
+  return unit.empty() ? std::string() : "_" + unit;
+}
+
+std::string frequency_label(double hz) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", hz);
+  return text;
+}
+
+// The row's values for the analyses: filled per analysis in column order.
+struct ColumnLayout {
+  std::vector<std::string> columns, units;
+  std::vector<Probe> static_probes;
+  std::vector<Probe> sweep_outputs;
+  std::vector<double> sweep_frequencies;
+  std::vector<std::size_t> report_indices;  // into sweep_frequencies
+};
+
+bool has(const std::vector<StudyAnalysis>& analyses, StudyAnalysis analysis) {
+  return std::find(analyses.begin(), analyses.end(), analysis) != analyses.end();
+}
+
+// The analyses of one variant, appending to `values` in the layout's order.
+Status run_analyses(const Scene& scene, const ColumnLayout& layout,
+                    const DesignStudyOptions& options, std::vector<double>& values,
+                    VariantCost& cost) {
+  Stopwatch stopwatch;
+  const Model model = prepare_model(scene);
+  const System system = model.network.assemble();
+  cost.build += stopwatch.seconds();
+  stopwatch.restart();
+  OperatingPointOptions op_options;
+  op_options.require_static = has(options.analyses, StudyAnalysis::static_state);
+  const OperatingPoint op = operating_point(system, op_options);
+  cost.operating_point += stopwatch.seconds();
+  if (!op.status.ok) return op.status;
+  for (StudyAnalysis analysis : options.analyses) {
+    stopwatch.restart();
+    if (analysis == StudyAnalysis::modes) {
+      ModalOptions modal;
+      modal.count = options.mode_count;
+      modal.keep_vectors = false;
+      const ModalResult result = run_modes(system, op.rest.operating_point, modal);
+      cost.modes += stopwatch.seconds();
+      if (!result.status.ok) return Status::failure("modes: " + result.status.message);
+      if (result.modes.size() < static_cast<std::size_t>(options.mode_count))
+        return Status::failure("modes: " + std::to_string(result.modes.size()) +
+                               " oscillatory mode(s) found, " + std::to_string(options.mode_count) +
+                               " asked");
+      for (int k = 0; k < options.mode_count; ++k) {
+        const Mode& mode = result.modes[static_cast<std::size_t>(k)];
+        if (!mode.error_bounded)
+          return Status::failure("modes: the rounding error of mode " + std::to_string(k + 1) +
+                                 " cannot be bounded: " + mode.unbounded_reason);
+        values.push_back(mode.frequency_hz);
+        values.push_back(mode.damping_ratio);
+        values.push_back(mode.pole_error / (2.0 * M_PI));
+      }
+    } else if (analysis == StudyAnalysis::static_state) {
+      for (const Probe& probe : layout.static_probes)
+        values.push_back(static_probe_value(system, op.rest, probe));
+      cost.static_state += stopwatch.seconds();
+    } else {
+      // The exact method's model: the DEAs as ideal voltage-driven forces where the scene has
+      // their electrical model (as `emnet sweep-switching`; the nominal scene passed
+      // prepare_swept_model's checks in column_layout).
+      std::optional<Model> ideal;
+      if (system.is_nonlinear()) {
+        Scene ideal_scene = model.scene;
+        set_electrical_dynamics(ideal_scene, false);
+        ideal = prepare_model(ideal_scene);
+      }
+      const Model& swept = ideal ? *ideal : model;
+      // The sweep peak needs the last output at every frequency; the other outputs are columns
+      // at the reported frequencies only: two runs, each solving what its columns need.
+      SwitchingSweepOptions sweep;
+      sweep.frequencies = layout.sweep_frequencies;
+      sweep.samples = options.sweep_samples;
+      sweep.outputs = {layout.sweep_outputs.back()};
+      sweep.first_mode = false;
+      const SwitchingSweepResult peak = run_switching_sweep(swept, swept.scene, sweep);
+      if (!peak.status.ok) return Status::failure("sweep-switching: " + peak.status.message);
+      values.push_back(peak.peak_frequency);
+      if (!layout.report_indices.empty()) {
+        sweep.frequencies.clear();
+        for (std::size_t index : layout.report_indices)
+          sweep.frequencies.push_back(layout.sweep_frequencies[index]);
+        sweep.outputs = layout.sweep_outputs;
+        sweep.solver = peak.solver;  // one decomposition per variant
+        const SwitchingSweepResult at = run_switching_sweep(swept, swept.scene, sweep);
+        if (!at.status.ok) return Status::failure("sweep-switching: " + at.status.message);
+        for (const SwitchingSweepOutput& output : at.outputs)
+          for (std::size_t k = 0; k < layout.report_indices.size(); ++k) {
+            values.push_back(output.left[k]);
+            values.push_back(output.right[k]);
+          }
+      }
+      cost.sweep += stopwatch.seconds();
+    }
+  }
+  for (double value : values)
+    if (!std::isfinite(value)) return Status::failure("a result is not finite");
+  return Status::success();
+}
+
+ColumnLayout column_layout(const Model& model, const DesignStudyOptions& options) {
+  ColumnLayout layout;
+  for (StudyAnalysis analysis : options.analyses) {
+    if (analysis == StudyAnalysis::modes) {
+      for (int k = 1; k <= options.mode_count; ++k) {
+        const std::string n = std::to_string(k);
+        layout.columns.insert(layout.columns.end(),
+                              {"f" + n + "_hz", "zeta" + n, "f" + n + "_error_hz"});
+        layout.units.insert(layout.units.end(), {"Hz", "", "Hz"});
+      }
+    } else if (analysis == StudyAnalysis::static_state) {
+      layout.static_probes = model.probes;
+      for (const Probe& probe : model.probes) {
+        layout.columns.push_back("static." + probe.name + unit_suffix(probe.unit));
+        layout.units.push_back(probe.unit);
+      }
+    } else {
+      check_swept_drive(model.scene);
+      SwitchingSweepOptions defaults;
+      if (options.sweep_frequencies.empty()) {
+        layout.sweep_frequencies = switching_frequencies(defaults);
+      } else {
+        defaults.frequencies = options.sweep_frequencies;
+        layout.sweep_frequencies = switching_frequencies(defaults);
+      }
+      if (options.report_frequencies.size() > 1000)
+        throw InputError("--at", "--at", "at most 1000 reported frequencies");
+      for (double f : options.report_frequencies) {
+        if (!(f > 0.0) || !std::isfinite(f))
+          throw InputError("--at", "--at", "a reported frequency must be > 0 Hz");
+        auto found = std::find_if(layout.sweep_frequencies.begin(), layout.sweep_frequencies.end(),
+                                  [f](double g) { return std::abs(g - f) <= 1e-12 * f; });
+        if (found == layout.sweep_frequencies.end()) layout.sweep_frequencies.push_back(f);
+      }
+      std::sort(layout.sweep_frequencies.begin(), layout.sweep_frequencies.end());
+      for (double f : options.report_frequencies)
+        layout.report_indices.push_back(static_cast<std::size_t>(
+            std::find_if(layout.sweep_frequencies.begin(), layout.sweep_frequencies.end(),
+                         [f](double g) { return std::abs(g - f) <= 1e-12 * f; }) -
+            layout.sweep_frequencies.begin()));
+      layout.sweep_outputs =
+          switching_sweep_outputs(prepare_swept_model(model.scene, SwitchingSweepMethod::exact, {},
+                                                      {}, layout.sweep_frequencies.back())
+                                      .model,
+                                  {});
+      layout.columns.push_back("sweep.peak_hz");
+      layout.units.push_back("Hz");
+      for (const Probe& output : layout.sweep_outputs)
+        for (std::size_t index : layout.report_indices) {
+          const std::string at = "_at_" + frequency_label(layout.sweep_frequencies[index]) + "Hz";
+          layout.columns.push_back("sweep." + output.name + ".min" + at + unit_suffix(output.unit));
+          layout.columns.push_back("sweep." + output.name + ".max" + at + unit_suffix(output.unit));
+          layout.units.insert(layout.units.end(), {output.unit, output.unit});
+        }
+    }
+  }
+  return layout;
+}
+
+}  // namespace
+
+Variation parse_variation(const Scene& scene, const std::string& text, const std::string& where) {
+  const auto equals = text.find('=');
+  if (equals == std::string::npos || equals == 0)
+    throw InputError(where, text,
+                     "expected KEY=SPEC, e.g. beam.bending_stiffness=normal(100%,5%) or "
+                     "dea.A.lever_arm=1.4mm,1.55mm,1.7mm");
+  const std::vector<std::string> given_keys = split(text.substr(0, equals), "+");
+  const std::string given_key = given_keys.front();
+  const std::string spec = trim(text.substr(equals + 1));
+  const SceneParameterAddress address = find_scene_parameter_address(scene, given_key, where);
+  if (!address.info->numeric())
+    throw InputError(where, address.key, "is not numeric; a study varies numeric keys only");
+  const Dimension dimension = parameter_dimension(*address.info, scene, address.entry);
+  std::optional<double> nominal;
+  try {
+    nominal = get_parameter(scene, address.key);
+  } catch (const InputError&) {
+  }
+  Variation variation;
+  variation.key = address.key;
+  for (std::size_t k = 1; k < given_keys.size(); ++k) {
+    const SceneParameterAddress linked = find_scene_parameter_address(scene, given_keys[k], where);
+    if (!linked.info->numeric())
+      throw InputError(where, linked.key, "is not numeric; a study varies numeric keys only");
+    double linked_value = 0.0;
+    try {
+      linked_value = get_parameter(scene, linked.key);
+    } catch (const InputError&) {
+      throw InputError(where, linked.key,
+                       "has no value in the scene to change with " + address.key);
+    }
+    if (!nominal || *nominal == 0.0)
+      throw InputError(where, address.key,
+                       "keys varied together change by the same ratio, which needs a non-zero "
+                       "value of " +
+                           address.key + " in the scene");
+    variation.linked.push_back(linked.key);
+    variation.linked_ratios.push_back(linked_value / *nominal);
+  }
+  auto value = [&](const std::string& field, bool fraction_only = false) {
+    try {
+      return parse_study_value(field, dimension, nominal, fraction_only);
+    } catch (const std::invalid_argument& error) {
+      throw InputError(where, address.key, "'" + field + "': " + error.what());
+    }
+  };
+  const auto open = spec.find('(');
+  if (open != std::string::npos && !spec.empty() && spec.back() == ')') {
+    const std::string name = trim(spec.substr(0, open));
+    const auto arguments = split(spec.substr(open + 1, spec.size() - open - 2), ",");
+    auto expect = [&](std::size_t count, const char* form) {
+      if (arguments.size() != count)
+        throw InputError(where, address.key,
+                         "expected " + std::string(form) + ", got '" + spec + "'");
+    };
+    if (name == "linspace" || name == "logspace") {
+      expect(3, (name + "(from,to,count)").c_str());
+      const double from = value(arguments[0]), to = value(arguments[1]);
+      char* end = nullptr;
+      const long count = std::strtol(arguments[2].c_str(), &end, 10);
+      if (end == arguments[2].c_str() || *end != '\0' || count < 1 || count > 1000000)
+        throw InputError(where, address.key,
+                         "the count of " + name + " must be an integer from 1 to 1000000, got '" +
+                             arguments[2] + "'");
+      if (name == "logspace" && !(from > 0.0 && to > 0.0))
+        throw InputError(where, address.key, "logspace needs from > 0 and to > 0");
+      for (long k = 0; k < count; ++k) {
+        const double t = count == 1 ? 0.0 : static_cast<double>(k) / static_cast<double>(count - 1);
+        variation.values.push_back(
+            name == "linspace" ? from + t * (to - from)
+                               : std::exp(std::log(from) + t * (std::log(to) - std::log(from))));
+      }
+      variation.values.back() = to;
+      if (count == 1) variation.values.back() = from;
+    } else if (name == "uniform") {
+      expect(2, "uniform(lower,upper)");
+      variation.kind = VariationKind::uniform;
+      variation.first = value(arguments[0]);
+      variation.second = value(arguments[1]);
+      if (!(variation.first <= variation.second))
+        throw InputError(where, address.key, "uniform(lower,upper) needs lower <= upper");
+    } else if (name == "normal") {
+      expect(2, "normal(mean,sd)");
+      variation.kind = VariationKind::normal;
+      variation.first = value(arguments[0]);
+      variation.second = value(arguments[1]);
+      if (!(variation.second >= 0.0))
+        throw InputError(where, address.key, "normal(mean,sd) needs sd >= 0");
+    } else if (name == "lognormal") {
+      expect(2, "lognormal(median,s)");
+      variation.kind = VariationKind::log_normal;
+      variation.first = value(arguments[0]);
+      variation.second = value(arguments[1], true);
+      if (!(variation.first > 0.0) || !(variation.second >= 0.0))
+        throw InputError(where, address.key, "lognormal(median,s) needs median > 0 and s >= 0");
+    } else {
+      throw InputError(where, address.key,
+                       "unknown distribution '" + name +
+                           "'; expected linspace, logspace, uniform, normal or lognormal");
+    }
+  } else {
+    for (const std::string& field : split(spec, ",")) {
+      if (field.empty()) throw InputError(where, address.key, "an empty value in '" + spec + "'");
+      variation.values.push_back(value(field));
+    }
+  }
+  return variation;
+}
+
+VariantTable make_variants(const std::vector<Variation>& variations, std::size_t samples,
+                           std::uint64_t seed) {
+  VariantTable table;
+  bool random = false;
+  std::size_t grid_points = 1;
+  for (const Variation& variation : variations) {
+    std::vector<std::string> keys{variation.key};
+    keys.insert(keys.end(), variation.linked.begin(), variation.linked.end());
+    for (const std::string& key : keys) {
+      if (std::find(table.keys.begin(), table.keys.end(), key) != table.keys.end())
+        throw InputError("--vary", key, "is varied twice");
+      table.keys.push_back(key);
+    }
+    random = random || variation.random();
+    if (!variation.random()) {
+      if (variation.values.empty()) throw InputError("--vary", variation.key, "has no values");
+      if (grid_points > kMaxVariants / variation.values.size())
+        throw InputError("--vary", variation.key,
+                         "the grid has more than " + std::to_string(kMaxVariants) + " variants");
+      grid_points *= variation.values.size();
+    }
+  }
+  if (random && samples == 0)
+    throw InputError("--samples", "--samples",
+                     "a random variation (uniform, normal, lognormal) needs --samples N");
+  if (!random && samples != 0)
+    throw InputError("--samples", "--samples",
+                     "--samples draws random variations, and none is given (uniform(a,b), "
+                     "normal(mean,sd), lognormal(median,s))");
+  const std::size_t draws = random ? samples : 1;
+  if (grid_points > kMaxVariants / draws)
+    throw InputError(
+        "--samples", "--samples",
+        "grid points x samples is more than " + std::to_string(kMaxVariants) + " variants");
+  std::mt19937_64 generator(seed);
+  std::vector<std::size_t> digits(variations.size(), 0);
+  for (std::size_t point = 0; point < grid_points; ++point) {
+    // The grid point's index in mixed radix, the last variation fastest.
+    std::size_t rest = point;
+    for (std::size_t k = variations.size(); k-- > 0;)
+      if (!variations[k].random()) {
+        digits[k] = rest % variations[k].values.size();
+        rest /= variations[k].values.size();
+      }
+    for (std::size_t draw = 0; draw < draws; ++draw) {
+      std::vector<double> row;
+      for (std::size_t k = 0; k < variations.size(); ++k) {
+        const Variation& v = variations[k];
+        switch (v.kind) {
+          case VariationKind::values:
+            row.push_back(v.values[digits[k]]);
+            break;
+          case VariationKind::uniform:
+            row.push_back(std::uniform_real_distribution<double>(v.first, v.second)(generator));
+            break;
+          case VariationKind::normal:
+            row.push_back(v.second == 0.0
+                              ? v.first
+                              : std::normal_distribution<double>(v.first, v.second)(generator));
+            break;
+          case VariationKind::log_normal:
+            row.push_back(v.second == 0.0 ? v.first
+                                          : std::lognormal_distribution<double>(
+                                                std::log(v.first), v.second)(generator));
+            break;
+        }
+        const double drawn = row.back();
+        for (double ratio : v.linked_ratios) row.push_back(drawn * ratio);
+      }
+      table.rows.push_back(std::move(row));
+    }
+  }
+  return table;
+}
+
+VariantTable read_variants_csv(const Scene& scene, const std::string& path) {
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) throw InputError(path, "--variants", "cannot open the variants file");
+  VariantTable table;
+  std::vector<Dimension> dimensions;
+  std::vector<std::optional<double>> nominals;
+  std::string line;
+  std::size_t line_number = 0, bytes = 0;
+  while (std::getline(stream, line)) {
+    ++line_number;
+    bytes += line.size() + 1;
+    if (bytes > 256u * 1024u * 1024u)
+      throw InputError(path, "--variants", "the variants file is larger than 256 MiB");
+    const std::string where = path + ":" + std::to_string(line_number);
+    const std::string text = trim(line);
+    if (text.empty() || text[0] == '#') continue;
+    const auto fields = split(text, ",;");
+    if (table.keys.empty()) {
+      for (const std::string& field : fields) {
+        std::string key = field;
+        if (key.size() >= 2 && key.front() == '"' && key.back() == '"')
+          key = key.substr(1, key.size() - 2);
+        const SceneParameterAddress address = find_scene_parameter_address(scene, key, where);
+        if (!address.info->numeric())
+          throw InputError(where, address.key, "is not numeric; a study varies numeric keys only");
+        if (std::find(table.keys.begin(), table.keys.end(), address.key) != table.keys.end())
+          throw InputError(where, address.key, "is a column twice");
+        table.keys.push_back(address.key);
+        dimensions.push_back(parameter_dimension(*address.info, scene, address.entry));
+        std::optional<double> nominal;
+        try {
+          nominal = get_parameter(scene, address.key);
+        } catch (const InputError&) {
+        }
+        nominals.push_back(nominal);
+      }
+      continue;
+    }
+    if (fields.size() != table.keys.size())
+      throw InputError(where, "--variants",
+                       "expected " + std::to_string(table.keys.size()) +
+                           " values (one per key "
+                           "of the header), got " +
+                           std::to_string(fields.size()));
+    if (table.rows.size() >= kMaxVariants)
+      throw InputError(where, "--variants",
+                       "more than " + std::to_string(kMaxVariants) + " variants");
+    std::vector<double> row;
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      try {
+        row.push_back(parse_study_value(fields[k], dimensions[k], nominals[k], false));
+      } catch (const std::invalid_argument& error) {
+        throw InputError(where, table.keys[k], "'" + fields[k] + "': " + error.what());
+      }
+    }
+    table.rows.push_back(std::move(row));
+  }
+  if (table.keys.empty()) throw InputError(path, "--variants", "no header line of keys");
+  if (table.rows.empty()) throw InputError(path, "--variants", "no variant (no line of values)");
+  return table;
+}
+
+std::vector<StudyAnalysis> parse_study_analyses(const std::string& text, const std::string& where) {
+  std::vector<StudyAnalysis> analyses;
+  for (const std::string& name : split(text, ",")) {
+    StudyAnalysis analysis;
+    if (name == "modes") {
+      analysis = StudyAnalysis::modes;
+    } else if (name == "static") {
+      analysis = StudyAnalysis::static_state;
+    } else if (name == "sweep-switching" || name == "sweep_switching") {
+      analysis = StudyAnalysis::switching_sweep;
+    } else {
+      throw InputError(where, where,
+                       "unknown analysis '" + name +
+                           "'; expected modes, static or sweep-switching "
+                           "(comma-separated, e.g. modes,static)");
+    }
+    if (has(analyses, analysis)) throw InputError(where, where, "'" + name + "' is given twice");
+    analyses.push_back(analysis);
+  }
+  return analyses;
+}
+
+DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table,
+                                   const DesignStudyOptions& options) {
+  const Stopwatch stopwatch;
+  if (options.analyses.empty())
+    throw InputError("--analysis", "--analysis",
+                     "no analysis asked (modes, static, sweep-switching)");
+  if (options.mode_count < 1 || options.mode_count > 100)
+    throw InputError("--modes", "--modes", "must be from 1 to 100");
+  if (options.threads < 0 || options.threads > 1024)
+    throw InputError("--threads", "--threads", "must be from 1 to 1024 (0: every core)");
+  if (table.rows.size() > kMaxVariants)
+    throw InputError("--variants", "--variants",
+                     std::to_string(table.rows.size()) + " variants; at most " +
+                         std::to_string(kMaxVariants) + " in one study");
+  for (const auto& row : table.rows)
+    if (row.size() != table.keys.size())
+      throw std::invalid_argument("run_design_study: a variant's values do not match its keys");
+
+  DesignStudyResult result;
+  result.keys = table.keys;
+  result.variants = table.rows;
+  // The nominal scene, with the mesh resolved once for every variant.
+  ResolveOptions segments_only;
+  segments_only.fluid_resonance = false;
+  segments_only.electrical_dynamics = false;
+  const ResolvedScene resolved = resolve_scene(scene, segments_only);
+  const Scene nominal = resolved.scene;
+  if (scene.beam.auto_segments)
+    result.notes.push_back("beam.segments = \"auto\" was resolved once, on the nominal scene: " +
+                           std::to_string(nominal.beam.segments) + " segments for every variant");
+  for (const std::string& key : table.keys) {
+    const SceneParameterAddress address = find_scene_parameter_address(nominal, key, "--vary");
+    result.key_units.push_back(parameter_unit(*address.info, nominal, address.entry));
+  }
+  const Model nominal_model = prepare_model(nominal);
+  result.unknowns = static_cast<int>(nominal_model.network.assemble().size());
+  result.segments = nominal.beam.segments;
+  const ColumnLayout layout = column_layout(nominal_model, options);
+  result.columns = layout.columns;
+  result.units = layout.units;
+
+  const std::size_t count = table.rows.size();
+  result.rows.assign(count, VariantResult{});
+  unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
+                                         : std::max(1u, std::thread::hardware_concurrency());
+  threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
+  result.threads = static_cast<int>(threads);
+  std::atomic<std::size_t> next{0}, done{0};
+  auto work = [&] {
+    for (;;) {
+      const std::size_t index = next.fetch_add(1);
+      if (index >= count) return;
+      VariantResult& row = result.rows[index];
+      if (cancel_requested(options.progress)) {
+        row.status = cancelled_status();
+      } else {
+        try {
+          Scene variant = nominal;
+          const Stopwatch set_watch;
+          for (std::size_t k = 0; k < table.keys.size(); ++k)
+            set_parameter(variant, table.keys[k], table.rows[index][k]);
+          row.cost.build += set_watch.seconds();
+          row.status = run_analyses(variant, layout, options, row.values, row.cost);
+        } catch (const std::exception& error) {
+          row.status = Status::failure(error.what());
+        }
+        if (!row.status.ok) row.values.clear();
+      }
+      done.fetch_add(1);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned k = 1; k < threads; ++k) pool.emplace_back(work);
+  if (options.progress == nullptr) {
+    work();
+  } else {
+    // The calling thread reports; a worker of its own does the calling thread's share.
+    pool.emplace_back(work);
+    for (int tick = 0; done.load() < count; ++tick) {
+      if (tick % 10 == 0)
+        options.progress->report(static_cast<long>(done.load()), static_cast<long>(count),
+                                 "variants");
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    options.progress->report(static_cast<long>(count), static_cast<long>(count), "variants");
+  }
+  for (auto& thread : pool) thread.join();
+  for (const VariantResult& row : result.rows) {
+    if (!row.status.ok) ++result.failed;
+    result.cost.build += row.cost.build;
+    result.cost.operating_point += row.cost.operating_point;
+    result.cost.modes += row.cost.modes;
+    result.cost.static_state += row.cost.static_state;
+    result.cost.sweep += row.cost.sweep;
+  }
+  result.seconds = stopwatch.seconds();
+  return result;
+}
+
+}  // namespace emnet

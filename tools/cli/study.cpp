@@ -1,0 +1,191 @@
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "cli/common.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/core/output_file.hpp"
+#include "emnet/report/design_study.hpp"
+#include "emnet/studies/design_study.hpp"
+
+namespace emnet_cli {
+
+using emnet::InputError;
+
+// ---- study ------------------------------------------------------------------------------
+//
+// `emnet study SCENE --vary KEY=SPEC ... [--samples N] [--seed S] [--analysis modes,static,
+// sweep-switching] [--threads T] -o FILE.csv|.json`: many variants of one scene in one process
+// (include/emnet/studies/design_study.hpp), one row per variant, failed variants included.
+
+struct StudyCommandOptions {
+  std::vector<std::string> vary;
+  std::string variants;
+  std::size_t samples = 0;
+  std::uint64_t seed = 1;
+  std::string analyses = "modes";
+  int modes = 1;
+  std::vector<double> at;
+  std::string from, to;
+  double step = 0.1;
+  int threads = 0;
+  std::string output;
+};
+
+int run_study_command(const CommonOptions& options, const StudyCommandOptions& cmd) {
+  refuse_option(!options.probes.empty(), "--probe",
+                "a study reports the scene's probes (static) and the switching outputs (sweep)");
+  if (cmd.vary.empty() && cmd.variants.empty())
+    throw InputError("--vary", "--vary",
+                     "nothing to vary: give --vary KEY=SPEC (e.g. "
+                     "beam.bending_stiffness=normal(100%,5%)) or --variants FILE.csv");
+  if (!cmd.vary.empty() && !cmd.variants.empty())
+    throw InputError("--variants", "--variants", "give --vary or --variants, not both");
+  const emnet::Scene scene = load_scene(options);
+  emnet::VariantTable table;
+  if (!cmd.variants.empty()) {
+    if (cmd.samples != 0)
+      throw InputError("--samples", "--samples", "--variants lists the variants; --samples draws");
+    table = emnet::read_variants_csv(scene, cmd.variants);
+  } else {
+    std::vector<emnet::Variation> variations;
+    for (const auto& text : cmd.vary)
+      variations.push_back(emnet::parse_variation(scene, text, "--vary"));
+    table = emnet::make_variants(variations, cmd.samples, cmd.seed);
+  }
+  emnet::DesignStudyOptions study;
+  study.analyses = emnet::parse_study_analyses(cmd.analyses, "--analysis");
+  study.mode_count = cmd.modes;
+  study.threads = cmd.threads;
+  study.report_frequencies = cmd.at;
+  if (!cmd.from.empty() || !cmd.to.empty()) {
+    const double from = cmd.from.empty() ? 1.0 : parse_frequency(cmd.from, "--from");
+    const double to = cmd.to.empty() ? 7.0 : parse_frequency(cmd.to, "--to");
+    if (!(cmd.step > 0.0) || !(from > 0.0) || !(to >= from))
+      throw InputError("--from/--to/--step", "--step", "needs 0 < from <= to and step > 0");
+    const double count = std::floor((to - from) / cmd.step + 1e-9) + 1.0;
+    if (count > 100000) throw InputError("--step", "--step", "more than 100000 frequencies");
+    for (int k = 0; k < static_cast<int>(count); ++k)
+      study.sweep_frequencies.push_back(from + k * cmd.step);
+  }
+  study.progress = progress_of(options);
+  const std::string output = !cmd.output.empty() ? cmd.output : options.csv;
+  const bool json_file = output.size() > 5 && output.substr(output.size() - 5) == ".json";
+  if (!output.empty() && !json_file &&
+      !(output.size() > 4 && output.substr(output.size() - 4) == ".csv"))
+    throw InputError("-o", "-o",
+                     "the table is written as .csv or .json; got '" + shown(output) + "'");
+  const emnet::DesignStudyResult result = emnet::run_design_study(scene, table, study);
+  end_progress(options);
+  stop_if_interrupted();
+  const emnet::Json json = emnet::to_json(result);
+  if (options.json) {
+    std::cout << json_text(json) << "\n";
+  } else {
+    const std::size_t n = result.rows.size();
+    std::cout << "study of " << shown(scene.name) << " (" << shown(scene.file) << "): " << n
+              << " variant(s) of " << result.keys.size() << " key(s), " << result.failed
+              << " failed; " << result.segments << " segments, " << result.unknowns
+              << " unknowns\n";
+    for (const auto& note : result.notes) std::cout << "note: " << shown(note) << "\n";
+    const double per = result.cost.total() / static_cast<double>(std::max<std::size_t>(n, 1));
+    std::cout << "cost: " << milliseconds(result.seconds) << " on " << result.threads
+              << " thread(s); per variant " << format("%.3g", per * 1e3) << " ms of work (build "
+              << format("%.3g", result.cost.build / std::max<std::size_t>(n, 1) * 1e3)
+              << " ms, operating point "
+              << format("%.3g", result.cost.operating_point / std::max<std::size_t>(n, 1) * 1e3)
+              << " ms, modes "
+              << format("%.3g", result.cost.modes / std::max<std::size_t>(n, 1) * 1e3)
+              << " ms, static "
+              << format("%.3g", result.cost.static_state / std::max<std::size_t>(n, 1) * 1e3)
+              << " ms, sweep "
+              << format("%.3g", result.cost.sweep / std::max<std::size_t>(n, 1) * 1e3) << " ms)\n";
+    std::cout << "accuracy: each variant as its analysis reports it (f_k_error_hz: the pole's "
+                 "rounding bound); a failed variant is a row with its reason\n\n";
+    std::printf("%-40s %-6s %14s %14s %14s %14s\n", "column", "unit", "min", "mean", "max", "std");
+    for (std::size_t k = 0; k < result.columns.size(); ++k) {
+      double low = INFINITY, high = -INFINITY, sum = 0.0, squares = 0.0;
+      std::size_t count = 0;
+      for (const auto& row : result.rows)
+        if (row.status.ok) {
+          const double v = row.values[k];
+          low = std::min(low, v);
+          high = std::max(high, v);
+          sum += v;
+          ++count;
+        }
+      if (count == 0) continue;
+      const double mean = sum / static_cast<double>(count);
+      for (const auto& row : result.rows)
+        if (row.status.ok) squares += (row.values[k] - mean) * (row.values[k] - mean);
+      const double sd = count > 1 ? std::sqrt(squares / static_cast<double>(count - 1)) : 0.0;
+      std::printf("%-40s %-6s %14.7g %14.7g %14.7g %14.3g\n", shown(result.columns[k]).c_str(),
+                  shown(result.units[k]).c_str(), low, mean, high, sd);
+    }
+    std::size_t shown_failures = 0;
+    for (std::size_t i = 0; i < result.rows.size() && shown_failures < 5; ++i)
+      if (!result.rows[i].status.ok) {
+        std::cout << "variant " << i << " failed: " << shown(result.rows[i].status.message) << "\n";
+        ++shown_failures;
+      }
+    if (result.failed > shown_failures)
+      std::cout << "(" << result.failed - shown_failures << " more failed; see the table)\n";
+  }
+  if (!output.empty()) {
+    if (json_file) {
+      emnet::OutputFile file(output);
+      file.write(json_text(json) + "\n");
+      check_csv(file.commit());
+    } else {
+      check_csv(emnet::write_design_study_csv(output, result));
+    }
+  }
+  return 0;
+}
+
+Command add_study_command(CLI::App& app, CommonOptions& options) {
+  auto study = std::make_shared<StudyCommandOptions>();
+  auto* command = app.add_subcommand(
+      "study",
+      "a design study: many variants of the scene's numeric keys (a grid, Monte Carlo or a CSV\n"
+      "list), the analyses per variant on every core, one row per variant (failed ones with\n"
+      "their reason).\n"
+      "Example: emnet study netlists/fishfin.toml --vary "
+      "\"beam.bending_stiffness=normal(100%,5%)\"\n"
+      "  --vary \"dea.A.lever_arm=uniform(95%,105%)\" --samples 1000 --seed 1\n"
+      "  --analysis modes,static,sweep-switching --at 5 -o study.csv\n"
+      "Reads the scene's keys named by --vary, [beam], [[dea]], [drive] (the sweep) and [[probe]]\n"
+      "(static).");
+  add_common(command, options);
+  command
+      ->add_option("--vary", study->vary,
+                   "KEY=SPEC: values v1,v2,... or linspace(a,b,n), logspace(a,b,n) (a grid); "
+                   "uniform(a,b), normal(mean,sd), lognormal(median,s) (Monte Carlo, with "
+                   "--samples); values in SI, with a unit (\"60 mm\") or a percentage of the "
+                   "scene's value (\"95%\")")
+      ->allow_extra_args(false);
+  command->add_option("--variants", study->variants,
+                      "a CSV file: a header of keys, one variant per line (instead of --vary)");
+  command->add_option("--samples", study->samples, "Monte Carlo draws (per grid point)");
+  command->add_option("--seed", study->seed, "the random generator's seed (default 1)");
+  command->add_option("--analysis", study->analyses,
+                      "comma-separated: modes, static, sweep-switching (default modes)");
+  command->add_option("--modes", study->modes, "modes: the lowest K modes reported (default 1)");
+  command
+      ->add_option("--at", study->at,
+                   "sweep-switching: report each output's periodic min and max at this "
+                   "switching frequency [Hz] (repeatable)")
+      ->allow_extra_args(false);
+  command->add_option("--from", study->from, "sweep-switching: first frequency (default 1 Hz)");
+  command->add_option("--to", study->to, "sweep-switching: last frequency (default 7 Hz)");
+  command->add_option("--step", study->step, "sweep-switching: frequency step [Hz] (default 0.1)");
+  command->add_option("--threads", study->threads, "worker threads (default 0: every core)");
+  command->add_option("-o,--output", study->output, "write the table: FILE.csv or FILE.json");
+
+  return {command, [study, &options] { return run_study_command(options, *study); }};
+}
+
+}  // namespace emnet_cli
