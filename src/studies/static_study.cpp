@@ -13,8 +13,13 @@ StaticStudyValues static_study_values(const Model& model, const System& system,
   StaticStudyValues values;
   const auto& beam = model.beam;
   for (size_t k = 0; k < beam.x.size(); ++k) {
-    ProbeSpec w{"w", ProbeQuantity::deflection, beam.x[k], ""};
-    ProbeSpec phi{"phi", ProbeQuantity::rotation, beam.x[k], ""};
+    ProbeSpec w;
+    w.name = "w";
+    w.quantity = ProbeQuantity::deflection;
+    w.at = beam.x[k];
+    ProbeSpec phi = w;
+    phi.name = "phi";
+    phi.quantity = ProbeQuantity::rotation;
     values.nodes.push_back({beam.x[k], static_probe_value(system, rest, model.make_probe(w)),
                             static_probe_value(system, rest, model.make_probe(phi))});
   }
