@@ -1,0 +1,480 @@
+// The analyses of one scene, for Python: each builds the scene's model as the command of the
+// same name does, runs the library's study with the GIL released, and returns a dict (numpy
+// arrays for numbers along a sweep, time or beam). Units are in the keys' names (x_m,
+// frequency_hz) or beside the values ("unit").
+#include <cmath>
+#include <optional>
+
+#include "convert.hpp"
+#include "emnet/analysis/operating_point.hpp"
+#include "emnet/core/stopwatch.hpp"
+#include "emnet/model/outputs.hpp"
+#include "emnet/report/ac_json.hpp"
+#include "emnet/report/describe.hpp"
+#include "emnet/report/json.hpp"
+#include "emnet/report/transient_json.hpp"
+#include "emnet/spice/spice_netlist.hpp"
+#include "emnet/studies/ac_study.hpp"
+#include "emnet/studies/identify.hpp"
+#include "emnet/studies/mismatch.hpp"
+#include "emnet/studies/modes_study.hpp"
+#include "emnet/studies/resolve.hpp"
+#include "emnet/studies/sensitivity.hpp"
+#include "emnet/studies/static_study.hpp"
+#include "emnet/studies/switching_sweep.hpp"
+#include "emnet/studies/transient_study.hpp"
+#include "emnet/verification/crosscheck.hpp"
+
+namespace emnet_python {
+
+namespace {
+
+using emnet::InputError;
+using emnet::Json;
+
+bool electrical(const std::vector<std::string>& probes) {
+  for (const auto& text : probes)
+    if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0) return true;
+  return false;
+}
+
+emnet::PrepareOptions prepare_for(const std::vector<std::string>& probes) {
+  emnet::PrepareOptions prepare;
+  prepare.electrical_probe_requested = electrical(probes);
+  return prepare;
+}
+
+// The scene with beam.segments = "auto" resolved once (as the command line does), so that every
+// model a study builds from it has the same N.
+emnet::Scene with_segments(const emnet::Scene& scene) {
+  if (!scene.beam.auto_segments) return scene;
+  emnet::ResolveOptions segments_only;
+  segments_only.fluid_resonance = false;
+  segments_only.electrical_dynamics = false;
+  return emnet::resolve_scene(scene, segments_only).scene;
+}
+
+std::vector<emnet::Probe> parse_probes(const emnet::Model& model,
+                                       const std::vector<std::string>& texts) {
+  if (texts.empty()) return model.probes;
+  std::vector<emnet::Probe> probes;
+  for (const auto& text : texts) probes.push_back(model.parse_probe(text));
+  return probes;
+}
+
+struct Prepared {
+  emnet::Model model;
+  emnet::System system;
+  emnet::OperatingPoint op;
+};
+
+Prepared prepare(const emnet::Scene& scene, const std::vector<std::string>& probes,
+                 bool require_static) {
+  Prepared p{emnet::prepare_model(with_segments(scene), prepare_for(probes)), {}, {}};
+  p.system = p.model.network.assemble();
+  emnet::OperatingPointOptions options;
+  options.require_static = require_static;
+  p.op = emnet::operating_point(p.system, options);
+  require(p.op.status, "");
+  return p;
+}
+
+py::dict validity_dict(const emnet::Validity& validity) {
+  return to_python(emnet::to_json(validity)).cast<py::dict>();
+}
+
+// ---- static -------------------------------------------------------------------------------
+
+py::dict run_static(const SceneHandle& handle, const std::vector<std::string>& probe_texts) {
+  emnet::Stopwatch stopwatch;
+  Prepared p;
+  std::vector<emnet::Probe> probes;
+  emnet::StaticStudyValues values;
+  {
+    py::gil_scoped_release release;
+    p = prepare(handle.scene, probe_texts, true);
+    probes = parse_probes(p.model, probe_texts);
+    values = emnet::static_study_values(p.model, p.system, p.op.rest, probes);
+  }
+  return to_python(emnet::to_json(p.model, p.op.rest, values.nodes, probes, values.probe_values,
+                                  values.validity, stopwatch.seconds()))
+      .cast<py::dict>();
+}
+
+// ---- modes --------------------------------------------------------------------------------
+
+py::dict run_modes(const SceneHandle& handle, int count, bool dense, bool error_estimate,
+                   bool shapes, const std::vector<std::string>& probe_texts) {
+  emnet::Stopwatch stopwatch;
+  emnet::ModesStudyResult study;
+  std::vector<emnet::Probe> probes;
+  {
+    py::gil_scoped_release release;
+    emnet::ModesStudyOptions options;
+    if (count < 0) throw InputError("count", "count", "must be >= 0 (0: the default request)");
+    options.count = count;
+    options.dense = dense;
+    options.error_estimate = error_estimate;
+    options.shapes = shapes;
+    options.prepare = prepare_for(probe_texts);
+    study = emnet::run_modes_study(with_segments(handle.scene), options);
+    require(study.status, "modes: ");
+    probes = parse_probes(study.model, probe_texts);
+  }
+  return to_python(emnet::to_json(study, probes, stopwatch.seconds())).cast<py::dict>();
+}
+
+// ---- ac -----------------------------------------------------------------------------------
+
+py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
+                std::optional<double> to_hz, std::optional<int> points, std::optional<bool> log,
+                const std::vector<std::string>& probe_texts, bool reduce,
+                std::optional<double> tolerance, std::optional<double> band_hz) {
+  emnet::Stopwatch stopwatch;
+  Prepared p;
+  std::vector<emnet::Probe> probes;
+  emnet::AcStudyResult result;
+  std::string input;
+  {
+    py::gil_scoped_release release;
+    emnet::AcSpec spec = handle.scene.ac;
+    if (from_hz) spec.from = *from_hz;
+    if (to_hz) spec.to = *to_hz;
+    if (points) spec.points = *points;
+    if (log) spec.log = *log;
+    if (spec.points == 1 && !to_hz) spec.to = spec.from;
+    if (spec.points < 1 || spec.points > 1000000)
+      throw InputError("points", "points", "must be from 1 to 1000000 (inclusive)");
+    if (!(spec.from >= 0.0) || !std::isfinite(spec.from))
+      throw InputError("from_hz", "from_hz", "must be >= 0 Hz");
+    if (!std::isfinite(spec.to) || (spec.points > 1 && !(spec.to > spec.from)) ||
+        (spec.points == 1 && spec.to != spec.from))
+      throw InputError("to_hz", "to_hz", "must be above from_hz (or equal to it with points = 1)");
+    if (spec.log && !(spec.from > 0.0))
+      throw InputError("from_hz", "from_hz", "a log scale needs from_hz > 0");
+    if (!reduce && (tolerance || band_hz))
+      throw InputError("tolerance/band_hz", "reduce", "tolerance and band_hz need reduce=True");
+    p = prepare(handle.scene, probe_texts, false);
+    probes = parse_probes(p.model, probe_texts);
+    emnet::require_ac_input(p.model, p.system);
+    emnet::AcStudyOptions options;
+    options.sweep = spec;
+    options.probes = probes;
+    if (reduce) {
+      emnet::ReductionOptions reduction;
+      reduction.tolerance = tolerance.value_or(p.model.scene.model.tolerance);
+      reduction.band = band_hz.value_or(spec.to);
+      emnet::validate(reduction);
+      options.reduction = reduction;
+    }
+    result = emnet::run_ac_study(p.model, p.system, p.op.rest.operating_point, options);
+    require(result.status, reduce ? "ac (reduced): " : "ac: ");
+    input = emnet::ac_input_description(p.model.scene, spec.to);
+  }
+  py::dict out = to_python(emnet::to_json(result, p.model, probes, input, stopwatch.seconds()))
+                     .cast<py::dict>();
+  // The complex responses themselves, beside magnitude and phase: [probe][frequency].
+  const auto rows = static_cast<py::ssize_t>(result.ac.values.size());
+  const auto columns = static_cast<py::ssize_t>(result.ac.frequencies.size());
+  py::array_t<std::complex<double>> values({rows, columns});
+  auto view = values.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < rows; ++i)
+    for (py::ssize_t j = 0; j < columns; ++j) view(i, j) = result.ac.values[i][j];
+  out["values"] = values;
+  return out;
+}
+
+// ---- tran ---------------------------------------------------------------------------------
+
+py::dict run_tran(const SceneHandle& handle, double periods, std::optional<double> switching_hz,
+                  const std::string& method, double rtol, double atol, double max_step,
+                  const std::string& start, int points_per_period,
+                  const std::vector<std::string>& outputs) {
+  emnet::TransientStudyResult study;
+  emnet::TransientStudyOptions options;
+  {
+    py::gil_scoped_release release;
+    if (method != "ida" && method != "exact")
+      throw InputError("method", "method", "must be 'ida' or 'exact', got '" + method + "'");
+    if (start != "rest" && start != "static")
+      throw InputError("start", "start", "must be 'rest' or 'static', got '" + start + "'");
+    options.switching_hz = switching_hz;
+    options.periods = periods;
+    options.points_per_period = points_per_period;
+    options.method =
+        method == "exact" ? emnet::TransientMethod::exact : emnet::TransientMethod::ida;
+    options.rtol = rtol;
+    options.atol = atol;
+    options.max_step = max_step;
+    options.start = start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
+    options.outputs = outputs;
+    options.prepare = prepare_for(outputs);
+    options.option_prefix = "";
+    study = emnet::run_transient_study(with_segments(handle.scene), options);
+    require(study.status, "");
+  }
+  const emnet::TransientRunDescription run{study.model.scene.name,
+                                           study.model.automatic_choices,
+                                           study.start_text,
+                                           study.frequency_hz,
+                                           periods,
+                                           rtol,
+                                           study.validity,
+                                           study.seconds};
+  return to_python(emnet::to_json(study.result, study.outputs, run)).cast<py::dict>();
+}
+
+// ---- sweep-switching ----------------------------------------------------------------------
+
+py::dict run_sweep(const SceneHandle& handle, std::vector<double> frequencies, double from_hz,
+                   double to_hz, double step_hz, const std::string& method, int samples,
+                   double rtol, const std::vector<std::string>& outputs) {
+  emnet::Stopwatch stopwatch;
+  emnet::SwitchingSweepResult result;
+  emnet::SweptModel swept;
+  {
+    py::gil_scoped_release release;
+    if (method != "exact" && method != "shooting")
+      throw InputError("method", "method", "must be 'exact' or 'shooting', got '" + method + "'");
+    emnet::SwitchingSweepOptions options;
+    options.frequencies = frequencies;
+    options.from = from_hz;
+    options.to = to_hz;
+    options.step = step_hz;
+    options.method = method == "shooting" ? emnet::SwitchingSweepMethod::shooting
+                                          : emnet::SwitchingSweepMethod::exact;
+    options.samples = samples;
+    options.rtol = rtol;
+    emnet::check_switching_sweep_options(options);
+    const auto grid = emnet::switching_frequencies(options);
+    swept = emnet::prepare_swept_model(with_segments(handle.scene), options.method, outputs,
+                                       prepare_for(outputs),
+                                       *std::max_element(grid.begin(), grid.end()), "outputs");
+    options.outputs = emnet::switching_sweep_outputs(swept.model, outputs);
+    result = emnet::run_switching_sweep(swept.model, swept.scene, options);
+    require(result.status, "sweep_switching: ");
+  }
+  py::dict out;
+  out["scene"] = swept.model.scene.name;
+  out["method"] = result.method;
+  out["frequencies_hz"] = to_array(result.frequencies);
+  py::dict series;
+  for (const auto& output : result.outputs) {
+    py::dict entry;
+    entry["description"] = output.probe.description;
+    entry["unit"] = output.probe.unit;
+    entry["left"] = to_array(output.left);
+    entry["right"] = to_array(output.right);
+    series[py::str(output.probe.name)] = entry;
+  }
+  out["outputs"] = series;
+  out["peak_hz"] = result.peak_frequency;
+  if (result.first_mode_hz) out["first_mode_hz"] = *result.first_mode_hz;
+  out["accuracy"] =
+      py::dict(py::arg("worst_periodicity_residual") = result.worst_periodicity_residual);
+  out["cost"] = py::dict(py::arg("solves") = result.solves, py::arg("unknowns") = result.unknowns,
+                         py::arg("decomposition_seconds") = result.decomposition_seconds,
+                         py::arg("solve_seconds") = result.solve_seconds,
+                         py::arg("total_seconds") = stopwatch.seconds());
+  std::vector<std::string> notes = swept.notes;
+  notes.insert(notes.end(), result.notes.begin(), result.notes.end());
+  out["notes"] = notes;
+  out["validity"] = validity_dict(result.validity);
+  return out;
+}
+
+// ---- identify, sensitivity, mismatch ------------------------------------------------------
+
+py::dict run_identify(const SceneHandle& handle, double target_hz, const std::string& parameter,
+                      int mode) {
+  emnet::IdentifyResult result;
+  {
+    py::gil_scoped_release release;
+    emnet::IdentifyOptions options;
+    options.target_hz = target_hz;
+    options.parameter = parameter;
+    options.mode_number = mode;
+    result = emnet::identify(with_segments(handle.scene), options);
+    require(result.status, "identify: ");
+  }
+  py::dict out;
+  out["parameter"] = result.parameter.key;
+  out["value"] = result.parameter.value;
+  out["unit"] = result.parameter.unit;
+  out["mode"] = mode;
+  out["target_hz"] = target_hz;
+  out["achieved_hz"] = result.achieved_hz;
+  out["accuracy"] = py::dict(py::arg("frequency_residual") = result.frequency_residual);
+  out["cost"] = py::dict(py::arg("modal_solves") = result.modal_solves,
+                         py::arg("iterations") = result.stiffness_iterations,
+                         py::arg("total_seconds") = result.seconds);
+  out["notes"] = result.notes;
+  return out;
+}
+
+py::dict run_sensitivity(const SceneHandle& handle, int modes,
+                         const std::vector<std::string>& parameters, bool check) {
+  emnet::Stopwatch stopwatch;
+  emnet::SensitivityResult result;
+  emnet::Scene scene = with_segments(handle.scene);
+  {
+    py::gil_scoped_release release;
+    if (modes < 1) throw InputError("modes", "modes", "must be >= 1");
+    emnet::SensitivityOptions options;
+    options.modes = modes;
+    options.check = check;
+    result = emnet::run_sensitivity(scene, parameters, options);
+    require(result.status, "sensitivity: ");
+  }
+  return to_python(emnet::to_json(result, scene, check, stopwatch.seconds())).cast<py::dict>();
+}
+
+py::dict run_mismatch(const SceneHandle& handle, std::optional<double> frequency_hz,
+                      const std::string& output, double change) {
+  emnet::MismatchResult result;
+  {
+    py::gil_scoped_release release;
+    emnet::MismatchOptions options;
+    options.frequency_hz = frequency_hz;
+    options.output = output;
+    options.change = change;
+    result = emnet::run_mismatch(with_segments(handle.scene), options);
+    require(result.status, "mismatch: ");
+  }
+  py::dict out;
+  out["output"] = result.output;
+  out["frequency_hz"] = result.frequency_hz;
+  out["nominal"] =
+      py::dict(py::arg("left") = result.nominal_left, py::arg("right") = result.nominal_right,
+               py::arg("asymmetry") = result.nominal_asymmetry);
+  Json cases = Json::array();
+  for (const auto& row : result.rows)
+    cases.push_back({{"label", row.label},
+                     {"key", row.key},
+                     {"change", row.change},
+                     {"left", row.left},
+                     {"right", row.right},
+                     {"asymmetry", row.asymmetry},
+                     {"asymmetry_per_unit_change", row.asymmetry_per_unit_change}});
+  out["cases"] = to_python(cases);
+  out["notes"] = result.notes;
+  out["validity"] = validity_dict(result.validity);
+  return out;
+}
+
+// ---- netlist and crosscheck -----------------------------------------------------------------
+
+py::dict run_netlist(const SceneHandle& handle, const std::string& analysis, double periods,
+                     int points_per_period, double rtol, bool control) {
+  emnet::SpiceDeck deck;
+  {
+    py::gil_scoped_release release;
+    emnet::SpiceDeckOptions options;
+    if (analysis == "op") {
+      options.analysis = emnet::SpiceAnalysis::op;
+    } else if (analysis == "ac") {
+      options.analysis = emnet::SpiceAnalysis::ac;
+    } else if (analysis == "tran") {
+      options.analysis = emnet::SpiceAnalysis::tran;
+    } else {
+      throw InputError("analysis", "analysis",
+                       "must be 'op', 'ac' or 'tran', got '" + analysis + "'");
+    }
+    const emnet::Model model = emnet::prepare_model(with_segments(handle.scene));
+    if (options.analysis == emnet::SpiceAnalysis::tran) {
+      if (!(model.scene.drive.frequency > 0.0))
+        throw InputError(model.scene.file, "drive.frequency",
+                         "a transient deck needs a drive with a frequency > 0");
+      if (!(periods > 0.0) || periods > 1e6)
+        throw InputError("periods", "periods", "must be > 0 and at most 1e6");
+      if (points_per_period < 2 || points_per_period > 100000)
+        throw InputError("points_per_period", "points_per_period", "must be from 2 to 100000");
+      const double period = 1.0 / model.scene.drive.frequency;
+      options.end_time = periods * period;
+      options.output_step = period / points_per_period;
+    }
+    options.relative_tolerance = rtol;
+    options.control = control;
+    options.overrides = handle.overrides;
+    deck = emnet::write_spice_deck(model, options);
+  }
+  py::dict out;
+  out["text"] = deck.text;
+  Json outputs = Json::array();
+  for (const auto& output : deck.outputs)
+    outputs.push_back({{"probe", output.probe}, {"vector", output.vector}, {"unit", output.unit}});
+  out["outputs"] = to_python(outputs);
+  out["notes"] = deck.notes;
+  return out;
+}
+
+py::dict run_crosscheck(const SceneHandle& handle, const std::string& analyses, double timeout) {
+  emnet::CrosscheckReport report;
+  emnet::Stopwatch stopwatch;
+  {
+    py::gil_scoped_release release;
+    emnet::CrosscheckOptions options;
+    options.analyses = emnet::parse_crosscheck_analyses(analyses, "analyses");
+    if (!(timeout > 0.0) || timeout > 86400.0)
+      throw InputError("timeout", "timeout", "must be > 0 s and at most 86400 s (inclusive)");
+    options.ngspice.timeout_seconds = timeout;
+    options.overrides = handle.overrides;
+    report = emnet::run_crosscheck(emnet::prepare_model(with_segments(handle.scene)), options);
+    require(report.status, "crosscheck: ");
+  }
+  Json rows = Json::array();
+  for (const auto& row : report.rows)
+    rows.push_back({{"analysis", emnet::crosscheck_analysis_name(row.analysis)},
+                    {"quantity", row.quantity},
+                    {"largest_difference", row.largest_difference},
+                    {"where", row.where},
+                    {"tolerance", row.tolerance},
+                    {"pass", row.pass},
+                    {"basis", row.basis}});
+  Json timings = Json::array();
+  for (const auto& t : report.timings)
+    timings.push_back({{"analysis", emnet::crosscheck_analysis_name(t.analysis)},
+                       {"ngspice_seconds", t.ngspice_seconds},
+                       {"ngspice_total_seconds", t.ngspice_total_seconds},
+                       {"emnet_seconds", t.emnet_seconds},
+                       {"emnet_what", t.emnet_what}});
+  py::dict out;
+  out["backend"] = report.backend;
+  out["passed"] = report.all_pass();
+  out["rows"] = to_python(rows);
+  out["timings"] = to_python(timings);
+  out["notes"] = report.notes;
+  out["total_seconds"] = stopwatch.seconds();
+  return out;
+}
+
+}  // namespace
+
+void bind_analyses(py::module_& m) {
+  using py::arg;
+  const std::vector<std::string> none;
+  m.def("static", &run_static, arg("scene"), arg("probes") = none);
+  m.def("modes", &run_modes, arg("scene"), arg("count") = 0, arg("dense") = false,
+        arg("error_estimate") = true, arg("shapes") = false, arg("probes") = none);
+  m.def("ac", &run_ac, arg("scene"), arg("from_hz") = py::none(), arg("to_hz") = py::none(),
+        arg("points") = py::none(), arg("log") = py::none(), arg("probes") = none,
+        arg("reduce") = false, arg("tolerance") = py::none(), arg("band_hz") = py::none());
+  m.def("tran", &run_tran, arg("scene"), arg("periods") = 10.0, arg("switching_hz") = py::none(),
+        arg("method") = "ida", arg("rtol") = 1e-6, arg("atol") = 0.0, arg("max_step") = 0.0,
+        arg("start") = "rest", arg("points_per_period") = 100, arg("outputs") = none);
+  m.def("sweep_switching", &run_sweep, arg("scene"), arg("frequencies") = std::vector<double>{},
+        arg("from_hz") = 1.0, arg("to_hz") = 7.0, arg("step_hz") = 0.1, arg("method") = "exact",
+        arg("samples") = 0, arg("rtol") = 1e-9, arg("outputs") = none);
+  m.def("identify", &run_identify, arg("scene"), arg("target_hz"),
+        arg("parameter") = "beam.bending_stiffness", arg("mode") = 1);
+  m.def("sensitivity", &run_sensitivity, arg("scene"), arg("modes") = 3, arg("parameters") = none,
+        arg("check") = false);
+  m.def("mismatch", &run_mismatch, arg("scene"), arg("frequency_hz") = py::none(),
+        arg("output") = "", arg("change") = 0.05);
+  m.def("netlist", &run_netlist, arg("scene"), arg("analysis") = "op", arg("periods") = 2.0,
+        arg("points_per_period") = 2000, arg("rtol") = 1e-6, arg("control") = false);
+  m.def("crosscheck", &run_crosscheck, arg("scene"), arg("analyses") = "all",
+        arg("timeout") = 60.0);
+}
+
+}  // namespace emnet_python

@@ -1,0 +1,84 @@
+// Conversions shared by the bindings (convert.hpp).
+#include "convert.hpp"
+
+namespace emnet_python {
+
+void require(const emnet::Status& status, const std::string& prefix) {
+  if (!status.ok) throw NumericalFailure(prefix + status.message);
+}
+
+py::array_t<double> to_array(const std::vector<double>& values) {
+  py::array_t<double> array(static_cast<py::ssize_t>(values.size()));
+  std::copy(values.begin(), values.end(), array.mutable_data());
+  return array;
+}
+
+namespace {
+
+bool all_numbers(const emnet::Json& json) {
+  if (!json.is_array() || json.empty()) return false;
+  for (const auto& item : json)
+    if (!item.is_number()) return false;
+  return true;
+}
+
+// Equally long arrays of numbers.
+bool matrix_of_numbers(const emnet::Json& json) {
+  if (!json.is_array() || json.empty()) return false;
+  for (const auto& item : json)
+    if (!all_numbers(item) || item.size() != json.front().size()) return false;
+  return true;
+}
+
+// Objects with the same keys in the same order.
+bool table_of_objects(const emnet::Json& json) {
+  if (!json.is_array() || json.empty() || !json.front().is_object()) return false;
+  for (const auto& item : json) {
+    if (!item.is_object() || item.size() != json.front().size()) return false;
+    auto a = item.begin();
+    for (auto b = json.front().begin(); b != json.front().end(); ++a, ++b)
+      if (a.key() != b.key()) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+py::object to_python(const emnet::Json& json) {
+  if (json.is_null()) return py::none();
+  if (json.is_boolean()) return py::bool_(json.get<bool>());
+  if (json.is_number_integer()) return py::int_(json.get<long long>());
+  if (json.is_number_unsigned()) return py::int_(json.get<unsigned long long>());
+  if (json.is_number()) return py::float_(json.get<double>());
+  if (json.is_string()) return py::str(json.get<std::string>());
+  if (json.is_object()) {
+    py::dict dict;
+    for (auto it = json.begin(); it != json.end(); ++it)
+      dict[py::str(it.key())] = to_python(it.value());
+    return std::move(dict);
+  }
+  if (all_numbers(json)) return to_array(json.get<std::vector<double>>());
+  if (matrix_of_numbers(json)) {
+    const auto rows = static_cast<py::ssize_t>(json.size());
+    const auto columns = static_cast<py::ssize_t>(json.front().size());
+    py::array_t<double> array({rows, columns});
+    auto view = array.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < rows; ++i)
+      for (py::ssize_t j = 0; j < columns; ++j) view(i, j) = json[i][j].get<double>();
+    return std::move(array);
+  }
+  if (table_of_objects(json)) {
+    py::dict columns;
+    for (auto it = json.front().begin(); it != json.front().end(); ++it) {
+      emnet::Json column = emnet::Json::array();
+      for (const auto& row : json) column.push_back(row[it.key()]);
+      columns[py::str(it.key())] = to_python(column);
+    }
+    return std::move(columns);
+  }
+  py::list list;
+  for (const auto& item : json) list.append(to_python(item));
+  return std::move(list);
+}
+
+}  // namespace emnet_python

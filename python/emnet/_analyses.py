@@ -1,0 +1,140 @@
+"""The analyses of one scene. Each returns a Result (see emnet.Result)."""
+
+from . import _emnet
+from ._results import Result
+from ._scene import as_scene
+
+
+def _probes(probes):
+    if probes is None:
+        return []
+    if isinstance(probes, str):
+        return [probes]
+    return list(probes)
+
+
+def static(scene, probes=None):
+    """The static state at rest under the drive's first half-period (as `emnet static`).
+
+    scene: a Scene or a scene file's path. probes: probe names of the scene or texts such as
+    "deflection@70mm", "rotation@0.1" (default: the scene's probes).
+
+    Returns a Result with nodes (x_m, deflection_m, rotation_rad: numpy arrays over the beam's
+    nodes), probes (name, description, unit, value), accuracy (relative_residual,
+    newton_iterations), cost (seconds), validity. Nodal values are exact for any segment count.
+    """
+    return Result(_emnet.static(as_scene(scene)._handle, _probes(probes)))
+
+
+def modes(scene, count=0, dense=False, error_estimate=True, shapes=False, probes=None):
+    """The modes about the operating point (as `emnet modes`).
+
+    count: oscillatory modes kept (0: the 10 lowest). dense: every pole by the dense method.
+    error_estimate: the N/2N discretisation error of each frequency. shapes: the mode shapes.
+
+    Returns a Result with modes: frequency_hz [Hz], natural_frequency_hz [Hz], damping_ratio
+    [-], pole ([re, im] in 1/s), relative_residual, error_bounded, frequency_error_bound_hz
+    [Hz] (the pole's rounding bound), discretisation_error_estimate [-] (numpy arrays, lowest
+    mode first); real_poles; rigid_body_modes; method; cost.
+    """
+    return Result(_emnet.modes(as_scene(scene)._handle, count, dense, error_estimate, shapes,
+                               _probes(probes)))
+
+
+def ac(scene, from_hz=None, to_hz=None, points=None, log=None, probes=None, reduce=False,
+       tolerance=None, band_hz=None):
+    """The small-signal frequency response (as `emnet ac`).
+
+    from_hz, to_hz [Hz], points, log (a log-spaced grid): default the scene's [ac] table.
+    reduce: by modal reduction, checked against the full model (tolerance, band_hz).
+
+    Returns a Result with frequencies_hz [Hz], probes (name, description, unit, magnitude in
+    the probe's unit per unit input, phase_deg [deg]; 2-D arrays [probe, frequency]), values
+    (the complex responses, [probe, frequency]), input (what drives it), resonances_hz,
+    accuracy (max_relative_residual), cost, validity.
+    """
+    return Result(_emnet.ac(as_scene(scene)._handle, from_hz, to_hz, points, log, _probes(probes),
+                            reduce, tolerance, band_hz))
+
+
+def tran(scene, periods=10.0, switching_hz=None, method="ida", rtol=1e-6, atol=0.0, max_step=0.0,
+         start="rest", points_per_period=100, outputs=None):
+    """The time response to the scene's drive (as `emnet tran`).
+
+    periods of the drive's frequency (or switching_hz [Hz]); method "ida" (SUNDIALS IDA, any
+    network; rtol, atol, max_step [s]) or "exact" (linear networks under piecewise-linear
+    sources); start "rest" or "static"; points_per_period output times per period; outputs:
+    output names (dx4, u_A) or probe texts (default: the scene's recorded outputs).
+
+    Returns a Result with times_s [s], outputs (name, description, unit, values [output,
+    time]), statistics (IDA's steps, residual and Jacobian evaluations, ...), cost, validity.
+    """
+    return Result(_emnet.tran(as_scene(scene)._handle, periods, switching_hz, method, rtol, atol,
+                              max_step, start, points_per_period, _probes(outputs)))
+
+
+def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1,
+                    method="exact", samples=0, rtol=1e-9, outputs=None):
+    """Periodic steady-state extremes against the switching frequency (as `emnet sweep-switching`).
+
+    frequencies [Hz] (or from_hz, to_hz, step_hz); method "exact" (linear networks; DEAs as
+    ideal voltage-driven forces, with a note) or "shooting" (IDA, any network; rtol).
+
+    Returns a Result with frequencies_hz [Hz]; outputs {name: {unit, description, left, right}}:
+    the periodic minimum (left) and maximum (right) per frequency in the output's unit; peak_hz
+    (the largest peak-to-peak of the last output); accuracy (worst_periodicity_residual); cost;
+    notes; validity.
+    """
+    return Result(_emnet.sweep_switching(as_scene(scene)._handle, list(frequencies or []),
+                                         from_hz, to_hz, step_hz, method, samples, rtol,
+                                         _probes(outputs)))
+
+
+def identify(scene, target_hz, parameter="beam.bending_stiffness", mode=1):
+    """The value of `parameter` that puts mode `mode` at target_hz [Hz] (as `emnet identify`).
+
+    Returns a Result with parameter (its canonical key), value and unit (SI), achieved_hz,
+    accuracy (frequency_residual: relative), cost (modal solves), notes.
+    """
+    return Result(_emnet.identify(as_scene(scene)._handle, target_hz, parameter, mode))
+
+
+def sensitivity(scene, modes=3, parameters=None, check=False):
+    """d f/d p of the lowest `modes` resonances for every parameter (as `emnet sensitivity`).
+
+    parameters: keys (default: every parameter the scene uses). check: also the finite
+    difference of the poles.
+
+    Returns a Result with modes (frequency_hz, ...), parameters (key, value, unit, and per mode
+    the derivatives [Hz per unit] and normalised sensitivities (p/f) df/dp [-]), cost.
+    """
+    return Result(_emnet.sensitivity(as_scene(scene)._handle, modes, _probes(parameters), check))
+
+
+def mismatch(scene, frequency_hz=None, output="", change=0.05):
+    """Left/right asymmetry of the periodic peaks when one DEA differs by ±change (as `emnet
+    mismatch`): electrode area, film thickness, overlap.
+
+    Returns a Result with output, frequency_hz, nominal (left, right [m], asymmetry [-]),
+    cases (label, key, change, left, right, asymmetry, asymmetry_per_unit_change), validity.
+    """
+    return Result(_emnet.mismatch(as_scene(scene)._handle, frequency_hz, output, change))
+
+
+def netlist(scene, analysis="op", periods=2.0, points_per_period=2000, rtol=1e-6, control=False):
+    """The scene's network as a SPICE deck (as `emnet netlist`): analysis "op", "ac" or "tran".
+
+    Returns a Result with text (the deck), outputs (probe, vector, unit: where ngspice holds
+    each output), notes.
+    """
+    return Result(_emnet.netlist(as_scene(scene)._handle, analysis, periods, points_per_period,
+                                 rtol, control))
+
+
+def crosscheck(scene, analyses="all", timeout=60.0):
+    """emnet against ngspice on the same network (as `emnet crosscheck`): "op,ac,modal,tran".
+
+    ngspice runs in its own worker process (timeout [s]). Returns a Result with passed, rows
+    (analysis, quantity, largest_difference, where, tolerance, pass, basis), timings, backend.
+    """
+    return Result(_emnet.crosscheck(as_scene(scene)._handle, analyses, timeout))

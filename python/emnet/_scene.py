@@ -1,0 +1,162 @@
+"""Scenes: read from a file, a TOML string or a dict; changed by key, without reading again."""
+
+import json
+import math
+import os
+
+from . import _emnet
+
+
+def _toml_value(value, key):
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise _emnet.InputError(f"key '{key}': {value!r} is not a finite number")
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(item, key) for item in value) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{name} = {_toml_value(item, key + '.' + name)}"
+                               for name, item in value.items()) + "}"
+    raise _emnet.InputError(f"key '{key}': a {type(value).__name__} is not a scene value "
+                            "(numbers, strings, booleans, lists and dicts are)")
+
+
+def dict_to_toml(data):
+    """The TOML text of a scene given as a dict: {"beam": {...}, "dea": [{...}, {...}], ...}."""
+    if not isinstance(data, dict):
+        raise _emnet.InputError("a scene dict maps table names to tables, e.g. "
+                                "{'beam': {'length': '120 mm', ...}, 'dea': [{...}]}")
+    lines = []
+    for table, content in data.items():
+        if isinstance(content, dict):
+            lines.append(f"[{table}]")
+            lines += [f"{key} = {_toml_value(value, table + '.' + key)}"
+                      for key, value in content.items()]
+        elif isinstance(content, (list, tuple)) and all(isinstance(e, dict) for e in content):
+            for index, entry in enumerate(content):
+                lines.append(f"[[{table}]]")
+                lines += [f"{key} = {_toml_value(value, f'{table}[{index}].{key}')}"
+                          for key, value in entry.items()]
+        else:
+            raise _emnet.InputError(f"key '{table}': a table (dict) or a list of tables is "
+                                    f"expected, got {type(content).__name__}")
+        lines.append("")
+    return "\n".join(lines)
+
+
+def _override_texts(overrides):
+    if overrides is None:
+        return []
+    if not isinstance(overrides, dict):
+        raise _emnet.InputError("overrides are a dict {key: value}, e.g. "
+                                "{'beam.length': '0.2 m', 'drive.voltage': 3000}")
+    texts = []
+    for key, value in overrides.items():
+        text = value if isinstance(value, str) else _toml_value(value, key)
+        texts.append(f"{key}={text}")
+    return texts
+
+
+class Scene:
+    """A scene: the device (beam, DEAs, drive, loads, probes) emnet analyses.
+
+    Scene(path, set=None) reads a TOML scene file; Scene.from_text(text) and
+    Scene.from_dict(dict) read one held in memory. `set` overrides keys as the command line's
+    --set does: {"beam.length": "0.2 m", "dea.A.lever_arm": "1.6 mm", "drive.voltage": 3000}
+    (a number is in the key's SI unit; a string may carry a unit).
+
+    scene.get(key) gives a numeric key's value in SI; scene.with_values({key: value_SI}) a new
+    scene with those values changed directly (no file read again: what a study does per variant).
+    Scenes pickle (as their text, overrides and changed values), so they travel to Dask workers.
+    """
+
+    def __init__(self, path=None, set=None, *, _handle=None):
+        if _handle is not None:
+            self._handle = _handle
+            return
+        if path is None:
+            raise _emnet.InputError("Scene(path): give a scene file's path (or use "
+                                    "Scene.from_text / Scene.from_dict)")
+        self._handle = _emnet.SceneHandle.read(os.fspath(path), _override_texts(set))
+
+    @classmethod
+    def from_text(cls, text, name="<text>", set=None):
+        """A scene from TOML text; `name` stands for the file in messages."""
+        return cls(_handle=_emnet.SceneHandle.parse(text, name, _override_texts(set)))
+
+    @classmethod
+    def from_dict(cls, data, name="<dict>", set=None):
+        """A scene from a dict of tables: {"scene": {"name": "x"}, "beam": {...}, "dea": [...]}."""
+        return cls.from_text(dict_to_toml(data), name, set)
+
+    @property
+    def name(self):
+        """scene.name"""
+        return self._handle.name
+
+    @property
+    def title(self):
+        return self._handle.title
+
+    @property
+    def file(self):
+        """The file it was read from ("<text>", "<dict>" for one held in memory)."""
+        return self._handle.file
+
+    def get(self, key):
+        """The value of a numeric key in SI: get("beam.bending_stiffness") -> N*m^2."""
+        return self._handle.get(key)
+
+    def unit(self, key):
+        """The SI unit of a numeric key ("N*m^2"; "" when dimensionless)."""
+        return self._handle.unit(key)
+
+    def keys(self):
+        """Every numeric key the scene uses, canonical ("dea[A].lever_arm")."""
+        return self._handle.numeric_keys()
+
+    def with_values(self, values):
+        """A copy with numeric keys set to SI values ({key: value}), checked as the reader
+        checks them (InputError names the key)."""
+        handle = self._handle.copy()
+        for key, value in values.items():
+            handle.set(key, float(value))
+        return Scene(_handle=handle)
+
+    def with_overrides(self, overrides):
+        """A copy read again with more overrides ({key: value}, units allowed)."""
+        handle = self._handle
+        fresh = _emnet.SceneHandle.parse(handle.text, handle.file,
+                                         list(handle.overrides) + _override_texts(overrides))
+        for key, value in handle.sets:
+            fresh.set(key, value)
+        return Scene(_handle=fresh)
+
+    def __getstate__(self):
+        h = self._handle
+        return {"text": h.text, "file": h.file, "overrides": list(h.overrides),
+                "sets": list(h.sets)}
+
+    def __setstate__(self, state):
+        handle = _emnet.SceneHandle.parse(state["text"], state["file"], state["overrides"])
+        for key, value in state["sets"]:
+            handle.set(key, value)
+        self._handle = handle
+
+    def __repr__(self):
+        return f"Scene({self.name!r} from {self.file!r})"
+
+
+def as_scene(scene):
+    """A Scene from a Scene or a path."""
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, (str, os.PathLike)):
+        return Scene(scene)
+    raise _emnet.InputError(f"expected a Scene or a scene file's path, got {type(scene).__name__}")

@@ -1,0 +1,144 @@
+"""Design studies: many variants of a scene, in one process or on a Dask cluster."""
+
+import math
+import os
+import time
+
+from . import _emnet
+from ._scene import Scene, as_scene
+
+
+def _vary_texts(vary):
+    if vary is None:
+        return []
+    if isinstance(vary, str):
+        return [vary]
+    if isinstance(vary, dict):
+        return [f"{key}={spec}" for key, spec in vary.items()]
+    return list(vary)
+
+
+def _analyses_text(analyses):
+    if isinstance(analyses, str):
+        return analyses
+    return ",".join(analyses)
+
+
+def variants(scene, vary=None, samples=0, seed=1, variants=None):
+    """The variants of a study, as a pandas DataFrame (one column per key, SI values).
+
+    vary: ["KEY=SPEC", ...] or {KEY: SPEC}: values "v1,v2" or linspace(a,b,n), logspace(a,b,n)
+    (a grid), uniform(a,b), normal(mean,sd), lognormal(median,s) (Monte Carlo, `samples` draws
+    per grid point from `seed`). Values in SI, with a unit ("60 mm") or a percentage of the
+    scene's value ("95%"). variants: a CSV file (a header of keys, a variant per line) instead.
+    """
+    import pandas
+
+    handle = as_scene(scene)._handle
+    if variants is not None:
+        if vary:
+            raise _emnet.InputError("give vary or variants, not both")
+        if isinstance(variants, (str, os.PathLike)):
+            keys, values = _emnet.read_variants(handle, os.fspath(variants))
+        else:
+            frame = pandas.DataFrame(variants)
+            keys = [handle.canonical_key(str(key)) for key in frame.columns]
+            values = frame.to_numpy(dtype=float)
+    else:
+        keys, values = _emnet.make_variants(handle, _vary_texts(vary), samples, seed)
+    return pandas.DataFrame(values, columns=keys)
+
+
+def _run_chunk(state, keys, values, options):
+    """One chunk of variants on a worker (a Dask task): the study's dict for those rows."""
+    scene = Scene.__new__(Scene)
+    scene.__setstate__(state)
+    return _emnet.run_study(scene._handle, keys, values, **options)
+
+
+def _frame(keys, values, first_variant, part):
+    import pandas
+
+    data = {"variant": range(first_variant, first_variant + len(values))}
+    for index, key in enumerate(keys):
+        data[key] = values[:, index]
+    data["status"] = part["status"]
+    for index, column in enumerate(part["columns"]):
+        data[column] = part["results"][:, index]
+    return pandas.DataFrame(data)
+
+
+def study(scene, vary=None, *, samples=0, seed=1, variants=None, analyses=("modes",), modes=1,
+          sweep_frequencies=None, at=(), threads=0, client=None, chunk_size=None, progress=False):
+    """A design study: every variant of `scene` through `analyses`, one row per variant.
+
+    scene: a Scene or a path. vary / samples / seed / variants: the variants (see
+    emnet.variants). analyses: any of "modes", "static", "sweep-switching":
+      modes            f<k>_hz, zeta<k>, f<k>_error_hz for the `modes` lowest modes [Hz, -, Hz];
+      static           static.<probe>_<unit> per probe of the scene;
+      sweep-switching  sweep.peak_hz, and per output and frequency of `at` [Hz]
+                       sweep.<output>.min_at_<f>Hz_<unit>, .max_at_... (the periodic extremes);
+                       sweep_frequencies [Hz] default 1 to 7 Hz in steps of 0.1.
+    threads: worker threads in this process (0: every core). client: a
+    dask.distributed.Client: chunks of variants (chunk_size each; default a quarter of an even
+    share per worker, at least 20) run on its workers, one thread per task, and the rows come
+    back in order, equal bit for bit to a local run's.
+
+    Returns a pandas DataFrame: variant, the varied keys (SI), status ("ok" or "failed: why"),
+    the result columns (missing, NaN, in a failed row). df.attrs holds units {column: unit},
+    cost (seconds per stage summed over the variants, work and wall seconds), segments,
+    unknowns, notes.
+    """
+    import numpy
+
+    started = time.perf_counter()
+    scene = as_scene(scene)
+    table = globals()["variants"](scene, vary, samples, seed, variants)
+    keys = list(table.columns)
+    values = numpy.ascontiguousarray(table.to_numpy(dtype=float))
+    options = {"analyses": _analyses_text(analyses), "modes": modes,
+               "sweep_frequencies": list(sweep_frequencies or []),
+               "report_frequencies": list(at or [])}
+    if client is None:
+        parts = [(0, values, _emnet.run_study(scene._handle, keys, values, threads=threads,
+                                              progress=progress, **options))]
+    else:
+        workers = client.scheduler_info()["workers"]
+        if not workers:
+            raise _emnet.InputError("client: the Dask cluster has no workers")
+        if chunk_size is None:
+            chunk_size = max(20, math.ceil(len(values) / (4 * len(workers))))
+        if chunk_size < 1:
+            raise _emnet.InputError("chunk_size must be >= 1")
+        state = scene.__getstate__()
+        starts = list(range(0, len(values), chunk_size))
+        chunks = [values[start:start + chunk_size] for start in starts]
+        task_options = dict(options, threads=1, progress=False)
+        futures = client.map(_run_chunk, [state] * len(chunks), [keys] * len(chunks), chunks,
+                             [task_options] * len(chunks), pure=False)
+        results = []
+        for done, future in enumerate(futures, 1):
+            results.append(future.result())
+            if progress:
+                print(f"\remnet study: {done}/{len(futures)} chunks", end="", flush=True,
+                      file=__import__("sys").stderr)
+        if progress:
+            print(file=__import__("sys").stderr)
+        parts = list(zip(starts, chunks, results))
+    import pandas
+
+    frame = pandas.concat([_frame(keys, chunk, start, part) for start, chunk, part in parts],
+                          ignore_index=True)
+    first = parts[0][2]
+    units = {"variant": ""}
+    units.update(dict(zip(first["keys"], first["key_units"])))
+    units["status"] = ""
+    units.update(dict(zip(first["columns"], first["units"])))
+    cost = {name: sum(part["cost"][name] for _, _, part in parts)
+            for name in first["cost"] if name != "wall_seconds"}
+    cost["wall_seconds"] = time.perf_counter() - started
+    cost["per_variant_seconds"] = cost["work_seconds"] / max(1, len(frame))
+    frame.attrs.update({"units": units, "cost": cost, "segments": first["segments"],
+                        "unknowns": first["unknowns"], "notes": list(first["notes"]),
+                        "failed": int(sum(part["failed"] for _, _, part in parts))})
+    return frame

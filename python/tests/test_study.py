@@ -1,0 +1,83 @@
+"""Design studies in one process: grids, Monte Carlo, CSV lists, failed variants, the command."""
+
+import math
+import subprocess
+
+import numpy
+import pandas
+import pytest
+
+import emnet
+from conftest import CANTILEVER, FISHFIN, PROGRAM
+
+
+def test_grid_matches_single_runs(cantilever):
+    frame = emnet.study(cantilever, vary=["beam.bending_stiffness=1,2,4"],
+                        analyses=["modes", "static"])
+    assert list(frame["beam.bending_stiffness"]) == [1.0, 2.0, 4.0]
+    assert list(frame["status"]) == ["ok"] * 3
+    for _, row in frame.iterrows():
+        scene = cantilever.with_values({"beam.bending_stiffness": row["beam.bending_stiffness"]})
+        f1 = emnet.modes(scene, count=1, error_estimate=False).modes["frequency_hz"][0]
+        assert row["f1_hz"] == f1
+        # F*L^3/(3*EI) at the tip: exact nodal statics.
+        assert abs(row["static.tip_m"] - 0.125 / (3 * row["beam.bending_stiffness"])) < 1e-13
+    assert frame.attrs["units"]["f1_hz"] == "Hz"
+
+
+def test_monte_carlo_is_the_same_whatever_the_threads(fishfin):
+    vary = ["beam.bending_stiffness=normal(100%,5%)", "dea.A.lever_arm=uniform(95%,105%)"]
+    one = emnet.study(fishfin, vary=vary, samples=12, seed=7, threads=1,
+                      analyses=["modes", "static"])
+    two = emnet.study(fishfin, vary=vary, samples=12, seed=7, threads=2,
+                      analyses=["modes", "static"])
+    pandas.testing.assert_frame_equal(one, two, check_exact=True)
+    other_seed = emnet.study(fishfin, vary=vary, samples=12, seed=8, analyses=["modes"])
+    assert not numpy.array_equal(one["beam.bending_stiffness"], other_seed["beam.bending_stiffness"])
+    # normal(100%, 5%) of EI: the sample mean within 4 standard errors of the nominal value.
+    nominal = fishfin.get("beam.bending_stiffness")
+    assert abs(one["beam.bending_stiffness"].mean() - nominal) < 4 * 0.05 * nominal / math.sqrt(12)
+
+
+def test_a_failing_variant_is_a_row_with_its_reason(cantilever):
+    frame = emnet.study(cantilever, vary=["beam.bending_stiffness=2,-1,3"], analyses=["modes"])
+    assert len(frame) == 3
+    assert frame["status"][0] == "ok" and frame["status"][2] == "ok"
+    assert frame["status"][1].startswith("failed: ")
+    assert "beam.bending_stiffness" in frame["status"][1]
+    assert math.isnan(frame["f1_hz"][1])
+    assert frame.attrs["failed"] == 1
+
+
+def test_variants_from_csv(cantilever, tmp_path):
+    path = tmp_path / "variants.csv"
+    path.write_text("beam.bending_stiffness,beam.mass_per_length\n2,0.3\n3 N*m^2,110%\n")
+    frame = emnet.study(cantilever, variants=str(path))
+    assert list(frame["beam.mass_per_length"]) == [0.3, 0.3 * 1.1]
+    assert list(frame["beam.bending_stiffness"]) == [2.0, 3.0]
+
+
+def test_bad_variation_names_the_key(cantilever):
+    with pytest.raises(emnet.InputError) as error:
+        emnet.study(cantilever, vary=["beam.bending_stiffness=gauss(1,2)"])
+    assert "beam.bending_stiffness" in str(error.value)
+    with pytest.raises(emnet.InputError):
+        emnet.study(cantilever, vary=["beam.bending_stiffness=normal(100%,5%)"])  # no samples
+
+
+def test_sweep_columns_and_the_command(fishfin, tmp_path):
+    vary = ["beam.bending_stiffness=95%,105%"]
+    frame = emnet.study(fishfin, vary=vary, analyses=["sweep-switching"], at=[5.0],
+                        sweep_frequencies=[4.0, 5.0, 6.0])
+    column = "sweep.dx4.max_at_5Hz_m"
+    assert column in frame.columns
+    scene = fishfin.with_values({"beam.bending_stiffness": frame["beam.bending_stiffness"][0]})
+    single = emnet.sweep_switching(scene, frequencies=[4.0, 5.0, 6.0])
+    assert frame[column][0] == single.outputs["dx4"]["right"][1]
+    # The command writes the same table.
+    out = tmp_path / "study.csv"
+    subprocess.run([PROGRAM, "study", FISHFIN, "--vary", vary[0], "--analysis", "sweep-switching",
+                    "--at", "5", "--from", "4", "--to", "6", "--step", "1", "-o", str(out),
+                    "--quiet"], check=True, capture_output=True)
+    table = pandas.read_csv(out, float_precision="round_trip")  # %.17g reads back exactly
+    assert list(table[column]) == list(frame[column])
