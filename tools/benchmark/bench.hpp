@@ -178,6 +178,9 @@ struct Section {
 
 // ---- the sections ----------------------------------------------------------------------------
 
+// study.cpp: 6. design studies (and the Python module's measurements).
+std::string study_section(const Settings& settings);
+
 // discretisation.cpp: 1. the cantilever and the fish fin against N; 4b. dense against Arnoldi.
 std::string discretisation_section(const Settings& settings, std::vector<ParetoPoint>& pareto);
 std::string modes_section(const Settings& settings);

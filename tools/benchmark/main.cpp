@@ -59,14 +59,22 @@
 //     ReducedPeriodicSolver (band 7 Hz) at N = 7 and 100, each timed side by side in this run;
 //     error: the largest difference at every point (every sample of every period), relative
 //     to each probe's largest |value|.
+//  6. Design studies. The fish fin's tolerance study (1000 variants, --quick 40: modes, static
+//     and the 61-frequency switching sweep each) by run_design_study on 1 and 2 threads, the
+//     cost per variant by stage; beside it the first 10 variants (--quick 2) as scripted one
+//     process per variant: emnet's modes, static and sweep-switching commands, and ngspice on
+//     the variant's AC deck. Then tools/benchmark/python_study.py: the Python module's overhead
+//     on one `modes` call and the study through Python, locally and on 1 and 2 Dask workers.
 //
-// --only 5a or --only 5b runs that section alone and writes report-5a.md or report-5b.md.
+// --only 5a, 5b or 6 runs that section alone and writes report-5a.md, report-5b.md or
+// report-6.md.
 //
 // Outputs (in --out): report.md, data files *.dat and gnuplot scripts *.gp for the Pareto
 // plots (tools/bench runs gnuplot), decks/*.cir.
 //
 // The sections are in tools/benchmark/: discretisation.cpp (1, 4b), ac.cpp and transient.cpp
-// (2, 3), sweep.cpp (the switching sweep), scale.cpp (4), simplifications.cpp (5a, 5b); the
+// (2, 3), sweep.cpp (the switching sweep), scale.cpp (4), simplifications.cpp (5a, 5b),
+// study.cpp (6); the
 // pieces they share in common.cpp (bench.hpp); the report and the command line here.
 #include "bench.hpp"
 
@@ -112,7 +120,9 @@ int run(const Settings& settings) {
                         << (settings.only == "5a" ? "## 5a. Simplifications: what each costs and "
                                                     "saves\n\n" +
                                                         simplification_section(settings)
-                                                  : reduction_section(settings));
+                            : settings.only == "6"
+                                ? "## 6. Design studies\n\n" + study_section(settings)
+                                : reduction_section(settings));
     std::cerr << "emnet_bench: " << file << " (" << time_text(seconds_since(start)) << ")\n";
     return 0;
   }
@@ -135,6 +145,8 @@ int run(const Settings& settings) {
   const std::string simplifications = simplification_section(settings);
   std::cerr << "emnet_bench: 5b. modal reduction\n";
   const std::string reduction = reduction_section(settings);
+  std::cerr << "emnet_bench: 6. design studies\n";
+  const std::string study = study_section(settings);
   write_pareto_plot(settings, "discretisation", "cantilever: discretisation error against cost",
                     discretisation_points);
   write_pareto_plot(settings, "ac", "fish fin AC, 1000 points: error against time", ac_points);
@@ -183,8 +195,8 @@ int run(const Settings& settings) {
      << scale << "\n![scale](scale.png)\n\n"
      << "## 4b. modes: dense against Arnoldi\n\n"
      << modes << "## 5a. Simplifications: what each costs and saves\n\n"
-     << simplifications << reduction << "Total benchmark time: " << time_text(seconds_since(start))
-     << ".\n";
+     << simplifications << reduction << "## 6. Design studies\n\n"
+     << study << "Total benchmark time: " << time_text(seconds_since(start)) << ".\n";
   std::cerr << "emnet_bench: report written to " << settings.out << "/report.md ("
             << time_text(seconds_since(start)) << ")\n";
   return 0;
@@ -220,8 +232,9 @@ int main(int argc, char** argv) {
       settings.quick = true;
     } else if (argument == "--only") {
       settings.only = value();
-      if (settings.only != "5a" && settings.only != "5b") {
-        std::cerr << "emnet_bench: --only takes 5a (simplifications) or 5b (modal reduction)\n";
+      if (settings.only != "5a" && settings.only != "5b" && settings.only != "6") {
+        std::cerr << "emnet_bench: --only takes 5a (simplifications), 5b (modal reduction) or 6 "
+                     "(design studies)\n";
         return 2;
       }
     } else if (argument == "--scale-point") {
@@ -229,7 +242,7 @@ int main(int argc, char** argv) {
       scale_segments = std::stoi(value());
     } else {
       std::cerr << "usage: emnet_bench [--root DIR] [--out DIR] [--emnet PROGRAM] [--quick] "
-                   "[--only 5a|5b]\n";
+                   "[--only 5a|5b|6]\n";
       return 2;
     }
   }
