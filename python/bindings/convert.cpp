@@ -1,6 +1,8 @@
 // Conversions shared by the bindings (convert.hpp).
 #include "convert.hpp"
 
+#include <algorithm>
+
 namespace emnet_python {
 
 void require(const emnet::Status& status, const std::string& prefix) {
@@ -30,15 +32,11 @@ bool matrix_of_numbers(const emnet::Json& json) {
   return true;
 }
 
-// Objects with the same keys in the same order.
+// Objects (records).
 bool table_of_objects(const emnet::Json& json) {
-  if (!json.is_array() || json.empty() || !json.front().is_object()) return false;
-  for (const auto& item : json) {
-    if (!item.is_object() || item.size() != json.front().size()) return false;
-    auto a = item.begin();
-    for (auto b = json.front().begin(); b != json.front().end(); ++a, ++b)
-      if (a.key() != b.key()) return false;
-  }
+  if (!json.is_array() || json.empty()) return false;
+  for (const auto& item : json)
+    if (!item.is_object()) return false;
   return true;
 }
 
@@ -68,11 +66,27 @@ py::object to_python(const emnet::Json& json) {
     return std::move(array);
   }
   if (table_of_objects(json)) {
+    // Columns over the union of the records' keys, in first-seen order: a key every record has
+    // is converted as an array of its own (numbers: a numpy array); one some records lack is a
+    // list with None where it is missing.
+    std::vector<std::string> keys;
+    for (const auto& row : json)
+      for (auto it = row.begin(); it != row.end(); ++it)
+        if (std::find(keys.begin(), keys.end(), it.key()) == keys.end()) keys.push_back(it.key());
     py::dict columns;
-    for (auto it = json.front().begin(); it != json.front().end(); ++it) {
-      emnet::Json column = emnet::Json::array();
-      for (const auto& row : json) column.push_back(row[it.key()]);
-      columns[py::str(it.key())] = to_python(column);
+    for (const auto& key : keys) {
+      bool everywhere = true;
+      for (const auto& row : json) everywhere = everywhere && row.contains(key);
+      if (everywhere) {
+        emnet::Json column = emnet::Json::array();
+        for (const auto& row : json) column.push_back(row[key]);
+        columns[py::str(key)] = to_python(column);
+      } else {
+        py::list column;
+        for (const auto& row : json)
+          column.append(row.contains(key) ? to_python(row[key]) : py::none());
+        columns[py::str(key)] = column;
+      }
     }
     return std::move(columns);
   }

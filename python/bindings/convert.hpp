@@ -27,8 +27,9 @@ class NumericalFailure : public std::runtime_error {
 void require(const emnet::Status& status, const std::string& prefix);
 
 // A result's JSON as Python objects: objects become dicts; an array of numbers a 1-D numpy array;
-// an array of equally long arrays of numbers a 2-D one; an array of objects with the same keys a
-// dict of columns (each converted by the same rules: numbers to an array, otherwise a list).
+// an array of equally long arrays of numbers a 2-D one; an array of objects (records) a dict of
+// columns, one per key: a key of every record converted by the same rules (numbers to an array),
+// a key some records lack a list with None where it is missing.
 py::object to_python(const emnet::Json& json);
 
 py::array_t<double> to_array(const std::vector<double>& values);
