@@ -316,9 +316,10 @@ py::dict run_sensitivity(const SceneHandle& handle, int modes,
                          const std::vector<std::string>& parameters, bool check) {
   emnet::Stopwatch stopwatch;
   emnet::SensitivityResult result;
-  emnet::Scene scene = with_segments(handle.scene);
+  emnet::Scene scene;
   {
     py::gil_scoped_release release;
+    scene = with_segments(handle.scene);
     if (modes < 1) throw InputError("modes", "modes", "must be >= 1");
     emnet::SensitivityOptions options;
     options.modes = modes;

@@ -91,18 +91,18 @@ int run_study_command(const CommonOptions& options, const StudyCommandOptions& c
               << " failed; " << result.segments << " segments, " << result.unknowns
               << " unknowns\n";
     for (const auto& note : result.notes) std::cout << "note: " << shown(note) << "\n";
-    const double per = result.cost.total() / static_cast<double>(std::max<std::size_t>(n, 1));
+    // Work per variant [ms], by stage.
+    auto per_variant = [&](double seconds) {
+      return format("%.3g", seconds / static_cast<double>(std::max<std::size_t>(n, 1)) * 1e3) +
+             " ms";
+    };
     std::cout << "cost: " << milliseconds(result.seconds) << " on " << result.threads
-              << " thread(s); per variant " << format("%.3g", per * 1e3) << " ms of work (build "
-              << format("%.3g", result.cost.build / std::max<std::size_t>(n, 1) * 1e3)
-              << " ms, operating point "
-              << format("%.3g", result.cost.operating_point / std::max<std::size_t>(n, 1) * 1e3)
-              << " ms, modes "
-              << format("%.3g", result.cost.modes / std::max<std::size_t>(n, 1) * 1e3)
-              << " ms, static "
-              << format("%.3g", result.cost.static_state / std::max<std::size_t>(n, 1) * 1e3)
-              << " ms, sweep "
-              << format("%.3g", result.cost.sweep / std::max<std::size_t>(n, 1) * 1e3) << " ms)\n";
+              << " thread(s); per variant " << per_variant(result.cost.total())
+              << " of work (build " << per_variant(result.cost.build) << ", operating point "
+              << per_variant(result.cost.operating_point) << ", modes "
+              << per_variant(result.cost.modes) << ", static "
+              << per_variant(result.cost.static_state) << ", sweep "
+              << per_variant(result.cost.sweep) << ")\n";
     std::cout << "accuracy: each variant as its analysis reports it (f_k_error_hz: the pole's "
                  "rounding bound); a failed variant is a row with its reason\n\n";
     std::printf("%-40s %-6s %14s %14s %14s %14s\n", "column", "unit", "min", "mean", "max", "std");
