@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <unsupported/Eigen/MatrixFunctions>
+#include <vector>
 
 #include "equilibration.hpp"
 
@@ -57,12 +58,38 @@ LinearStateSpace::LinearStateSpace(const DisplacementForm& form, double angular_
   column_scale_ = scaling.column;
   const Eigen::MatrixXd e = Eigen::MatrixXd(scaled(form.e(), scaling, time_scale_));
   const Eigen::MatrixXd a = Eigen::MatrixXd(scaled(form.a(), scaling));
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(e, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::VectorXd sigma = svd.singularValues();
-  while (nd_ < sigma.size() && sigma[nd_] > 1e-12 * sigma[0]) ++nd_;
+  // The SVD of Ê on its non-zero rows and columns only (most rows of the displacement form are
+  // algebraic: no Ê entry at all). Zero rows and columns add nothing but zero singular values,
+  // so the singular values and the singular vectors of the nonzero ones are Ê's, with zeros at
+  // the left-out rows and columns; the rest of each basis is completed as before.
+  std::vector<Eigen::Index> used_rows, used_columns;
+  for (Eigen::Index i = 0; i < n_; ++i) {
+    if ((e.row(i).array() != 0.0).any()) used_rows.push_back(i);
+    if ((e.col(i).array() != 0.0).any()) used_columns.push_back(i);
+  }
+  Eigen::MatrixXd e_used(static_cast<Eigen::Index>(used_rows.size()),
+                         static_cast<Eigen::Index>(used_columns.size()));
+  for (Eigen::Index i = 0; i < e_used.rows(); ++i)
+    for (Eigen::Index j = 0; j < e_used.cols(); ++j)
+      e_used(i, j) = e(used_rows[static_cast<size_t>(i)], used_columns[static_cast<size_t>(j)]);
+  Eigen::VectorXd sigma;
+  Eigen::MatrixXd u_leading, v_leading;
+  if (e_used.size() > 0) {
+    const Eigen::BDCSVD<Eigen::MatrixXd> svd(e_used, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    sigma = svd.singularValues();
+    while (nd_ < sigma.size() && sigma[nd_] > 1e-12 * sigma[0]) ++nd_;
+    u_leading = Eigen::MatrixXd::Zero(n_, nd_);
+    v_leading = Eigen::MatrixXd::Zero(n_, nd_);
+    for (Eigen::Index i = 0; i < e_used.rows(); ++i)
+      u_leading.row(used_rows[static_cast<size_t>(i)]) = svd.matrixU().row(i).head(nd_);
+    for (Eigen::Index j = 0; j < e_used.cols(); ++j)
+      v_leading.row(used_columns[static_cast<size_t>(j)]) = svd.matrixV().row(j).head(nd_);
+  } else {
+    u_leading = v_leading = Eigen::MatrixXd::Zero(n_, 0);
+  }
   na_ = n_ - nd_;
-  left_ = completed_basis(svd.matrixU().leftCols(nd_));
-  right_ = completed_basis(svd.matrixV().leftCols(nd_));
+  left_ = completed_basis(u_leading);
+  right_ = completed_basis(v_leading);
   const Eigen::MatrixXd a_hat = left_.transpose() * a * right_;
   const Eigen::MatrixXd a11 = a_hat.topLeftCorner(nd_, nd_), a21 = a_hat.bottomLeftCorner(na_, nd_),
                         a22 = a_hat.bottomRightCorner(na_, na_);
