@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "convert.hpp"
+#include "emnet/report/design_study.hpp"
 #include "emnet/studies/design_study.hpp"
 
 namespace emnet_python {
@@ -88,12 +89,13 @@ py::dict run_study(const SceneHandle& handle, const std::vector<std::string>& ke
   const auto columns = static_cast<py::ssize_t>(result.columns.size());
   py::array_t<double> results({rows, columns});
   auto out = results.mutable_unchecked<2>();
-  std::vector<std::string> status;
+  std::vector<std::string> status, validity;
   py::dict cost;
   std::vector<double> seconds;
   for (py::ssize_t i = 0; i < rows; ++i) {
     const auto& row = result.rows[static_cast<std::size_t>(i)];
     status.push_back(row.status.ok ? std::string("ok") : "failed: " + row.status.message);
+    validity.push_back(emnet::validity_text(row));
     for (py::ssize_t j = 0; j < columns; ++j)
       out(i, j) = row.status.ok ? row.values[static_cast<std::size_t>(j)] : NAN;
     seconds.push_back(row.cost.total());
@@ -105,6 +107,8 @@ py::dict run_study(const SceneHandle& handle, const std::vector<std::string>& ke
   dict["units"] = result.units;
   dict["results"] = results;
   dict["status"] = status;
+  dict["validity"] = validity;
+  dict["outside_validity"] = result.outside_validity;
   dict["failed"] = result.failed;
   dict["segments"] = result.segments;
   dict["unknowns"] = result.unknowns;

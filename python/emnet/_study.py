@@ -63,6 +63,7 @@ def _frame(keys, values, first_variant, part):
     for index, key in enumerate(keys):
         data[key] = values[:, index]
     data["status"] = part["status"]
+    data["validity"] = part["validity"]
     for index, column in enumerate(part["columns"]):
         data[column] = part["results"][:, index]
     return pandas.DataFrame(data)
@@ -85,7 +86,9 @@ def study(scene, vary=None, *, samples=0, seed=1, variants=None, analyses=("mode
     back in order, equal bit for bit to a local run's.
 
     Returns a pandas DataFrame: variant, the varied keys (SI), status ("ok" or "failed: why"),
-    the result columns (missing, NaN, in a failed row). df.attrs holds units {column: unit},
+    validity ("within", or "OUTSIDE: " with each violation of the model's limits: deflection
+    against model.deflection_limit, DEA fields against breakdown), the result columns
+    (missing, NaN, in a failed row). df.attrs holds units {column: unit},
     cost (seconds per stage summed over the variants, work and wall seconds), segments,
     unknowns, notes.
     """
@@ -133,6 +136,7 @@ def study(scene, vary=None, *, samples=0, seed=1, variants=None, analyses=("mode
     units = {"variant": ""}
     units.update(dict(zip(first["keys"], first["key_units"])))
     units["status"] = ""
+    units["validity"] = ""
     units.update(dict(zip(first["columns"], first["units"])))
     cost = {name: sum(part["cost"][name] for _, _, part in parts)
             for name in first["cost"] if name != "wall_seconds"}
@@ -140,5 +144,7 @@ def study(scene, vary=None, *, samples=0, seed=1, variants=None, analyses=("mode
     cost["per_variant_seconds"] = cost["work_seconds"] / max(1, len(frame))
     frame.attrs.update({"units": units, "cost": cost, "segments": first["segments"],
                         "unknowns": first["unknowns"], "notes": list(first["notes"]),
-                        "failed": int(sum(part["failed"] for _, _, part in parts))})
+                        "failed": int(sum(part["failed"] for _, _, part in parts)),
+                        "outside_validity": int(sum(part["outside_validity"]
+                                                    for _, _, part in parts))})
     return frame

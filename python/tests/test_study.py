@@ -76,8 +76,11 @@ def test_sweep_columns_and_the_command(fishfin, tmp_path):
     assert frame[column][0] == single.outputs["dx4"]["right"][1]
     # The command writes the same table.
     out = tmp_path / "study.csv"
-    subprocess.run([PROGRAM, "study", FISHFIN, "--vary", vary[0], "--analysis", "sweep-switching",
-                    "--at", "5", "--from", "4", "--to", "6", "--step", "1", "-o", str(out),
-                    "--quiet"], check=True, capture_output=True)
+    run = subprocess.run([PROGRAM, "study", FISHFIN, "--vary", vary[0], "--analysis",
+                          "sweep-switching", "--at", "5", "--from", "4", "--to", "6", "--step",
+                          "1", "-o", str(out), "--quiet"], check=False, capture_output=True)
+    # 5: computed, but a variant's tip swings beyond the model's 10 % deflection limit near 6 Hz.
+    assert run.returncode in (0, 5), run.stderr
+    assert (run.returncode == 5) == (frame["validity"] != "within").any()
     table = pandas.read_csv(out, float_precision="round_trip")  # %.17g reads back exactly
     assert list(table[column]) == list(frame[column])

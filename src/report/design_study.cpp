@@ -22,10 +22,20 @@ std::string status_text(const Status& status) {
 
 }  // namespace
 
+std::string validity_text(const VariantResult& row) {
+  if (!row.status.ok) return "";
+  if (row.validity.within()) return "within";
+  std::string text = "OUTSIDE:";
+  for (const auto& violation : row.validity.violations) text += " " + violation.message + ";";
+  text.pop_back();
+  return text;
+}
+
 std::vector<std::string> design_study_header(const DesignStudyResult& result) {
   std::vector<std::string> header{"variant"};
   header.insert(header.end(), result.keys.begin(), result.keys.end());
   header.push_back("status");
+  header.push_back("validity");
   header.insert(header.end(), result.columns.begin(), result.columns.end());
   return header;
 }
@@ -40,6 +50,7 @@ Status write_design_study_csv(const std::string& path, const DesignStudyResult& 
     line = std::to_string(i);
     for (double value : result.variants[i]) line += "," + number_text(value);
     line += "," + csv_field(status_text(result.rows[i].status));
+    line += "," + csv_field(validity_text(result.rows[i]));
     const auto& values = result.rows[i].values;
     for (std::size_t k = 0; k < result.columns.size(); ++k)
       line += "," + (k < values.size() ? number_text(values[k]) : std::string());
@@ -65,6 +76,7 @@ Json to_json(const DesignStudyResult& result) {
       values[result.keys[k]] = result.variants[i][k];
     row["values"] = values;
     row["status"] = status_text(result.rows[i].status);
+    row["validity"] = validity_text(result.rows[i]);
     if (result.rows[i].status.ok) {
       Json results = Json::object();
       for (std::size_t k = 0; k < result.columns.size(); ++k)
@@ -76,6 +88,7 @@ Json to_json(const DesignStudyResult& result) {
     json["rows"].push_back(row);
   }
   json["failed"] = result.failed;
+  json["outside_validity"] = result.outside_validity;
   json["segments"] = result.segments;
   json["unknowns"] = result.unknowns;
   json["threads"] = result.threads;

@@ -101,7 +101,7 @@ bool has(const std::vector<StudyAnalysis>& analyses, StudyAnalysis analysis) {
 // The analyses of one variant, appending to `values` in the layout's order.
 Status run_analyses(const Scene& scene, const ColumnLayout& layout,
                     const DesignStudyOptions& options, std::vector<double>& values,
-                    VariantCost& cost) {
+                    Validity& validity, VariantCost& cost) {
   Stopwatch stopwatch;
   const Model model = prepare_model(scene);
   const System system = model.network.assemble();
@@ -112,6 +112,7 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
   const OperatingPoint op = operating_point(system, op_options);
   cost.operating_point += stopwatch.seconds();
   if (!op.status.ok) return op.status;
+  std::vector<DeflectionPeak> deflections;  // for the validity check
   for (StudyAnalysis analysis : options.analyses) {
     stopwatch.restart();
     if (analysis == StudyAnalysis::modes) {
@@ -135,8 +136,11 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
         values.push_back(mode.pole_error / (2.0 * M_PI));
       }
     } else if (analysis == StudyAnalysis::static_state) {
-      for (const Probe& probe : layout.static_probes)
+      for (const Probe& probe : layout.static_probes) {
         values.push_back(static_probe_value(system, op.rest, probe));
+        if (probe.quantity == ProbeQuantity::deflection)
+          deflections.push_back({probe.name + " (static)", std::abs(values.back())});
+      }
       cost.static_state += stopwatch.seconds();
     } else {
       // The exact method's model: the DEAs as ideal voltage-driven forces where the scene has
@@ -159,6 +163,13 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
       const SwitchingSweepResult peak = run_switching_sweep(swept, swept.scene, sweep);
       if (!peak.status.ok) return Status::failure("sweep-switching: " + peak.status.message);
       values.push_back(peak.peak_frequency);
+      if (layout.sweep_outputs.back().quantity == ProbeQuantity::deflection) {
+        double largest = 0.0;  // over every frequency of the sweep
+        for (std::size_t k = 0; k < peak.frequencies.size(); ++k)
+          largest = std::max(
+              {largest, std::abs(peak.outputs[0].left[k]), std::abs(peak.outputs[0].right[k])});
+        deflections.push_back({layout.sweep_outputs.back().name + " (sweep)", largest});
+      }
       if (!layout.report_indices.empty()) {
         sweep.frequencies.clear();
         for (std::size_t index : layout.report_indices)
@@ -171,6 +182,10 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
           for (std::size_t k = 0; k < layout.report_indices.size(); ++k) {
             values.push_back(output.left[k]);
             values.push_back(output.right[k]);
+            if (output.probe.quantity == ProbeQuantity::deflection)
+              deflections.push_back(
+                  {output.probe.name + " (sweep)",
+                   std::max(std::abs(output.left[k]), std::abs(output.right[k]))});
           }
       }
       cost.sweep += stopwatch.seconds();
@@ -178,6 +193,7 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
   }
   for (double value : values)
     if (!std::isfinite(value)) return Status::failure("a result is not finite");
+  validity = check_validity(model.scene, deflections, drive_peak_voltages(model.scene));
   return Status::success();
 }
 
@@ -572,7 +588,7 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
           for (std::size_t k = 0; k < table.keys.size(); ++k)
             set_parameter(variant, table.keys[k], table.rows[index][k]);
           row.cost.build += set_watch.seconds();
-          row.status = run_analyses(variant, layout, options, row.values, row.cost);
+          row.status = run_analyses(variant, layout, options, row.values, row.validity, row.cost);
         } catch (const std::exception& error) {
           row.status = Status::failure(error.what());
         }
@@ -599,6 +615,7 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
   for (auto& thread : pool) thread.join();
   for (const VariantResult& row : result.rows) {
     if (!row.status.ok) ++result.failed;
+    if (row.status.ok && !row.validity.within()) ++result.outside_validity;
     result.cost.build += row.cost.build;
     result.cost.operating_point += row.cost.operating_point;
     result.cost.modes += row.cost.modes;

@@ -167,6 +167,26 @@ TEST(DesignStudy, RowsAreTheAnalysesOfEachVariantWhateverTheThreads) {
   EXPECT_EQ(one.failed, 0u);
 }
 
+// The cantilever's tip deflection under 1 N, F·L³/(3EI): 20.8 mm at EI = 2 N·m² (4.2 % of the
+// 0.5 m beam, within the 10 % default limit), 83.3 mm at EI = 0.5 (16.7 %, outside).
+TEST(DesignStudy, AVariantOutsideTheModelsValidityIsFlagged) {
+  const Scene scene = cantilever_with_load();
+  VariantTable table;
+  table.keys = {"beam.bending_stiffness"};
+  table.rows = {{2.0}, {0.5}};
+  DesignStudyOptions options;
+  options.analyses = {StudyAnalysis::static_state};
+  const DesignStudyResult result = run_design_study(scene, table, options);
+  ASSERT_TRUE(result.rows[0].status.ok && result.rows[1].status.ok);
+  EXPECT_TRUE(result.rows[0].validity.within());
+  EXPECT_FALSE(result.rows[1].validity.within());
+  EXPECT_EQ(result.outside_validity, 1u);
+  EXPECT_EQ(validity_text(result.rows[0]), "within");
+  EXPECT_EQ(validity_text(result.rows[1]).rfind("OUTSIDE: ", 0), 0u);
+  EXPECT_NE(validity_text(result.rows[1]).find("model.deflection_limit"), std::string::npos)
+      << validity_text(result.rows[1]);
+}
+
 TEST_F(DesignStudyFiles, AFailingVariantIsARowWithItsReason) {
   const Scene scene = cantilever_with_load();
   VariantTable table;
@@ -189,9 +209,10 @@ TEST_F(DesignStudyFiles, AFailingVariantIsARowWithItsReason) {
   std::getline(in, header);
   std::getline(in, first);
   std::getline(in, second);
-  EXPECT_EQ(header, "variant,beam.bending_stiffness,status,f1_hz,zeta1,f1_error_hz");
+  EXPECT_EQ(header, "variant,beam.bending_stiffness,status,validity,f1_hz,zeta1,f1_error_hz");
+  EXPECT_NE(first.find(",ok,within,"), std::string::npos) << first;
   EXPECT_EQ(second.substr(0, 9), "1,-1,\"fai");
-  EXPECT_EQ(second.substr(second.size() - 3), ",,,");
+  EXPECT_EQ(second.substr(second.size() - 4), ",,,,");  // no validity, no results
 }
 
 }  // namespace

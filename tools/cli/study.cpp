@@ -8,6 +8,7 @@
 #include "cli/common.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/output_file.hpp"
+#include "emnet/model/validity.hpp"
 #include "emnet/report/design_study.hpp"
 #include "emnet/studies/design_study.hpp"
 
@@ -88,8 +89,8 @@ int run_study_command(const CommonOptions& options, const StudyCommandOptions& c
     const std::size_t n = result.rows.size();
     std::cout << "study of " << shown(scene.name) << " (" << shown(scene.file) << "): " << n
               << " variant(s) of " << result.keys.size() << " key(s), " << result.failed
-              << " failed; " << result.segments << " segments, " << result.unknowns
-              << " unknowns\n";
+              << " failed, " << result.outside_validity << " outside the model's validity; "
+              << result.segments << " segments, " << result.unknowns << " unknowns\n";
     for (const auto& note : result.notes) std::cout << "note: " << shown(note) << "\n";
     // Work per variant [ms], by stage.
     auto per_variant = [&](double seconds) {
@@ -133,6 +134,17 @@ int run_study_command(const CommonOptions& options, const StudyCommandOptions& c
       }
     if (result.failed > shown_failures)
       std::cout << "(" << result.failed - shown_failures << " more failed; see the table)\n";
+    if (result.outside_validity > 0) {
+      std::size_t first = 0;
+      while (result.rows[first].validity.within() || !result.rows[first].status.ok) ++first;
+      const std::string warning = "WARNING: " + std::to_string(result.outside_validity) +
+                                  " variant(s) outside the model's validity (column validity), "
+                                  "the first, variant " +
+                                  std::to_string(first) + ": " +
+                                  emnet::validity_text(result.rows[first]);
+      std::cout << shown(warning) << "\n";
+      std::cerr << "emnet: " << shown(warning) << "\n";
+    }
   }
   if (!output.empty()) {
     if (json_file) {
@@ -143,7 +155,7 @@ int run_study_command(const CommonOptions& options, const StudyCommandOptions& c
       check_csv(emnet::write_design_study_csv(output, result));
     }
   }
-  return 0;
+  return result.outside_validity > 0 ? emnet::kExitOutsideValidity : 0;
 }
 
 Command add_study_command(CLI::App& app, CommonOptions& options) {

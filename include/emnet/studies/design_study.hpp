@@ -46,6 +46,7 @@
 
 #include "emnet/core/errors.hpp"
 #include "emnet/core/progress.hpp"
+#include "emnet/model/validity.hpp"
 #include "emnet/scene/scene.hpp"
 
 namespace emnet {
@@ -125,6 +126,10 @@ struct VariantCost {
 struct VariantResult {
   Status status;               // failed: why ("set_parameter: key 'beam.length': must be > 0 …")
   std::vector<double> values;  // one per DesignStudyResult::columns; empty when failed
+  // The model's validity (emnet/model/validity.hpp) over what the variant computed: the static
+  // deflection probes, the sweep's deflection extremes, the drive's peak DEA voltages. Its
+  // summary and violations; checked for every variant that computed.
+  Validity validity;
   VariantCost cost;
 };
 
@@ -135,8 +140,9 @@ struct DesignStudyResult {
   std::vector<std::vector<double>> variants;  // the table's rows
   std::vector<std::string> columns;           // result columns (see above), with their units:
   std::vector<std::string> units;
-  std::vector<VariantResult> rows;  // one per variant, in order
-  std::size_t failed = 0;           // rows whose status failed
+  std::vector<VariantResult> rows;   // one per variant, in order
+  std::size_t failed = 0;            // rows whose status failed
+  std::size_t outside_validity = 0;  // rows computed but outside the model's validity
   int threads = 1;
   int unknowns = 0;      // of the nominal network
   int segments = 0;      // of every variant's beam
