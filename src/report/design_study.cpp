@@ -1,19 +1,17 @@
 // A design study's table as CSV or JSON (emnet/report/design_study.hpp).
 #include "emnet/report/design_study.hpp"
 
-#include <cstdio>
-
 #include "emnet/core/output_file.hpp"
+#include "emnet/core/units.hpp"
 #include "emnet/report/csv.hpp"
 
 namespace emnet {
 
 namespace {
 
+// %.17g: the double reads back exactly.
 std::string number_text(double value) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
+  return format_number("%.17g", value);
 }
 
 std::string status_text(const Status& status) {
