@@ -6,7 +6,6 @@
 #include <optional>
 
 #include "convert.hpp"
-#include "emnet/analysis/operating_point.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/model/outputs.hpp"
 #include "emnet/report/ac_json.hpp"
@@ -18,6 +17,7 @@
 #include "emnet/studies/identify.hpp"
 #include "emnet/studies/mismatch.hpp"
 #include "emnet/studies/modes_study.hpp"
+#include "emnet/studies/prepared_model.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "emnet/studies/sensitivity.hpp"
 #include "emnet/studies/static_study.hpp"
@@ -62,20 +62,13 @@ std::vector<emnet::Probe> parse_probes(const emnet::Model& model,
   return probes;
 }
 
-struct Prepared {
-  emnet::Model model;
-  emnet::System system;
-  emnet::OperatingPoint op;
-};
-
-Prepared prepare(const emnet::Scene& scene, const std::vector<std::string>& probes,
-                 bool require_static) {
-  Prepared p{emnet::prepare_model(with_segments(scene), prepare_for(probes)), {}, {}};
-  p.system = p.model.network.assemble();
+emnet::PreparedModel prepare(const emnet::Scene& scene, const std::vector<std::string>& probes,
+                             bool require_static) {
   emnet::OperatingPointOptions options;
   options.require_static = require_static;
-  p.op = emnet::operating_point(p.system, options);
-  require(p.op.status, "");
+  emnet::PreparedModel p =
+      emnet::prepare_at_rest(with_segments(scene), prepare_for(probes), options);
+  require(p.status, "");
   return p;
 }
 
@@ -87,16 +80,16 @@ py::dict validity_dict(const emnet::Validity& validity) {
 
 py::dict run_static(const SceneHandle& handle, const std::vector<std::string>& probe_texts) {
   emnet::Stopwatch stopwatch;
-  Prepared p;
+  emnet::PreparedModel p;
   std::vector<emnet::Probe> probes;
   emnet::StaticStudyValues values;
   {
     py::gil_scoped_release release;
     p = prepare(handle.scene, probe_texts, true);
     probes = parse_probes(p.model, probe_texts);
-    values = emnet::static_study_values(p.model, p.system, p.op.rest, probes);
+    values = emnet::static_study_values(p.model, p.system, p.rest, probes);
   }
-  return to_python(emnet::to_json(p.model, p.op.rest, values.nodes, probes, values.probe_values,
+  return to_python(emnet::to_json(p.model, p.rest, values.nodes, probes, values.probe_values,
                                   values.validity, stopwatch.seconds()))
       .cast<py::dict>();
 }
@@ -131,7 +124,7 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
                 const std::vector<std::string>& probe_texts, bool reduce,
                 std::optional<double> tolerance, std::optional<double> band_hz) {
   emnet::Stopwatch stopwatch;
-  Prepared p;
+  emnet::PreparedModel p;
   std::vector<emnet::Probe> probes;
   emnet::AcStudyResult result;
   std::string input;
@@ -167,7 +160,7 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
       emnet::validate(reduction);
       options.reduction = reduction;
     }
-    result = emnet::run_ac_study(p.model, p.system, p.op.rest.operating_point, options);
+    result = emnet::run_ac_study(p.model, p.system, p.rest.operating_point, options);
     require(result.status, reduce ? "ac (reduced): " : "ac: ");
     input = emnet::ac_input_description(p.model.scene, spec.to);
   }

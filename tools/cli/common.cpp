@@ -32,6 +32,7 @@
 #include "emnet/scene/parameters.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/spice/spice_netlist.hpp"
+#include "emnet/studies/prepared_model.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "emnet/studies/segment_selection.hpp"
 #include "emnet/studies/sensitivity.hpp"
@@ -227,17 +228,15 @@ Prepared prepare(const CommonOptions& options, bool require_static,
                  std::optional<emnet::Scene> scene) {
   if (!scene) scene = load_scene(options);
   show_phase(options, "building the network");
-  Prepared p{resolved_model(*scene, options), {}, {}};
-  p.system = p.model.network.assemble();
   emnet::OperatingPointOptions point_options;
   point_options.static_options.progress = progress_of(options);
   point_options.require_static = require_static;
-  emnet::OperatingPoint point = emnet::operating_point(p.system, point_options);
+  emnet::PrepareOptions prepare;
+  prepare.electrical_probe_requested = electrical_probe_requested(options);
+  emnet::PreparedModel prepared = emnet::prepare_at_rest(*scene, prepare, point_options);
   stop_if_interrupted();
-  if (!point.status.ok) throw NumericalFailure(point.status.message);
-  if (point.about_zero) p.model.notes.push_back(point.note);
-  p.rest = std::move(point.rest);
-  return p;
+  if (!prepared.status.ok) throw NumericalFailure(prepared.status.message);
+  return {std::move(prepared.model), std::move(prepared.system), std::move(prepared.rest)};
 }
 
 void add_common(CLI::App* command, CommonOptions& options) {
