@@ -7,6 +7,13 @@ import os
 from . import _emnet
 
 
+def input_error(message, key="", where="python"):
+    """An emnet.InputError raised by the package itself, with .where and .key as the library's."""
+    error = _emnet.InputError((f"key '{key}': " if key else "") + message)
+    error.where, error.key = where, key
+    return error
+
+
 def _toml_value(value, key):
     if isinstance(value, bool):
         return "true" if value else "false"
@@ -14,7 +21,7 @@ def _toml_value(value, key):
         return str(value)
     if isinstance(value, float):
         if not math.isfinite(value):
-            raise _emnet.InputError(f"key '{key}': {value!r} is not a finite number")
+            raise input_error(f"{value!r} is not a finite number", key)
         return repr(value)
     if isinstance(value, str):
         return json.dumps(value, ensure_ascii=False)
@@ -23,14 +30,14 @@ def _toml_value(value, key):
     if isinstance(value, dict):
         return "{" + ", ".join(f"{name} = {_toml_value(item, key + '.' + name)}"
                                for name, item in value.items()) + "}"
-    raise _emnet.InputError(f"key '{key}': a {type(value).__name__} is not a scene value "
-                            "(numbers, strings, booleans, lists and dicts are)")
+    raise input_error(f"a {type(value).__name__} is not a scene value (numbers, strings, "
+                      "booleans, lists and dicts are)", key)
 
 
 def dict_to_toml(data):
     """The TOML text of a scene given as a dict: {"beam": {...}, "dea": [{...}, {...}], ...}."""
     if not isinstance(data, dict):
-        raise _emnet.InputError("a scene dict maps table names to tables, e.g. "
+        raise input_error("a scene dict maps table names to tables, e.g. "
                                 "{'beam': {'length': '120 mm', ...}, 'dea': [{...}]}")
     lines = []
     for table, content in data.items():
@@ -44,8 +51,8 @@ def dict_to_toml(data):
                 lines += [f"{key} = {_toml_value(value, f'{table}[{index}].{key}')}"
                           for key, value in entry.items()]
         else:
-            raise _emnet.InputError(f"key '{table}': a table (dict) or a list of tables is "
-                                    f"expected, got {type(content).__name__}")
+            raise input_error(f"a table (dict) or a list of tables is "
+                              f"expected, got {type(content).__name__}", table)
         lines.append("")
     return "\n".join(lines)
 
@@ -54,7 +61,7 @@ def _override_texts(overrides):
     if overrides is None:
         return []
     if not isinstance(overrides, dict):
-        raise _emnet.InputError("overrides are a dict {key: value}, e.g. "
+        raise input_error("overrides are a dict {key: value}, e.g. "
                                 "{'beam.length': '0.2 m', 'drive.voltage': 3000}")
     texts = []
     for key, value in overrides.items():
@@ -81,7 +88,7 @@ class Scene:
             self._handle = _handle
             return
         if path is None:
-            raise _emnet.InputError("Scene(path): give a scene file's path (or use "
+            raise input_error("Scene(path): give a scene file's path (or use "
                                     "Scene.from_text / Scene.from_dict)")
         self._handle = _emnet.SceneHandle.read(os.fspath(path), _override_texts(set))
 
@@ -159,4 +166,4 @@ def as_scene(scene):
         return scene
     if isinstance(scene, (str, os.PathLike)):
         return Scene(scene)
-    raise _emnet.InputError(f"expected a Scene or a scene file's path, got {type(scene).__name__}")
+    raise input_error(f"expected a Scene or a scene file's path, got {type(scene).__name__}")

@@ -2,10 +2,11 @@
 
 import math
 import os
+import sys
 import time
 
 from . import _emnet
-from ._scene import Scene, as_scene
+from ._scene import Scene, as_scene, input_error
 
 
 def _vary_texts(vary):
@@ -30,14 +31,19 @@ def variants(scene, vary=None, samples=0, seed=1, variants=None):
     vary: ["KEY=SPEC", ...] or {KEY: SPEC}: values "v1,v2" or linspace(a,b,n), logspace(a,b,n)
     (a grid), uniform(a,b), normal(mean,sd), lognormal(median,s) (Monte Carlo, `samples` draws
     per grid point from `seed`). Values in SI, with a unit ("60 mm") or a percentage of the
-    scene's value ("95%"). variants: a CSV file (a header of keys, a variant per line) instead.
+    scene's value ("95%"); "KEY1+KEY2=SPEC" changes both keys by the same ratio. variants: a CSV
+    file (a header of keys, a variant per line) or a DataFrame of keys instead.
     """
+    return _variant_table(scene, vary, samples, seed, variants)
+
+
+def _variant_table(scene, vary, samples, seed, variants):
     import pandas
 
     handle = as_scene(scene)._handle
     if variants is not None:
         if vary:
-            raise _emnet.InputError("give vary or variants, not both")
+            raise input_error("give vary or variants, not both", "variants")
         if isinstance(variants, (str, os.PathLike)):
             keys, values = _emnet.read_variants(handle, os.fspath(variants))
         else:
@@ -96,7 +102,7 @@ def study(scene, vary=None, *, samples=0, seed=1, variants=None, analyses=("mode
 
     started = time.perf_counter()
     scene = as_scene(scene)
-    table = globals()["variants"](scene, vary, samples, seed, variants)
+    table = _variant_table(scene, vary, samples, seed, variants)
     keys = list(table.columns)
     values = numpy.ascontiguousarray(table.to_numpy(dtype=float))
     options = {"analyses": _analyses_text(analyses), "modes": modes,
@@ -108,11 +114,11 @@ def study(scene, vary=None, *, samples=0, seed=1, variants=None, analyses=("mode
     else:
         workers = client.scheduler_info()["workers"]
         if not workers:
-            raise _emnet.InputError("client: the Dask cluster has no workers")
+            raise input_error("the Dask cluster has no workers", "client")
         if chunk_size is None:
             chunk_size = max(20, math.ceil(len(values) / (4 * len(workers))))
         if chunk_size < 1:
-            raise _emnet.InputError("chunk_size must be >= 1")
+            raise input_error("must be >= 1", "chunk_size")
         state = scene.__getstate__()
         starts = list(range(0, len(values), chunk_size))
         chunks = [values[start:start + chunk_size] for start in starts]
@@ -124,9 +130,9 @@ def study(scene, vary=None, *, samples=0, seed=1, variants=None, analyses=("mode
             results.append(future.result())
             if progress:
                 print(f"\remnet study: {done}/{len(futures)} chunks", end="", flush=True,
-                      file=__import__("sys").stderr)
+                      file=sys.stderr)
         if progress:
-            print(file=__import__("sys").stderr)
+            print(file=sys.stderr)
         parts = list(zip(starts, chunks, results))
     import pandas
 
