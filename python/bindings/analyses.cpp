@@ -173,7 +173,7 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
   auto view = values.mutable_unchecked<2>();
   for (py::ssize_t i = 0; i < rows; ++i)
     for (py::ssize_t j = 0; j < columns; ++j) view(i, j) = result.ac.values[i][j];
-  out["values"] = values;
+  out["phasors"] = values;
   return out;
 }
 

@@ -49,7 +49,7 @@ def ac(scene, from_hz=None, to_hz=None, points=None, log=None, probes=None, redu
     reduce: by modal reduction, checked against the full model (tolerance, band_hz).
 
     Returns a Result with frequencies_hz [Hz], probes (name, description, unit, magnitude in
-    the probe's unit per unit input, phase_deg [deg]; 2-D arrays [probe, frequency]), values
+    the probe's unit per unit input, phase_deg [deg]; 2-D arrays [probe, frequency]), phasors
     (the complex responses, [probe, frequency]), input (what drives it), resonances_hz,
     accuracy (max_relative_residual), cost, validity.
     """

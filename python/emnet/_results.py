@@ -5,7 +5,8 @@ class Result(dict):
     """A result of an emnet analysis: a dict whose keys read as attributes too.
 
     Nested dicts are Results as well. Arrays are numpy arrays; their units are in the keys'
-    names (frequency_hz, x_m, times_s) or in a "unit" entry beside them.
+    names (frequency_hz, x_m, times_s) or in a "unit" entry beside them. A key that is also a
+    dict method (values, items, keys) reads with brackets: result.outputs["values"].
     """
 
     def __init__(self, *args, **kwargs):

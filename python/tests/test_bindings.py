@@ -41,7 +41,7 @@ def test_ac_equals_the_command(cantilever):
     for k, probe in enumerate(reference["probes"]):
         assert list(result.probes["magnitude"][k]) == probe["magnitude"]
         assert list(result.probes["phase_deg"][k]) == probe["phase_deg"]
-    assert numpy.allclose(numpy.abs(result["values"]), result.probes["magnitude"], rtol=1e-15,
+    assert numpy.allclose(numpy.abs(result.phasors), result.probes["magnitude"], rtol=1e-15,
                           atol=0)
 
 
