@@ -202,17 +202,20 @@ Eigen::VectorXd DisplacementForm::from_static(const Eigen::VectorXd& z) const {
 double DisplacementForm::probe(const Probe& probe, const Eigen::VectorXd& u,
                                const Eigen::VectorXd& up) const {
   double value = 0.0;
-  for (const auto& [index, coefficient] : probe.terms) {
-    const int power = (mechanical(index) ? 1 : 0) - probe.integrations;
-    if (power == 0)
-      value += coefficient * u[index];
-    else if (power == 1)
-      value += coefficient * (velocity_of(index) >= 0 ? u[velocity_of(index)] : up[index]);
-    else
-      throw std::runtime_error("probe '" + probe.name + "' integrates an electrical quantity");
-  }
+  for_each_probe_term(probe, [&](bool on_rate, int index, double coefficient) {
+    value += coefficient * (on_rate ? up[index] : u[index]);
+  });
   // Squares (a DEA's k_F·u²) of electrical voltages, which u holds as they are.
   return value + squares_value(probe, u);
+}
+
+void DisplacementForm::probe_rows(const Probe& probe, Eigen::RowVectorXd& on_u,
+                                  Eigen::RowVectorXd& on_up) const {
+  on_u = Eigen::RowVectorXd::Zero(size_);
+  on_up = Eigen::RowVectorXd::Zero(size_);
+  for_each_probe_term(probe, [&](bool on_rate, int index, double coefficient) {
+    (on_rate ? on_up : on_u)[index] += coefficient;
+  });
 }
 
 }  // namespace emnet

@@ -14,6 +14,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -69,8 +70,28 @@ class DisplacementForm {
   Eigen::VectorXd from_static(const Eigen::VectorXd& z) const;
   // Value of a probe: deflections from z, velocities from v or z', voltages from z.
   double probe(const Probe& probe, const Eigen::VectorXd& u, const Eigen::VectorXd& up) const;
+  // The linear part of probe() as rows: probe(p, u, u') = on_u·u + on_up·u' + its squares.
+  void probe_rows(const Probe& probe, Eigen::RowVectorXd& on_u, Eigen::RowVectorXd& on_up) const;
 
  private:
+  // visit(on_rate, index, coefficient) for each linear term of the probe: the coefficient
+  // multiplies u[index] (on_rate false) or u'[index] (on_rate true). A deflection is z, a
+  // velocity v (the node's velocity unknown) or z'; an electrical quantity is read as it is.
+  template <class Visit>
+  void for_each_probe_term(const Probe& probe, Visit visit) const {
+    for (const auto& [index, coefficient] : probe.terms) {
+      const int power = (mechanical(index) ? 1 : 0) - probe.integrations;
+      if (power == 0)
+        visit(false, index, coefficient);
+      else if (power == 1 && velocity_of(index) >= 0)
+        visit(false, velocity_of(index), coefficient);
+      else if (power == 1)
+        visit(true, index, coefficient);
+      else
+        throw std::runtime_error("probe '" + probe.name + "' integrates an electrical quantity");
+    }
+  }
+
   const System& system_;
   int size_ = 0;
   std::vector<bool> mechanical_, divided_, differential_;

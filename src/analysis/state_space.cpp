@@ -28,6 +28,30 @@ Eigen::MatrixXd completed_basis(const Eigen::MatrixXd& leading) {
   return basis;
 }
 
+// Osborne's balancing (as in LAPACK's dgebal, powers of two): D such that every row and column
+// of D⁻¹·M·D, off the diagonal, has the same 1-norm. The exponential's rounding error is
+// relative to ‖M·h‖, which balancing makes as small as a diagonal similarity can.
+void balance(const Eigen::MatrixXd& m, Eigen::VectorXd& scale, Eigen::MatrixXd& balanced) {
+  const Eigen::Index n = m.rows();
+  scale = Eigen::VectorXd::Ones(n);
+  balanced = m;
+  for (int sweep = 0; sweep < 100; ++sweep) {
+    bool changed = false;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const double column = balanced.col(k).cwiseAbs().sum() - std::abs(balanced(k, k));
+      const double row = balanced.row(k).cwiseAbs().sum() - std::abs(balanced(k, k));
+      if (column == 0.0 || row == 0.0) continue;
+      const double factor = std::exp2(std::round(0.5 * std::log2(row / column)));
+      if (factor == 1.0) continue;
+      changed = true;
+      balanced.col(k) *= factor;
+      balanced.row(k) /= factor;
+      scale[k] *= factor;
+    }
+    if (!changed) break;
+  }
+}
+
 }  // namespace
 
 AffinePiece affine_piece(const System& system, int size, double t0, double t1) {
@@ -46,18 +70,25 @@ double characteristic_angular_frequency(const System& system, double end_time) {
   return 2 * M_PI * frequency;
 }
 
-LinearStateSpace::LinearStateSpace(const DisplacementForm& form, double angular_frequency) {
+LinearStateSpace::LinearStateSpace(const DisplacementForm& form, double angular_frequency)
+    : LinearStateSpace(form, form.a(), form.e(), angular_frequency) {
   if (form.system().is_nonlinear())
     throw std::runtime_error(
         "the exact method needs a linear network; this one has nonlinear DEAs (set "
         "drive.electrical_dynamics = false for ideal voltage-driven DEAs, or use IDA)");
+}
+
+LinearStateSpace::LinearStateSpace(const DisplacementForm& form,
+                                   const Eigen::SparseMatrix<double>& a_matrix,
+                                   const Eigen::SparseMatrix<double>& e_matrix,
+                                   double angular_frequency) {
   n_ = form.size();
-  const DiagonalScaling scaling = equilibrate_pencil(form.a(), form.e(), angular_frequency);
+  const DiagonalScaling scaling = equilibrate_pencil(a_matrix, e_matrix, angular_frequency);
   time_scale_ = scaling.frequency;
   row_scale_ = scaling.row;
   column_scale_ = scaling.column;
-  const Eigen::MatrixXd e = Eigen::MatrixXd(scaled(form.e(), scaling, time_scale_));
-  const Eigen::MatrixXd a = Eigen::MatrixXd(scaled(form.a(), scaling));
+  const Eigen::MatrixXd e = Eigen::MatrixXd(scaled(e_matrix, scaling, time_scale_));
+  const Eigen::MatrixXd a = Eigen::MatrixXd(scaled(a_matrix, scaling));
   // The SVD of Ê on its non-zero rows and columns only (most rows of the displacement form are
   // algebraic: no Ê entry at all). Zero rows and columns add nothing but zero singular values,
   // so the singular values and the singular vectors of the nonzero ones are Ê's, with zeros at
@@ -102,26 +133,7 @@ LinearStateSpace::LinearStateSpace(const DisplacementForm& form, double angular_
   sigma_inv_ = time_scale_ * sigma.head(nd_).cwiseInverse();
   m_ = sigma_inv_.asDiagonal() * (a12_ * a22_inv_a21_ - a11);
   if (!m_.allFinite()) throw std::runtime_error("the reduced state matrix is not finite");
-  // Osborne's balancing (as in LAPACK's dgebal, powers of two): D such that every row and
-  // column of D⁻¹·M·D, off the diagonal, has the same 1-norm. The exponential's rounding
-  // error is relative to ‖M·h‖, which balancing makes as small as a diagonal similarity can.
-  balance_ = Eigen::VectorXd::Ones(nd_);
-  balanced_m_ = m_;
-  for (int sweep = 0; sweep < 100; ++sweep) {
-    bool changed = false;
-    for (Eigen::Index k = 0; k < nd_; ++k) {
-      const double column = balanced_m_.col(k).cwiseAbs().sum() - std::abs(balanced_m_(k, k));
-      const double row = balanced_m_.row(k).cwiseAbs().sum() - std::abs(balanced_m_(k, k));
-      if (column == 0.0 || row == 0.0) continue;
-      const double factor = std::exp2(std::round(0.5 * std::log2(row / column)));
-      if (factor == 1.0) continue;
-      changed = true;
-      balanced_m_.col(k) *= factor;
-      balanced_m_.row(k) /= factor;
-      balance_[k] *= factor;
-    }
-    if (!changed) break;
-  }
+  balance(m_, balance_, balanced_m_);
   // Hidden constraints H·u = 0 (differentiated levers, displacement_form.hpp) are invariants of
   // the state equation: M has a zero eigenvalue for each, and rounding in M·x + N·f would
   // let the state drift along them (a lever slowly violating its kinematics). project()
@@ -130,9 +142,10 @@ LinearStateSpace::LinearStateSpace(const DisplacementForm& form, double angular_
   const Eigen::Index k = static_cast<Eigen::Index>(hidden.size());
   if (k > 0 && k <= nd_) {
     Eigen::MatrixXd h(k, n_);
-    const Eigen::SparseMatrix<double, Eigen::RowMajor> e_rows = form.e();
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> e_rows = e_matrix;
     for (Eigen::Index i = 0; i < k; ++i) h.row(i) = Eigen::RowVectorXd(e_rows.row(hidden[i]));
     constraint_ = h;  // its null vectors are found on the first project()
+    hidden_rows_ = h;
   }
 }
 
@@ -178,7 +191,8 @@ LinearStateSpace::Propagator LinearStateSpace::propagator(double h) const {
   augmented.topRightCorner(nd_, nd_) = Eigen::MatrixXd::Identity(nd_, nd_) * h;
   const Eigen::MatrixXd exponential = augmented.exp();
   return {balance_.asDiagonal() * exponential.topRightCorner(nd_, nd_) *
-          balance_.cwiseInverse().asDiagonal()};
+              balance_.cwiseInverse().asDiagonal(),
+          Eigen::MatrixXd()};
 }
 
 LinearStateSpace::Propagator LinearStateSpace::ramp_propagator(double h) const {
@@ -196,57 +210,146 @@ LinearStateSpace::Propagator LinearStateSpace::ramp_propagator(double h) const {
 }
 
 const LinearStateSpace::ModalBasis* LinearStateSpace::modal_basis() const {
-  if (modes_state_ == 0) {
-    modes_state_ = -1;
-    const Eigen::EigenSolver<Eigen::MatrixXd> solver(balanced_m_);
-    if (solver.info() == Eigen::Success) {
-      basis_.values = solver.eigenvalues();
-      basis_.vectors = balance_.cast<std::complex<double>>().asDiagonal() * solver.eigenvectors();
-      basis_.vectors_lu.compute(basis_.vectors);
-      const Eigen::MatrixXcd inverse = basis_.vectors_lu.inverse();
-      const double condition = basis_.vectors.cwiseAbs().colwise().sum().maxCoeff() *
-                               inverse.cwiseAbs().colwise().sum().maxCoeff();
-      if (condition < 1e6 && inverse.allFinite()) modes_state_ = 1;
+  if (modes_state_ == 0) modes_state_ = ModalBasis::of(m_, basis_) ? 1 : -1;
+  return modes_state_ > 0 ? &basis_ : nullptr;
+}
+
+Eigen::MatrixXd LinearStateSpace::hidden_constraints_on_state() const {
+  if (hidden_rows_.size() == 0) return Eigen::MatrixXd(0, nd_);
+  return hidden_rows_ * u_of_state();
+}
+
+bool LinearStateSpace::ModalBasis::of(const Eigen::MatrixXd& m, ModalBasis& basis) {
+  Eigen::VectorXd scale;
+  Eigen::MatrixXd balanced;
+  balance(m, scale, balanced);
+  const Eigen::EigenSolver<Eigen::MatrixXd> solver(balanced);
+  if (solver.info() != Eigen::Success) return false;
+  basis.values = solver.eigenvalues();
+  basis.vectors = scale.cast<std::complex<double>>().asDiagonal() * solver.eigenvectors();
+  basis.vectors_lu.compute(basis.vectors);
+  // κ₁ by the LU's estimate of ‖V⁻¹‖₁ (Hager–Higham, as LAPACK's gecon): O(n²), where the
+  // explicit inverse was O(n³); the estimate is a lower bound, within a factor of a few of κ₁.
+  basis.condition = 1.0 / basis.vectors_lu.rcond();
+  const Eigen::VectorXcd& lambda = basis.values;
+  bool paired = true;
+  std::vector<double> factors;
+  basis.half.clear();
+  for (Eigen::Index k = 0; k < lambda.size(); ++k) {
+    if (lambda[k].imag() == 0.0) {
+      basis.half.push_back(k);
+      factors.push_back(1.0);
+    } else if (lambda[k].imag() > 0.0 && k + 1 < lambda.size() &&
+               lambda[k + 1] == std::conj(lambda[k]) &&
+               basis.vectors.col(k + 1) == basis.vectors.col(k).conjugate()) {
+      basis.half.push_back(k);
+      factors.push_back(2.0);
+      ++k;
+    } else {
+      paired = false;
+      break;
     }
   }
-  return modes_state_ > 0 ? &basis_ : nullptr;
+  if (!paired) {
+    basis.half.resize(static_cast<size_t>(lambda.size()));
+    for (Eigen::Index k = 0; k < lambda.size(); ++k) basis.half[static_cast<size_t>(k)] = k;
+    factors.assign(static_cast<size_t>(lambda.size()), 1.0);
+  }
+  basis.half_factor =
+      Eigen::Map<Eigen::VectorXd>(factors.data(), static_cast<Eigen::Index>(factors.size()));
+  return basis.condition < 1e6 && basis.vectors.allFinite();
+}
+
+std::complex<double> LinearStateSpace::ModalBasis::increment(std::complex<double> lambda,
+                                                             double h) {
+  const std::complex<double> z = lambda * h;
+  // φ₁ by its series where e^z − 1 would cancel (error below z⁴/120 ≈ 1e-14 there).
+  const std::complex<double> phi = std::abs(z) < 1e-3
+                                       ? 1.0 + z * (1.0 / 2.0 + z * (1.0 / 6.0 + z / 24.0))
+                                       : (std::exp(z) - 1.0) / z;
+  return h * phi;
+}
+
+std::complex<double> LinearStateSpace::ModalBasis::ramp_increment(std::complex<double> lambda,
+                                                                  double h) {
+  const std::complex<double> z = lambda * h;
+  // φ₂(z) = Σ_m z^m/(m + 2)! below |z| = 1, where (e^z − 1 − z)/z² would lose up to
+  // ε/|z|² to cancellation; 17 terms (Horner from the highest) leave |z|¹⁷/19! < 1e-17.
+  // From |z| = 1 on the quotient is fine: |e^z − 1 − z| ≥ e⁻¹ on the unit circle against
+  // terms of at most e + 2, so its rounding stays near 10 ε.
+  std::complex<double> phi = 0.0;
+  if (std::abs(z) < 1.0) {
+    double coefficient = 1.0;  // 1/(m + 2)! for m = 16
+    for (int j = 2; j <= 18; ++j) coefficient /= j;
+    for (int m = 16; m >= 0; --m) {
+      phi = phi * z + coefficient;
+      coefficient *= m + 2;
+    }
+  } else {
+    phi = (std::exp(z) - 1.0 - z) / (z * z);
+  }
+  return h * h * phi;
 }
 
 Eigen::VectorXcd LinearStateSpace::ModalBasis::increments(double h) const {
   Eigen::VectorXcd out(values.size());
-  for (Eigen::Index k = 0; k < values.size(); ++k) {
-    const std::complex<double> z = values[k] * h;
-    // φ₁ by its series where e^z − 1 would cancel (error below z⁴/120 ≈ 1e-14 there).
-    const std::complex<double> phi = std::abs(z) < 1e-3
-                                         ? 1.0 + z * (1.0 / 2.0 + z * (1.0 / 6.0 + z / 24.0))
-                                         : (std::exp(z) - 1.0) / z;
-    out[k] = h * phi;
-  }
+  for (Eigen::Index k = 0; k < values.size(); ++k) out[k] = increment(values[k], h);
   return out;
 }
 
 Eigen::VectorXcd LinearStateSpace::ModalBasis::ramp_increments(double h) const {
   Eigen::VectorXcd out(values.size());
-  for (Eigen::Index k = 0; k < values.size(); ++k) {
-    const std::complex<double> z = values[k] * h;
-    // φ₂(z) = Σ_m z^m/(m + 2)! below |z| = 1, where (e^z − 1 − z)/z² would lose up to
-    // ε/|z|² to cancellation; 17 terms (Horner from the highest) leave |z|¹⁷/19! < 1e-17.
-    // From |z| = 1 on the quotient is fine: |e^z − 1 − z| ≥ e⁻¹ on the unit circle against
-    // terms of at most e + 2, so its rounding stays near 10 ε.
-    std::complex<double> phi = 0.0;
-    if (std::abs(z) < 1.0) {
-      double coefficient = 1.0;  // 1/(m + 2)! for m = 16
-      for (int j = 2; j <= 18; ++j) coefficient /= j;
-      for (int m = 16; m >= 0; --m) {
-        phi = phi * z + coefficient;
-        coefficient *= m + 2;
-      }
-    } else {
-      phi = (std::exp(z) - 1.0 - z) / (z * z);
-    }
-    out[k] = h * h * phi;
-  }
+  for (Eigen::Index k = 0; k < values.size(); ++k) out[k] = ramp_increment(values[k], h);
   return out;
+}
+
+ModalClock::ModalClock(const LinearStateSpace::ModalBasis& basis) {
+  poles_.resize(static_cast<Eigen::Index>(basis.half.size()));
+  for (size_t k = 0; k < basis.half.size(); ++k)
+    poles_[static_cast<Eigen::Index>(k)] = basis.values[basis.half[k]];
+  restart(false);
+}
+
+void ModalClock::restart(bool ramp) {
+  ramp_ = ramp;
+  offset_ = 0.0;
+  exponential_ = Eigen::VectorXcd::Ones(poles_.size());
+  integral_ = ramp_integral_ = Eigen::VectorXcd::Zero(poles_.size());
+}
+
+const ModalClock::Step& ModalClock::step(double delta) {
+  for (const Step& cached : steps_)
+    if (cached.delta == delta && (!ramp_ || cached.with_ramp)) return cached;
+  Step fresh;
+  fresh.delta = delta;
+  fresh.with_ramp = ramp_;
+  fresh.exponential.resize(poles_.size());
+  fresh.integral.resize(poles_.size());
+  fresh.ramp_integral.resize(poles_.size());
+  for (Eigen::Index k = 0; k < poles_.size(); ++k) {
+    fresh.exponential[k] = std::exp(poles_[k] * delta);
+    fresh.integral[k] = LinearStateSpace::ModalBasis::increment(poles_[k], delta);
+    fresh.ramp_integral[k] = ramp_ ? LinearStateSpace::ModalBasis::ramp_increment(poles_[k], delta)
+                                   : std::complex<double>(NAN, NAN);
+  }
+  if (steps_.size() < 4) {
+    steps_.push_back(std::move(fresh));
+    return steps_.back();
+  }
+  Step& slot = steps_[next_slot_];
+  next_slot_ = (next_slot_ + 1) % steps_.size();
+  slot = std::move(fresh);
+  return slot;
+}
+
+void ModalClock::advance_to(double offset) {
+  const double delta = offset - offset_;
+  if (delta == 0.0) return;
+  const Step& s = step(delta);
+  if (ramp_) ramp_integral_ += delta * integral_ + exponential_.cwiseProduct(s.ramp_integral);
+  integral_ += exponential_.cwiseProduct(s.integral);
+  exponential_ = exponential_.cwiseProduct(s.exponential);
+  offset_ = offset;
 }
 
 void LinearStateSpace::full_state(const Eigen::VectorXd& x, const Eigen::VectorXd& f,
@@ -286,22 +389,27 @@ LinearStateSpace::StateMaps LinearStateSpace::state_maps() const {
   maps.forcing_matrix =
       sigma_inv_.asDiagonal() * (na_ > 0 ? Eigen::MatrixXd(f_hat.topRows(nd_) - a12_ * a22_inv_f2)
                                          : Eigen::MatrixXd(f_hat.topRows(nd_)));
-  Eigen::MatrixXd w_x = Eigen::MatrixXd::Zero(n_, nd_), w_f = Eigen::MatrixXd::Zero(n_, sources);
+  Eigen::MatrixXd w_f = Eigen::MatrixXd::Zero(n_, sources);
   Eigen::MatrixXd wp_x(n_, nd_), wp_f(n_, sources);
-  w_x.topRows(nd_).setIdentity();
   wp_x.topRows(nd_) = m_;
   wp_f.topRows(nd_) = maps.forcing_matrix;
   if (na_ > 0) {
-    w_x.bottomRows(na_) = -a22_inv_a21_;
     w_f.bottomRows(na_) = a22_inv_f2;
     wp_x.bottomRows(na_) = -a22_inv_a21_ * m_;
     wp_f.bottomRows(na_) = -a22_inv_a21_ * maps.forcing_matrix;
   }
-  maps.u_x = column_scale_.asDiagonal() * (right_ * w_x);
+  maps.u_x = u_of_state();
   maps.u_f = column_scale_.asDiagonal() * (right_ * w_f);
   maps.up_x = column_scale_.asDiagonal() * (right_ * wp_x);
   maps.up_f = column_scale_.asDiagonal() * (right_ * wp_f);
   return maps;
+}
+
+Eigen::MatrixXd LinearStateSpace::u_of_state() const {
+  // u = C·V·w with w₁ = x, w₂ = −Â₂₂⁻¹·Â₂₁·x (no sources).
+  Eigen::MatrixXd u_x = right_.leftCols(nd_);
+  if (na_ > 0) u_x -= right_.rightCols(na_) * a22_inv_a21_;
+  return column_scale_.asDiagonal() * u_x;
 }
 
 Eigen::VectorXd LinearStateSpace::state_of(const Eigen::VectorXd& u) const {

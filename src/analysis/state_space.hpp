@@ -24,8 +24,10 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <complex>
 #include <map>
 #include <utility>
+#include <vector>
 
 #include "displacement_form.hpp"
 
@@ -61,6 +63,11 @@ class LinearStateSpace {
   // gives the exact transient to 8e-11 of the static deflection (IDA at rtol 1e-11 as the
   // reference), ω₀ = 0.005·ω1 9e-9, the automatic choice (~2500·ω1) 1e-9..5e-9.
   LinearStateSpace(const DisplacementForm& form, double angular_frequency);
+  // The same for the pencil E·u' + A·u of a linearisation (DisplacementForm::linearised about
+  // an operating point): nonlinear networks are accepted, the matrices describe the small
+  // signal. Throws when the pencil is not of index 1.
+  LinearStateSpace(const DisplacementForm& form, const Eigen::SparseMatrix<double>& a,
+                   const Eigen::SparseMatrix<double>& e, double angular_frequency);
 
   Eigen::Index state_size() const { return m_.rows(); }
   const Eigen::MatrixXd& m() const { return m_; }
@@ -90,10 +97,28 @@ class LinearStateSpace {
     Eigen::VectorXcd values;
     Eigen::MatrixXcd vectors;
     Eigen::PartialPivLU<Eigen::MatrixXcd> vectors_lu;
+    double condition = 0.0;  // κ₁(V) = ‖V‖₁·‖V⁻¹‖₁: rounding of V⁻¹·b grows with it
+    // One pole of each conjugate pair (Im λ > 0, factor 2) and the real poles (factor 1): for
+    // weights w that are conjugate over a pair, Re Σ_k w_k·g(λ_k) = Σ_{k ∈ half}
+    // factor_k·Re(w_k·g(λ_k)), at half the work. The pairs are as the real Schur form gives
+    // them, adjacent and exactly conjugate; where they are not, every pole with factor 1.
+    std::vector<Eigen::Index> half;
+    Eigen::VectorXd half_factor;
     Eigen::VectorXcd increments(double h) const;
     Eigen::VectorXcd ramp_increments(double h) const;
+    // The decomposition of `m` (balanced first); false when the eigen-solver fails or κ₁(V)
+    // reaches 1e6, where rounding could exceed ~1e-10.
+    static bool of(const Eigen::MatrixXd& m, ModalBasis& basis);
+    // h·φ₁(λh) and h²·φ₂(λh) for one pole.
+    static std::complex<double> increment(std::complex<double> lambda, double h);
+    static std::complex<double> ramp_increment(std::complex<double> lambda, double h);
   };
   const ModalBasis* modal_basis() const;
+  // The hidden constraints H·u = 0 as rows on the state (H·u_of_state(), k × state_size();
+  // no rows without them). Their derivatives are rows of the form, so H·u_x·M = 0: each is a
+  // left null vector of M (a pole at 0 that no consistent state excites), and the null space
+  // of these rows is invariant under M.
+  Eigen::MatrixXd hidden_constraints_on_state() const;
   // x moved along M's null vectors until the hidden constraints hold (no-op without them).
   Eigen::VectorXd project(const Eigen::VectorXd& x, const Eigen::VectorXd& f) const;
   // u and u' from the state x at a time where the sources are f (and constant).
@@ -103,6 +128,8 @@ class LinearStateSpace {
   // w₂' = Â₂₂⁻¹·(f̂₂' − Â₂₁·x') include the sources' slope.
   void full_state(const Eigen::VectorXd& x, const Eigen::VectorXd& f,
                   const Eigen::VectorXd& f_slope, Eigen::VectorXd& u, Eigen::VectorXd& up) const;
+  // u of a state under zero sources: u = u_of_state()·x (n × state_size()).
+  Eigen::MatrixXd u_of_state() const;
   // The state of a consistent u.
   Eigen::VectorXd state_of(const Eigen::VectorXd& u) const;
   // full_state and forcing as matrices, for many outputs at once: under constant sources f,
@@ -122,6 +149,7 @@ class LinearStateSpace {
   // H (hidden constraints); M's null vectors and the LU of H·(u of them), made on the first
   // project() (an SVD of M that only the exact transient needs). Like modal_basis(), a lazy
   // member: one LinearStateSpace is not shared between threads.
+  Eigen::MatrixXd hidden_rows_;  // H (k × n), as given by the form
   mutable Eigen::MatrixXd constraint_, null_vectors_;
   mutable Eigen::PartialPivLU<Eigen::MatrixXd> constraint_lu_;
   mutable bool projection_prepared_ = false;
@@ -131,6 +159,38 @@ class LinearStateSpace {
   mutable ModalBasis basis_;
   Eigen::VectorXd sigma_inv_;  // of Ê, times ω₀: the reduced equations in physical time
   Eigen::FullPivLU<Eigen::MatrixXd> a22_lu_;
+};
+
+// The modal increments at successive offsets 0 ≤ h₁ ≤ h₂ ≤ … into one interval, on the poles
+// of ModalBasis::half: E = e^{λh}, I = ∫₀ʰ e^{λs} ds = h·φ₁(λh) (ModalBasis::increments) and
+// J = ∫₀ʰ I = h²·φ₂(λh) (ramp_increments). A step by δ uses the addition theorem
+//   E(h+δ) = E(h)·E(δ),  I(h+δ) = I(h) + E(h)·I(δ),  J(h+δ) = J(h) + δ·I(h) + E(h)·J(δ),
+// with E, I and J of δ kept for the last four step lengths (outputs on a uniform grid repeat
+// one or two, to the last bit): a few products per pole and output instead of exponentials.
+// Each step adds one rounding of the size of the terms, so k steps leave k·ε relative
+// (50 outputs per interval: ~1e-14).
+class ModalClock {
+ public:
+  explicit ModalClock(const LinearStateSpace::ModalBasis& basis);
+  // h = 0; J is only kept (and its steps only formed) with `ramp`.
+  void restart(bool ramp);
+  void advance_to(double offset);
+  const Eigen::VectorXcd& integral() const { return integral_; }            // I(h)
+  const Eigen::VectorXcd& ramp_integral() const { return ramp_integral_; }  // J(h)
+
+ private:
+  struct Step {
+    double delta = 0.0;
+    bool with_ramp = false;
+    Eigen::VectorXcd exponential, integral, ramp_integral;
+  };
+  const Step& step(double delta);
+  Eigen::VectorXcd poles_;
+  double offset_ = 0.0;
+  bool ramp_ = false;
+  Eigen::VectorXcd exponential_, integral_, ramp_integral_;
+  std::vector<Step> steps_;
+  size_t next_slot_ = 0;
 };
 
 // Propagators cached per interval length, quantised at `quantum` (rounding of t, not physics).

@@ -1,11 +1,13 @@
 // Exact transient of a linear network under piecewise-linear sources: the state equation of
-// state_space.hpp stepped by matrix exponentials from breakpoint to breakpoint and to every
-// output time, the sources affine on each interval (constant, or a ramp of a pulse's edge or of
-// a piecewise-linear source). Rounding is the only error.
+// state_space.hpp solved from breakpoint to breakpoint and to every output time, the sources
+// affine on each interval (constant, or a ramp of a pulse's edge or of a piecewise-linear
+// source): in M's eigen-basis where it is well conditioned (κ < 1e6), by matrix exponentials
+// otherwise. Rounding is the only error.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 #include "core/timed.hpp"
@@ -89,25 +91,42 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
     double t = 0.0;
     Eigen::VectorXd u, up;
     // Outputs: each probe is linear in (x, f, f'), p = gᵀ·x + c(f) + d(f'), so with M's
-    // eigen-basis an output inside an interval starting at x₀, where f = f₀ + s·f₁, costs n
-    // exponentials and a dot product per probe:
+    // eigen-basis an output inside an interval starting at x₀, where f = f₀ + s·f₁, is
     //   p(t₀ + h) = p(x₀, f₀, f₁) + Re Σ_k (gᵀV)_k·(r_k·h·φ₁(λ_k h) + q_k·h²·φ₂(λ_k h)) + h·c(f₁),
-    //   r = V⁻¹·(M·x₀ + N·f₀),  q = V⁻¹·N·f₁ (the ramp terms only where f₁ ≠ 0).
+    //   r = V⁻¹·(M·x₀ + N·f₀),  q = V⁻¹·N·f₁ (the ramp terms only where f₁ ≠ 0),
+    // the sum over one pole of each conjugate pair (ModalBasis::half) and h·φ₁, h²·φ₂ stepped
+    // from output to output by ModalClock: a few products per pole and probe per output.
     const LinearStateSpace::ModalBasis* basis = space.modal_basis();
-    std::vector<Eigen::RowVectorXcd> probe_modes;
-    const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(form.size());
+    Eigen::MatrixXcd probe_modes;  // [probe][half pole]: (gᵀV)_k·factor_k
+    std::unique_ptr<ModalClock> clock;
+    Eigen::MatrixXcd half_vectors;  // V's columns of ModalBasis::half, times their factor
     if (basis) {
-      for (const Probe& probe : probes) {
-        Eigen::RowVectorXd g(space.state_size());
-        for (Eigen::Index k = 0; k < space.state_size(); ++k) {
-          Eigen::VectorXd unit = Eigen::VectorXd::Zero(space.state_size());
-          unit[k] = 1.0;
-          space.full_state(unit, no_force, u, up);
-          g[k] = form.probe(probe, u, up);
-        }
-        probe_modes.push_back(g.cast<std::complex<double>>() * basis->vectors);
+      const Eigen::Index half = static_cast<Eigen::Index>(basis->half.size());
+      probe_modes.resize(static_cast<Eigen::Index>(probes.size()), half);
+      const Eigen::MatrixXd u_x = space.u_of_state();
+      Eigen::RowVectorXd on_u, on_up;
+      // u' of a state under zero sources is u_x·M·x.
+      const Eigen::MatrixXd up_x = u_x * space.m();
+      for (size_t k = 0; k < probes.size(); ++k) {
+        form.probe_rows(probes[k], on_u, on_up);
+        const Eigen::RowVectorXd g = on_u * u_x + on_up * up_x;
+        const Eigen::RowVectorXcd modes = g.cast<std::complex<double>>() * basis->vectors;
+        for (Eigen::Index j = 0; j < half; ++j)
+          probe_modes(static_cast<Eigen::Index>(k), j) =
+              modes[basis->half[static_cast<size_t>(j)]] * basis->half_factor[j];
       }
+      clock = std::make_unique<ModalClock>(*basis);
+      half_vectors.resize(basis->vectors.rows(), half);
+      for (Eigen::Index j = 0; j < half; ++j)
+        half_vectors.col(j) =
+            basis->vectors.col(basis->half[static_cast<size_t>(j)]) * basis->half_factor[j];
     }
+    auto half_of = [&](const Eigen::VectorXcd& full) {
+      Eigen::VectorXcd out(static_cast<Eigen::Index>(basis->half.size()));
+      for (size_t j = 0; j < basis->half.size(); ++j)
+        out[static_cast<Eigen::Index>(j)] = full[basis->half[j]];
+      return out;
+    };
     const Eigen::VectorXd no_state = Eigen::VectorXd::Zero(space.state_size());
     for (double stop : stops) {
       if (stop <= t) continue;
@@ -116,46 +135,44 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
       const bool ramp = f.ramp();
       const Eigen::VectorXd nf = space.forcing(f.start);
       const Eigen::VectorXd nf_slope = ramp ? space.forcing(f.slope) : Eigen::VectorXd();
-      std::vector<double> start_values, ramp_values;
-      std::vector<Eigen::RowVectorXcd> weights, ramp_weights;
-      if (basis && next_output < outputs.size() && outputs[next_output] <= stop) {
+      Eigen::VectorXd start_values, ramp_values;
+      Eigen::VectorXcd rate, ramp_rate;  // [half pole]: V⁻¹·(M·x + N·f₀), V⁻¹·N·f₁
+      Eigen::MatrixXcd weights, ramp_weights;  // [probe][half pole]
+      const bool outputs_here = next_output < outputs.size() && outputs[next_output] <= stop;
+      if (basis) {
+        rate = half_of(basis->vectors_lu.solve((space.m() * x + nf).cast<std::complex<double>>()));
+        if (ramp)
+          ramp_rate = half_of(basis->vectors_lu.solve(nf_slope.cast<std::complex<double>>()));
+        clock->restart(ramp);
+      }
+      if (basis && outputs_here) {
         if (ramp)
           space.full_state(x, f.start, f.slope, u, up);
         else
           space.full_state(x, f.start, u, up);
-        const Eigen::VectorXcd rate =
-            basis->vectors_lu.solve((space.m() * x + nf).cast<std::complex<double>>());
-        for (size_t k = 0; k < probes.size(); ++k) {
-          start_values.push_back(form.probe(probes[k], u, up));
-          weights.push_back(probe_modes[k].cwiseProduct(rate.transpose()));
-        }
+        start_values.resize(static_cast<Eigen::Index>(probes.size()));
+        for (size_t k = 0; k < probes.size(); ++k)
+          start_values[static_cast<Eigen::Index>(k)] = form.probe(probes[k], u, up);
+        weights = probe_modes * rate.asDiagonal();
         if (ramp) {
-          const Eigen::VectorXcd ramp_rate =
-              basis->vectors_lu.solve(nf_slope.cast<std::complex<double>>());
           space.full_state(no_state, f.slope, u, up);  // c(f₁)
-          for (size_t k = 0; k < probes.size(); ++k) {
-            ramp_values.push_back(form.probe(probes[k], u, up));
-            ramp_weights.push_back(probe_modes[k].cwiseProduct(ramp_rate.transpose()));
-          }
+          ramp_values.resize(static_cast<Eigen::Index>(probes.size()));
+          for (size_t k = 0; k < probes.size(); ++k)
+            ramp_values[static_cast<Eigen::Index>(k)] = form.probe(probes[k], u, up);
+          ramp_weights = probe_modes * ramp_rate.asDiagonal();
         }
       }
+      Eigen::VectorXd values;
       while (next_output < outputs.size() && outputs[next_output] <= stop) {
         const double h = outputs[next_output] - t;
         if (h >= 0.0) {
           result.times.push_back(outputs[next_output]);
           if (basis) {
-            const Eigen::VectorXcd increments = basis->increments(h);
-            if (!ramp) {
-              for (size_t k = 0; k < probes.size(); ++k)
-                result.values[k].push_back(start_values[k] +
-                                           (weights[k] * increments).value().real());
-            } else {
-              const Eigen::VectorXcd ramp_increments = basis->ramp_increments(h);
-              for (size_t k = 0; k < probes.size(); ++k)
-                result.values[k].push_back(
-                    start_values[k] + (weights[k] * increments).value().real() +
-                    (ramp_weights[k] * ramp_increments).value().real() + h * ramp_values[k]);
-            }
+            clock->advance_to(h);
+            values = start_values + (weights * clock->integral()).real();
+            if (ramp) values += (ramp_weights * clock->ramp_integral()).real() + h * ramp_values;
+            for (size_t k = 0; k < probes.size(); ++k)
+              result.values[k].push_back(values[static_cast<Eigen::Index>(k)]);
           } else if (!ramp) {
             space.full_state(space.project(space.advance(cache.get(h), x, nf), f.start), f.start, u,
                              up);
@@ -175,14 +192,24 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
           return finish(cancelled_status());
       }
       if (cancel_requested(options.progress)) return finish(cancelled_status());
-      if (!ramp)
-        x = space.project(space.advance(cache.get(stop - t), x, nf), f.start);
-      else
-        x = space.project(space.advance(cache.get_ramp(stop - t), x, nf, nf_slope), f.at(stop - t));
+      const double length = stop - t;
+      if (basis) {
+        // The interval's end in the same modal form: x + Re V·(I(h)∘r + J(h)∘q), over one pole
+        // of each pair (factor 2 for a pair) — no exponential of M.
+        clock->advance_to(length);
+        Eigen::VectorXcd modal = rate.cwiseProduct(clock->integral());
+        if (ramp) modal += ramp_rate.cwiseProduct(clock->ramp_integral());
+        x = space.project(x + (half_vectors * modal).real(), ramp ? f.at(length) : f.start);
+      } else if (!ramp) {
+        x = space.project(space.advance(cache.get(length), x, nf), f.start);
+      } else {
+        x = space.project(space.advance(cache.get_ramp(length), x, nf, nf_slope), f.at(length));
+      }
       ++result.statistics.restarts;
       t = stop;
     }
-    result.statistics.steps = static_cast<long>(cache.size());  // distinct exponentials
+    // Distinct exponentials of M (none in the modal form).
+    result.statistics.steps = static_cast<long>(cache.size());
     if (Status finite = check_finite_outputs(result, probes, "the exact method"); !finite.ok)
       return finish(Status::failure(finite.message +
                                     " (values beyond double precision: check the scene's "

@@ -32,7 +32,14 @@ Json to_json(const AcStudyResult& result, const Model& model, const std::vector<
                              {"phase_deg", phase}});
   }
   out["resonances_hz"] = result.resonances_hz;
-  out["accuracy"] = {{"max_relative_residual", result.ac.max_relative_residual}};
+  out["accuracy"] = {{"max_relative_residual", result.ac.max_relative_residual},
+                     {"method", result.ac.method}};
+  if (result.ac.method == "pole-residue")
+    out["accuracy"].update({{"check_points", result.ac.check_points},
+                            {"check_deviation", result.ac.check_deviation},
+                            {"eigenvector_condition", result.ac.basis_condition}});
+  else if (!result.ac.note.empty())
+    out["accuracy"]["note"] = result.ac.note;
   out["cost"] = {{"ac_seconds", result.ac.seconds}, {"total_seconds", total_seconds}};
   if (result.reduction) {
     const AcReductionResult& r = *result.reduction;

@@ -49,6 +49,7 @@ TEST(ProgressHooks, AcReportsEveryFrequencyAndStopsWhenCancelled) {
   const std::vector<double> grid = frequency_grid(0.0, 10.0, 50, false);
   RecordingProgress all;
   AcOptions options;
+  options.method = AcMethod::direct;  // one solve per frequency, each reported
   options.progress = &all;
   const AcResult full = run_ac(system, Eigen::VectorXd::Zero(system.size()), grid, {x}, options);
   ASSERT_TRUE(full.status.ok) << full.status.message;
@@ -65,6 +66,20 @@ TEST(ProgressHooks, AcReportsEveryFrequencyAndStopsWhenCancelled) {
   EXPECT_EQ(cut.status.message, "cancelled");
   EXPECT_EQ(stopping.reports.size(), 10u);  // stopped at the 10th report
   EXPECT_EQ(cut.values[0].size(), 8u);      // after 8 frequencies (one report is the set-up)
+
+  // The pole-residue form is one step (every frequency at once): the set-up, then the poles.
+  RecordingProgress modal;
+  options.method = AcMethod::pole_residue;
+  options.progress = &modal;
+  const AcResult fast = run_ac(system, Eigen::VectorXd::Zero(system.size()), grid, {x}, options);
+  ASSERT_TRUE(fast.status.ok) << fast.status.message;
+  EXPECT_EQ(fast.method, "pole-residue");
+  ASSERT_EQ(modal.reports.size(), 2u);
+  EXPECT_EQ(modal.reports[1].what, "AC: poles and residues");
+  RecordingProgress stop_at_poles(2);
+  options.progress = &stop_at_poles;
+  const AcResult stopped = run_ac(system, Eigen::VectorXd::Zero(system.size()), grid, {x}, options);
+  EXPECT_EQ(stopped.status.message, "cancelled");
 }
 
 TEST(ProgressHooks, TransientsReportOutputTimesAndStopWhenCancelled) {

@@ -140,9 +140,20 @@ int report_ac(const AcReportInput& in) {
   if (result.reduction) {
     print_reduction(in);
   } else {
-    std::cout << "accuracy: worst relative residual of the complex solves "
-              << format("%.2g", result.ac.max_relative_residual) << "\n"
-              << "cost: sweep " << milliseconds(result.ac.seconds) << ", total "
+    const emnet::AcResult& ac = result.ac;
+    if (ac.method == "pole-residue")
+      std::cout << "method: pole-residue form (every pole, O(poles) per frequency), checked "
+                   "against the direct solve at "
+                << ac.check_points << " frequencies\n"
+                << "accuracy: largest difference there " << format("%.2g", ac.check_deviation)
+                << " of each output's peak; worst relative residual of the direct solves "
+                << format("%.2g", ac.max_relative_residual) << "\n";
+    else
+      std::cout << "method: direct sparse solve at every frequency"
+                << (ac.note.empty() ? std::string() : " (" + ac.note + ")") << "\n"
+                << "accuracy: worst relative residual of the complex solves "
+                << format("%.2g", ac.max_relative_residual) << "\n";
+    std::cout << "cost: sweep " << milliseconds(result.ac.seconds) << ", total "
               << milliseconds(in.total_seconds) << "\n";
   }
   for (const auto& m : markers) std::cout << "resonance in band: " << m.label << "\n";

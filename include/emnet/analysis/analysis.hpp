@@ -93,7 +93,28 @@ Eigen::SparseMatrix<double> linearised_g(const System& system, const Eigen::Vect
 // is the static response to B_ac (the limit of V/(jω)).
 std::vector<double> frequency_grid(double from, double to, int points, bool log);
 
+// How the sweep is solved.
+//   direct: (G + J_g + jω·C)·Y = B_ac by a sparse LU at every frequency; accuracy: the residual.
+//   pole_residue: every pole of the network (a dense eigen-decomposition of its state matrix)
+//     and each probe's residues, then O(poles) work per frequency: p(jω) = Σ_k (a_k + jω·b_k)/
+//     (jω − λ_k) + its direct part (src/analysis/ac_pole_residue.hpp). Exact but for rounding,
+//     which grows with the eigenvectors' condition; so the result is compared with the direct
+//     solve at the check points (ends, peaks, the frequencies of the least damped poles) and is
+//     only returned when they agree to kPoleResidueAgreement of each probe's peak.
+//   automatic: pole_residue for networks of at most kPoleResidueUnknowns unknowns and sweeps of
+//     at least kPoleResidueFrequencies points, falling back to direct (with a note) where the
+//     form does not apply or its check fails; direct otherwise.
+enum class AcMethod { automatic, direct, pole_residue };
+inline constexpr int kPoleResidueUnknowns = 160;
+inline constexpr size_t kPoleResidueFrequencies = 20;
+// Largest difference between the two forms at a check point, relative to the probe's peak
+// |value| over the sweep, that lets the pole–residue sweep stand. The direct solve's own error
+// is its residual (≤ 1e-13 on the equilibrated systems) times the condition; 1e-10 leaves that
+// room and no more.
+inline constexpr double kPoleResidueAgreement = 1e-10;
+
 struct AcOptions {
+  AcMethod method = AcMethod::automatic;
   Progress* progress = nullptr;  // one report per frequency; cancelled: Status "cancelled"
 };
 
@@ -104,6 +125,14 @@ struct AcResult {
   double max_relative_residual = 0.0;  // worst ‖A·Y − B‖/‖B‖ over the sweep
   int pivot_searches = 0;  // factorisations with a pivot search (the first, and where reused
                            // pivots gave 4× the residual of the last search)
+  std::string method;      // "direct" or "pole-residue"
+  // pole-residue: the frequencies where it was compared with the direct solve (whose residuals
+  // are max_relative_residual), the largest difference there relative to each probe's peak, and
+  // the condition κ₁ of the eigenvector basis.
+  int check_points = 0;
+  double check_deviation = 0.0;
+  double basis_condition = 0.0;
+  std::string note;  // why automatic fell back to the direct solve, when it did
   double seconds = 0.0;
 };
 

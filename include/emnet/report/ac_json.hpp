@@ -1,8 +1,10 @@
 // JSON of the AC study, as `emnet ac --json` prints it (keys in this order): scene,
 // automatic_choices, segments, input (the AC input's description), frequencies_hz, probes
 // [{name, description, unit, magnitude [unit], phase_deg}], resonances_hz (in the band),
-// accuracy {max_relative_residual}, cost {ac_seconds, total_seconds}, reduction (with the
-// modal reduction only: the reduced model's fields, clustered_poles,
+// accuracy {max_relative_residual, method ("direct" or "pole-residue"); pole-residue:
+// check_points, check_deviation (of each output's peak), eigenvector_condition; direct: note,
+// why the pole-residue form was not used, when it was tried}, cost {ac_seconds, total_seconds},
+// reduction (with the modal reduction only: the reduced model's fields, clustered_poles,
 // all_poles_below_cutoff_found, correction_order, error_estimate, measured_error,
 // probe_errors {probe: error}, check_frequencies_hz, note, cost {reduce_seconds,
 // evaluate_seconds, check_seconds}), validity. Phase = arg(value)·180/π [deg].
