@@ -224,6 +224,7 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
       if (deviation <= kPoleResidueAgreement) {
         result.method = "pole-residue";
         result.values = std::move(sweep.values);
+        result.poles = std::move(sweep.poles);
         return finish(Status::success());
       }
       char text[160];

@@ -10,18 +10,47 @@
 // (1e-14 before any Newton step). This replaces IDACalcIC, whose Newton iteration uses the
 // integrator's matrix ∂F/∂u + c_j·∂F/∂u' with c_j from a guessed first step and stalls on stiff
 // networks (the 500-segment fish fin with zero rise time failed at t = 0).
+//
+// A transient run makes a start consistent at every switching edge; ConsistentStart keeps the
+// scaling and LU of the last J_w for the next edge, where a linear network has the same J_w.
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/SparseLU>
 #include <string>
 
 #include "displacement_form.hpp"
 #include "emnet/core/errors.hpp"
+#include "equilibration.hpp"
 
 namespace emnet {
 
-// Makes (u, up) consistent at source_time keeping u_d. On failure u and up are unchanged and the
-// status says why.
+class ConsistentStart {
+ public:
+  // `form` must outlive this object.
+  explicit ConsistentStart(const DisplacementForm& form);
+  // Makes (u, up) consistent at source_time keeping u_d. On failure u and up are unchanged and
+  // the status says why.
+  Status make_consistent(double source_time, Eigen::VectorXd& u, Eigen::VectorXd& up);
+
+ private:
+  Eigen::SparseMatrix<double> consistency_matrix(const Eigen::VectorXd& u,
+                                                 const Eigen::VectorXd& up) const;
+  bool same_as_factorised(const Eigen::SparseMatrix<double>& matrix) const;
+  Status factorise(Eigen::SparseMatrix<double> matrix);
+  double relative_residual(double source_time, const Eigen::VectorXd& u, const Eigen::VectorXd& up,
+                           const Eigen::VectorXd& residual) const;
+
+  const DisplacementForm& form_;
+  Eigen::SparseMatrix<double> absolute_e_, absolute_a_;  // |E|, |A|
+  // The last J_w factorised, its equilibration and the LU of the equilibrated matrix.
+  bool factorised_ = false;
+  Eigen::SparseMatrix<double> factorised_matrix_;
+  DiagonalScaling scaling_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
+};
+
+// One start made consistent, with a ConsistentStart of its own.
 Status make_consistent(const DisplacementForm& form, double source_time, Eigen::VectorXd& u,
                        Eigen::VectorXd& up);
 

@@ -139,7 +139,13 @@ Eigen::VectorXd DisplacementForm::velocity_state(const Eigen::VectorXd& u,
 
 void DisplacementForm::residual(double source_time, const Eigen::VectorXd& u,
                                 const Eigen::VectorXd& up, Eigen::VectorXd& out) const {
-  out = e_ * up + a_ * u - f(source_time);
+  // f(t) is b(t) followed by zeros: subtracting b alone gives the same values without a vector
+  // of size n to allocate and fill per call (the residual is IDA's most frequent call). The two
+  // products are evaluated apart, as in E·u' + A·u − f, so that the rounding is the same: a
+  // product accumulated onto the other moved the 7-segment RC fin's error at rtol 1e-3 from
+  // 1.32e-3 to 1.60e-3 of the peak.
+  out = (e_ * up).eval() + (a_ * u).eval();
+  out.head(system_.size()) -= system_.b(source_time);
   if (!system_.is_nonlinear()) return;
   Eigen::VectorXd g;
   system_.nonlinear(velocity_state(u, up), g, nullptr);

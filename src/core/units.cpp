@@ -424,6 +424,24 @@ std::string format_number(const char* format, double value) {
   return buffer;
 }
 
+void append_number(std::string& out, double value, char conversion, int precision, int width) {
+  char buffer[400];  // the longest: "%.<precision>f" of 1e308
+  const std::chars_format format = conversion == 'e'   ? std::chars_format::scientific
+                                   : conversion == 'f' ? std::chars_format::fixed
+                                                       : std::chars_format::general;
+  const std::to_chars_result written =
+      std::to_chars(buffer, buffer + sizeof buffer, value, format, precision);
+  const size_t length = written.ec == std::errc() ? static_cast<size_t>(written.ptr - buffer) : 0;
+  if (length == 0) {  // too long for the buffer (never for the formats used): printf's own
+    const std::string pattern =
+        "%" + std::to_string(width) + "." + std::to_string(precision) + std::string(1, conversion);
+    out += format_number(pattern.c_str(), value);
+    return;
+  }
+  if (static_cast<int>(length) < width) out.append(static_cast<size_t>(width) - length, ' ');
+  out.append(buffer, length);
+}
+
 std::string format_with_unit(double value, const std::string& unit) {
   return format_number("%.6g", value) + (unit.empty() ? "" : " " + unit);
 }

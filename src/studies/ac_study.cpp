@@ -86,6 +86,11 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
     for (const auto& kept : result.reduction->model.kept)
       if (kept.oscillatory) resonances.push_back(std::abs(kept.pole.imag()) / two_pi);
     std::sort(resonances.begin(), resonances.end());
+  } else if (!result.ac.poles.empty()) {
+    // The pole-residue sweep has every pole already (to rounding, checked through the sweep).
+    for (const auto& pole : result.ac.poles)
+      if (pole.imag() > 0.0) resonances.push_back(pole.imag() / two_pi);
+    std::sort(resonances.begin(), resonances.end());
   } else {
     ModalOptions modal_options;
     modal_options.keep_vectors = false;

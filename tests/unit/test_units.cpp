@@ -3,8 +3,12 @@
 // NaN, infinity and text that is not a number.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "emnet/core/units.hpp"
 
@@ -138,6 +142,39 @@ TEST(Units, TextThatIsNotANumberIsRejected) {
   EXPECT_NE(parse_error_message("mm", dim::length).find("not a number"), std::string::npos);
   EXPECT_NE(parse_error_message("", dim::length).find("empty value"), std::string::npos);
   EXPECT_NE(parse_error_message(".", dim::none).find("not a number"), std::string::npos);
+}
+
+// append_number writes what printf writes for the table formats, on values spread over the whole
+// double range, signs, zeros, and the specials. Reference: glibc's printf (both round correctly,
+// so the texts must be equal, not close).
+TEST(Units, AppendNumberWritesWhatPrintfWrites) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> mantissa(-10.0, 10.0);
+  std::uniform_int_distribution<int> exponent(-300, 300);
+  std::vector<double> values = {0.0,      -0.0,   1.0,          -1.0,     0.5,
+                                999999.5, 1e-300, 9.9999995e-5, INFINITY, -INFINITY,
+                                123456.7, 0.1225, 6.385};
+  for (int k = 0; k < 3000; ++k)
+    values.push_back(mantissa(random) * std::pow(10.0, exponent(random)));
+  for (int k = 0; k < 3000; ++k)
+    values.push_back(mantissa(random) * std::pow(10.0, exponent(random) / 30));
+  struct Format {
+    char conversion;
+    int precision, width;
+  };
+  for (const Format& f :
+       {Format{'e', 6, 16}, Format{'f', 3, 11}, Format{'g', 6, 14}, Format{'g', 9, 0}}) {
+    const std::string pattern = "%" + std::to_string(f.width) + "." + std::to_string(f.precision) +
+                                std::string(1, f.conversion);
+    for (double value : values) {
+      if (f.conversion == 'f' && std::abs(value) > 1e30) continue;  // not a table's column
+      char expected[512];
+      std::snprintf(expected, sizeof expected, pattern.c_str(), value);
+      std::string written;
+      append_number(written, value, f.conversion, f.precision, f.width);
+      EXPECT_EQ(written, expected) << pattern << " of " << value;
+    }
+  }
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "cli/ac.hpp"
 #include "cli/common.hpp"
+#include "emnet/core/units.hpp"
 #include "emnet/report/ac_json.hpp"
 #include "emnet/report/plot.hpp"
 
@@ -97,12 +98,20 @@ void print_table(const AcReportInput& in) {
     std::printf(" %16s %11s", shown("|" + probe.name + "| [" + probe.unit + "]").c_str(),
                 shown(probe.name + " [deg]").c_str());
   std::printf("\n");
+  // The rows as printf("%14.6g", " %16.6e %11.3f"…) would write them, formatted at once.
+  std::string rows;
+  rows.reserve(grid.size() * (15 + 29 * probes.size()));
   for (size_t f = 0; f < grid.size(); ++f) {
-    std::printf("%14.6g", grid[f]);
-    for (size_t k = 0; k < probes.size(); ++k)
-      std::printf(" %16.6e %11.3f", std::abs(values[k][f]), std::arg(values[k][f]) * 180.0 / pi);
-    std::printf("\n");
+    emnet::append_number(rows, grid[f], 'g', 6, 14);
+    for (size_t k = 0; k < probes.size(); ++k) {
+      rows += ' ';
+      emnet::append_number(rows, std::abs(values[k][f]), 'e', 6, 16);
+      rows += ' ';
+      emnet::append_number(rows, std::arg(values[k][f]) * 180.0 / pi, 'f', 3, 11);
+    }
+    rows += '\n';
   }
+  std::fwrite(rows.data(), 1, rows.size(), stdout);
   for (size_t k = 0; k < probes.size(); ++k) {
     size_t best = 0;
     for (size_t f = 0; f < grid.size(); ++f)

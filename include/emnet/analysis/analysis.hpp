@@ -133,6 +133,9 @@ struct AcResult {
   double check_deviation = 0.0;
   double basis_condition = 0.0;
   std::string note;  // why automatic fell back to the direct solve, when it did
+  // pole-residue: every pole of the linearised network [1/s] (of the state equation, the
+  // levers' spurious ones at 0 removed), as the sweep used them; empty for direct.
+  std::vector<std::complex<double>> poles;
   double seconds = 0.0;
 };
 

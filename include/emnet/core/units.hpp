@@ -84,6 +84,11 @@ std::string format_quantity(double value, const Dimension& dimension);
 
 // One number through a printf format ("%.3g", "%.4g Hz"), for messages and notes.
 std::string format_number(const char* format, double value);
+// Appends `value` to `out` as printf's "%<width>.<precision><conversion>" would (conversion 'e',
+// 'f' or 'g'; right-aligned in `width`), by std::to_chars: the same digits, since both round
+// correctly, at a fraction of printf's cost (no format parsing, no locale) — so that writing a
+// table of thousands of rows does not cost more than computing it.
+void append_number(std::string& out, double value, char conversion, int precision, int width = 0);
 // A value with six significant digits and its unit, as results and messages print quantities:
 // "3000 V", "6.385 Hz" (no unit: the number alone).
 std::string format_with_unit(double value, const std::string& unit);

@@ -7,8 +7,9 @@
 //   - Every response value finite: a NaN or an infinity in the sweep fails the study, naming
 //     the probe and the frequency (run_ac and run_ac_reduced check their values).
 //   - The resonances in the band [sweep.from, sweep.to], for the Bode plot's markers: the
-//     oscillatory kept modes of the reduced model, else the modes of the full model (run_modes
-//     without vectors; at most 10 above the dense method's size limit). f = |Im s|/(2π) [Hz].
+//     oscillatory kept modes of the reduced model, else the poles the pole-residue sweep used
+//     (every pole), else the modes of the full model (run_modes without vectors; at most 10
+//     above the dense method's size limit). f = |Im s|/(2π) [Hz].
 //   - Validity: each deflection probe's largest |response| [m] against the scene's deflection
 //     limit, and the drive's peak DEA voltages against breakdown (model/validity.hpp). Every
 //     drive's AC input has the scene's own amplitude, so these are deflection amplitudes.
