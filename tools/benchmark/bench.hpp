@@ -178,6 +178,10 @@ struct Section {
 
 // ---- the sections ----------------------------------------------------------------------------
 
+// limits.cpp: 0. every analysis against its arithmetic limit, and IDA against ngspice on the
+// RC-loop fin.
+std::string limits_section(const Settings& settings);
+
 // study.cpp: 6. design studies (and the Python module's measurements).
 std::string study_section(const Settings& settings);
 

@@ -38,12 +38,13 @@
 //     around every switching edge (the deck switches with linear edges of width ε). Sweep: one
 //     deck per frequency, run for as many periods as the exact transient needed to settle to
 //     1e-4 per period, peaks of its last period (refined like emnet's run-until-settled).
-//  4. Scale. Fish fin at N = 10 … 10 000: each point is a fresh process (this program with
-//     --scale-point), which reports its own peak resident memory (VmHWM) and the time of the
-//     analysis alone, after reading and building. Growth exponent: least squares of log(time)
-//     on log(N) over the points with N ≥ 300. A point is skipped when the previous point's
-//     time extrapolated with the fitted exponent (at least
-//     1) exceeds the point budget.
+//  4. Scale. Fish fin at N = 10 … 10 000, static, modes, a 1000-point AC, IDA over 2 periods and
+//     the 61-frequency switching sweep through the modal reduction: each point is a fresh
+//     process (this program with --scale-point), which reports its own peak resident memory
+//     (VmHWM) and the time of the analysis alone, after reading and building. Growth exponent:
+//     least squares of log(time) on log(N) over the points with N ≥ 300. A point is skipped when
+//     the previous point's time extrapolated with the fitted exponent (at least 1) exceeds the
+//     point budget.
 //  5a. Simplifications: what each costs and saves. Fish fin, band 0–130 Hz, beam.segments =
 //     "auto" at model.tolerance 1e-2, 1e-3, 1e-4: the chosen N, the selection's estimate and
 //     its time, the band modes' error against the bare beam converged by Richardson from
@@ -66,16 +67,20 @@
 //     the variant's AC deck. Then tools/benchmark/python_study.py: the Python module's overhead
 //     on one `modes` call and the study through Python, locally and on 1 and 2 Dask workers.
 //
-// --only 5a, 5b or 6 runs that section alone and writes report-5a.md, report-5b.md or
-// report-6.md.
+//  0. Limits. Each analysis of the fish fin (N = 7) against the operation count of the method a
+//     careful implementation would use at this machine's measured dense arithmetic rate, beside
+//     ngspice; and IDA against ngspice at equal error on the RC-loop (nonlinear) fin
+//     (limits.cpp's header comment has the counts).
+//
+// --only 0, 4, 5a, 5b or 6 runs that section alone and writes report-<section>.md.
 //
 // Outputs (in --out): report.md, data files *.dat and gnuplot scripts *.gp for the Pareto
 // plots (tools/bench runs gnuplot), decks/*.cir.
 //
-// The sections are in tools/benchmark/: discretisation.cpp (1, 4b), ac.cpp and transient.cpp
-// (2, 3), sweep.cpp (the switching sweep), scale.cpp (4), simplifications.cpp (5a, 5b),
-// study.cpp (6); the
-// pieces they share in common.cpp (bench.hpp); the report and the command line here.
+// The sections are in tools/benchmark/: limits.cpp (0), discretisation.cpp (1, 4b), ac.cpp and
+// transient.cpp (2, 3), sweep.cpp (the switching sweep), scale.cpp (4), simplifications.cpp (5a,
+// 5b), study.cpp (6); the pieces they share in common.cpp (bench.hpp); the report and the command
+// line here.
 #include "bench.hpp"
 
 namespace emnet_bench {
@@ -115,6 +120,7 @@ int run(const Settings& settings) {
   const auto start = Clock::now();
   mkdir(settings.out.c_str(), 0755);
   if (!settings.only.empty()) {
+    std::map<std::string, double> only_exponents;
     const std::string file = settings.out + "/report-" + settings.only + ".md";
     std::ofstream(file) << "Machine: " << machine_text() << ".\n\n"
                         << (settings.only == "5a" ? "## 5a. Simplifications: what each costs and "
@@ -122,10 +128,17 @@ int run(const Settings& settings) {
                                                         simplification_section(settings)
                             : settings.only == "6"
                                 ? "## 6. Design studies\n\n" + study_section(settings)
+                            : settings.only == "0"
+                                ? "## 0. Limits: each analysis against its arithmetic\n\n" +
+                                      limits_section(settings)
+                            : settings.only == "4"
+                                ? "## 4. Scale\n\n" + scale_section(settings, only_exponents)
                                 : reduction_section(settings));
     std::cerr << "emnet_bench: " << file << " (" << time_text(seconds_since(start)) << ")\n";
     return 0;
   }
+  std::cerr << "emnet_bench: 0. limits\n";
+  const std::string limits = limits_section(settings);
   std::vector<ParetoPoint> discretisation_points, ac_points, tran_points, sweep_points;
   std::cerr << "emnet_bench: 1. discretisation\n";
   const std::string discretisation = discretisation_section(settings, discretisation_points);
@@ -175,11 +188,13 @@ int run(const Settings& settings) {
      << tran.headline.in_process_pair << " |\n| switching sweep | "
      << ratio_text(sweep.headline.in_process) << " | " << sweep.headline.in_process_pair << " |\n\n"
      << "Other goals: the fish fin's 61-frequency sweep under 10 ms in-process: " << sweep_goal
-     << ". Growth of cost with N (fitted exponent, N ≥ 300; goal ≤ 1 for ac and modes): modes "
-     << exponent_text(exponents["modes"]) << ", ac " << exponent_text(exponents["ac"]) << ", tran "
-     << exponent_text(exponents["tran"]) << ", sweep " << exponent_text(exponents["sweep"])
-     << ".\n\n"
-     << "## Method\n\nTimes are medians of repeated runs after one warm-up run, with min–max "
+     << ". Growth of cost with N (fitted exponent, N ≥ 300; goal ≤ 1.2): static "
+     << exponent_text(exponents["static"]) << ", modes " << exponent_text(exponents["modes"])
+     << ", ac " << exponent_text(exponents["ac"]) << ", tran " << exponent_text(exponents["tran"])
+     << ", sweep " << exponent_text(exponents["sweep"]) << ".\n\n"
+     << "## 0. Limits: each analysis against its arithmetic\n\n"
+     << limits
+     << "\n## Method\n\nTimes are medians of repeated runs after one warm-up run, with min–max "
         "and the number of runs; slow items (over half their budget) run once, and say "
         "\"1 run\". In-process: a function call in the benchmark process (libngspice loaded "
         "into it, no worker process). Whole process: a program started and waited for, output "
@@ -232,9 +247,10 @@ int main(int argc, char** argv) {
       settings.quick = true;
     } else if (argument == "--only") {
       settings.only = value();
-      if (settings.only != "5a" && settings.only != "5b" && settings.only != "6") {
-        std::cerr << "emnet_bench: --only takes 5a (simplifications), 5b (modal reduction) or 6 "
-                     "(design studies)\n";
+      if (settings.only != "0" && settings.only != "4" && settings.only != "5a" &&
+          settings.only != "5b" && settings.only != "6") {
+        std::cerr << "emnet_bench: --only takes 0 (limits), 4 (scale), 5a (simplifications), 5b "
+                     "(modal reduction) or 6 (design studies)\n";
         return 2;
       }
     } else if (argument == "--scale-point") {
@@ -242,7 +258,7 @@ int main(int argc, char** argv) {
       scale_segments = std::stoi(value());
     } else {
       std::cerr << "usage: emnet_bench [--root DIR] [--out DIR] [--emnet PROGRAM] [--quick] "
-                   "[--only 5a|5b|6]\n";
+                   "[--only 0|4|5a|5b|6]\n";
       return 2;
     }
   }
