@@ -153,8 +153,8 @@ void LinearStateSpace::prepare_projection() const {
   projection_prepared_ = true;
   const Eigen::Index k = constraint_.rows();
   if (k == 0) return;
-  const Eigen::BDCSVD<Eigen::MatrixXd> m_svd(balanced_m_,
-                                             Eigen::ComputeFullU | Eigen::ComputeFullV);
+  // V alone: the null vectors are its last columns (U would double the cost and is not used).
+  const Eigen::BDCSVD<Eigen::MatrixXd> m_svd(balanced_m_, Eigen::ComputeFullV);
   null_vectors_ =
       balance_.asDiagonal() * completed_basis(m_svd.matrixV().leftCols(nd_ - k)).rightCols(k);
   Eigen::VectorXd u, up;

@@ -46,8 +46,8 @@ Section ac_section(const Settings& settings, std::vector<ParetoPoint>& pareto) {
   };
   std::vector<MethodRow> rows;
   {
-    MethodRow row{"emnet", "run_ac (KLU)", std::to_string(grid.size()) + " points"};
     const emnet::AcResult result = emnet::run_ac(system, rest.operating_point, grid, probes);
+    MethodRow row{"emnet", "run_ac (" + result.method + ")", std::to_string(grid.size()) + " points"};
     row.error = ac_error(result.values, reference_at(grid));
     // In-process: from the scene file to the result, as `emnet ac` does it.
     row.in_process = measure(
