@@ -301,79 +301,19 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
   });
 }
 
-namespace {
-
-// Eigenvalues equal to rounding, as the relaxation poles −1/τ of identical Kelvin–Voigt dashpots
-// are (one per rotational compliance of a uniform beam), form a semi-simple repeated pole whose
-// eigenspace has its full dimension; the eigen-solver may still return nearly parallel vectors
-// for it (measured: a fish-fin variant with seven poles at −1002.95/s, vector condition 6.5e16).
-// Each such cluster's vectors are replaced by an orthonormal basis of the null space of
-// M − λ̄·I (SVD; real for a real λ̄), when that null space has the cluster's dimension: its
-// smallest singular values below 1e-10 of ‖M‖₁. A defective cluster (a Jordan block: fewer
-// null vectors) is left as it is, and the condition check after this fails as before.
-void orthonormalise_repeated(const Eigen::MatrixXd& m, Eigen::VectorXcd& lambda,
-                             Eigen::MatrixXcd& vectors) {
-  const Eigen::Index n = lambda.size();
-  const double norm = m.cwiseAbs().colwise().sum().maxCoeff();
-  std::vector<bool> seen(static_cast<size_t>(n), false);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (seen[static_cast<size_t>(i)]) continue;
-    std::vector<Eigen::Index> cluster;
-    for (Eigen::Index j = i; j < n; ++j)
-      if (!seen[static_cast<size_t>(j)] &&
-          std::abs(lambda[j] - lambda[i]) <= 1e-9 * std::max(std::abs(lambda[i]), 1e-300)) {
-        cluster.push_back(j);
-        seen[static_cast<size_t>(j)] = true;
-      }
-    const Eigen::Index k = static_cast<Eigen::Index>(cluster.size());
-    if (k < 2) continue;
-    Complex mean = 0.0;
-    for (Eigen::Index j : cluster) mean += lambda[j];
-    mean /= static_cast<double>(k);
-    Eigen::MatrixXcd basis;
-    Eigen::VectorXd singular;
-    if (std::abs(mean.imag()) <= 1e-12 * std::abs(mean)) {
-      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(
-          m - mean.real() * Eigen::MatrixXd::Identity(n, n), Eigen::ComputeFullV);
-      singular = svd.singularValues();
-      basis = svd.matrixV().rightCols(k).cast<Complex>();
-      mean = mean.real();
-    } else {
-      const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(
-          m.cast<Complex>() - mean * Eigen::MatrixXcd::Identity(n, n), Eigen::ComputeFullV);
-      singular = svd.singularValues();
-      basis = svd.matrixV().rightCols(k);
-    }
-    if (!(singular[n - k] <= 1e-10 * norm)) continue;  // defective: fewer null vectors
-    for (Eigen::Index c = 0; c < k; ++c) {
-      vectors.col(cluster[static_cast<size_t>(c)]) = basis.col(c);
-      lambda[cluster[static_cast<size_t>(c)]] = mean;
-    }
-  }
-}
-
-}  // namespace
-
 struct PeriodicSolver::Impl {
   explicit Impl(const System& reference)
       : system(reference),
         form(system),
         space(form, characteristic_angular_frequency(system, 0.0)) {
-    Eigen::EigenSolver<Eigen::MatrixXd> solver(space.m());
-    if (solver.info() != Eigen::Success) throw std::runtime_error("eigen-decomposition failed");
-    lambda = solver.eigenvalues();
-    vectors = solver.eigenvectors();
-    vectors_lu.compute(vectors);
-    auto vector_condition = [&] {
-      return vectors.cwiseAbs().colwise().sum().maxCoeff() *
-             Eigen::MatrixXcd(vectors_lu.inverse()).cwiseAbs().colwise().sum().maxCoeff();
-    };
-    double condition = vector_condition();
-    if (!(condition < 1e8)) {
-      orthonormalise_repeated(space.m(), lambda, vectors);
-      vectors_lu.compute(vectors);
-      condition = vector_condition();
-    }
+    // Every pole (repeated semi-simple ones with an orthonormal eigenspace basis,
+    // LinearStateSpace::ModalBasis::of); usable up to a vector condition of 1e12.
+    LinearStateSpace::ModalBasis basis;
+    LinearStateSpace::ModalBasis::of(space.m(), basis);
+    lambda = basis.values;
+    vectors = basis.vectors;
+    vectors_lu = basis.vectors_lu;
+    const double condition = basis.condition;
     if (!(condition < 1e12))
       throw std::runtime_error(
           "the state matrix is too close to defective for the exact "

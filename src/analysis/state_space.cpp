@@ -52,6 +52,55 @@ void balance(const Eigen::MatrixXd& m, Eigen::VectorXd& scale, Eigen::MatrixXd& 
   }
 }
 
+// Eigenvalues equal to rounding, as the relaxation poles −1/τ of identical Kelvin–Voigt dashpots
+// are (one per rotational compliance of a uniform beam), form a semi-simple repeated pole whose
+// eigenspace has its full dimension; the eigen-solver may still return nearly parallel vectors
+// for it (measured: a fish-fin variant with seven poles at −1002.95/s, vector condition 6.5e16).
+// Each such cluster's vectors are replaced by an orthonormal basis of the null space of
+// M − λ̄·I (SVD; real for a real λ̄), when that null space has the cluster's dimension: its
+// smallest singular values below 1e-10 of ‖M‖₁. A defective cluster (a Jordan block: fewer
+// null vectors) is left as it is, and the condition check after this fails as before.
+void orthonormalise_repeated(const Eigen::MatrixXd& m, Eigen::VectorXcd& lambda,
+                             Eigen::MatrixXcd& vectors) {
+  const Eigen::Index n = lambda.size();
+  const double norm = m.cwiseAbs().colwise().sum().maxCoeff();
+  std::vector<bool> seen(static_cast<size_t>(n), false);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (seen[static_cast<size_t>(i)]) continue;
+    std::vector<Eigen::Index> cluster;
+    for (Eigen::Index j = i; j < n; ++j)
+      if (!seen[static_cast<size_t>(j)] &&
+          std::abs(lambda[j] - lambda[i]) <= 1e-9 * std::max(std::abs(lambda[i]), 1e-300)) {
+        cluster.push_back(j);
+        seen[static_cast<size_t>(j)] = true;
+      }
+    const Eigen::Index k = static_cast<Eigen::Index>(cluster.size());
+    if (k < 2) continue;
+    std::complex<double> mean = 0.0;
+    for (Eigen::Index j : cluster) mean += lambda[j];
+    mean /= static_cast<double>(k);
+    Eigen::MatrixXcd basis;
+    Eigen::VectorXd singular;
+    if (std::abs(mean.imag()) <= 1e-12 * std::abs(mean)) {
+      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(
+          m - mean.real() * Eigen::MatrixXd::Identity(n, n), Eigen::ComputeFullV);
+      singular = svd.singularValues();
+      basis = svd.matrixV().rightCols(k).cast<std::complex<double>>();
+      mean = mean.real();
+    } else {
+      const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(
+          m.cast<std::complex<double>>() - mean * Eigen::MatrixXcd::Identity(n, n), Eigen::ComputeFullV);
+      singular = svd.singularValues();
+      basis = svd.matrixV().rightCols(k);
+    }
+    if (!(singular[n - k] <= 1e-10 * norm)) continue;  // defective: fewer null vectors
+    for (Eigen::Index c = 0; c < k; ++c) {
+      vectors.col(cluster[static_cast<size_t>(c)]) = basis.col(c);
+      lambda[cluster[static_cast<size_t>(c)]] = mean;
+    }
+  }
+}
+
 }  // namespace
 
 AffinePiece affine_piece(const System& system, int size, double t0, double t1) {
@@ -231,6 +280,13 @@ bool LinearStateSpace::ModalBasis::of(const Eigen::MatrixXd& m, ModalBasis& basi
   // κ₁ by the LU's estimate of ‖V⁻¹‖₁ (Hager–Higham, as LAPACK's gecon): O(n²), where the
   // explicit inverse was O(n³); the estimate is a lower bound, within a factor of a few of κ₁.
   basis.condition = 1.0 / basis.vectors_lu.rcond();
+  if (!(basis.condition < 1e6)) {
+    // Repeated semi-simple poles (identical dashpots, two identical DEAs' RC loops) with nearly
+    // parallel computed vectors: an orthonormal basis of each cluster's eigenspace instead.
+    orthonormalise_repeated(m, basis.values, basis.vectors);
+    basis.vectors_lu.compute(basis.vectors);
+    basis.condition = 1.0 / basis.vectors_lu.rcond();
+  }
   const Eigen::VectorXcd& lambda = basis.values;
   bool paired = true;
   std::vector<double> factors;

@@ -106,8 +106,10 @@ class LinearStateSpace {
     Eigen::VectorXd half_factor;
     Eigen::VectorXcd increments(double h) const;
     Eigen::VectorXcd ramp_increments(double h) const;
-    // The decomposition of `m` (balanced first); false when the eigen-solver fails or κ₁(V)
-    // reaches 1e6, where rounding could exceed ~1e-10.
+    // The decomposition of `m` (balanced first; repeated semi-simple poles given an orthonormal
+    // eigenspace basis when the computed vectors are nearly parallel); false when the
+    // eigen-solver fails or κ₁(V) reaches 1e6, where rounding could exceed ~1e-10 (`basis` is
+    // filled all the same when the solver succeeded, with its condition).
     static bool of(const Eigen::MatrixXd& m, ModalBasis& basis);
     // h·φ₁(λh) and h²·φ₂(λh) for one pole.
     static std::complex<double> increment(std::complex<double> lambda, double h);

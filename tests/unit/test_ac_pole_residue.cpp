@@ -49,14 +49,19 @@ TEST(AcPoleResidue, OneMassMatchesTheClosedFormFromZeroFrequency) {
   }
 }
 
-// The fish fin (ideal drive: a linear network with the DEAs' levers, whose hidden constraints
-// the form restricts away) over the scene's 1000 points: against a dense full-pivoting complex
+// The fish fin (a network with the DEAs' levers, whose hidden constraints the form restricts
+// away) over the scene's 1000 points: against a dense full-pivoting complex
 // LU of (G + jωC)·Y = B_ac at every frequency f > 0, an independent solve. Tolerance 1e-11 of
 // each output's peak: the form's rounding is about κ(V)·ε per pole (κ ≈ 300, 42 poles:
 // 3e-12) and the reference's own a few ε times the condition of A(ω) near the resonance
 // (ζ ≈ 0.02: ×25); measured 6e-13.
-TEST(AcPoleResidue, FishFinMatchesADenseSolveToRounding) {
-  const Scene scene = read_scene(fin, {"drive.electrical_dynamics=false"});
+class AcPoleResidueFin : public ::testing::TestWithParam<bool> {};
+
+TEST_P(AcPoleResidueFin, MatchesADenseSolveToRounding) {
+  // The ideal drive, or the RC loops (linearised at 0 V: the two DEAs' equal RC poles, a
+  // repeated pole whose eigenspace basis is orthonormalised).
+  const Scene scene = read_scene(fin, {GetParam() ? "drive.electrical_dynamics=false"
+                                                  : "drive.electrical_dynamics=true"});
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
@@ -93,6 +98,8 @@ TEST(AcPoleResidue, FishFinMatchesADenseSolveToRounding) {
             << probes[p].name << " at " << grid[i] << " Hz";
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(IdealAndRcDrive, AcPoleResidueFin, ::testing::Bool());
 
 // Where the check fails, automatic falls back to the direct solve and says why: the cantilever
 // scene is undamped, so near its resonances the two forms differ by more than the agreement

@@ -292,10 +292,14 @@ std::string limits_section(const Settings& settings) {
                  bool rc_ok = true;
                  const Timing rc =
                      measure_process({settings.emnet, "ac", settings.fishfin()}, 10, 3.0, rc_ok);
-                 return time_text(rc.median);
-               }() +
-               ": its linearised state matrix has the two DEAs' equal RC poles, whose computed "
-               "eigenvectors are ill-conditioned (κ > 1e6), so it is solved directly";
+                 const emnet::Model rc_model = build(settings.fishfin(), {});
+                 const emnet::System rc_system = rc_model.network.assemble();
+                 const emnet::AcResult rc_ac =
+                     emnet::run_ac(rc_system, emnet::solve_static(rc_system).operating_point,
+                                   grid, deflection_probes(rc_model));
+                 return time_text(rc.median) + " (" + rc_ac.method +
+                        (rc_ac.note.empty() ? "" : ": " + rc_ac.note) + ")";
+               }();
     rows.push_back(row);
   }
 
