@@ -152,21 +152,56 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
       cutoff[p].push_back(std::move(after));
     }
   }
+  // Conjugate pairs: a real output's terms over a pair of poles λ, λ̄ (adjacent and exactly
+  // conjugate, as the real Schur form gives them) have conjugate coefficients, so their sum is
+  // 2·Re of one of them: each evaluation takes one complex exponential per pair. Where a pair's
+  // coefficients are not conjugate to 1e-12 of their size in every series (or the poles are not
+  // paired), every term is taken as it is.
+  std::vector<Eigen::Index> terms;
+  std::vector<double> weights;
+  {
+    bool paired = true;
+    for (Eigen::Index k = 0; k < lambda.size() && paired; ++k) {
+      if (lambda[k].imag() == 0.0) {
+        terms.push_back(k);
+        weights.push_back(1.0);
+        continue;
+      }
+      paired =
+          lambda[k].imag() > 0.0 && k + 1 < lambda.size() && lambda[k + 1] == std::conj(lambda[k]);
+      for (size_t p = 0; p < series.size() && paired; ++p)
+        for (size_t i = 0; i < intervals && paired; ++i) {
+          const Complex a = series[p].coefficient[i][k], b = series[p].coefficient[i][k + 1];
+          paired = std::abs(b - std::conj(a)) <= 1e-12 * std::abs(a);
+        }
+      if (paired) {
+        terms.push_back(k);
+        weights.push_back(2.0);
+        ++k;
+      }
+    }
+    if (!paired) {
+      terms.resize(static_cast<size_t>(lambda.size()));
+      for (Eigen::Index k = 0; k < lambda.size(); ++k) terms[static_cast<size_t>(k)] = k;
+      weights.assign(terms.size(), 1.0);
+    }
+  }
   // Value and two derivatives of probe p at offset h into interval i.
   auto evaluate = [&](size_t p, size_t i, double h, double* d1, double* d2) {
     const Eigen::VectorXcd& a = series[p].coefficient[i];
     const Eigen::VectorXd& after = cutoff[p][i];
-    Complex sum = 0.0, first = 0.0, second = 0.0;
-    for (Eigen::Index k = 0; k < a.size(); ++k) {
-      if (h > after[k]) continue;
-      const Complex term = a[k] * std::exp(lambda[k] * h);
-      sum += term;
-      first += term * lambda[k];
-      second += term * lambda[k] * lambda[k];
+    double sum = 0.0, first = 0.0, second = 0.0;
+    for (size_t j = 0; j < terms.size(); ++j) {
+      const Eigen::Index k = terms[j];
+      if (h > after[k] && (weights[j] == 1.0 || h > after[k + 1])) continue;
+      const Complex term = weights[j] * a[k] * std::exp(lambda[k] * h);
+      sum += term.real();
+      first += (term * lambda[k]).real();
+      second += (term * lambda[k] * lambda[k]).real();
     }
-    if (d1) *d1 = first.real() + slope_of(p, i);
-    if (d2) *d2 = second.real();
-    return series[p].offset[i] + slope_of(p, i) * h + sum.real();
+    if (d1) *d1 = first + slope_of(p, i);
+    if (d2) *d2 = second;
+    return series[p].offset[i] + slope_of(p, i) * h + sum;
   };
 
   // The global extremes, not only the sampled ones. Inside interval i, for h ≥ a (the affine
@@ -178,11 +213,25 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
   // edge, where the fast modes it excites have decayed. Measured: on the fish fin near its
   // resonance (ζ1 ≈ 0.015) Newton from the largest of 256 samples alone found a local maximum
   // 1.2e-5 below the global one, hidden between samples by a second mode's ripple.
+  // The bound's terms |a_ik|·|λ_k|², one per term of `terms` (a pair's two added: they share
+  // Re λ, so one exponential e^{Re λ·a} serves both), with those decay rates and |λ|.
   std::vector<std::vector<Eigen::VectorXd>> curvature_terms(series.size());
+  Eigen::VectorXd decay(static_cast<Eigen::Index>(terms.size())),
+      magnitude(static_cast<Eigen::Index>(terms.size()));
+  for (size_t j = 0; j < terms.size(); ++j) {
+    decay[static_cast<Eigen::Index>(j)] = lambda[terms[j]].real();
+    magnitude[static_cast<Eigen::Index>(j)] = std::abs(lambda[terms[j]]);
+  }
   for (size_t p = 0; p < series.size(); ++p)
-    for (size_t i = 0; i < intervals; ++i)
-      curvature_terms[p].push_back(
-          series[p].coefficient[i].cwiseAbs().cwiseProduct(lambda.cwiseAbs2()));
+    for (size_t i = 0; i < intervals; ++i) {
+      const Eigen::VectorXd all =
+          series[p].coefficient[i].cwiseAbs().cwiseProduct(lambda.cwiseAbs2());
+      Eigen::VectorXd merged(static_cast<Eigen::Index>(terms.size()));
+      for (size_t j = 0; j < terms.size(); ++j)
+        merged[static_cast<Eigen::Index>(j)] =
+            all[terms[j]] + (weights[j] == 2.0 ? all[terms[j] + 1] : 0.0);
+      curvature_terms[p].push_back(std::move(merged));
+    }
 
   // Uniform samples: inside an interval e^{λ(h+Δ)} = e^{λh}·e^{λΔ}, one exponential per
   // interval and per sample step instead of one per sample and probe (relative rounding grows
@@ -261,9 +310,8 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
       if (value > best) best = value, best_interval = i, best_h = h;
       if (h > 0.0 && h < length && sign * d2 < 0.0) {
         const double from = std::max(0.0, h - sample_step);
-        const double third = curvature_terms[p][i]
-                                 .cwiseProduct(lambda.cwiseAbs())
-                                 .dot((lambda.real() * from).array().exp().matrix());
+        const double third = curvature_terms[p][i].cwiseProduct(magnitude).dot(
+            (decay * from).array().exp().matrix());
         const double radius = std::min(-sign * d2 / third, h - from);
         if (radius > 0.0) concave.push_back({i, h - radius, std::min(h + radius, length)});
       }
@@ -283,8 +331,8 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
         inside |= w.interval == gap.interval && w.low <= gap.left.h && gap.right.h <= w.high;
       if (inside) continue;
       if (gap.left.curvature < 0.0)
-        gap.left.curvature = curvature_terms[p][gap.interval].dot(
-            (lambda.real() * gap.left.h).array().exp().matrix());
+        gap.left.curvature =
+            curvature_terms[p][gap.interval].dot((decay * gap.left.h).array().exp().matrix());
       if (higher + gap.left.curvature * width * width / 8.0 <= best + tolerance) continue;
       // K_i(a) decreases with a: the left end's bound holds on both halves.
       const double h = 0.5 * (gap.left.h + gap.right.h);

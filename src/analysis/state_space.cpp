@@ -82,14 +82,15 @@ void orthonormalise_repeated(const Eigen::MatrixXd& m, Eigen::VectorXcd& lambda,
     Eigen::MatrixXcd basis;
     Eigen::VectorXd singular;
     if (std::abs(mean.imag()) <= 1e-12 * std::abs(mean)) {
-      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(
-          m - mean.real() * Eigen::MatrixXd::Identity(n, n), Eigen::ComputeFullV);
+      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(m - mean.real() * Eigen::MatrixXd::Identity(n, n),
+                                                  Eigen::ComputeFullV);
       singular = svd.singularValues();
       basis = svd.matrixV().rightCols(k).cast<std::complex<double>>();
       mean = mean.real();
     } else {
       const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(
-          m.cast<std::complex<double>>() - mean * Eigen::MatrixXcd::Identity(n, n), Eigen::ComputeFullV);
+          m.cast<std::complex<double>>() - mean * Eigen::MatrixXcd::Identity(n, n),
+          Eigen::ComputeFullV);
       singular = svd.singularValues();
       basis = svd.matrixV().rightCols(k);
     }

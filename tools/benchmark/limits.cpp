@@ -295,8 +295,8 @@ std::string limits_section(const Settings& settings) {
                  const emnet::Model rc_model = build(settings.fishfin(), {});
                  const emnet::System rc_system = rc_model.network.assemble();
                  const emnet::AcResult rc_ac =
-                     emnet::run_ac(rc_system, emnet::solve_static(rc_system).operating_point,
-                                   grid, deflection_probes(rc_model));
+                     emnet::run_ac(rc_system, emnet::solve_static(rc_system).operating_point, grid,
+                                   deflection_probes(rc_model));
                  return time_text(rc.median) + " (" + rc_ac.method +
                         (rc_ac.note.empty() ? "" : ": " + rc_ac.note) + ")";
                }();
