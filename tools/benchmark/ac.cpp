@@ -4,14 +4,25 @@
 
 namespace emnet_bench {
 
+AcContext ac_context(const Settings& settings) {
+  AcContext context{build(settings.fishfin(), ideal_drive), {}, {}, {}, {}};
+  context.system = context.model.network.assemble();
+  context.rest = emnet::solve_static(context.system);
+  context.probes = deflection_probes(context.model);
+  const auto& spec = context.model.scene.ac;
+  context.grid = emnet::frequency_grid(spec.from, spec.to, spec.points, spec.log);
+  return context;
+}
+
 // AC: emnet's run_ac and ngspice's .ac over the scene's 1000 points, against a dense solve.
 Section ac_section(const Settings& settings, std::vector<ParetoPoint>& pareto) {
-  const emnet::Model model = build(settings.fishfin(), ideal_drive);
-  const emnet::System system = model.network.assemble();
-  const emnet::StaticResult rest = emnet::solve_static(system);
-  const auto probes = deflection_probes(model);
+  const AcContext context = ac_context(settings);
+  const emnet::Model& model = context.model;
+  const emnet::System& system = context.system;
+  const emnet::StaticResult& rest = context.rest;
+  const auto& probes = context.probes;
   const auto& spec = model.scene.ac;
-  const auto grid = emnet::frequency_grid(spec.from, spec.to, spec.points, spec.log);
+  const auto& grid = context.grid;
   const Eigen::MatrixXd g = Eigen::MatrixXd(emnet::linearised_g(system, rest.operating_point));
   const Eigen::MatrixXd c = Eigen::MatrixXd(system.C);
   const Eigen::VectorXcd b = system.b_ac();
@@ -47,7 +58,8 @@ Section ac_section(const Settings& settings, std::vector<ParetoPoint>& pareto) {
   std::vector<MethodRow> rows;
   {
     const emnet::AcResult result = emnet::run_ac(system, rest.operating_point, grid, probes);
-    MethodRow row{"emnet", "run_ac (" + result.method + ")", std::to_string(grid.size()) + " points"};
+    MethodRow row{"emnet", "run_ac (" + result.method + ")",
+                  std::to_string(grid.size()) + " points"};
     row.error = ac_error(result.values, reference_at(grid));
     // In-process: from the scene file to the result, as `emnet ac` does it.
     row.in_process = measure(

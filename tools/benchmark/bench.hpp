@@ -188,6 +188,16 @@ std::string study_section(const Settings& settings);
 // discretisation.cpp: 1. the cantilever and the fish fin against N; 4b. dense against Arnoldi.
 std::string discretisation_section(const Settings& settings, std::vector<ParetoPoint>& pareto);
 std::string modes_section(const Settings& settings);
+// The fish fin (ideal drive) of the AC measurements: its network at rest, the deflection
+// outputs and the scene's grid (ac.cpp).
+struct AcContext {
+  emnet::Model model;
+  emnet::System system;
+  emnet::StaticResult rest;
+  std::vector<emnet::Probe> probes;
+  std::vector<double> grid;
+};
+AcContext ac_context(const Settings& settings);
 // ac.cpp and transient.cpp: 2 and 3, emnet's methods and ngspice side by side.
 Section ac_section(const Settings& settings, std::vector<ParetoPoint>& pareto);
 Section tran_section(const Settings& settings, std::vector<ParetoPoint>& pareto);
