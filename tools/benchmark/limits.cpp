@@ -372,7 +372,10 @@ std::string limits_section(const Settings& settings) {
                " (ngspice needs a transient per frequency until settled: section 3)";
     rows.push_back(row);
   }
-  md << limit_table(rows);
+  md << limit_table(rows)
+     << "\nWhere a goal is missed, the notes above split the time as this run measured it; the "
+        "profiles behind them (perf, function by function) are in docs/benchmarks.md, "
+        "\"Against the arithmetic limit\".\n";
   md << ida_against_ngspice(settings);
   return md.str();
 }
