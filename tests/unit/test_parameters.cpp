@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -423,6 +425,23 @@ TEST(SchemaCli, PrintsEveryKeyAsTextMarkdownAndJson) {
   EXPECT_EQ(parsed["keys"][3]["sensitivity"], true);
   const auto both = testing::run_emnet("schema --markdown --json");
   EXPECT_EQ(both.status, 2) << both.out;
+}
+
+// docs/scene-reference.md is the preamble of tools/scene-reference and then exactly what
+// `emnet schema --markdown` prints: the checked-in file cannot fall behind the parameter
+// table (and so behind the reader, EveryKeyOfTheShippedScenesIsInTheTable). Run
+// tools/scene-reference after changing a key.
+TEST(SceneReference, CheckedInFileIsWhatTheCommandWrites) {
+  std::ifstream file(std::string(EMNET_SOURCE_DIR) + "/docs/scene-reference.md");
+  ASSERT_TRUE(file) << "docs/scene-reference.md is missing: run tools/scene-reference";
+  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const size_t table = text.find("\n| key | unit | default | range | used by | meaning |\n");
+  ASSERT_NE(table, std::string::npos) << "no key table in docs/scene-reference.md";
+  const auto markdown = testing::run_emnet("schema --markdown");
+  ASSERT_EQ(markdown.status, 0) << markdown.err;
+  EXPECT_EQ(text.substr(table + 1), markdown.out)
+      << "docs/scene-reference.md differs from `emnet schema --markdown`: run "
+         "tools/scene-reference";
 }
 
 }  // namespace
