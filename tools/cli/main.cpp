@@ -54,6 +54,61 @@ int main(int argc, char** argv) {
                                          add_schema_command(app)};
   const CLI::App* crosscheck_command = commands[9].app;
 
+  // Each command's help ends with one example and the scene keys it reads (their units,
+  // defaults and meanings: docs/scene-reference.md, `emnet schema`), before the exit statuses.
+  const std::string model_tables =
+      "the tables that build the model: [beam] (or [[section]]), [[mass]], [[spring]], "
+      "[damping], [[dea]], [drive], [[load]], [[circuit]], [environment], [model]; and "
+      "[[probe]] for the outputs (docs/scene-reference.md)";
+  struct Usage {
+    std::string command, example, reads;
+  };
+  const std::vector<Usage> usages = {
+      {"static", "emnet static netlists/fishfin.toml", model_tables},
+      {"modes", "emnet modes netlists/fishfin.toml --count 3", model_tables},
+      {"ac", "emnet ac netlists/fishfin.toml --plot bode.png",
+       model_tables + "; [ac] for the sweep (from, to, points, scale)"},
+      {"tran", "emnet tran netlists/fishfin.toml --periods 5",
+       model_tables + "; drive.frequency sets the period of --periods"},
+      {"sweep-switching", "emnet sweep-switching netlists/fishfin.toml --from 1 --to 4 --step 0.1",
+       model_tables + "; the drive's switching frequency is swept (drive.frequency is replaced)"},
+      {"identify", "",  // its description has the example
+       model_tables + "; the fitted key (beam.bending_stiffness unless --fit names another; "
+                      "with --peak also damping.loss_factor) is replaced"},
+      {"sensitivity", "emnet sensitivity netlists/fishfin.toml --modes 2", model_tables},
+      {"mismatch", "emnet mismatch netlists/fishfin.toml", model_tables},
+      {"netlist", "emnet netlist netlists/fishfin.toml --analysis ac -o fishfin-ac.cir",
+       model_tables + "; [ac] for --analysis ac"},
+      {"crosscheck", "emnet crosscheck netlists/fishfin.toml --analysis ac,modal",
+       model_tables + "; [ac] for the AC comparison"},
+      {"study", "",  // its description has the example
+       model_tables + "; the keys named by --vary or --variants are replaced per variant"},
+      {"schema", "emnet schema --markdown", "no scene: it lists every key the reader accepts"}};
+  // Words wrapped at 90 columns, continuation lines indented by two.
+  auto wrapped = [](const std::string& text) {
+    std::string out, line;
+    size_t start = 0;
+    while (start < text.size()) {
+      size_t end = text.find(' ', start);
+      if (end == std::string::npos) end = text.size();
+      const std::string word = text.substr(start, end - start);
+      if (!line.empty() && line.size() + 1 + word.size() > 90) {
+        out += line + "\n";
+        line = "  " + word;
+      } else {
+        line += (line.empty() ? "" : " ") + word;
+      }
+      start = end + 1;
+    }
+    return out + line;
+  };
+  for (const Command& command : commands)
+    for (const Usage& usage : usages)
+      if (command.app->get_name() == usage.command)
+        command.app->footer((usage.example.empty() ? "" : "Example:\n  " + usage.example + "\n") +
+                            wrapped("Reads: " + usage.reads + ".") + "\n\n" +
+                            command.app->get_footer());
+
   // An unknown command would otherwise be taken for a scene file ("A subcommand is required").
   std::vector<std::string> command_names;
   std::string command_list;
