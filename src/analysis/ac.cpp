@@ -3,7 +3,6 @@
 // the pole–residue form (ac_pole_residue.hpp) checked against that direct solve.
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <stdexcept>
 
@@ -11,6 +10,7 @@
 #include "complex_klu.hpp"
 #include "core/timed.hpp"
 #include "emnet/analysis/analysis.hpp"
+#include "emnet/core/units.hpp"
 #include "equilibration.hpp"
 
 namespace emnet {
@@ -19,9 +19,7 @@ namespace {
 constexpr double two_pi = 6.283185307179586476925286766559;
 
 std::string hz(double f) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.9g Hz", f);
-  return text;
+  return format_number("%.9g Hz", f);
 }
 
 // A failed Status when a probe's response is not finite (an overflow, a NaN in a coefficient):
@@ -88,6 +86,7 @@ class DirectAcSolver {
     lu_ = std::make_unique<ComplexKlu>(matrix_);
   }
   bool excited() const { return rhs_norm_ != 0.0; }
+  const Eigen::SparseMatrix<double>& g_matrix() const { return g_matrix_; }
 
   // The probes' values at f into `values`; `residual` the solve's relative residual.
   Status solve(double f, std::vector<std::complex<double>>& values, double& residual,
@@ -200,7 +199,8 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
   if (pole_residue) {
     if (!keep_going(options.progress, 0, 0, "AC: poles and residues"))
       return finish(cancelled_status());
-    PoleResidueSweep sweep = pole_residue_sweep(system, operating_point, frequencies, probes);
+    PoleResidueSweep sweep =
+        pole_residue_sweep(system, operating_point, direct->g_matrix(), frequencies, probes);
     if (sweep.ok) {
       // Checked against the direct solve where its rounding is largest.
       std::vector<double> peak(probes.size(), 0.0);
@@ -227,12 +227,9 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
         result.poles = std::move(sweep.poles);
         return finish(Status::success());
       }
-      char text[160];
-      std::snprintf(text, sizeof text,
-                    "the pole-residue form differed from the direct solve by %.2g of the peak at "
-                    "its check points: solved directly",
-                    deviation);
-      result.note = text;
+      result.note = "the pole-residue form differed from the direct solve by " +
+                    format_number("%.2g", deviation) +
+                    " of the peak at its check points: solved directly";
     } else {
       result.note = "pole-residue form not used: " + sweep.why_not;
     }

@@ -17,12 +17,13 @@ constexpr double two_pi = 6.283185307179586476925286766559;
 }
 
 PoleResidueSweep pole_residue_sweep(const System& system, const Eigen::VectorXd& operating_point,
+                                    const Eigen::SparseMatrix<double>& linearised_g_matrix,
                                     const std::vector<double>& frequencies,
                                     const std::vector<Probe>& probes) {
   PoleResidueSweep sweep;
   const Eigen::VectorXcd b_ac = system.b_ac();
   // A phasor on a row without an s⁰ part (a velocity source) has no displacement form.
-  const RowClassification rows = classify_rows(system, linearised_g(system, operating_point));
+  const RowClassification rows = classify_rows(system, linearised_g_matrix);
   for (Eigen::Index k = 0; k < b_ac.size(); ++k)
     if (rows.divided[static_cast<size_t>(k)] && b_ac[k] != 0.0) {
       sweep.why_not = "an AC source drives a velocity";

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 #include <complex>
 #include <string>
 #include <vector>
@@ -35,8 +36,10 @@ struct PoleResidueSweep {
   double basis_condition = 0.0;                           // κ₁(V)
 };
 
-// `probes` are linear (linearised about `operating_point`); `operating_point` is y at rest.
+// `probes` are linear (linearised about `operating_point`); `operating_point` is y at rest and
+// `linearised_g_matrix` G + J_g there (linearised_g), as the direct solve has it.
 PoleResidueSweep pole_residue_sweep(const System& system, const Eigen::VectorXd& operating_point,
+                                    const Eigen::SparseMatrix<double>& linearised_g_matrix,
                                     const std::vector<double>& frequencies,
                                     const std::vector<Probe>& probes);
 

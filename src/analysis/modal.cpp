@@ -25,12 +25,6 @@ constexpr double two_pi = 6.283185307179586476925286766559;
 using Complex = std::complex<double>;
 using Lu = Eigen::SparseLU<Eigen::SparseMatrix<double>>;
 
-// A pole with |Im s| ≤ kNearlyReal·|s| (damping ratio above 1 − 5e-11) is real: rounding splits a
-// repeated real pole into a complex pair ~√ε apart. Measured: the fish fin with the ideal drive
-// and loss factor 1e-5 has repeated Kelvin–Voigt poles at −1/τ (τ = 2.5e-7 s) that came out as
-// a "mode" at 0.0071 Hz with |Im s|/|s| = 1.1e-8.
-constexpr double kNearlyReal = 1e-5;
-
 // Shift when Â is singular (rigid-body motions, projected out), relative to ‖Â‖/‖Ê‖: positive
 // (a passive network has no pole there), small against the lowest elastic pole (equilibrated,
 // |ŝ| = 0.08 for the fish fin at N = 7 up to 2.5 at N = 100 000), and large enough that the

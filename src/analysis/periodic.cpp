@@ -159,33 +159,17 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
   // paired), every term is taken as it is.
   std::vector<Eigen::Index> terms;
   std::vector<double> weights;
-  {
-    bool paired = true;
-    for (Eigen::Index k = 0; k < lambda.size() && paired; ++k) {
-      if (lambda[k].imag() == 0.0) {
-        terms.push_back(k);
-        weights.push_back(1.0);
-        continue;
-      }
-      paired =
-          lambda[k].imag() > 0.0 && k + 1 < lambda.size() && lambda[k + 1] == std::conj(lambda[k]);
-      for (size_t p = 0; p < series.size() && paired; ++p)
-        for (size_t i = 0; i < intervals && paired; ++i) {
-          const Complex a = series[p].coefficient[i][k], b = series[p].coefficient[i][k + 1];
-          paired = std::abs(b - std::conj(a)) <= 1e-12 * std::abs(a);
-        }
-      if (paired) {
-        terms.push_back(k);
-        weights.push_back(2.0);
-        ++k;
-      }
-    }
-    if (!paired) {
-      terms.resize(static_cast<size_t>(lambda.size()));
-      for (Eigen::Index k = 0; k < lambda.size(); ++k) terms[static_cast<size_t>(k)] = k;
-      weights.assign(terms.size(), 1.0);
-    }
-  }
+  conjugate_pairs(
+      lambda,
+      [&](Eigen::Index k) {
+        for (const ExponentialSeries& s : series)
+          for (size_t i = 0; i < intervals; ++i) {
+            const Complex a = s.coefficient[i][k], b = s.coefficient[i][k + 1];
+            if (!(std::abs(b - std::conj(a)) <= 1e-12 * std::abs(a))) return false;
+          }
+        return true;
+      },
+      terms, weights);
   // Value and two derivatives of probe p at offset h into interval i.
   auto evaluate = [&](size_t p, size_t i, double h, double* d1, double* d2) {
     const Eigen::VectorXcd& a = series[p].coefficient[i];

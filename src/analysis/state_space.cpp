@@ -288,30 +288,11 @@ bool LinearStateSpace::ModalBasis::of(const Eigen::MatrixXd& m, ModalBasis& basi
     basis.vectors_lu.compute(basis.vectors);
     basis.condition = 1.0 / basis.vectors_lu.rcond();
   }
-  const Eigen::VectorXcd& lambda = basis.values;
-  bool paired = true;
   std::vector<double> factors;
-  basis.half.clear();
-  for (Eigen::Index k = 0; k < lambda.size(); ++k) {
-    if (lambda[k].imag() == 0.0) {
-      basis.half.push_back(k);
-      factors.push_back(1.0);
-    } else if (lambda[k].imag() > 0.0 && k + 1 < lambda.size() &&
-               lambda[k + 1] == std::conj(lambda[k]) &&
-               basis.vectors.col(k + 1) == basis.vectors.col(k).conjugate()) {
-      basis.half.push_back(k);
-      factors.push_back(2.0);
-      ++k;
-    } else {
-      paired = false;
-      break;
-    }
-  }
-  if (!paired) {
-    basis.half.resize(static_cast<size_t>(lambda.size()));
-    for (Eigen::Index k = 0; k < lambda.size(); ++k) basis.half[static_cast<size_t>(k)] = k;
-    factors.assign(static_cast<size_t>(lambda.size()), 1.0);
-  }
+  conjugate_pairs(
+      basis.values,
+      [&](Eigen::Index k) { return basis.vectors.col(k + 1) == basis.vectors.col(k).conjugate(); },
+      basis.half, factors);
   basis.half_factor =
       Eigen::Map<Eigen::VectorXd>(factors.data(), static_cast<Eigen::Index>(factors.size()));
   return basis.condition < 1e6 && basis.vectors.allFinite();

@@ -98,10 +98,8 @@ class LinearStateSpace {
     Eigen::MatrixXcd vectors;
     Eigen::PartialPivLU<Eigen::MatrixXcd> vectors_lu;
     double condition = 0.0;  // κ₁(V) = ‖V‖₁·‖V⁻¹‖₁: rounding of V⁻¹·b grows with it
-    // One pole of each conjugate pair (Im λ > 0, factor 2) and the real poles (factor 1): for
-    // weights w that are conjugate over a pair, Re Σ_k w_k·g(λ_k) = Σ_{k ∈ half}
-    // factor_k·Re(w_k·g(λ_k)), at half the work. The pairs are as the real Schur form gives
-    // them, adjacent and exactly conjugate; where they are not, every pole with factor 1.
+    // One pole of each conjugate pair and the real poles, with their factors 2 and 1
+    // (conjugate_pairs below, a pair's vectors exactly conjugate).
     std::vector<Eigen::Index> half;
     Eigen::VectorXd half_factor;
     Eigen::VectorXcd increments(double h) const;
@@ -162,6 +160,36 @@ class LinearStateSpace {
   Eigen::VectorXd sigma_inv_;  // of Ê, times ω₀: the reduced equations in physical time
   Eigen::FullPivLU<Eigen::MatrixXd> a22_lu_;
 };
+
+// One pole of each conjugate pair (Im λ > 0, factor 2) and the real poles (factor 1) of
+// `lambda`, in `half` and `factor`: for data (weights, coefficients) conjugate over each pair,
+// Re Σ_k w_k·g(λ_k) = Σ_{k ∈ half} factor_k·Re(w_k·g(λ_k)), at half the work. A pair is two
+// adjacent, exactly conjugate poles (as the real Schur form gives them) for which
+// `conjugate(k)` says the data of poles k and k + 1 are conjugate too. Where any pole is not so
+// paired: every pole, factor 1, and false.
+template <class Conjugate>
+bool conjugate_pairs(const Eigen::VectorXcd& lambda, Conjugate conjugate,
+                     std::vector<Eigen::Index>& half, std::vector<double>& factor) {
+  half.clear();
+  factor.clear();
+  for (Eigen::Index k = 0; k < lambda.size(); ++k) {
+    if (lambda[k].imag() == 0.0) {
+      half.push_back(k);
+      factor.push_back(1.0);
+    } else if (lambda[k].imag() > 0.0 && k + 1 < lambda.size() &&
+               lambda[k + 1] == std::conj(lambda[k]) && conjugate(k)) {
+      half.push_back(k);
+      factor.push_back(2.0);
+      ++k;
+    } else {
+      half.resize(static_cast<size_t>(lambda.size()));
+      for (Eigen::Index j = 0; j < lambda.size(); ++j) half[static_cast<size_t>(j)] = j;
+      factor.assign(half.size(), 1.0);
+      return false;
+    }
+  }
+  return true;
+}
 
 // The modal increments at successive offsets 0 ≤ h₁ ≤ h₂ ≤ … into one interval, on the poles
 // of ModalBasis::half: E = e^{λh}, I = ∫₀ʰ e^{λs} ds = h·φ₁(λh) (ModalBasis::increments) and

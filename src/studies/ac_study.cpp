@@ -88,13 +88,13 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
     std::sort(resonances.begin(), resonances.end());
   } else if (!result.ac.poles.empty()) {
     // The pole-residue sweep has every pole already (to rounding, checked through the sweep).
-    // Oscillatory as run_modes counts them (|Im s| above 1e-5·|s|: rounding splits a double
-    // real pole into a pair), and not a pole at 0 within rounding of the largest (invariants
-    // of the state equation that no source excites).
+    // Oscillatory as run_modes counts them (|Im s| above kNearlyReal·|s|), and not a pole at 0
+    // within rounding of the largest (invariants of the state equation that no source
+    // excites).
     double largest = 0.0;
     for (const auto& pole : result.ac.poles) largest = std::max(largest, std::abs(pole));
     for (const auto& pole : result.ac.poles)
-      if (pole.imag() > 1e-5 * std::abs(pole) && std::abs(pole) > 1e-9 * largest)
+      if (pole.imag() > kNearlyReal * std::abs(pole) && std::abs(pole) > 1e-9 * largest)
         resonances.push_back(pole.imag() / two_pi);
     std::sort(resonances.begin(), resonances.end());
   } else {

@@ -169,6 +169,17 @@ std::string write_deck(const Settings& settings, const std::string& name, const 
 Timing ngspice_process(const Settings& settings, const std::string& deck_path, int repetitions,
                        double budget, bool& ok);
 emnet::NgspiceOptions in_process_ngspice();
+// A .tran result of ngspice at its own time points, away from the switching edges: the times
+// outside ±10·edge_width of every multiple of half a period (the deck's edges), up to
+// end_time, and each output's values there ([output][kept time]), to compare with a reference
+// evaluated at `kept`. `outputs` of the deck's outputs in order (empty where one is missing).
+struct SpicePoints {
+  std::vector<double> kept;
+  std::vector<std::vector<double>> values;
+};
+SpicePoints spice_points_away_from_edges(const emnet::NgspiceResult& result,
+                                         const emnet::SpiceDeck& deck, size_t outputs,
+                                         double period, double edge_width, double end_time);
 std::string remove_options_line(const std::string& deck);
 
 struct Section {

@@ -278,6 +278,29 @@ emnet::NgspiceOptions in_process_ngspice() {
   return options;
 }
 
+SpicePoints spice_points_away_from_edges(const emnet::NgspiceResult& result,
+                                         const emnet::SpiceDeck& deck, size_t outputs,
+                                         double period, double edge_width, double end_time) {
+  SpicePoints points;
+  points.values.assign(outputs, {});
+  if (!result.scale()) return points;
+  const std::vector<double>& times = result.scale()->real_values;
+  const double half = 0.5 * period;
+  std::vector<bool> keep(times.size());
+  for (size_t k = 0; k < times.size(); ++k) {
+    keep[k] = std::abs(times[k] - half * std::round(times[k] / half)) > 10.0 * edge_width &&
+              times[k] <= end_time;
+    if (keep[k]) points.kept.push_back(times[k]);
+  }
+  for (size_t p = 0; p < outputs; ++p) {
+    const emnet::NgspiceVector* vector = result.find(deck.outputs[p].vector);
+    if (!vector) continue;
+    for (size_t k = 0; k < times.size(); ++k)
+      if (keep[k]) points.values[p].push_back(vector->real_values[k]);
+  }
+  return points;
+}
+
 std::string remove_options_line(const std::string& deck) {
   std::istringstream in(deck);
   std::ostringstream out;

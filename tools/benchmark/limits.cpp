@@ -166,26 +166,13 @@ std::string ida_against_ngspice(const Settings& settings) {
   const double spice_seconds = ngspice_in_process(text, &result);
   double spice_error = NAN;
   if (result.status.ok && result.scale()) {
-    const std::vector<double>& times = result.scale()->real_values;
-    const double edge = emnet::SpiceDeckOptions().edge_fraction * 0.5 * period;
-    std::vector<bool> keep(times.size());
-    std::vector<double> kept;
-    for (size_t k = 0; k < times.size(); ++k) {
-      const double half = 0.5 * period;
-      keep[k] = std::abs(times[k] - half * std::round(times[k] / half)) > 10.0 * edge &&
-                times[k] <= options.end_time;
-      if (keep[k]) kept.push_back(times[k]);
-    }
+    const SpicePoints points = spice_points_away_from_edges(
+        result, deck, probes.size(), period, emnet::SpiceDeckOptions().edge_fraction * 0.5 * period,
+        options.end_time);
     emnet::TransientOptions at = tight;
-    at.output_times = kept;
+    at.output_times = points.kept;
     const emnet::TransientResult there = emnet::run_transient_ida(system, probes, at);
-    std::vector<std::vector<double>> values(probes.size());
-    for (size_t p = 0; p < probes.size(); ++p) {
-      const emnet::NgspiceVector* vector = result.find(deck.outputs[p].vector);
-      if (!vector) continue;
-      for (size_t k = 0; k < times.size(); ++k)
-        if (keep[k]) values[p].push_back(vector->real_values[k]);
-    }
+    const std::vector<std::vector<double>>& values = points.values;
     if (there.status.ok) spice_error = run_error(values, there.values);
   }
   md << "| ngspice | default | " << error_text(spice_error) << " | " << time_text(spice_seconds)

@@ -135,27 +135,14 @@ Section tran_section(const Settings& settings, std::vector<ParetoPoint>& pareto)
         },
         3, 3.0);
     if (result.status.ok && result.scale()) {
-      const std::vector<double> times = result.scale()->real_values;
-      // Keep points outside ±10ε of every edge (edges at multiples of half a period).
-      std::vector<bool> keep(times.size());
-      std::vector<double> kept;
-      for (size_t k = 0; k < times.size(); ++k) {
-        const double half = 0.5 * context.period;
-        const double distance = std::abs(times[k] - half * std::round(times[k] / half));
-        keep[k] = distance > 10.0 * edge_width && times[k] <= context.end_time;
-        if (keep[k]) kept.push_back(times[k]);
-      }
+      const std::vector<double>& times = result.scale()->real_values;
+      const SpicePoints points = spice_points_away_from_edges(
+          result, deck, context.probes.size(), context.period, edge_width, context.end_time);
       emnet::TransientOptions at = options;
-      at.output_times = kept;
+      at.output_times = points.kept;
       const emnet::TransientResult reference =
           emnet::run_transient_exact(context.system, context.probes, at);
-      std::vector<std::vector<double>> values(context.probes.size());
-      for (size_t p = 0; p < context.probes.size(); ++p) {
-        const emnet::NgspiceVector* vector = result.find(deck.outputs[p].vector);
-        if (!vector) continue;
-        for (size_t k = 0; k < times.size(); ++k)
-          if (keep[k]) values[p].push_back(vector->real_values[k]);
-      }
+      const std::vector<std::vector<double>>& values = points.values;
       row.error = run_error(values, reference.values);
       row.note = std::to_string(times.size()) + " time points";
     } else {
