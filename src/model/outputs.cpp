@@ -59,6 +59,21 @@ ModelOutput scene_probe_output(const Model& model, size_t k) {
   return output;
 }
 
+// A DEA's u_X or i_X that a scene probe already shows (the same quantity of the same DEA,
+// whatever the probe's name), so that no output is listed twice.
+bool shown_by_a_scene_probe(const Model& model, const ModelOutput& output) {
+  for (const Probe& probe : model.probes)
+    if (probe.quantity == output.probe.quantity && probe.terms == output.probe.terms &&
+        probe.integrations == output.probe.integrations)
+      return true;
+  return false;
+}
+
+void append_dea_electrical_outputs(const Model& model, std::vector<ModelOutput>& outputs) {
+  for (ModelOutput& output : dea_electrical_outputs(model))
+    if (!shown_by_a_scene_probe(model, output)) outputs.push_back(std::move(output));
+}
+
 }  // namespace
 
 std::vector<ModelOutput> transient_output_list(const Model& model) {
@@ -72,7 +87,7 @@ std::vector<ModelOutput> transient_output_list(const Model& model) {
       if (difference.probe_index == static_cast<int>(k)) replacing = &difference;
     outputs.push_back(replacing ? *replacing : scene_probe_output(model, k));
   }
-  for (ModelOutput& output : dea_electrical_outputs(model)) outputs.push_back(std::move(output));
+  append_dea_electrical_outputs(model, outputs);
   return outputs;
 }
 
@@ -81,7 +96,7 @@ std::vector<ModelOutput> deck_output_list(const Model& model) {
   for (size_t k = 0; k < model.probes.size(); ++k)
     if (deck_exports(model, model.probes[k])) outputs.push_back(scene_probe_output(model, k));
   for (ModelOutput& output : speckle_point_differences(model)) outputs.push_back(std::move(output));
-  for (ModelOutput& output : dea_electrical_outputs(model)) outputs.push_back(std::move(output));
+  append_dea_electrical_outputs(model, outputs);
   return outputs;
 }
 

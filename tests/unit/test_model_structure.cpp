@@ -142,6 +142,18 @@ TEST(ModelOutputs, FishFinListsAsTheCommandsPrintedThem) {
   EXPECT_EQ(default_deflection_output(deck)->probe.name, "dx4");
 }
 
+// The gripper finger's scene has a probe u_A of DEA A's voltage: the built-in u_A is not listed
+// a second time (it was, as two equal columns), while i_A, which no probe shows, is.
+TEST(ModelOutputs, ADeaQuantityAProbeShowsIsListedOnce) {
+  const Model model =
+      build_model(read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/gripper-finger.toml"));
+  EXPECT_EQ(names_of(transient_output_list(model)),
+            (std::vector<std::string>{"tip", "body_end", "u_A", "i_A"}));
+  EXPECT_EQ(names_of(deck_output_list(model)),
+            (std::vector<std::string>{"tip", "body_end", "u_A", "i_A"}));
+  EXPECT_EQ(transient_output_list(model)[2].origin, OutputOrigin::scene_probe);
+}
+
 TEST(ModelOutputs, WithoutSpecklePointsTheLastDeflection) {
   Scene scene = testing::cantilever_scene(4);
   scene.probes = {testing::beam_probe("mid", ProbeQuantity::deflection, 0.25),

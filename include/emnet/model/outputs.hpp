@@ -54,6 +54,9 @@ std::vector<ModelOutput> speckle_point_differences(const Model& model);
 // u_X and i_X of every DEA with an electrical model, in DEA order (u before i).
 std::vector<ModelOutput> dea_electrical_outputs(const Model& model);
 
+// What tran (and sweep-switching, mismatch) show: the scene's probes, P_k replaced by dx_k, then
+// u_X, i_X of every DEA with an electrical model unless a scene probe shows that quantity
+// already. A deck's list: every probe a deck carries, the dx_k, then the same u_X, i_X.
 std::vector<ModelOutput> transient_output_list(const Model& model);
 std::vector<ModelOutput> deck_output_list(const Model& model);
 
