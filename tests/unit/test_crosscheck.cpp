@@ -70,7 +70,7 @@ TEST(Crosscheck, SwitchedDrivePassesAgainstNgspice) {
 }
 
 // The cantilever's step load from rest: ngspice stops with "timestep too small" at max steps
-// below ~T/1000 (README), so the default run (T/2000) must retry at max step T/200 and say so;
+// below ~T/1000 (docs/commands.md, "Cross-check"), so the default run (T/2000) must retry at max step T/200 and say so;
 // ngspice's own steps are far smaller there (its error control at reltol 1e-6 binds).
 TEST(Crosscheck, CantileverPassesAgainstNgspice) {
   if (!ngspice_available()) GTEST_SKIP() << "ngspice is not installed";

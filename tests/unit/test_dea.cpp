@@ -94,7 +94,7 @@ TEST(FishFin, FirstResonanceAtSevenSegments) {
 // Tolerance 1e-5 of |Δs|: ten times the neglected second-order term, of order |Δs| / (distance
 // to the next pole, ~200/s) ~ 1e-6 relative; the poles' rounding (~1e-15·|s|) is ~3e-10 of
 // |Δs|. Measured: 6e-7.
-// The effect itself (stated in the README): f1 6.385000 → 6.385001 Hz, ζ1 0.020004 → 0.020007.
+// The effect itself (stated in docs/model.md): f1 6.385000 → 6.385001 Hz, ζ1 0.020004 → 0.020007.
 TEST(DeaBackCoupling, FirstModeShiftMatchesPerturbationTheory) {
   const std::string path = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
   const Model plain = build_model(read_scene(path));

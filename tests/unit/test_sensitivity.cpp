@@ -91,7 +91,7 @@ TEST(Sensitivity, UnknownAndZeroParametersAreInputErrors) {
 }
 
 // The parameters come from the parameter table's sensitivity keys; on the fish fin they are the
-// list `emnet sensitivity` printed before there was a table (README, sensitivity), in its order
+// list `emnet sensitivity` printed before there was a table (docs/commands.md, sensitivity), in its order
 // and with its units: the beam, the loss factor pair, six per DEA and the drive voltage.
 TEST(Sensitivity, FishFinParametersAreTheListPrintedBeforeTheTable) {
   const Scene scene = read_scene(fishfin_path);

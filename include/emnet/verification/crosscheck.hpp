@@ -103,7 +103,7 @@ struct CrosscheckOptions {
   double tran_reltol = 1e-6;
   double tran_edge_fraction = 1e-5;
   double tran_edge_exclusion = 10.0;  // excluded window: ± this × ε around every edge
-  // tolerance = this × reltol × peak (measured: see the README's cross-check section).
+  // tolerance = this × reltol × peak (measured: see docs/commands.md, "Cross-check").
   double tran_tolerance_per_reltol = 100.0;
   // Decks are written here too when not empty (<scene>-crosscheck-<analysis>.cir).
   std::string keep_decks_directory;
