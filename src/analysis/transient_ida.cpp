@@ -1,5 +1,6 @@
 // Transient analysis with SUNDIALS IDA on the displacement form (index 1): sparse KLU
-// Jacobian, exact stops at every source breakpoint, consistent restarts (IDACalcIC).
+// Jacobian, exact stops at every source breakpoint, consistent restarts (own Newton iteration,
+// IDACalcIC as the fallback).
 #include <ida/ida.h>
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>

@@ -62,7 +62,8 @@ struct TransientResult {
 };
 
 // IDA (BDF, variable order and step) with a sparse KLU linear solver; stops exactly at every
-// source breakpoint and restarts there with consistent values (IDACalcIC).
+// source breakpoint and restarts there with consistent values (its own Newton iteration,
+// consistent_start.hpp; IDACalcIC only when that fails).
 TransientResult run_transient_ida(const System& system, const std::vector<Probe>& probes,
                                   const TransientOptions& options);
 

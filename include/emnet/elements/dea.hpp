@@ -14,8 +14,9 @@
 // top face at lever arm z: ẋ = −z·(Ω(x1) − Ω(x0)), Ω(x) Hermite-interpolated, so c holds
 // rotation-node and, between nodes, velocity-node coefficients). The force does work F·ẋ, so
 // it enters as generalised through quantities F·c_k into nodes k: for a span over whole
-// segments a moment pair ∓z·F at x0 / x1 (docs/model.md, The DEA transducer). Sign: an energised
-// top-face DEA bends the beam toward −w.
+// segments a moment pair, +z·F at x0 and −z·F at x1 on the top face, the signs swapped on the
+// bottom face (docs/model.md, The DEA transducer). Sign: an energised top-face DEA bends the
+// beam toward −w.
 //
 // Back-coupling (optional): with C(x) = C₀ + 2·k_F·x the current into the capacitor gains
 // i_b = u·(dC/dx)·ẋ = 2·k_F·u·ẋ (electrical power u·i_b = 2·F·ẋ: half to the mechanics, half
