@@ -53,6 +53,11 @@ std::string drive_summary(const Scene& scene) {
     case DriveKind::none:
       break;
   }
+  // A circuit's sources drive the network too (with or without a drive kind of its own).
+  std::string sources;
+  for (const CircuitSpec& element : scene.circuit)
+    if (is_source(element.kind)) sources += (sources.empty() ? "" : ", ") + shown(element.name);
+  if (!sources.empty()) out << ", circuit source(s) " << sources;
   return out.str();
 }
 

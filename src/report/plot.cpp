@@ -1,16 +1,18 @@
-// Plot writer: writes the plotted numbers (path + ".dat") and a gnuplot script (path + ".gp")
-// beside the image, then runs gnuplot under a time limit; see include/emnet/report/plot.hpp.
+// Plot writer: writes the plotted numbers and a gnuplot script, runs gnuplot on them under a
+// time limit, and keeps the numbers (path + ".dat") and the script (path + ".gp") beside the
+// image only when asked; see include/emnet/report/plot.hpp.
 //
-// Data and script are written completely or not at all (emnet::OutputFile), and so is the
-// image: gnuplot runs a hidden copy of the script whose only difference is its output, a
-// temporary image beside the real one, which is renamed onto the image when gnuplot has
-// succeeded and written a non-empty file; a failure leaves the previous image, if any, never a
-// half-written one. gnuplot is started without a shell, through the process helper
+// Every file is written completely or not at all (emnet::OutputFile), and so is the image:
+// gnuplot runs hidden copies of the data and the script, the script's only differences being
+// the data file it reads and its output, a temporary image beside the real one, which is
+// renamed onto the image when gnuplot has succeeded and written a non-empty file; a failure
+// leaves the previous image, if any, never a half-written one. The hidden copies are removed
+// afterwards. gnuplot is started without a shell, through the process helper
 // (emnet/core/process.hpp), as
 //   gnuplot -d .NAME.gp.PID.run      (in DIRECTORY, standard input /dev/null)
 // under a time limit of 60 s that kills it and everything it started; its standard output and
-// error are kept (the first 1 MiB) for the message when it fails. The script names its files
-// relative to its directory, so the saved one can be re-run from there.
+// error are kept (the first 1 MiB) for the message when it fails. A saved script names its files
+// relative to its directory, so it can be re-run from there.
 // Every text from the caller goes into the script as a single-quoted gnuplot string (no
 // backslash, backquote or macro expansion happens inside those) with control characters
 // replaced by spaces and quotes doubled, and is drawn with `noenhanced` so '_', '^', '@', '{'
@@ -25,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <locale>
 #include <sstream>
@@ -52,6 +55,7 @@ struct PlotFiles {
   std::string script_name;
   std::string data_path;  // full paths, for messages
   std::string script_path;
+  std::string image_path;
 };
 
 std::string lowercase(std::string text) {
@@ -79,6 +83,7 @@ Status plot_files_for(const std::string& image_path, PlotFiles& files) {
   files.script_name = files.image_name + ".gp";
   files.data_path = image_path + ".dat";
   files.script_path = image_path + ".gp";
+  files.image_path = image_path;
   return Status::success();
 }
 
@@ -180,27 +185,40 @@ std::string last_lines(const std::string& output, size_t count) {
 // Runs gnuplot on the script `script_name` (in the image's directory) under a time limit and
 // checks that it wrote a non-empty `image_path`.
 Status run_gnuplot(const PlotFiles& files, const std::string& script_name,
-                   const std::string& image_path);
+                   const std::string& image_path, bool side_files);
 
-// Writes the gnuplot script (`preamble`, the output line, `body`) beside the image, then runs a
-// copy of it that draws into a temporary image and renames that onto the image.
+// The script's body for a data file name (the saved data beside the image, or its hidden copy).
+using ScriptBody = std::function<std::string(const std::string& data_name)>;
+
+// With `side_files`, writes the data and the gnuplot script (`preamble`, the output line,
+// `body`) beside the image. Then runs a hidden copy of both that draws into a temporary image
+// and renames that onto the image.
 Status write_script_and_run(const PlotFiles& files, const std::string& preamble,
-                            const std::string& body, const std::string& image_path) {
-  if (Status status =
-          write_output_file(files.script_path, preamble + "set output " +
-                                                   gnuplot_string(files.image_name) + "\n" + body);
-      !status.ok)
-    return status;
+                            const ScriptBody& body, const std::string& data,
+                            const std::string& image_path, bool side_files) {
+  if (side_files) {
+    if (Status status = write_output_file(files.data_path, data); !status.ok) return status;
+    if (Status status = write_output_file(files.script_path, preamble + "set output " +
+                                                                 gnuplot_string(files.image_name) +
+                                                                 "\n" + body(files.data_name));
+        !status.ok)
+      return status;
+  }
   const std::string unique = std::to_string(::getpid());
   const std::string run_name = "." + files.script_name + "." + unique + ".run";
+  const std::string data_name = "." + files.data_name + "." + unique + ".run";
   const std::string image_name = "." + files.image_name + "." + unique + ".drawing";
   const RemovedAtExit run_script((files.directory / run_name).string());
+  const RemovedAtExit run_data((files.directory / data_name).string());
   const RemovedAtExit drawing((files.directory / image_name).string());
+  if (Status status = write_output_file(run_data.path(), data); !status.ok) return status;
   if (Status status = write_output_file(
-          run_script.path(), preamble + "set output " + gnuplot_string(image_name) + "\n" + body);
+          run_script.path(),
+          preamble + "set output " + gnuplot_string(image_name) + "\n" + body(data_name));
       !status.ok)
     return status;
-  if (Status status = run_gnuplot(files, run_name, drawing.path()); !status.ok) return status;
+  if (Status status = run_gnuplot(files, run_name, drawing.path(), side_files); !status.ok)
+    return status;
   if (std::rename(drawing.path().c_str(), image_path.c_str()) != 0) {
     std::error_code error(errno, std::generic_category());
     return Status::failure("cannot write '" + image_path + "': " + error.message());
@@ -209,7 +227,7 @@ Status write_script_and_run(const PlotFiles& files, const std::string& preamble,
 }
 
 Status run_gnuplot(const PlotFiles& files, const std::string& script_name,
-                   const std::string& image_path) {
+                   const std::string& image_path, bool side_files) {
   std::error_code ignored;
   // gnuplot's standard output and error, in the order they come, the first 1 MiB.
   std::string output;
@@ -226,58 +244,111 @@ Status run_gnuplot(const PlotFiles& files, const std::string& script_name,
   gnuplot.timeout_seconds = kGnuplotTimeLimitSeconds;
   const ProcessResult end = run_process(gnuplot);
 
+  // What a message names: the saved script when there is one, else the image.
+  const std::string& drawn = side_files ? files.script_path : files.image_path;
   const std::string details = last_lines(output, 8);
   const std::string output_note = details.empty() ? "" : ":\n  " + details;
   using How = ProcessResult::How;
   if (end.how == How::failed)
-    return Status::failure("cannot run gnuplot for '" + files.script_path + "': " + end.problem);
+    return Status::failure("cannot run gnuplot for '" + drawn + "': " + end.problem);
   if (end.how == How::not_started) {
     return Status::failure(
         "cannot run gnuplot: it is not installed or not on PATH (Debian package gnuplot-nox, "
-        "installed by tools/setup-deps); the data and script are in '" +
-        files.data_path + "' and '" + files.script_path + "'" + output_note);
+        "installed by tools/setup-deps)" +
+        (side_files ? "; the data and script are in '" + files.data_path + "' and '" +
+                          files.script_path + "'"
+                    : std::string()) +
+        output_note);
   }
   if (end.how == How::timed_out) {
     return Status::failure("gnuplot did not finish within " +
-                           std::to_string(kGnuplotTimeLimitSeconds) + " s on '" +
-                           files.script_path + "'");
+                           std::to_string(kGnuplotTimeLimitSeconds) + " s on '" + drawn + "'");
   }
   if (end.how == How::signalled) {
     return Status::failure("gnuplot was killed by signal " + std::to_string(end.signal_number) +
-                           " on '" + files.script_path + "'" + output_note);
+                           " on '" + drawn + "'" + output_note);
   }
   if (end.exit_status != 0) {
     return Status::failure("gnuplot failed (exit code " + std::to_string(end.exit_status) +
-                           ") on '" + files.script_path + "'" + output_note);
+                           ") on '" + drawn + "'" + output_note);
   }
   const auto size = std::filesystem::file_size(image_path, ignored);
   if (ignored || size == 0) {
-    return Status::failure("gnuplot ran but did not write the image for '" + files.script_path +
-                           "'" + output_note);
+    return Status::failure("gnuplot ran but did not write the image for '" + drawn + "'" +
+                           output_note);
   }
   return Status::success();
 }
 
-// Vertical dashed lines (and, with `with_labels`, labels beside them) for the markers inside
-// [x_min, x_max]. A label reads upwards from the bottom of the panel, left of its line, on an
-// opaque background: a marker usually sits at a resonance, where the curves are high, so the
-// bottom of the panel is where the label is least likely to hide a curve.
-std::string marker_lines(const std::vector<PlotMarker>& markers, double x_min, double x_max,
-                         bool with_labels) {
-  std::ostringstream out;
-  int index = 1;
+// The palette: dark and saturated enough to read on white (no yellow, no pale tints), the
+// colour-blind-safe set of Okabe and Ito with its yellow and sky blue replaced by a dark blue
+// and a brown, in an order whose neighbours differ in hue and lightness.
+constexpr const char* kPalette[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
+                                    "#1a1a1a", "#e69f00", "#3b4cc0", "#8c564b"};
+constexpr int kPaletteSize = static_cast<int>(sizeof kPalette / sizeof kPalette[0]);
+
+std::string colour_of(int index) {
+  const int k = ((index % kPaletteSize) + kPaletteSize) % kPaletteSize;
+  return std::string("lc rgb '") + kPalette[k] + "'";
+}
+
+// Markers closer than this fraction of the x span (in the axis's own scale: log10 on a log
+// axis) share one label. A rotated label is one text line (about 15 px) wide beside its line,
+// about 2 % of a panel 870 px wide, so labels this far apart cannot overlap.
+constexpr double kMarkerMergeFraction = 0.03;
+
+// Markers inside [x_lo, x_hi], sorted, in groups that share a label.
+struct MarkerGroup {
+  std::vector<double> xs;  // the lines, increasing
+  std::string label;       // the group's texts joined by "; "
+};
+
+std::vector<MarkerGroup> marker_groups(const std::vector<PlotMarker>& markers, double x_lo,
+                                       double x_hi, bool log_axis) {
+  std::vector<PlotMarker> inside;
   for (const auto& marker : markers) {
     const double x = marker.frequency_hz;
-    if (!std::isfinite(x) || x < x_min || x > x_max) continue;
-    out << "set arrow " << index << " from " << number_text(x) << ", graph 0 to " << number_text(x)
-        << ", graph 1 nohead front dt 2 lw 1.5 lc rgb '#b00000'\n";
+    if (std::isfinite(x) && x >= x_lo && x <= x_hi && (!log_axis || x > 0.0))
+      inside.push_back(marker);
+  }
+  std::stable_sort(inside.begin(), inside.end(), [](const PlotMarker& a, const PlotMarker& b) {
+    return a.frequency_hz < b.frequency_hz;
+  });
+  auto position = [&](double x) { return log_axis ? std::log10(x) : x; };
+  const double span = log_axis && x_lo > 0.0 ? std::log10(x_hi) - std::log10(x_lo) : x_hi - x_lo;
+  std::vector<MarkerGroup> groups;
+  for (const auto& marker : inside) {
+    const bool joins = !groups.empty() && span > 0.0 &&
+                       position(marker.frequency_hz) - position(groups.back().xs.front()) <
+                           kMarkerMergeFraction * span;
+    if (joins) {
+      groups.back().xs.push_back(marker.frequency_hz);
+      groups.back().label += "; " + marker.label;
+    } else {
+      groups.push_back({{marker.frequency_hz}, marker.label});
+    }
+  }
+  return groups;
+}
+
+// Vertical dashed lines (and, with `with_labels`, one label per group beside its first line).
+// A label reads upwards from the bottom of the panel, left of its line, on an opaque
+// background: a marker usually sits at a resonance, where the curves are high, so the bottom of
+// the panel is where the label is least likely to hide a curve.
+std::string marker_lines(const std::vector<MarkerGroup>& groups, bool with_labels) {
+  std::ostringstream out = classic_stream();
+  int arrow = 1, label = 1;
+  for (const auto& group : groups) {
+    for (double x : group.xs) {
+      out << "set arrow " << arrow++ << " from " << number_text(x) << ", graph 0 to "
+          << number_text(x) << ", graph 1 nohead front dt 2 lw 1.5 lc rgb '#b00000'\n";
+    }
     if (with_labels) {
-      out << "set label " << index << " " << gnuplot_string(marker.label) << " at "
-          << number_text(x)
+      out << "set label " << label++ << " " << gnuplot_string(group.label) << " at "
+          << number_text(group.xs.front())
           << ", graph 0.03 rotate by 90 left front offset -1.3,0 boxed noenhanced"
              " tc rgb '#b00000'\n";
     }
-    ++index;
   }
   return out.str();
 }
@@ -306,35 +377,140 @@ double phase_tic_step(double span) {
 }
 
 // The legend: one row of entries between the page title and the top panel, wrapped into as
-// many rows as the label lengths need. Pixel sizes are for the 11-point Sans font.
+// many rows as the label lengths need, and an optional note line under it. Pixel sizes are for
+// the 11-point Sans font.
 struct LegendLayout {
-  std::string key_line;  // "set key ..." line
-  double panel_top = 0;  // screen fraction where the (top) panel starts, below the legend
+  std::string key_line;   // "set key ..." line
+  std::string note_line;  // "set label ..." line of the note, or empty
+  double panel_top = 0;   // screen fraction where the (top) panel starts, below the legend
 };
 
-LegendLayout legend_layout(const std::vector<std::string>& entries, int width_px, int height_px) {
-  constexpr double kCharacterWidthPx = 7.5, kRowHeightPx = 19.0, kTitleHeightPx = 42.0;
+LegendLayout legend_layout(const std::vector<std::string>& entries, const std::string& note,
+                           int width_px, int height_px, int title_lines) {
+  constexpr double kCharacterWidthPx = 7.5, kRowHeightPx = 19.0;
+  const double kTitleHeightPx = 42.0 + 20.0 * (title_lines - 1);
   size_t longest = 1;
   for (const auto& entry : entries) longest = std::max(longest, one_line(entry).size());
   const double column_width_px = (static_cast<double>(longest) + 9.0) * kCharacterWidthPx;
   const size_t fitting = static_cast<size_t>(0.9 * width_px / column_width_px);
   const size_t columns = std::max<size_t>(1, std::min(entries.size(), fitting));
-  const size_t rows = (entries.size() + columns - 1) / columns;
+  const size_t rows = std::max<size_t>(1, (entries.size() + columns - 1) / columns);
   const double key_top = 1.0 - kTitleHeightPx / height_px;
   LegendLayout layout;
   layout.key_line = "set key at screen 0.5, screen " + number_text(key_top) +
                     " center top horizontal maxcols " + std::to_string(columns) + " maxrows " +
                     std::to_string(rows) + " samplen 3 noenhanced\n";
-  layout.panel_top = key_top - (static_cast<double>(rows) * kRowHeightPx + 12.0) / height_px;
+  double used_px = static_cast<double>(rows) * kRowHeightPx + 12.0;
+  if (!note.empty()) {
+    layout.note_line = "set label 90 " + gnuplot_string(note) + " at screen 0.5, screen " +
+                       number_text(key_top - (used_px + 2.0) / height_px) +
+                       " center noenhanced tc rgb '#404040'\n";
+    used_px += kRowHeightPx + 6.0;
+  }
+  layout.panel_top = key_top - used_px / height_px;
   return layout;
+}
+
+// Panels stacked from `top` down to `bottom`, `gap` apart, heights in proportion to `weights`:
+// each panel's (top, bottom) in screen fractions.
+std::vector<std::pair<double, double>> stacked_panels(double top, double bottom, double gap,
+                                                      const std::vector<double>& weights) {
+  double total = 0.0;
+  for (double w : weights) total += w;
+  const double available = top - bottom - gap * static_cast<double>(weights.size() - 1);
+  std::vector<std::pair<double, double>> panels;
+  double at = top;
+  for (double w : weights) {
+    const double height = available * w / total;
+    panels.emplace_back(at, at - height);
+    at -= height + gap;
+  }
+  return panels;
+}
+
+// The units of `units_of_series` in the order they first appear, and each series' group.
+std::vector<std::string> unit_groups(const std::vector<std::string>& units_of_series,
+                                     std::vector<size_t>& group_of_series) {
+  std::vector<std::string> units;
+  group_of_series.clear();
+  for (const auto& unit : units_of_series) {
+    auto found = std::find(units.begin(), units.end(), unit);
+    if (found == units.end()) found = units.insert(units.end(), unit);
+    group_of_series.push_back(static_cast<size_t>(found - units.begin()));
+  }
+  return units;
+}
+
+// The y axis of a magnitude panel whose finite positive values lie in [lo, hi]: logarithmic, at
+// most kBodeMagnitudeDecades below hi, widened by 4 % of its span (at least 0.05 decade) each
+// side, so no curve runs along the border and no empty decade is left; tics at 1, 2, 5 times the
+// powers of ten when it spans fewer than 2.5 decades (a decade's tics alone would leave at most
+// two labels). Under one decade a log axis shows nothing a linear one does not, and gets too
+// few tics to read: the axis is then linear, 5 % of the span wider each side.
+std::string magnitude_axis(double lo, double hi) {
+  if (!(lo > 0.0) || !(hi >= lo) || !std::isfinite(hi))
+    return "set logscale y\nset format y '%h'\nset yrange [*:*]\n";
+  const double top = std::log10(hi);
+  const double bottom = std::max(std::log10(lo), top - kBodeMagnitudeDecades);
+  if (top - bottom < 1.0) {
+    const double low = std::pow(10.0, bottom);
+    const double pad = hi > low ? 0.05 * (hi - low) : 0.05 * hi;
+    return "unset logscale y\nset format y '%.4g'\nset yrange [" + number_text(low - pad) + ":" +
+           number_text(hi + pad) + "]\n";
+  }
+  const double pad = std::max(0.05, 0.04 * (top - bottom));
+  const double from = std::pow(10.0, bottom - pad), to = std::pow(10.0, top + pad);
+  std::string axis = "set logscale y\nset format y '%h'\nset yrange [" + number_text(from) + ":" +
+                     number_text(to) + "]\n";
+  if (top - bottom < 2.5) {
+    std::string tics;
+    for (int e = static_cast<int>(std::floor(bottom - pad)); e <= static_cast<int>(top + pad); ++e)
+      for (double m : {1.0, 2.0, 5.0}) {
+        const double tic = m * std::pow(10.0, e);
+        if (tic >= from && tic <= to) tics += (tics.empty() ? "" : ", ") + number_text(tic);
+      }
+    axis += "set ytics (" + tics + ")\n";
+  }
+  return axis;
+}
+
+// Shifts an unwrapped phase curve [deg] by whole turns so that its first finite point lies in
+// (-270, 90]: a phase of ±180 (a sign inversion, where rounding decides the side arg() returns)
+// then starts every curve on the same side, and the lags of a mechanical response stay below it.
+void normalise_phase(std::vector<double>& phase) {
+  for (double first : phase) {
+    if (!std::isfinite(first)) continue;
+    const double turns = std::ceil((first - 90.0) / 360.0);
+    for (double& value : phase) value -= 360.0 * turns;
+    return;
+  }
+}
+
+// The title in at most two lines: split at the last ", " or " " before `width` characters when
+// longer, as a gnuplot string expression; `lines` is set to the count.
+std::string title_text(const std::string& title, size_t width, int& lines) {
+  const std::string text = one_line(title);
+  lines = 1;
+  if (text.size() <= width) return gnuplot_string(text);
+  size_t cut = text.rfind(" (", width);
+  if (cut == std::string::npos || cut < width / 2) cut = text.rfind(' ', width);
+  if (cut == std::string::npos || cut == 0) return gnuplot_string(text);
+  lines = 2;
+  return gnuplot_string(text.substr(0, cut)) + ".\"\\n\"." +
+         gnuplot_string(text.substr(text[cut] == ' ' ? cut + 1 : cut));
 }
 
 }  // namespace
 
+bool resonance_shows_peak(double damping_ratio) {
+  return damping_ratio < 0.70710678118654752;  // 1/sqrt(2)
+}
+
 Status write_bode_plot(const std::string& path, const std::string& title,
                        const std::vector<double>& frequencies_hz,
                        const std::vector<BodeSeries>& series,
-                       const std::vector<PlotMarker>& markers, bool log_frequency) {
+                       const std::vector<PlotMarker>& markers, bool log_frequency,
+                       PlotSideFiles side_files) {
   PlotFiles files;
   if (Status status = plot_files_for(path, files); !status.ok) return status;
   if (series.empty()) return Status::failure("Bode plot '" + path + "': no series to plot");
@@ -359,6 +535,14 @@ Status write_bode_plot(const std::string& path, const std::string& title,
                            " frequency to plot");
   }
 
+  // The magnitude panels: one per unit.
+  std::vector<std::string> series_units;
+  for (const auto& one : series) series_units.push_back(one.unit);
+  std::vector<size_t> group_of;
+  const std::vector<std::string> units = unit_groups(series_units, group_of);
+  std::vector<double> group_lo(units.size(), std::numeric_limits<double>::infinity()),
+      group_hi(units.size(), 0.0);
+
   // Magnitude and unwrapped phase; zero or non-finite values are missing (NaN) points.
   const size_t series_count = series.size();
   std::vector<std::vector<double>> magnitude(series_count), phase_deg(series_count);
@@ -380,10 +564,16 @@ Status write_bode_plot(const std::string& path, const std::string& title,
       previous_phase = phase;
       have_previous = true;
       any_magnitude = true;
-      phase_min = std::min(phase_min, phase);
-      phase_max = std::max(phase_max, phase);
+      group_lo[group_of[k]] = std::min(group_lo[group_of[k]], size);
+      group_hi[group_of[k]] = std::max(group_hi[group_of[k]], size);
       magnitude[k].push_back(size);
       phase_deg[k].push_back(phase);
+    }
+    normalise_phase(phase_deg[k]);
+    for (double phase : phase_deg[k]) {
+      if (!std::isfinite(phase)) continue;
+      phase_min = std::min(phase_min, phase);
+      phase_max = std::max(phase_max, phase);
     }
   }
 
@@ -401,83 +591,100 @@ Status write_bode_plot(const std::string& path, const std::string& title,
     }
     data << '\n';
   }
-  if (Status status = write_output_file(files.data_path, data.str()); !status.ok) return status;
 
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
   for (size_t f : rows) {
     x_lo = std::min(x_lo, frequencies_hz[f]);
     x_hi = std::max(x_hi, frequencies_hz[f]);
   }
-  std::string common_unit = series.front().unit;
-  for (const auto& one : series) {
-    if (one.unit != common_unit) common_unit.clear();
-  }
-  const std::string magnitude_label =
-      common_unit.empty() ? "magnitude" : "magnitude [" + common_unit + "]";
+  const std::vector<MarkerGroup> groups = marker_groups(markers, x_lo, x_hi, log_frequency);
 
   std::vector<std::string> legend_entries;
   for (const auto& one : series) {
     legend_entries.push_back(one.label + (one.unit.empty() ? "" : " [" + one.unit + "]"));
   }
-  constexpr int kWidthPx = 1000, kHeightPx = 750;
-  const LegendLayout legend = legend_layout(legend_entries, kWidthPx, kHeightPx);
-  // Panels stacked from legend.panel_top down to kBottom, kGap apart, of equal height.
-  constexpr double kBottom = 0.09, kGap = 0.06;
-  const double panel_height = (legend.panel_top - kBottom - kGap) / 2.0;
-  const double magnitude_bottom = kBottom + panel_height + kGap;
+  constexpr int kWidthPx = 1000;
+  const int height_px = 750 + 230 * static_cast<int>(units.size() - 1);
+  int title_lines = 1;
+  const std::string title_expression = title_text(title, 110, title_lines);
+  const LegendLayout legend = legend_layout(legend_entries, "", kWidthPx, height_px, title_lines);
+  // Panels from legend.panel_top down to kBottom: the magnitudes, then the phase.
+  const double bottom = 70.0 / height_px, gap = 45.0 / height_px;
+  std::vector<double> weights(units.size(), 1.0);
+  weights.push_back(units.size() > 1 ? 0.8 : 1.0);
+  const auto panels = stacked_panels(legend.panel_top, bottom, gap, weights);
 
   const std::string preamble =
-      script_header(files, "Bode plot", title) + gnuplot_terminal_line(files, kWidthPx, kHeightPx);
-  std::ostringstream script = classic_stream();
-  script << "set datafile missing 'NaN'\n"
-         << "set multiplot title " << gnuplot_string(title) << " font ',13' noenhanced\n"
-         << "set lmargin at screen 0.10\nset rmargin at screen 0.97\n"
-         << "set xrange " << range_text(x_lo, x_hi) << "\n"
-         << (log_frequency ? "set logscale x\n" : "") << "set grid xtics ytics mytics\n"
-         << "set border lw 1\n"
-         << kMarkerLabelStyle;
+      script_header(files, "Bode plot", title) + gnuplot_terminal_line(files, kWidthPx, height_px);
+  const ScriptBody body = [&](const std::string& data_name) {
+    std::ostringstream script = classic_stream();
+    script << "set datafile missing 'NaN'\n"
+           << "set multiplot title " << title_expression << " font ',13' noenhanced\n"
+           << "set lmargin at screen 0.11\nset rmargin at screen 0.97\n"
+           << "set xrange " << range_text(x_lo, x_hi) << "\n"
+           << (log_frequency ? "set logscale x\n" : "") << "set grid xtics ytics mytics\n"
+           << "set border lw 1\n"
+           << kMarkerLabelStyle;
 
-  // Top panel: magnitude.
-  script << "\n# Magnitude\n"
-         << "set tmargin at screen " << number_text(legend.panel_top) << "\nset bmargin at screen "
-         << number_text(magnitude_bottom) << "\n"
-         << "set format x ''\nunset xlabel\n"
-         << "set logscale y\nset ylabel " << gnuplot_string(magnitude_label) << " noenhanced\n"
-         << (any_magnitude ? ""
-                           : "set yrange [0.1:10]\nset label 99 'no non-zero values to plot' at "
-                             "graph 0.5, graph 0.5 center\n")
-         << "set format y '%h'\n"
-         << legend.key_line << marker_lines(markers, x_lo, x_hi, true) << "plot ";
-  for (size_t k = 0; k < series_count; ++k) {
-    script << (k ? ", \\\n     " : "") << gnuplot_string(files.data_name)
-           << " using 1:" << 2 + 2 * k << " with lines lw 2 lc " << k + 1 << " title "
-           << gnuplot_string(legend_entries[k]);
-  }
+    for (size_t g = 0; g < units.size(); ++g) {
+      const std::string label =
+          units[g].empty() ? "magnitude" : "magnitude [" + one_line(units[g]) + "]";
+      script << "\n# Magnitude" << (units[g].empty() ? "" : " [" + one_line(units[g]) + "]") << "\n"
+             << (g ? unset_markers() : "") << "set tmargin at screen "
+             << number_text(panels[g].first) << "\nset bmargin at screen "
+             << number_text(panels[g].second) << "\n"
+             << "set format x ''\nunset xlabel\n"
+             << "set ytics autofreq\nset ylabel " << gnuplot_string(label) << " noenhanced\n"
+             << (any_magnitude ? magnitude_axis(group_lo[g], group_hi[g])
+                               : "set logscale y\nset format y '%h'\nset yrange [0.1:10]\nset "
+                                 "label 99 'no non-zero values to plot' at graph 0.5, graph 0.5 "
+                                 "center\n")
+             << (g == 0 ? legend.key_line : "unset key\n") << marker_lines(groups, g == 0)
+             << "plot ";
+      bool first = true;
+      for (size_t k = 0; k < series_count; ++k) {
+        if (group_of[k] != g) continue;
+        script << (first ? "" : ", \\\n     ") << gnuplot_string(data_name)
+               << " using 1:" << 2 + 2 * k << " with lines lw 2 " << colour_of(static_cast<int>(k))
+               << " title " << gnuplot_string(legend_entries[k]);
+        first = false;
+      }
+      // With one key for the figure, the other panels' series join it from the first panel.
+      if (g == 0) {
+        for (size_t k = 0; k < series_count; ++k) {
+          if (group_of[k] == 0) continue;
+          script << ", \\\n     NaN with lines lw 2 " << colour_of(static_cast<int>(k)) << " title "
+                 << gnuplot_string(legend_entries[k]);
+        }
+      }
+      script << "\n";
+    }
 
-  // Bottom panel: unwrapped phase.
-  const double step = any_magnitude ? phase_tic_step(phase_max - phase_min) : 45.0;
-  script << "\n\n# Phase (unwrapped along frequency)\n"
-         << unset_markers() << "set tmargin at screen " << number_text(kBottom + panel_height)
-         << "\nset bmargin at screen " << number_text(kBottom) << "\n"
-         << "set format x '% h'\nset xlabel 'frequency [Hz]'\n"
-         << "unset logscale y\nset format y '% h'\nset yrange [*:*]\n"
-         << "set ylabel 'phase [deg]'\n"
-         << (any_magnitude ? "" : "set yrange [-180:180]\n")
-         << (step > 0.0 ? "set ytics " + number_text(step) + "\n" : "") << "unset key\n"
-         << marker_lines(markers, x_lo, x_hi, false) << "plot ";
-  for (size_t k = 0; k < series_count; ++k) {
-    script << (k ? ", \\\n     " : "") << gnuplot_string(files.data_name)
-           << " using 1:" << 3 + 2 * k << " with lines lw 2 lc " << k + 1 << " notitle";
-  }
-  script << "\n\nunset multiplot\n";
-
-  return write_script_and_run(files, preamble, script.str(), path);
+    // Bottom panel: unwrapped phase.
+    const auto& phase_panel = panels.back();
+    const double step = any_magnitude ? phase_tic_step(phase_max - phase_min) : 45.0;
+    script << "\n# Phase (unwrapped along frequency)\n"
+           << unset_markers() << "set tmargin at screen " << number_text(phase_panel.first)
+           << "\nset bmargin at screen " << number_text(phase_panel.second) << "\n"
+           << "set format x '% h'\nset xlabel 'frequency [Hz]'\n"
+           << "unset logscale y\nset format y '% h'\nset yrange [*:*]\nset ytics autofreq\n"
+           << "set ylabel 'phase [deg]'\n"
+           << (any_magnitude ? "" : "set yrange [-180:180]\n")
+           << (step > 0.0 ? "set ytics " + number_text(step) + "\n" : "") << "unset key\n"
+           << marker_lines(groups, false) << "plot ";
+    for (size_t k = 0; k < series_count; ++k) {
+      script << (k ? ", \\\n     " : "") << gnuplot_string(data_name) << " using 1:" << 3 + 2 * k
+             << " with lines lw 2 " << colour_of(static_cast<int>(k)) << " notitle";
+    }
+    script << "\n\nunset multiplot\n";
+    return script.str();
+  };
+  return write_script_and_run(files, preamble, body, data.str(), path, side_files.data_and_script);
 }
 
 Status write_line_plot(const std::string& path, const std::string& title,
-                       const std::string& x_label, const std::string& y_label,
-                       const std::vector<LineSeries>& series,
-                       const std::vector<PlotMarker>& markers) {
+                       const std::string& x_label, const std::vector<LineSeries>& series,
+                       const LinePlotOptions& options) {
   PlotFiles files;
   if (Status status = plot_files_for(path, files); !status.ok) return status;
   if (series.empty()) return Status::failure("line plot '" + path + "': no series to plot");
@@ -488,59 +695,111 @@ Status write_line_plot(const std::string& path, const std::string& title,
                              std::to_string(one.y.size()) + " y values");
     }
   }
+  std::vector<std::string> series_units;
+  for (const auto& one : series) series_units.push_back(one.unit);
+  std::vector<size_t> group_of;
+  const std::vector<std::string> units = unit_groups(series_units, group_of);
+  auto axis_label = [&](const std::string& unit) {
+    const auto named = options.axis_labels.find(unit);
+    if (named != options.axis_labels.end()) return named->second;
+    return unit.empty() ? std::string("value") : "value [" + unit + "]";
+  };
 
   // One data block per series (gnuplot `index k`), separated by two blank lines.
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
   bool any_point = false;
+  std::vector<bool> group_has_point(units.size(), false);
   std::ostringstream data = classic_stream();
-  data << "# " << one_line(title) << "\n# columns: " << one_line(x_label) << " | "
-       << one_line(y_label)
+  data << "# " << one_line(title) << "\n# columns: " << one_line(x_label)
+       << " | the series' value in its unit"
        << "; one block per series (gnuplot index 0, 1, ...); NaN: missing point\n";
   for (size_t k = 0; k < series.size(); ++k) {
     const auto& one = series[k];
-    data << (k ? "\n\n" : "") << "# index " << k << ": " << one_line(one.label) << "\n";
+    data << (k ? "\n\n" : "") << "# index " << k << ": " << one_line(one.label) << " ["
+         << one_line(one.unit) << "]\n";
     for (size_t i = 0; i < one.x.size(); ++i) {
       const bool finite = std::isfinite(one.x[i]) && std::isfinite(one.y[i]);
       data << number_text(finite ? one.x[i] : std::nan("")) << ' '
            << number_text(finite ? one.y[i] : std::nan("")) << '\n';
       if (finite) {
         any_point = true;
+        group_has_point[group_of[k]] = true;
         x_lo = std::min(x_lo, one.x[i]);
         x_hi = std::max(x_hi, one.x[i]);
       }
     }
     if (one.x.empty()) data << "NaN NaN\n";  // keeps the block, so the indices stay in step
   }
-  if (Status status = write_output_file(files.data_path, data.str()); !status.ok) return status;
 
   std::vector<std::string> legend_entries;
-  for (const auto& one : series) legend_entries.push_back(one.label);
-  constexpr int kWidthPx = 1000, kHeightPx = 650;
-  const LegendLayout legend = legend_layout(legend_entries, kWidthPx, kHeightPx);
+  for (const auto& one : series)
+    if (one.in_legend) legend_entries.push_back(one.label);
+  constexpr int kWidthPx = 1000;
+  const int height_px = 650 + 260 * static_cast<int>(units.size() - 1);
+  int title_lines = 1;
+  const std::string title_expression = title_text(title, 110, title_lines);
+  const LegendLayout legend =
+      legend_layout(legend_entries, options.legend_note, kWidthPx, height_px, title_lines);
+  // The first panel (the response) a little taller than the others (the drive, other units).
+  std::vector<double> weights(units.size(), 1.0);
+  if (units.size() > 1) weights.front() = 1.4;
+  const auto panels = stacked_panels(legend.panel_top, 72.0 / height_px, 40.0 / height_px, weights);
+  const std::vector<MarkerGroup> groups =
+      any_point ? marker_groups(options.markers, x_lo, x_hi, false) : std::vector<MarkerGroup>{};
+  auto style_of = [&](size_t k) {
+    const LineSeries& one = series[k];
+    return "with lines lw 2 " + colour_of(one.colour >= 0 ? one.colour : static_cast<int>(k)) +
+           (one.dashed ? " dt (8,5)" : "");
+  };
 
   const std::string preamble =
-      script_header(files, "Line plot", title) + gnuplot_terminal_line(files, kWidthPx, kHeightPx);
-  std::ostringstream script = classic_stream();
-  script << "set datafile missing 'NaN'\n"
-         << "set multiplot title " << gnuplot_string(title) << " font ',13' noenhanced\n"
-         << "set lmargin at screen 0.09\nset rmargin at screen 0.97\n"
-         << "set tmargin at screen " << number_text(legend.panel_top)
-         << "\nset bmargin at screen 0.11\n"
-         << "set xlabel " << gnuplot_string(x_label) << " noenhanced\n"
-         << "set ylabel " << gnuplot_string(y_label) << " noenhanced\n"
-         << "set grid xtics ytics\nset border lw 1\n"
-         << kMarkerLabelStyle
-         << (any_point ? "set xrange " + range_text(x_lo, x_hi) + "\n"
-                       : "set xrange [0:1]\nset yrange [0:1]\n")
-         << legend.key_line << marker_lines(markers, x_lo, x_hi, true) << "plot ";
-  for (size_t k = 0; k < series.size(); ++k) {
-    script << (k ? ", \\\n     " : "") << gnuplot_string(files.data_name) << " index " << k
-           << " using 1:2 with lines lw 2 lc " << k + 1 << " title "
-           << gnuplot_string(series[k].label);
-  }
-  script << "\n\nunset multiplot\n";
-
-  return write_script_and_run(files, preamble, script.str(), path);
+      script_header(files, "Line plot", title) + gnuplot_terminal_line(files, kWidthPx, height_px);
+  const ScriptBody body = [&](const std::string& data_name) {
+    std::ostringstream script = classic_stream();
+    script << "set datafile missing 'NaN'\n"
+           << "set multiplot title " << title_expression << " font ',13' noenhanced\n"
+           << "set lmargin at screen 0.11\nset rmargin at screen 0.97\n"
+           << "set grid xtics ytics\nset border lw 1\nset format y '%g'\n"
+           << "set offsets 0, 0, graph 0.06, graph 0.06\n"
+           << kMarkerLabelStyle
+           << (any_point ? "set xrange " + range_text(x_lo, x_hi) + "\n" : "set xrange [0:1]\n");
+    for (size_t g = 0; g < units.size(); ++g) {
+      const bool last = g + 1 == units.size();
+      script << "\n# Panel " << g + 1 << ": " << one_line(axis_label(units[g])) << "\n"
+             << (g ? unset_markers() : "") << "set tmargin at screen "
+             << number_text(panels[g].first) << "\nset bmargin at screen "
+             << number_text(panels[g].second) << "\n"
+             << (last
+                     ? "set format x '% h'\nset xlabel " + gnuplot_string(x_label) + " noenhanced\n"
+                     : std::string("set format x ''\nunset xlabel\n"))
+             << "set ylabel " << gnuplot_string(axis_label(units[g])) << " noenhanced\n"
+             << (group_has_point[g] ? "set yrange [*:*]\n" : "set yrange [0:1]\n")
+             << (g == 0 ? legend.key_line + legend.note_line : std::string("unset key\n"))
+             << marker_lines(groups, g == 0) << "plot ";
+      bool first = true;
+      for (size_t k = 0; k < series.size(); ++k) {
+        if (group_of[k] != g) continue;
+        script << (first ? "" : ", \\\n     ") << gnuplot_string(data_name) << " index " << k
+               << " using 1:2 " << style_of(k) << " "
+               << (series[k].in_legend && g == 0 ? "title " + gnuplot_string(series[k].label)
+                                                 : std::string("notitle"));
+        first = false;
+      }
+      // One key for the figure: the other panels' series join it from the first panel.
+      if (g == 0) {
+        for (size_t k = 0; k < series.size(); ++k) {
+          if (group_of[k] == 0 || !series[k].in_legend) continue;
+          script << ", \\\n     NaN " << style_of(k) << " title "
+                 << gnuplot_string(series[k].label);
+        }
+      }
+      script << "\n";
+    }
+    script << "\nunset multiplot\n";
+    return script.str();
+  };
+  return write_script_and_run(files, preamble, body, data.str(), path,
+                              options.side_files.data_and_script);
 }
 
 }  // namespace emnet

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "emnet/core/units.hpp"
 
@@ -81,10 +82,13 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
 
   // Resonances: the reduced model's kept modes, else the full model's (a failed modal
   // analysis only leaves the plot without markers).
-  std::vector<double> resonances;
+  // Each as (frequency [Hz], damping ratio −Re s/|s|).
+  std::vector<std::pair<double, double>> resonances;
   if (result.reduction) {
     for (const auto& kept : result.reduction->model.kept)
-      if (kept.oscillatory) resonances.push_back(std::abs(kept.pole.imag()) / two_pi);
+      if (kept.oscillatory)
+        resonances.emplace_back(std::abs(kept.pole.imag()) / two_pi,
+                                -kept.pole.real() / std::abs(kept.pole));
     std::sort(resonances.begin(), resonances.end());
   } else if (!result.ac.poles.empty()) {
     // The pole-residue sweep has every pole already (to rounding, checked through the sweep).
@@ -95,7 +99,7 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
     for (const auto& pole : result.ac.poles) largest = std::max(largest, std::abs(pole));
     for (const auto& pole : result.ac.poles)
       if (pole.imag() > kNearlyReal * std::abs(pole) && std::abs(pole) > 1e-9 * largest)
-        resonances.push_back(pole.imag() / two_pi);
+        resonances.emplace_back(pole.imag() / two_pi, -pole.real() / std::abs(pole));
     std::sort(resonances.begin(), resonances.end());
   } else {
     ModalOptions modal_options;
@@ -104,10 +108,14 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
     show_phase(options.progress, "modes for the resonance markers");
     const ModalResult modes = run_modes(system, operating_point, modal_options);
     if (modes.status.ok)
-      for (const auto& mode : modes.modes) resonances.push_back(mode.frequency_hz);
+      for (const auto& mode : modes.modes)
+        resonances.emplace_back(mode.frequency_hz, mode.damping_ratio);
   }
-  for (double f : resonances)
-    if (f >= options.sweep.from && f <= options.sweep.to) result.resonances_hz.push_back(f);
+  for (const auto& [f, zeta] : resonances)
+    if (f >= options.sweep.from && f <= options.sweep.to) {
+      result.resonances_hz.push_back(f);
+      result.resonance_damping_ratios.push_back(zeta);
+    }
 
   for (size_t k = 0; k < probes.size(); ++k)
     if (probes[k].quantity == ProbeQuantity::deflection) {

@@ -85,19 +85,62 @@ TEST_F(CliFiles, TranProbesReachTheCsvAndThePlot) {
   const std::string csv = path("tran.csv");
   const CliRun r = run_emnet("tran " + fin +
                              " --periods 1 --points-per-period 10 --probe tip --probe P4 --csv " +
-                             csv + " --plot " + path("tran.png"));
+                             csv + " --plot " + path("tran.png") + " --plot-script");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(contents(csv).substr(0, contents(csv).find('\n')), "time_s,tip_m,P4_m");
   const std::string data = contents(path("tran.png.dat"));
-  EXPECT_NE(data.find("tip (deflection at x = 122.5 mm) [mm]"), std::string::npos) << data;
+  EXPECT_NE(data.find("tip (deflection at x = 122.5 mm) [m]"), std::string::npos) << data;
   EXPECT_NE(data.find("P4 ("), std::string::npos) << data;
   EXPECT_EQ(data.find("dx2"), std::string::npos) << data;
-  // One axis: probes of different units are refused before computing, naming the probe.
-  const CliRun mixed =
-      run_emnet("tran " + fin + " --periods 1 --probe tip --probe u_A --plot " + path("mixed.png"));
-  EXPECT_EQ(mixed.status, 2) << mixed.err;
-  EXPECT_NE(mixed.err.find("u_A"), std::string::npos) << mixed.err;
-  EXPECT_FALSE(fs::exists(path("mixed.png.dat")));
+  // Probes of different units are plotted, each unit in its own panel: no axis has two units.
+  const CliRun mixed = run_emnet("tran " + fin + " --periods 1 --probe tip --probe u_A --plot " +
+                                 path("mixed.png") + " --plot-script");
+  ASSERT_EQ(mixed.status, 0) << mixed.err;
+  const std::string script = contents(path("mixed.png.gp"));
+  EXPECT_NE(script.find("set ylabel 'deflection [m]'"), std::string::npos) << script;
+  EXPECT_NE(script.find("set ylabel 'voltage [V]'"), std::string::npos) << script;
+  // The drive in its own panel under the response: DEA A's and B's source voltages.
+  const std::string tip_data = contents(path("tran.png.dat"));
+  EXPECT_NE(tip_data.find("DEA A drive source voltage [V]"), std::string::npos) << tip_data;
+  EXPECT_NE(tip_data.find("DEA B drive source voltage [V]"), std::string::npos) << tip_data;
+  EXPECT_NE(contents(path("tran.png.gp")).find("set ylabel 'voltage [V]'"), std::string::npos);
+  // Without --plot-script only the image is written.
+  const CliRun plain =
+      run_emnet("tran " + fin + " --periods 1 --probe tip --plot " + path("plain.png"));
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  EXPECT_TRUE(fs::exists(path("plain.png")));
+  EXPECT_FALSE(fs::exists(path("plain.png.dat")));
+  EXPECT_FALSE(fs::exists(path("plain.png.gp")));
+  // --plot-script alone is refused, naming it.
+  const CliRun alone = run_emnet("tran " + fin + " --periods 1 --plot-script");
+  EXPECT_EQ(alone.status, 2) << alone.err;
+  EXPECT_NE(alone.err.find("--plot-script"), std::string::npos) << alone.err;
+}
+
+// sweep-switching --plot: the left and right peaks of one output share its colour (the right one
+// dashed, left out of the legend, which has one entry per output).
+TEST_F(CliFiles, SweepPlotPairsTheSidesOfAnOutput) {
+  const std::string image = path("sweep.png");
+  const CliRun r = run_emnet("sweep-switching " + fin + " --from 4 --to 6 --step 1 --probe tip " +
+                             "--probe dx4 --plot " + image + " --plot-script");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string script = contents(image + ".gp");
+  auto plot_line = [&](int index) {
+    const auto at = script.find("index " + std::to_string(index) + " using");
+    return at == std::string::npos ? std::string() : script.substr(at, script.find('\n', at) - at);
+  };
+  auto colour = [](const std::string& line) {
+    const auto at = line.find("lc rgb '");
+    return at == std::string::npos ? std::string("none") : line.substr(at, 16);
+  };
+  for (int output = 0; output < 2; ++output) {
+    const std::string left = plot_line(2 * output), right = plot_line(2 * output + 1);
+    EXPECT_EQ(colour(left), colour(right)) << left << "\n" << right;
+    EXPECT_EQ(left.find(" dt "), std::string::npos) << left;
+    EXPECT_NE(right.find(" dt "), std::string::npos) << right;
+    EXPECT_NE(right.find("notitle"), std::string::npos) << right;
+  }
+  EXPECT_NE(colour(plot_line(0)), colour(plot_line(2)));
 }
 
 // sweep-switching --probe: the peaks of exactly the probes given. Reference: the default run's
@@ -178,8 +221,8 @@ TEST_F(CliFiles, AFailedWriteLeavesThePreviousFileWhole) {
       run_emnet("netlist " + fin + " --analysis tran --control -o " + deck, limited);
   EXPECT_EQ(netlist.status, 2) << netlist.err;
   EXPECT_NE(netlist.err.find(deck), std::string::npos) << netlist.err;
-  const CliRun table =
-      run_emnet("ac " + fin + " --points 2000 --csv " + csv + " --plot " + image, limited);
+  const CliRun table = run_emnet(
+      "ac " + fin + " --points 2000 --csv " + csv + " --plot " + image + " --plot-script", limited);
   EXPECT_EQ(table.status, 2) << table.err;
   for (const std::string& file : {deck, csv, image + ".dat"})
     EXPECT_EQ(contents(file), "previous\n") << file;

@@ -1,15 +1,18 @@
-// Plots through gnuplot: a Bode plot and a line plot give a real PNG (or SVG) with its data and
-// script beside it; zero magnitudes, hostile labels and odd paths are handled; every failure
-// (bad path, unknown extension, mismatched sizes) comes back as a failed Status, not a throw.
+// Plots through gnuplot: a Bode plot and a line plot give a real PNG (or SVG), with its data and
+// script beside it only when asked; series of different units get panels of their own; zero
+// magnitudes, hostile labels and odd paths are handled; every failure (bad path, unknown
+// extension, mismatched sizes) comes back as a failed Status, not a throw.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -65,12 +68,44 @@ OscillatorResponse oscillator_response(int points) {
   return response;
 }
 
+std::string contents(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The lines of a gnuplot script that contain `text`.
+std::vector<std::string> lines_with(const std::string& script, const std::string& text) {
+  std::vector<std::string> found;
+  std::istringstream in(script);
+  for (std::string line; std::getline(in, line);)
+    if (line.find(text) != std::string::npos) found.push_back(line);
+  return found;
+}
+
+TEST_F(PlotTest, OnlyTheImageUnlessTheSideFilesAreAsked) {
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  const auto response = oscillator_response(50);
+  const std::string bode = path("bode.png"), line = path("line.png");
+  ASSERT_TRUE(emnet::write_bode_plot(bode, "t", response.frequencies_hz, response.series, {}).ok);
+  ASSERT_TRUE(emnet::write_line_plot(line, "t", "x", {{"a", {0, 1}, {0, 1}, "m"}}).ok);
+  for (const std::string& image : {bode, line}) {
+    EXPECT_TRUE(is_png(image)) << image;
+    EXPECT_FALSE(fs::exists(image + ".dat")) << image;
+    EXPECT_FALSE(fs::exists(image + ".gp")) << image;
+  }
+  // Nothing else is left in the directory (the hidden copies gnuplot ran are removed).
+  size_t files = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(directory_)) ++files;
+  EXPECT_EQ(files, 2u);
+}
+
 TEST_F(PlotTest, BodePlotWritesPngWithDataAndScript) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   const auto response = oscillator_response(200);
   const std::string image = path("bode.png");
-  const auto status = emnet::write_bode_plot(image, "damped oscillator", response.frequencies_hz,
-                                             response.series, {{6.385, "f1 = 6.385 Hz"}});
+  const auto status =
+      emnet::write_bode_plot(image, "damped oscillator", response.frequencies_hz, response.series,
+                             {{6.385, "f1 = 6.385 Hz"}}, false, {/*data_and_script=*/true});
   ASSERT_TRUE(status.ok) << status.message;
   EXPECT_TRUE(is_png(image));
   EXPECT_GT(fs::file_size(image), 1000u);
@@ -114,8 +149,11 @@ TEST_F(PlotTest, LabelsCannotInjectGnuplotOrShellCommands) {
   // A directory name with a quote, a dollar and a backquote, to test the shell quoting.
   fs::create_directories(directory_ / "it's $(x) `y`");
   const std::string image = path("it's $(x) `y`/line.png");
-  const auto status =
-      emnet::write_line_plot(image, hostile, hostile, hostile, {series}, {{1.0, hostile}});
+  emnet::LinePlotOptions options;
+  options.markers = {{1.0, hostile}};
+  options.axis_labels = {{"", hostile}};
+  options.legend_note = hostile;
+  const auto status = emnet::write_line_plot(image, hostile, hostile, {series}, options);
   ASSERT_TRUE(status.ok) << status.message;
   EXPECT_TRUE(is_png(image));
   EXPECT_FALSE(fs::exists(witness));
@@ -123,7 +161,7 @@ TEST_F(PlotTest, LabelsCannotInjectGnuplotOrShellCommands) {
 
 TEST_F(PlotTest, LinePlotWritesPng) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
-  emnet::LineSeries tip{"tip [mm]", {}, {}}, p4{"P4 [mm]", {}, {}};
+  emnet::LineSeries tip{"tip", {}, {}, "mm"}, p4{"P4", {}, {}, "mm"};
   for (int i = 0; i < 100; ++i) {
     const double t = 0.01 * i;
     tip.x.push_back(t);
@@ -132,8 +170,9 @@ TEST_F(PlotTest, LinePlotWritesPng) {
     p4.y.push_back(i == 50 ? std::nan("") : 0.5 * std::sin(40.0 * t));  // a gap
   }
   const std::string image = path("line.png");
-  const auto status = emnet::write_line_plot(image, "transient", "time [s]", "deflection [mm]",
-                                             {tip, p4}, {{0.5, "switch"}});
+  emnet::LinePlotOptions options;
+  options.markers = {{0.5, "switch"}};
+  const auto status = emnet::write_line_plot(image, "transient", "time [s]", {tip, p4}, options);
   ASSERT_TRUE(status.ok) << status.message;
   EXPECT_TRUE(is_png(image));
 }
@@ -148,7 +187,7 @@ TEST_F(PlotTest, UnwritablePathIsAFailedStatus) {
   EXPECT_NE(status.message.find("cannot write"), std::string::npos) << status.message;
   EXPECT_FALSE(fs::exists(image));
 
-  EXPECT_NO_THROW(status = emnet::write_line_plot(image, "t", "x", "y", {{"a", {0, 1}, {0, 1}}}));
+  EXPECT_NO_THROW(status = emnet::write_line_plot(image, "t", "x", {{"a", {0, 1}, {0, 1}}}));
   EXPECT_FALSE(status.ok);
 }
 
@@ -170,8 +209,123 @@ TEST_F(PlotTest, BadArgumentsAreFailedStatuses) {
   status = emnet::write_bode_plot(path("bode.png"), "t", {0.0}, {one}, {}, true);
   EXPECT_FALSE(status.ok);
   // x and y of different lengths.
-  status = emnet::write_line_plot(path("line.png"), "t", "x", "y", {{"a", {0, 1, 2}, {0, 1}}});
+  status = emnet::write_line_plot(path("line.png"), "t", "x", {{"a", {0, 1, 2}, {0, 1}}});
   EXPECT_FALSE(status.ok);
+}
+
+// Series of different units never share an axis: a Bode plot of a deflection [m/V] and a
+// voltage [V/V] gets one magnitude panel per unit, each labelled with its one unit; a line plot
+// of metres and volts one panel per unit, in the order the units first appear.
+TEST_F(PlotTest, SeriesAreGroupedByUnitOnePanelEach) {
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  auto response = oscillator_response(60);
+  response.series[1].unit = "V/V";
+  response.series.push_back({"tip again", "m/V", response.series[0].values});
+  const std::string bode = path("bode.png");
+  ASSERT_TRUE(emnet::write_bode_plot(bode, "two units", response.frequencies_hz, response.series,
+                                     {}, false, {true})
+                  .ok);
+  const std::string bode_script = contents(bode + ".gp");
+  const auto bode_labels = lines_with(bode_script, "set ylabel 'magnitude");
+  ASSERT_EQ(bode_labels.size(), 2u) << bode_script;
+  EXPECT_NE(bode_labels[0].find("[m/V]"), std::string::npos) << bode_labels[0];
+  EXPECT_NE(bode_labels[1].find("[V/V]"), std::string::npos) << bode_labels[1];
+  // Both m/V series (magnitude columns 2 and 6) in the first panel, the V/V one (column 4) in
+  // the second.
+  const size_t second_at = bode_script.find(bode_labels[1]);
+  const std::string first_panel = bode_script.substr(0, second_at);
+  const std::string second_panel =
+      bode_script.substr(second_at, bode_script.find("# Phase") - second_at);
+  EXPECT_NE(first_panel.find("using 1:2 "), std::string::npos) << first_panel;
+  EXPECT_NE(first_panel.find("using 1:6 "), std::string::npos) << first_panel;
+  EXPECT_EQ(first_panel.find("using 1:4 "), std::string::npos) << first_panel;
+  EXPECT_NE(second_panel.find("using 1:4 "), std::string::npos) << second_panel;
+
+  const std::string line = path("line.png");
+  emnet::LinePlotOptions options;
+  options.axis_labels = {{"m", "deflection [m]"}, {"V", "voltage [V]"}};
+  options.side_files.data_and_script = true;
+  ASSERT_TRUE(emnet::write_line_plot(line, "t", "time [s]",
+                                     {{"tip", {0, 1}, {0, 1e-3}, "m"},
+                                      {"u_A", {0, 1}, {0, 3e3}, "V"},
+                                      {"P4", {0, 1}, {0, 5e-4}, "m"}},
+                                     options)
+                  .ok);
+  const std::string line_script = contents(line + ".gp");
+  const auto labels = lines_with(line_script, "set ylabel");
+  ASSERT_EQ(labels.size(), 2u) << line_script;
+  EXPECT_NE(labels[0].find("'deflection [m]'"), std::string::npos) << labels[0];
+  EXPECT_NE(labels[1].find("'voltage [V]'"), std::string::npos) << labels[1];
+  // The second panel (after its label) plots index 1 (u_A) only.
+  const std::string second = line_script.substr(line_script.find("set ylabel 'voltage [V]'"));
+  EXPECT_NE(second.find("index 1 "), std::string::npos) << second;
+  EXPECT_EQ(second.find("index 0 "), std::string::npos) << second;
+  EXPECT_EQ(second.find("index 2 "), std::string::npos) << second;
+}
+
+// A shared colour and a dashed line: the two series given one colour index are drawn in the same
+// colour, the dashed one with a dash type, and a series left out of the legend has no title.
+TEST_F(PlotTest, PairedSeriesShareAColour) {
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  emnet::LineSeries left{"tip", {1, 2, 3}, {-1, -2, -1}, "mm"};
+  emnet::LineSeries right{"tip right", {1, 2, 3}, {1, 2, 1}, "mm"};
+  left.colour = right.colour = 3;
+  right.dashed = true;
+  right.in_legend = false;
+  emnet::LinePlotOptions options;
+  options.side_files.data_and_script = true;
+  options.legend_note = "solid: left; dashed: right";
+  const std::string image = path("pair.png");
+  ASSERT_TRUE(emnet::write_line_plot(image, "pair", "f [Hz]", {left, right}, options).ok);
+  const std::string script = contents(image + ".gp");
+  const auto first = lines_with(script, "index 0 using");
+  const auto second = lines_with(script, "index 1 using");
+  ASSERT_EQ(first.size(), 1u);
+  ASSERT_EQ(second.size(), 1u);
+  const auto colour = [](const std::string& line) {
+    const auto at = line.find("lc rgb '");
+    return at == std::string::npos ? std::string() : line.substr(at, 16);
+  };
+  EXPECT_FALSE(colour(first[0]).empty()) << first[0];
+  EXPECT_EQ(colour(first[0]), colour(second[0]));
+  EXPECT_EQ(first[0].find(" dt "), std::string::npos) << first[0];
+  EXPECT_NE(second[0].find(" dt "), std::string::npos) << second[0];
+  EXPECT_NE(second[0].find("notitle"), std::string::npos) << second[0];
+  EXPECT_EQ(lines_with(script, "solid: left; dashed: right").size(), 1u);
+}
+
+// Markers closer than 3 % of the x span share one label (their lines stay); markers farther
+// apart keep their own. Reference: the span 1..7 Hz, so 0.18 Hz is the limit.
+TEST_F(PlotTest, CloseMarkersShareOneLabel) {
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  emnet::LinePlotOptions options;
+  options.side_files.data_and_script = true;
+  options.markers = {{6.385, "f1 = 6.385 Hz"}, {6.4, "sweep peak 6.4 Hz"}, {2.0, "other"}};
+  const std::string image = path("markers.png");
+  ASSERT_TRUE(
+      emnet::write_line_plot(image, "m", "f [Hz]", {{"a", {1, 7}, {0, 1}, "mm"}}, options).ok);
+  const std::string script = contents(image + ".gp");
+  EXPECT_EQ(lines_with(script, "set arrow").size(), 3u) << script;
+  const auto labels = lines_with(script, "rotate by 90");
+  ASSERT_EQ(labels.size(), 2u) << script;
+  EXPECT_NE(labels[1].find("f1 = 6.385 Hz; sweep peak 6.4 Hz"), std::string::npos) << labels[1];
+}
+
+// The marker rule against its reference, the peak of the second-order response
+// |H(r)| = 1/|1 − r² + 2jζr|: a resonance is marked exactly when |H| rises above its static value
+// |H(0)| = 1 somewhere. The peak is found on a grid of r in (0, 3] of step 1e-5 (the peak, when
+// there is one, lies at r = sqrt(1 − 2ζ²) < 1); the ζ values keep at least 0.01 from 1/√2, where
+// the rise over the grid is far above the 1e-12 margin that rounding of |H| could reach.
+TEST(ResonanceMarker, MarkedExactlyWhenTheSecondOrderResponseHasAPeak) {
+  for (double zeta : {0.01, 0.05, 0.3, 0.6, 0.69, 0.72, 0.87, 1.0, 2.0}) {
+    double largest = 0.0;
+    for (int i = 1; i <= 300000; ++i) {
+      const double r = 1e-5 * i;
+      largest =
+          std::max(largest, 1.0 / std::abs(std::complex<double>(1.0 - r * r, 2.0 * zeta * r)));
+    }
+    EXPECT_EQ(emnet::resonance_shows_peak(zeta), largest > 1.0 + 1e-12) << "zeta " << zeta;
+  }
 }
 
 }  // namespace

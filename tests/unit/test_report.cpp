@@ -13,6 +13,7 @@
 #include "emnet/report/csv.hpp"
 #include "emnet/report/describe.hpp"
 #include "emnet/report/json.hpp"
+#include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
 #include "test_directory.hpp"
 
@@ -176,6 +177,9 @@ TEST(Describe, DriveInWords) {
   EXPECT_EQ(drive_summary(scene), "drive none");
   EXPECT_EQ(ac_input_description(scene, 10.0),
             "AC input: the scene's loads, each with its value as amplitude.");
+  // A circuit's sources are named: the gripper finger's amplifier drives it.
+  const Scene finger = read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/gripper-finger.toml");
+  EXPECT_EQ(drive_summary(finger), "drive none, circuit source(s) amp");
 }
 
 }  // namespace

@@ -22,6 +22,7 @@ struct AcOptions {
   std::optional<int> points;
   std::string scale;
   std::string plot;
+  bool plot_script = false;
   bool reduce = false;
   std::string tolerance, band;  // --reduce: as given, parsed and checked by reduction_options
 };
@@ -30,6 +31,7 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options) {
   const emnet::Stopwatch stopwatch;
   if (!ac_options.reduce && (!ac_options.tolerance.empty() || !ac_options.band.empty()))
     throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
+  check_plot_options(ac_options.plot, ac_options.plot_script);
   emnet::Scene scene = load_scene(options);
   const emnet::AcSpec spec = checked_ac_spec(scene.ac, ac_options.from, ac_options.to,
                                              ac_options.points, ac_options.scale);
@@ -57,7 +59,8 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options) {
         (result.failed_stage == emnet::AcStudyStage::reduction ? "ac --reduce: " : "ac: ") +
         result.status.message);
   end_progress(options);
-  return report_ac({options, p, spec, probes, result, ac_options.plot, stopwatch.seconds()});
+  return report_ac({options, p, spec, probes, result, ac_options.plot, ac_options.plot_script,
+                    stopwatch.seconds()});
 }
 
 Command add_ac_command(CLI::App& app, CommonOptions& options) {
@@ -79,8 +82,11 @@ Command add_ac_command(CLI::App& app, CommonOptions& options) {
                          "number of frequencies, 1 to 1000000 (default: scene ac.points)");
   ac_command->add_option("--scale", ac_options->scale, "lin or log")
       ->check(CLI::IsMember({"lin", "log"}));
-  ac_command->add_option("--plot", ac_options->plot,
-                         "write a Bode plot (PNG or SVG, by extension), resonances marked");
+  add_plot_options(
+      ac_command, ac_options->plot, ac_options->plot_script,
+      "the response: a magnitude panel per unit over the phase, the resonances "
+      "that show as a peak (damping ratio below 1/sqrt(2)) marked; the title names the "
+      "AC input");
   ac_command->add_flag("--reduce", ac_options->reduce,
                        "evaluate the sweep by modal reduction (modes below band/sqrt(tolerance), "
                        "static correction for the rest), checked against the full model");

@@ -19,6 +19,7 @@ struct AcReportInput {
   const std::vector<emnet::Probe>& probes;  // the responses, in the result's order
   const emnet::AcStudyResult& result;       // a successful run_ac_study
   std::string plot;                         // --plot path, or empty
+  bool plot_script = false;                 // --plot-script: the plot's .dat and .gp too
   double total_seconds = 0.0;               // the command from its start
 };
 

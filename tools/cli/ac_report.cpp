@@ -1,7 +1,8 @@
 // The ac command's report: the text table (header, input, sweep, method, accuracy and cost,
 // resonances, |value| and phase per probe and frequency, each probe's peak), --json
-// (emnet/report/ac_json.hpp), --csv (magnitude and phase per probe) and --plot (a Bode plot with
-// the resonances marked). Phase = arg(value)·180/π [deg].
+// (emnet/report/ac_json.hpp), --csv (magnitude and phase per probe) and --plot (a Bode plot
+// titled with its input in short, the resonances that show as a peak marked). Phase =
+// arg(value)·180/π [deg].
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -14,10 +15,49 @@
 #include "emnet/core/units.hpp"
 #include "emnet/report/ac_json.hpp"
 #include "emnet/report/plot.hpp"
+#include "emnet/scene/scene.hpp"
 
 namespace emnet_cli {
 
 namespace {
+
+// The AC input in a few words, for the plot's title (ac_input_description, emnet/report/
+// describe.hpp, says it in full on the "AC input:" line).
+std::string ac_input_short(const emnet::Scene& scene) {
+  const auto& drive = scene.drive;
+  std::vector<std::string> parts;
+  switch (drive.kind) {
+    case emnet::DriveKind::antagonistic:
+      parts.push_back(
+          "the antagonistic drive's switched force level k_F*V^2/2 (V = " + si(drive.voltage, "V") +
+          ", DEAs " + drive.deas[0] + "/" + drive.deas[1] + " in antiphase)");
+      break;
+    case emnet::DriveKind::switched:
+      parts.push_back("the switched drive's force level k_F*V^2/2 (V = " + si(drive.voltage, "V") +
+                      ", DEA " + drive.deas[0] + ")");
+      break;
+    case emnet::DriveKind::bias_differential:
+      parts.push_back("v = " + si(drive.amplitude, "V") + " on DEA " + drive.deas[0] +
+                      ", -v on DEA " + drive.deas[1] + " (about V0 = " + si(drive.bias, "V") + ")");
+      break;
+    case emnet::DriveKind::single:
+      parts.push_back("v = " + si(drive.amplitude, "V") + " on DEA " + drive.deas[0] +
+                      " (about V0 = " + si(drive.bias, "V") + ")");
+      break;
+    case emnet::DriveKind::none:
+      break;
+  }
+  if (!scene.loads.empty()) parts.push_back("the scene's loads");
+  for (const emnet::CircuitSpec& element : scene.circuit)
+    if (emnet::is_source(element.kind) && element.ac != 0.0)
+      parts.push_back(
+          "circuit source " + element.name + "'s ac " +
+          si(element.ac, element.kind == emnet::CircuitKind::voltage_source ? "V" : "A"));
+  std::string text;
+  for (size_t k = 0; k < parts.size(); ++k)
+    text += (k == 0 ? "" : k + 1 == parts.size() ? " and " : ", ") + parts[k];
+  return text.empty() ? "no input" : text;
+}
 
 void write_ac_files(const AcReportInput& in, const std::vector<emnet::PlotMarker>& markers) {
   const auto& options = in.options;
@@ -42,10 +82,17 @@ void write_ac_files(const AcReportInput& in, const std::vector<emnet::PlotMarker
     std::vector<emnet::BodeSeries> series;
     for (size_t k = 0; k < probes.size(); ++k)
       series.push_back({probes[k].name + ": " + probes[k].description, probes[k].unit, values[k]});
+    // Only the resonances that show as a peak are marked (emnet::resonance_shows_peak).
+    std::vector<emnet::PlotMarker> shown_markers;
+    const auto& zeta = in.result.resonance_damping_ratios;
+    for (size_t k = 0; k < markers.size(); ++k)
+      if (k >= zeta.size() || emnet::resonance_shows_peak(zeta[k]))
+        shown_markers.push_back(markers[k]);
     stop_if_interrupted();
-    check_plot(emnet::write_bode_plot(in.plot,
-                                      in.prepared.model.scene.name + ": small-signal response",
-                                      grid, series, markers, in.spec.log));
+    check_plot(emnet::write_bode_plot(
+        in.plot,
+        in.prepared.model.scene.name + ": response per " + ac_input_short(in.prepared.model.scene),
+        grid, series, shown_markers, in.spec.log, {in.plot_script}));
   }
 }
 

@@ -221,6 +221,23 @@ void check_plot(const emnet::Status& status) {
   if (!status.ok) throw FileError("--plot: " + status.message);
 }
 
+void add_plot_options(CLI::App* command, std::string& plot, bool& plot_script,
+                      const std::string& what) {
+  command->add_option("--plot", plot,
+                      "write a plot (PNG or SVG, by the extension) of " + what +
+                          "; only the image, unless --plot-script");
+  command->add_flag("--plot-script", plot_script,
+                    "with --plot PATH: also write the plotted numbers (PATH.dat) and the gnuplot "
+                    "script that draws them (PATH.gp; edit it and run `gnuplot PATH.gp` in its "
+                    "directory to re-draw the image)");
+}
+
+void check_plot_options(const std::string& plot, bool plot_script) {
+  if (plot_script && plot.empty())
+    throw emnet::InputError("--plot-script", "--plot",
+                            "--plot-script writes the files of a plot: give --plot PATH too");
+}
+
 // Builds the model and its operating point. A linear network without a static state (a free
 // body) can still be analysed dynamically: its operating point is then zero, as said in a note;
 // `static` itself requires the static state.

@@ -186,16 +186,22 @@ void add_reduction_tolerance_and_band(CLI::App* command, std::string& tolerance,
 Json reduction_json(const emnet::ModalReduction& m, bool tolerance_met);
 
 // tran.cpp: the outputs of a transient (dx_k = P_k - P1, DEA voltages and currents); with
-// --probe those (tran, sweep-switching); the outputs a --plot draws, on one axis.
+// --probe those (tran, sweep-switching); the outputs a --plot draws: with --probe every probe,
+// else the deflections and the DEA voltages. A plot gives each unit its own panel.
 std::vector<emnet::Probe> transient_outputs(const emnet::Model& model,
                                             const CommonOptions& options);
 struct PlottedOutputs {
   std::vector<size_t> indices;
-  double scale = 1.0;
-  std::string unit, axis_label;
 };
 PlottedOutputs plotted_outputs(const std::vector<emnet::Probe>& probes,
-                               const CommonOptions& options, const std::string& quantity);
+                               const CommonOptions& options);
+
+// --plot PATH and --plot-script (the plot's data and gnuplot script beside the image) of the
+// commands that plot (ac, tran, sweep-switching); `what` says what the plot shows.
+void add_plot_options(CLI::App* command, std::string& plot, bool& plot_script,
+                      const std::string& what);
+// --plot-script without --plot: refused.
+void check_plot_options(const std::string& plot, bool plot_script);
 
 // The program's commands, one file each (tools/cli/<command>.cpp).
 Command add_static_command(CLI::App& app, CommonOptions& options);

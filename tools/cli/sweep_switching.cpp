@@ -29,6 +29,7 @@ struct SweepOptions {
   int samples = 0;  // 0: the method's default
   double rtol = 1e-9;
   std::string plot;
+  bool plot_script = false;
   bool reduce = false;
   std::string tolerance, band;  // --reduce
 };
@@ -45,6 +46,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   study.rtol = sweep.rtol;
   study.reduce = sweep.reduce;
   emnet::check_switching_sweep_options(study);
+  check_plot_options(sweep.plot, sweep.plot_script);
   if (!sweep.reduce && (!sweep.tolerance.empty() || !sweep.band.empty()))
     throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
   show_phase(options, "building the network");
@@ -56,7 +58,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   std::vector<std::string>& notes = swept.notes;
   study.outputs = emnet::switching_sweep_outputs(model, options.probes);
   const PlottedOutputs plotted =
-      sweep.plot.empty() ? PlottedOutputs{} : plotted_outputs(study.outputs, options, "peak ");
+      sweep.plot.empty() ? PlottedOutputs{} : plotted_outputs(study.outputs, options);
   const double count = static_cast<double>(emnet::switching_frequencies(study).size());
   check_stored_values(count * (2.0 * study.outputs.size() + 1.0),
                       std::to_string(static_cast<long>(count)) + " frequencies x " +
@@ -73,6 +75,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   if (!result.status.ok) throw NumericalFailure(result.status.message);
   SweepReportInput report{options, model, result, notes};
   report.plot = sweep.plot;
+  report.plot_script = sweep.plot_script;
   report.plotted = plotted;
   report.reduce = sweep.reduce;
   report.method = sweep.method;
@@ -102,8 +105,10 @@ Command add_sweep_switching_command(CLI::App& app, CommonOptions& options) {
                             "largest samples)");
   sweep_command->add_option("--rtol", sweep_options->rtol,
                             "shooting: IDA relative tolerance (1e-9)");
-  sweep_command->add_option("--plot", sweep_options->plot,
-                            "write the curve (PNG/SVG), resonance marked");
+  add_plot_options(sweep_command, sweep_options->plot, sweep_options->plot_script,
+                   "the peaks against the switching frequency (each output in one colour, "
+                   "its left peak solid and its right peak dashed), f1 and the sweep's peak "
+                   "marked");
   sweep_command->add_flag("--reduce", sweep_options->reduce,
                           "periodic state of a modal reduction (modes below band/tolerance, "
                           "static correction as a feed-through), checked against the exact one");

@@ -18,7 +18,8 @@ struct SweepReportInput {
   const emnet::SwitchingSweepResult& result;
   const std::vector<std::string>& notes;
   std::string plot;            // --plot path, or empty
-  PlottedOutputs plotted;      // what --plot draws (checked before the sweep)
+  bool plot_script = false;    // --plot-script: the plot's .dat and .gp too
+  PlottedOutputs plotted;      // what --plot draws
   bool reduce = false;         // --reduce
   std::string method;          // --method
   double total_seconds = 0.0;  // the command from its start

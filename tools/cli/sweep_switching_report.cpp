@@ -13,6 +13,53 @@
 
 namespace emnet_cli {
 
+namespace {
+
+// The peaks against the switching frequency: one colour per output, its left extreme solid and
+// its right one dashed, one legend entry per output; deflections in mm as in the table when
+// every plotted output is one, else each output in its own unit, one panel per unit.
+void write_sweep_plot(const SweepReportInput& input,
+                      const std::vector<emnet::PlotMarker>& markers) {
+  const auto& outputs = input.result.outputs;
+  const auto& frequencies = input.result.frequencies;
+  bool all_deflections = true;
+  for (size_t p : input.plotted.indices) all_deflections &= outputs[p].probe.unit == "m";
+  const double scale = all_deflections ? 1e3 : 1.0;
+  std::vector<emnet::LineSeries> series;
+  int colour = 0;
+  for (size_t p : input.plotted.indices) {
+    const emnet::Probe& probe = outputs[p].probe;
+    const std::string unit = all_deflections ? "mm" : probe.unit;
+    emnet::LineSeries left{probe.name + " (" + probe.description + ")", frequencies, {}, unit};
+    emnet::LineSeries right{probe.name + " right", frequencies, {}, unit};
+    for (size_t k = 0; k < frequencies.size(); ++k) {
+      left.y.push_back(outputs[p].left[k] * scale);
+      right.y.push_back(outputs[p].right[k] * scale);
+    }
+    left.colour = right.colour = colour++;
+    right.dashed = true;
+    right.in_legend = false;
+    series.push_back(std::move(left));
+    series.push_back(std::move(right));
+  }
+  emnet::LinePlotOptions options;
+  options.markers = markers;
+  options.legend_note =
+      "solid: peak to the left (negative side); dashed: peak to the right (positive side)";
+  options.axis_labels = {{"mm", "peak deflection [mm]"}, {"m", "peak deflection [m]"},
+                         {"rad", "peak rotation [rad]"}, {"m/s", "peak velocity [m/s]"},
+                         {"V", "peak voltage [V]"},      {"A", "peak current [A]"}};
+  options.side_files.data_and_script = input.plot_script;
+  stop_if_interrupted();
+  check_plot(emnet::write_line_plot(input.plot,
+                                    input.model.scene.name + ": periodic steady-state peak " +
+                                        (all_deflections ? "deflection" : "values") +
+                                        " vs switching frequency",
+                                    "switching frequency [Hz]", series, options));
+}
+
+}  // namespace
+
 int report_switching_sweep(const SweepReportInput& input) {
   const CommonOptions& options = input.options;
   const emnet::Model& model = input.model;
@@ -50,28 +97,7 @@ int report_switching_sweep(const SweepReportInput& input) {
         }
       });
     }
-    if (!input.plot.empty()) {
-      const PlottedOutputs& plotted = input.plotted;
-      const std::string unit = plotted.unit == "m" ? "mm" : plotted.unit;
-      std::vector<emnet::LineSeries> series;
-      for (size_t p : plotted.indices) {
-        const std::string& name = outputs[p].probe.name;
-        emnet::LineSeries left{name + " left (negative) [" + unit + "]", frequencies, {}};
-        emnet::LineSeries right{name + " right (positive) [" + unit + "]", frequencies, {}};
-        for (size_t k = 0; k < count; ++k) {
-          left.y.push_back(outputs[p].left[k] * plotted.scale);
-          right.y.push_back(outputs[p].right[k] * plotted.scale);
-        }
-        series.push_back(left);
-        series.push_back(right);
-      }
-      stop_if_interrupted();
-      check_plot(emnet::write_line_plot(
-          input.plot,
-          model.scene.name + ": periodic steady-state peak " +
-              (plotted.unit == "m" ? "deflection" : "values") + " vs switching frequency",
-          "switching frequency [Hz]", plotted.axis_label, series, markers));
-    }
+    if (!input.plot.empty()) write_sweep_plot(input, markers);
   };
   const std::string method = input.reduce ? "reduced" : input.method;
   const double n = static_cast<double>(count);

@@ -28,33 +28,45 @@ std::vector<emnet::Probe> transient_outputs(const emnet::Model& model,
   return emnet::transient_outputs(model, options.probes);
 }
 
-// The outputs a --plot draws, on one axis: the deflections by default; with --probe every probe,
-// which must then share a unit (refused before computing otherwise). Deflections in mm.
+// The outputs a --plot draws: with --probe every probe; else the deflections and the DEA
+// voltages. The plot gives each unit its own panel, so any mix of units can be plotted.
 PlottedOutputs plotted_outputs(const std::vector<emnet::Probe>& probes,
-                               const CommonOptions& options, const std::string& quantity) {
+                               const CommonOptions& options) {
   PlottedOutputs plotted;
   for (size_t k = 0; k < probes.size(); ++k)
-    if (!options.probes.empty() || probes[k].unit == "m") plotted.indices.push_back(k);
-  if (plotted.indices.empty()) return plotted;
-  const emnet::Probe& first = probes[plotted.indices.front()];
-  for (size_t k : plotted.indices)
-    if (probes[k].unit != first.unit)
-      throw InputError("--plot", "--probe",
-                       "a plot has one axis, but probe '" + probes[k].name + "' is in " +
-                           probes[k].unit + " and '" + first.name + "' in " + first.unit +
-                           ": plot probes of one unit per run (--csv and --json take any mix)");
-  plotted.unit = first.unit;
-  if (first.unit == "m") {
-    plotted.scale = 1e3;
-    plotted.axis_label = quantity + "deflection [mm]";
-  } else {
-    plotted.axis_label = quantity + "value [" + first.unit + "]";
-  }
+    if (!options.probes.empty() || probes[k].unit == "m" ||
+        probes[k].quantity == emnet::ProbeQuantity::dea_voltage)
+      plotted.indices.push_back(k);
   return plotted;
 }
 
+namespace {
+
+// The DEA voltages u_X a --plot shows under the response when --probe does not name them: every
+// DEA's, when the scene gives the DEAs their electrical model outright (drive.electrical_dynamics
+// = true, not "auto", whose choice is made when the model is built); they are computed with the
+// probes and only plotted.
+std::vector<std::string> plot_only_outputs(const emnet::Scene& scene,
+                                           const CommonOptions& options) {
+  std::vector<std::string> extra;
+  if (options.probes.empty() || !scene.drive.electrical_dynamics ||
+      scene.drive.electrical_dynamics_auto)
+    return extra;
+  for (const emnet::DeaSpec& dea : scene.deas) {
+    const std::string name = "u_" + dea.name;
+    if (std::find(options.probes.begin(), options.probes.end(), name) == options.probes.end() &&
+        std::find(options.probes.begin(), options.probes.end(), "dea_voltage:" + dea.name) ==
+            options.probes.end())
+      extra.push_back(name);
+  }
+  return extra;
+}
+
+}  // namespace
+
 int run_tran_command(CommonOptions options, const TranOptions& tran) {
   const emnet::Stopwatch stopwatch;
+  check_plot_options(tran.plot, tran.plot_script);
   if (tran.switching) {
     if (!(*tran.switching > 0.0) || !std::isfinite(*tran.switching))
       throw InputError("--switching", "--switching", "must be a positive frequency in Hz (> 0)");
@@ -70,23 +82,33 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   study_options.max_step = tran.max_step;
   study_options.start =
       tran.start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
+  emnet::Scene scene = load_scene(options);
+  const std::vector<std::string> plot_only =
+      tran.plot.empty() ? std::vector<std::string>{} : plot_only_outputs(scene, options);
   study_options.outputs = options.probes;
+  study_options.outputs.insert(study_options.outputs.end(), plot_only.begin(), plot_only.end());
   study_options.prepare.electrical_probe_requested = electrical_probe_requested(options);
   study_options.progress = progress_of(options);
   show_phase(options, "building the network");
-  // --plot's outputs are checked before the integration.
-  study_options.check_outputs = [&](const std::vector<emnet::Probe>& probes) {
-    if (!tran.plot.empty()) plotted_outputs(probes, options, "");
-  };
   const emnet::TransientStudyResult study =
-      emnet::run_transient_study(load_scene(options), study_options);
+      emnet::run_transient_study(std::move(scene), study_options);
   if (!study.status.ok) throw NumericalFailure(study.status.message);
-  const PlottedOutputs plotted =
-      tran.plot.empty() ? PlottedOutputs{} : plotted_outputs(study.outputs, options, "");
+  // The table, --csv and --json show the outputs asked for; the plot also the plot-only ones.
+  const size_t shown = study.outputs.size() - plot_only.size();
+  const std::vector<emnet::Probe> shown_probes(study.outputs.begin(),
+                                               study.outputs.begin() + shown);
+  emnet::TransientResult shown_result = study.result;
+  shown_result.values.resize(shown);
+  PlottedOutputs plotted;
+  if (!tran.plot.empty()) {
+    plotted = plotted_outputs(shown_probes, options);
+    for (size_t k = shown; k < study.outputs.size(); ++k) plotted.indices.push_back(k);
+  }
   const double total = stopwatch.seconds();
   end_progress(options);
-  return report_tran({options, tran, study.model, study.system, study.outputs, plotted,
-                      study.result, study.validity, study.start_text, study.end_time, total});
+  return report_tran({options, tran, study.model, study.system, shown_probes, study.outputs,
+                      plotted, shown_result, study.result.values, study.validity, study.start_text,
+                      study.end_time, total});
 }
 
 Command add_tran_command(CLI::App& app, CommonOptions& options) {
@@ -115,8 +137,10 @@ Command add_tran_command(CLI::App& app, CommonOptions& options) {
       ->check(CLI::IsMember({"rest", "static"}));
   tran_command->add_option("--points-per-period", tran_options->points_per_period,
                            "output points per period (default 100)");
-  tran_command->add_option("--plot", tran_options->plot,
-                           "write a plot of the deflections (PNG/SVG)");
+  add_plot_options(tran_command, tran_options->plot, tran_options->plot_script,
+                   "the response over time (the deflections, or the --probe outputs, one panel "
+                   "per unit) over a panel of the drive: the DEA voltages and the source "
+                   "voltages [V]");
 
   return {tran_command,
           [tran_options, &options] { return run_tran_command(options, *tran_options); }};

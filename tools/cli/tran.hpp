@@ -24,6 +24,7 @@ struct TranOptions {
   std::string start = "rest";
   int points_per_period = 100;
   std::string plot;
+  bool plot_script = false;  // --plot-script: the plot's .dat and .gp too
 };
 
 // What the report needs: the command's options, the model, the outputs and the result.
@@ -32,9 +33,13 @@ struct TranReportInput {
   const TranOptions& tran;
   const emnet::Model& model;
   const emnet::System& system;
-  const std::vector<emnet::Probe>& probes;
-  const PlottedOutputs& plotted;  // what --plot draws (checked before the integration)
-  const emnet::TransientResult& result;
+  const std::vector<emnet::Probe>& probes;  // the outputs shown (table, --csv, --json)
+  // The outputs --plot may draw: `probes`, then the plot-only ones (the DEA voltages beside
+  // --probe), with their values; `plotted` indexes these.
+  const std::vector<emnet::Probe>& plot_probes;
+  const PlottedOutputs& plotted;
+  const emnet::TransientResult& result;                 // of `probes`
+  const std::vector<std::vector<double>>& plot_values;  // [plot probe][time]
   const emnet::Validity& validity;
   std::string start_text;      // the start state in words
   double end_time = 0.0;       // [s]

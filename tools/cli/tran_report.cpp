@@ -1,16 +1,101 @@
 // The tran command's report (tran.hpp): the text table, --json (emnet/report/transient_json.hpp),
-// --csv and --plot of a transient result.
+// --csv and --plot of a transient result (the response in the table's units, each unit in its
+// own panel, over a panel of the drive).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
+#include <string>
+#include <vector>
 
 #include "cli/tran.hpp"
+#include "emnet/model/circuit.hpp"
+#include "emnet/model/drive.hpp"
+#include "emnet/network/waveform.hpp"
 #include "emnet/report/plot.hpp"
 #include "emnet/report/transient_json.hpp"
 
 namespace emnet_cli {
 
 namespace {
+
+// `waveform` at `times` and, so that its edges are drawn where they are, at each of its
+// breakpoints inside the run both before (its value an instant earlier) and at the edge.
+emnet::LineSeries sampled_waveform(const emnet::Waveform& waveform,
+                                   const std::vector<double>& times, std::string label,
+                                   std::string unit) {
+  emnet::LineSeries line{std::move(label), {}, {}, std::move(unit)};
+  if (times.empty()) return line;
+  std::vector<double> edges;
+  waveform.breakpoints(times.front(), times.back(), edges);
+  std::sort(edges.begin(), edges.end());
+  const double instant = 1e-9 * std::max(std::abs(times.back() - times.front()), 1e-300);
+  size_t e = 0;
+  for (double t : times) {
+    for (; e < edges.size() && edges[e] <= t; ++e) {
+      line.x.push_back(edges[e]);
+      line.y.push_back(waveform.value(edges[e] - instant));
+      line.x.push_back(edges[e]);
+      line.y.push_back(waveform.value(edges[e]));
+    }
+    line.x.push_back(t);
+    line.y.push_back(waveform.value(t));
+  }
+  return line;
+}
+
+// Each unit's axis in the plot.
+const std::map<std::string, std::string> kAxisLabels = {
+    {"m", "deflection [m]"},   {"m/s", "velocity [m/s]"},
+    {"rad", "rotation [rad]"}, {"rad/s", "angular velocity [rad/s]"},
+    {"V", "voltage [V]"},      {"A", "current [A]"},
+    {"N", "force [N]"},        {"N*m", "moment [N*m]"}};
+
+// The response in the table's units, each unit in its own panel; under it the drive: the DEA
+// voltages among the outputs and, dashed, the voltage (or current) of every source that drives
+// the network: the drive's own sources on the DEAs it names, the circuit's sources.
+void write_tran_plot(const TranReportInput& input) {
+  const auto& probes = input.plot_probes;
+  const auto& times = input.result.times;
+  const emnet::Scene& scene = input.model.scene;
+  std::vector<emnet::LineSeries> series;
+  bool dea_voltages = false;  // the sources are dashed when DEA voltages are drawn beside them
+  for (size_t k : input.plotted.indices) {
+    series.push_back({probes[k].name + " (" + probes[k].description + ")", times,
+                      input.plot_values[k], probes[k].unit});
+    dea_voltages |= probes[k].quantity == emnet::ProbeQuantity::dea_voltage;
+  }
+  if (scene.drive.kind != emnet::DriveKind::none) {
+    for (const std::string& dea : scene.drive.deas) {
+      if (emnet::circuit_drives_dea(scene, dea)) continue;
+      // In the colour of the DEA's own voltage, when that is drawn.
+      int colour = -1;
+      for (size_t k = 0; k < input.plotted.indices.size(); ++k)
+        if (probes[input.plotted.indices[k]].name == "u_" + dea) colour = static_cast<int>(k);
+      series.push_back(sampled_waveform(emnet::dea_drive(scene.drive, dea).voltage, times,
+                                        "DEA " + dea + " drive source voltage", "V"));
+      series.back().dashed = dea_voltages;
+      series.back().colour = colour;
+    }
+  }
+  for (const emnet::CircuitSpec& element : scene.circuit) {
+    if (!emnet::is_source(element.kind)) continue;
+    const bool voltage = element.kind == emnet::CircuitKind::voltage_source;
+    series.push_back(sampled_waveform(
+        emnet::circuit_waveform(element), times,
+        "circuit " + element.name + (voltage ? " source voltage" : " source current"),
+        voltage ? "V" : "A"));
+    series.back().dashed = dea_voltages;
+  }
+  emnet::LinePlotOptions options;
+  options.axis_labels = kAxisLabels;
+  options.side_files.data_and_script = input.tran.plot_script;
+  stop_if_interrupted();
+  check_plot(emnet::write_line_plot(
+      input.tran.plot, scene.name + ": " + drive_summary(scene) + ", " + input.result.method,
+      "time [s]", series, options));
+}
 
 void write_tran_files(const TranReportInput& input) {
   const auto& options = input.options;
@@ -24,23 +109,7 @@ void write_tran_files(const TranReportInput& input) {
       for (const auto& series : result.values) row.push_back(series[i]);
     });
   }
-  if (!input.tran.plot.empty()) {
-    const PlottedOutputs& plotted = input.plotted;
-    std::vector<emnet::LineSeries> series;
-    for (size_t k : plotted.indices) {
-      emnet::LineSeries line{probes[k].name + " (" + probes[k].description + ") [" +
-                                 (plotted.unit == "m" ? "mm" : plotted.unit) + "]",
-                             result.times,
-                             {}};
-      for (double v : result.values[k]) line.y.push_back(v * plotted.scale);
-      series.push_back(line);
-    }
-    stop_if_interrupted();
-    check_plot(emnet::write_line_plot(
-        input.tran.plot,
-        input.model.scene.name + ": " + drive_summary(input.model.scene) + ", " + result.method,
-        "time [s]", plotted.axis_label, series));
-  }
+  if (!input.tran.plot.empty()) write_tran_plot(input);
 }
 
 }  // namespace

@@ -10,7 +10,8 @@
 
 namespace emnet {
 
-// "drive antagonistic 0/3000 V square wave at 6 Hz", "drive single V0 + v*sin(...) ...".
+// "drive antagonistic 0/3000 V square wave at 6 Hz", "drive single V0 + v*sin(...) ...",
+// "drive none, circuit source(s) amp" (a circuit's sources named after the drive kind).
 std::string drive_summary(const Scene& scene);
 
 // What the AC input is, in words. `top_hz`: the sweep's highest frequency, where the

@@ -52,10 +52,11 @@ struct AcStudyResult {
   // Failure: the analysis's message (run_ac's, run_ac_reduced's), in `failed_stage`.
   Status status;
   AcStudyStage failed_stage = AcStudyStage::none;
-  AcResult ac;                                 // the sweep (the reduced model's with `reduction`)
-  std::optional<AcReductionResult> reduction;  // set when asked for
-  std::vector<double> resonances_hz;           // in [from, to] of the grid, increasing
-  std::vector<DeflectionPeak> peaks;           // per deflection probe, its largest |response|
+  AcResult ac;                                   // the sweep (the reduced model's with `reduction`)
+  std::optional<AcReductionResult> reduction;    // set when asked for
+  std::vector<double> resonances_hz;             // in [from, to] of the grid, increasing
+  std::vector<double> resonance_damping_ratios;  // each resonance's damping ratio −Re s/|s|
+  std::vector<DeflectionPeak> peaks;             // per deflection probe, its largest |response|
   Validity validity;
 };
 
