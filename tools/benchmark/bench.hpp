@@ -97,8 +97,13 @@ struct Settings {
   std::string emnet = "build/emnet";  // the program, for whole-process times
   std::string self;                   // this program, for scale points
   bool quick = false;                 // smoke test: tiny sizes, few repetitions
-  std::string only;                   // --only 5a|5b: that section alone (report-5a.md, …)
+  std::string only;                   // --only 0|4|5a|5b|6: that section alone (report-5a.md, …)
+  std::string report;                 // the report's path (default: out/report.md)
+  std::string figures;                // where the plots go (default: out)
   std::string fishfin() const { return root + "/netlists/fishfin.toml"; }
+  // A plot's file, figures/bench-<name>.png, and the link to it from the report's directory.
+  std::string figure(const std::string& name) const;
+  std::string figure_link(const std::string& name) const;
   std::string cantilever() const { return root + "/netlists/cantilever.toml"; }
 };
 
@@ -134,9 +139,13 @@ struct ParetoPoint {
   double error = 0.0;
 };
 
-// One gnuplot script and one data block per series (error floored at 1e-16 for the log axis).
+// One gnuplot script and one data block per series (error floored at 1e-16 for the log axis):
+// out/bench-<name>.gp and .dat, plotting to settings.figure(name).
 void write_pareto_plot(const Settings& settings, const std::string& name, const std::string& title,
                        const std::vector<ParetoPoint>& points);
+// The start of every plot's gnuplot script: terminal, output `png`, title, grid, line styles
+// 1..8 (colours that read on white).
+std::string plot_preamble(const std::string& png, const std::string& title);
 
 // Largest |a − b| over outputs and kept times, relative to each output's peak |b|.
 double run_error(const std::vector<std::vector<double>>& values,
@@ -157,6 +166,11 @@ std::string method_table(const std::vector<MethodRow>& rows);
 struct Headline {
   double in_process = NAN, whole_process = NAN;
   std::string in_process_pair, whole_process_pair;
+  // The least favourable whole-process pair's times.
+  double whole_process_spice = NAN, whole_process_own = NAN;
+  // Against ngspice's most accurate run (the smallest error), whole process.
+  double accurate = NAN;
+  std::string accurate_pair;
 };
 
 Headline headline(const std::vector<MethodRow>& rows);
@@ -188,6 +202,10 @@ struct Section {
 };
 
 // ---- the sections ----------------------------------------------------------------------------
+//
+// Each returns its part of the report below its heading (main.cpp writes the headings): an
+// introduction saying what it measures, against which reference and how, then the tables and
+// the conclusions computed from them.
 
 // limits.cpp: 0. every analysis against its arithmetic limit, and IDA against ngspice on the
 // RC-loop fin.
@@ -239,5 +257,8 @@ std::string scale_section(const Settings& settings, std::map<std::string, double
 // simplifications.cpp: 5a and 5b.
 std::string simplification_section(const Settings& settings);
 std::string reduction_section(const Settings& settings);
+
+// crosscheck.cpp: `emnet crosscheck` on the shipped scenes, its differences and wall times.
+std::string crosscheck_section(const Settings& settings);
 
 }  // namespace emnet_bench

@@ -1,8 +1,21 @@
 // The benchmark's shared pieces (declared in bench.hpp): formats, timing, processes, peaks,
 // Pareto plots, method tables and their headline, ngspice helpers.
+#include <filesystem>
+
 #include "bench.hpp"
 
 namespace emnet_bench {
+
+std::string Settings::figure(const std::string& name) const {
+  return figures + "/bench-" + name + ".png";
+}
+
+std::string Settings::figure_link(const std::string& name) const {
+  namespace fs = std::filesystem;
+  const fs::path from = fs::absolute(fs::path(report)).lexically_normal().parent_path();
+  const fs::path to = fs::absolute(fs::path(figure(name))).lexically_normal();
+  return to.lexically_relative(from).generic_string();
+}
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -152,14 +165,15 @@ double sweep_error(const std::vector<Peaks>& peaks, const std::vector<Peaks>& re
   return worst;
 }
 
-// One gnuplot script and one data block per series (error floored at 1e-16 for the log axis).
+// One gnuplot script and one data block per series (error floored at 1e-16 for the log axis):
+// out/bench-<name>.gp and .dat, plotting to settings.figure(name).
 void write_pareto_plot(const Settings& settings, const std::string& name, const std::string& title,
                        const std::vector<ParetoPoint>& points) {
   std::vector<std::string> series;
   for (const auto& point : points)
     if (std::find(series.begin(), series.end(), point.series) == series.end())
       series.push_back(point.series);
-  const std::string data_path = settings.out + "/pareto-" + name + ".dat";
+  const std::string data_path = settings.out + "/bench-" + name + ".dat";
   std::ofstream data(data_path);
   data << std::setprecision(6);
   for (const auto& s : series) {
@@ -170,22 +184,44 @@ void write_pareto_plot(const Settings& settings, const std::string& name, const 
              << "\"\n";
     data << "\n\n";
   }
-  std::ofstream script(settings.out + "/pareto-" + name + ".gp");
-  script << "set terminal pngcairo size 900,620 noenhanced font ',10'\n"
-         << "set output '" << settings.out << "/pareto-" << name << ".png'\n"
-         << "set title '" << title << "'\n"
+  std::ofstream script(settings.out + "/bench-" + name + ".gp");
+  script << plot_preamble(settings.figure(name), title)
          << "set logscale xy\nset format x '%.0e'\nset format y '%.0e'\n"
-         << "set xlabel 'wall time [s] (median)'\nset ylabel 'error relative to peak (0 plotted at "
-            "1e-16)'\n"
-         << "set grid\nset key outside right top\n"
+         << "set xlabel 'wall time [s] (median)'\nset ylabel 'error relative to peak (exact "
+            "results at 1e-16)'\n"
+         << "set key below maxrows 3\n"
          << "plot ";
+  // Labels of neighbouring points on alternate sides (right and above, left and below), so
+  // that close points' labels do not overlap.
   for (size_t k = 0; k < series.size(); ++k) {
     script << (k ? ", \\\n     " : "") << "'" << data_path << "' index " << k
-           << " using 1:2 with linespoints pt " << (k % 9) + 4 << " ps 1.2 title '" << series[k]
+           << " using 1:2 with linespoints ls " << k + 1 << " title '" << series[k]
            << "', '' index " << k
-           << " using 1:2:3 with labels offset 0.6,0.6 left font ',7' notitle";
+           << " every 2 using 1:2:3 with labels offset 0.8,0.6 left font ',8' tc ls " << k + 1
+           << " notitle";
+    if (std::count_if(points.begin(), points.end(),
+                      [&](const ParetoPoint& p) { return p.series == series[k]; }) > 1)
+      script << ", '' index " << k
+             << " every 2::1 using 1:2:3 with labels offset -0.8,-0.6 right font ',8' tc ls "
+             << k + 1 << " notitle";
   }
   script << "\n";
+}
+
+// The terminal, output, title and line styles every plot shares: dark colours that read on
+// white (no yellow), a different point type for each.
+std::string plot_preamble(const std::string& png, const std::string& title) {
+  static const char* const colours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
+                                        "#000000", "#56b4e9", "#8c564b", "#7f7f7f"};
+  std::ostringstream out;
+  out << "set terminal pngcairo size 960,680 noenhanced font ',10'\n"
+      << "set output '" << png << "'\n"
+      << "set title '" << title << "'\n"
+      << "set grid\n";
+  for (int k = 0; k < 8; ++k)
+    out << "set style line " << k + 1 << " lc rgb '" << colours[k] << "' lw 1.5 pt " << k + 4
+        << " ps 1.2\n";
+  return out.str();
 }
 
 // Largest |a − b| over outputs and kept times, relative to each output's peak |b|.
@@ -214,6 +250,21 @@ std::string method_table(const std::vector<MethodRow>& rows) {
   return md.str();
 }
 
+namespace {
+
+// "ngspice default (7.0e-03, 90.9 ms) against emnet exact (rounding, 12.2 ms)": the pair of a
+// headline, whole-process times.
+std::string pair_text(const MethodRow& spice, const MethodRow& own) {
+  auto error = [](double e) { return e > 0.0 ? error_text(e) : std::string("rounding"); };
+  auto setting = [](const MethodRow& row) {
+    return row.setting == "–" || row.setting.empty() ? std::string() : " " + row.setting;
+  };
+  return "ngspice" + setting(spice) + " (" + error(spice.error) + ") against emnet " + own.method +
+         setting(own) + " (" + error(own.error) + ")";
+}
+
+}  // namespace
+
 Headline headline(const std::vector<MethodRow>& rows) {
   Headline h;
   h.in_process = h.whole_process = std::numeric_limits<double>::infinity();
@@ -236,10 +287,30 @@ Headline headline(const std::vector<MethodRow>& rows) {
       double& slot = whole ? h.whole_process : h.in_process;
       if (ratio < slot) {
         slot = ratio;
-        (whole ? h.whole_process_pair : h.in_process_pair) =
-            "ngspice " + spice.setting + " (" + error_text(spice.error) + ") vs emnet " +
-            best->method + " " + best->setting + " (" + error_text(best->error) + ")";
+        if (whole) {
+          h.whole_process_spice = spice_time.median;
+          h.whole_process_own = best->whole_process.median;
+        }
+        (whole ? h.whole_process_pair : h.in_process_pair) = pair_text(spice, *best);
       }
+    }
+  }
+  // Against ngspice's most accurate run, whole process.
+  const MethodRow* accurate = nullptr;
+  for (const auto& spice : rows)
+    if (spice.tool == "ngspice" && std::isfinite(spice.error) &&
+        spice.whole_process.repetitions > 0 && (!accurate || spice.error < accurate->error))
+      accurate = &spice;
+  if (accurate) {
+    const MethodRow* best = nullptr;
+    for (const auto& own : rows)
+      if (own.tool == "emnet" && own.error <= accurate->error &&
+          own.whole_process.repetitions > 0 &&
+          (!best || own.whole_process.median < best->whole_process.median))
+        best = &own;
+    if (best) {
+      h.accurate = accurate->whole_process.median / best->whole_process.median;
+      h.accurate_pair = pair_text(*accurate, *best);
     }
   }
   if (!std::isfinite(h.in_process)) h.in_process = NAN;

@@ -115,7 +115,8 @@ std::string default_tran_deck(const emnet::Model& model, const std::vector<emnet
 
 // IDA on the RC-loop fin (the scene as it is: the exact method cannot serve), 50 periods from
 // rest, 100 outputs per period, against ngspice's default .tran; both against IDA at rtol 1e-10
-// (ngspice at its own time points, ±10ε around every edge left out as in section 3).
+// (ngspice at its own time points, ±10ε around every edge left out as in ac.cpp and
+// transient.cpp).
 std::string ida_against_ngspice(const Settings& settings) {
   const emnet::Model model = build(settings.fishfin(), {});
   const emnet::System system = model.network.assemble();
@@ -129,8 +130,12 @@ std::string ida_against_ngspice(const Settings& settings) {
   tight.relative_tolerance = 1e-10;
   const emnet::TransientResult reference = emnet::run_transient_ida(system, probes, tight);
   std::ostringstream md;
-  md << "\n### IDA against ngspice on the RC-loop fin (nonlinear), "
-     << std::lround(options.end_time / period) << " periods\n\n"
+  md << "\n### IDA against ngspice on the RC-loop fin\n\n"
+     << "Where the exact method cannot serve, IDA (variable-order BDF) is emnet's integrator: "
+        "here against ngspice's transient on the same nonlinear network, "
+     << std::lround(options.end_time / period)
+     << " periods at 5 Hz from rest, 100 outputs per period; the goal: IDA at least 3× "
+        "faster than ngspice at equal or smaller error. "
      << "The scene as it is (each DEA's electrode resistance and capacitance: the force is k_F·u² "
         "of the capacitor's voltage, so the exact method cannot serve). Error: the largest "
         "|difference| of the deflection outputs over the run, relative to each output's peak, "
@@ -199,12 +204,29 @@ std::string limits_section(const Settings& settings) {
   const double rate = arithmetic_rate(), bandwidth = copy_rate();
   bool true_ok = true;
   const Timing empty_process = measure_process({"/bin/true"}, 20, 2.0, true_ok);
-  md << "Measured here: dense arithmetic " << format("%.1f", rate * 1e-9)
-     << " Gflop/s (a 192×192 matrix product, one core), memory copy "
-     << format("%.1f", bandwidth * 1e-9) << " GB/s, an empty process (`/bin/true`) "
-     << time_text(empty_process.median) << ". The counts are in this file's header comment "
-     << "(tools/benchmark/limits.cpp). Times are medians in this process unless the row says "
-        "whole process.\n\n";
+  md << "How far each analysis of the fish fin (N = 7, ideal drive) is from the arithmetic it "
+        "cannot avoid. The limit of an analysis is the operation count of the method a careful "
+        "implementation would use, divided by this machine's rate for dense double arithmetic, "
+        "measured as the fastest of repeated 192×192 matrix products: the most favourable rate, "
+        "so the limit is a lower bound on the time and emnet / limit an upper bound on how far "
+        "emnet is from it. For a whole process the limit adds the start of a program that does "
+        "nothing (`/bin/true`) and the bytes written at the measured copy bandwidth. The counts "
+        "(n poles, P outputs, F frequencies, K output times, I intervals between switching "
+        "edges, S samples per period):\n\n"
+        "- eigen-decomposition of the n×n state matrix with vectors: 25·n³ (Hessenberg "
+        "reduction, QR iteration and back-substitution);\n"
+        "- AC: the decomposition + F·(8·n + 16·n·P) (a complex reciprocal per pole, two complex "
+        "multiply-adds per pole and output);\n"
+        "- exact transient: the decomposition + I·16·n² (each interval's start and end in modal "
+        "coordinates) + K·(6·n + 4·n·P) (the addition theorem over one pole of each conjugate "
+        "pair, a complex dot product per output);\n"
+        "- switching sweep: the decomposition + F·(16·n + S·4·n·P) (the periodic state in modal "
+        "coordinates, every sample of every output).\n\n"
+     << "Measured here: dense arithmetic " << format("%.1f", rate * 1e-9)
+     << " Gflop/s (one core), memory copy " << format("%.1f", bandwidth * 1e-9)
+     << " GB/s, an empty process (`/bin/true`) " << time_text(empty_process.median)
+     << ". Times are medians in this process unless the row says whole process; each goal is "
+        "an absolute time.\n\n";
 
   const AcContext context = ac_context(settings);
   const emnet::Model& model = context.model;
@@ -248,8 +270,7 @@ std::string limits_section(const Settings& settings) {
     row.note = "pole-residue form checked at " + std::to_string(ac.check_points) +
                " frequencies, largest difference from the direct solve " +
                error_text(ac.check_deviation) +
-               " of the peak (the error against a dense solve is "
-               "in section 3)";
+               " of the peak (the error against a dense solve is under Against ngspice)";
     rows.push_back(row);
     LimitRow scene = row;
     scene.analysis = "AC from the scene file";
@@ -283,21 +304,23 @@ std::string limits_section(const Settings& settings) {
     const Timing help = measure_process({settings.emnet, "--help"}, 20, 2.0, help_ok);
     row.ngspice = ac_ngspice_process;
     row.goal = 5e-3;
-    row.note = "`emnet --help` alone " + time_text(help.median) +
-               " (program start: the dynamic loader, static initialisers, the commands' "
-               "options); the scene's own RC-loop drive (`emnet ac netlists/fishfin.toml`) " +
-               [&] {
-                 bool rc_ok = true;
-                 const Timing rc =
-                     measure_process({settings.emnet, "ac", settings.fishfin()}, 10, 3.0, rc_ok);
-                 const emnet::Model rc_model = build(settings.fishfin(), {});
-                 const emnet::System rc_system = rc_model.network.assemble();
-                 const emnet::AcResult rc_ac =
-                     emnet::run_ac(rc_system, emnet::solve_static(rc_system).operating_point, grid,
-                                   deflection_probes(rc_model));
-                 return time_text(rc.median) + " (" + rc_ac.method +
-                        (rc_ac.note.empty() ? "" : ": " + rc_ac.note) + ")";
-               }();
+    row.note =
+        "`emnet --help` alone " + time_text(help.median) + " (" +
+        format("%.0f", 100.0 * help.median / row.emnet) +
+        " % of the command; program start: the dynamic loader, static initialisers, the "
+        "commands' options); the scene's own RC-loop drive (`emnet ac netlists/fishfin.toml`) " +
+        [&] {
+          bool rc_ok = true;
+          const Timing rc =
+              measure_process({settings.emnet, "ac", settings.fishfin()}, 10, 3.0, rc_ok);
+          const emnet::Model rc_model = build(settings.fishfin(), {});
+          const emnet::System rc_system = rc_model.network.assemble();
+          const emnet::AcResult rc_ac =
+              emnet::run_ac(rc_system, emnet::solve_static(rc_system).operating_point, grid,
+                            deflection_probes(rc_model));
+          return time_text(rc.median) + " (" + rc_ac.method +
+                 (rc_ac.note.empty() ? "" : ": " + rc_ac.note) + ")";
+        }();
     rows.push_back(row);
   }
 
@@ -339,7 +362,8 @@ std::string limits_section(const Settings& settings) {
   {
     SweepContext context = sweep_context(settings);
     LimitRow row;
-    row.analysis = "switching sweep, 61 frequencies";
+    row.analysis =
+        "switching sweep, " + std::to_string(context.frequencies.size()) + " frequencies";
     row.method = "exact PeriodicSolver, 64 samples";
     const double frequencies = static_cast<double>(context.frequencies.size());
     const double flops =
@@ -356,13 +380,16 @@ std::string limits_section(const Settings& settings) {
                ", the 61 periodic solves with their global "
                "extremes " +
                time_text(parts.solve) +
-               " (ngspice needs a transient per frequency until settled: section 3)";
+               " (ngspice needs a transient per frequency until settled: see the switching "
+               "sweep under Against ngspice)";
     rows.push_back(row);
   }
   md << limit_table(rows)
-     << "\nWhere a goal is missed, the notes above split the time as this run measured it; the "
-        "profiles behind them (perf, function by function) are in docs/benchmarks.md, "
-        "\"Against the arithmetic limit\".\n";
+     << "\nWhere a goal is missed, the notes split the time as this run measured it: a fixed "
+        "part (the state equation and its eigen-decomposition, the program's start) against a "
+        "part per frequency, output or interval. Below that split, a profile of the analysis "
+        "in a loop (`perf record`) or of the program (`perf stat`: page faults, instructions) "
+        "shows which function the time is in.\n";
   md << ida_against_ngspice(settings);
   return md.str();
 }

@@ -1,93 +1,38 @@
-// emnet_bench: speed against error, side by side with ngspice (tools/bench runs it and plots).
+// emnet_bench: speed against error, side by side with ngspice. tools/bench runs it and plots;
+// a full run is the project's docs/benchmarks.md and docs/figures/bench-*.png.
 //
-// Every measurement is taken in this one run on this one machine. What each section measures
-// and how:
+// Every measurement is taken in this one run on this one machine, and the report says what each
+// section measures, against which reference and how: each section's function (below) writes an
+// introduction above its tables, and computes the conclusions (goals met or missed, ratios,
+// where the time goes) from the numbers it measured. The method common to all (timing, in-process
+// and whole process, errors) is the report's "How it is measured", written here.
 //
-//  Timing. A measured item runs once as a warm-up (caches, lazy library loading), then is
-//  repeated until `repetitions` runs or a per-item time budget is used up; the report gives
-//  the median, and the spread as min..max, with the number of repetitions. An item whose
-//  warm-up alone takes more than half its budget is timed by that one run (repetitions 1).
-//  "In-process" times a function call in this process; "whole process" times a program
-//  started through emnet's process helper (emnet/core/process.hpp), from just before it is
-//  started until it is reaped, as its supervisor sees it (wall clock, output to /dev/null), so
-//  it includes program start, reading the scene or deck, and printing or writing results, but
-//  not the start of the supervisor or the clean-up after the program.
+//   emnet_bench [--root DIR] [--out DIR] [--emnet PROGRAM] [--report FILE] [--figures DIR]
+//               [--quick] [--only 0|4|5a|5b|6]
 //
-//  1. Discretisation error against cost. Cantilever (netlists/cantilever.toml: L = 0.5 m,
-//     EI = 2 N·m², ρA = 0.3 kg/m, 1 N at the tip) with N segments: f1..f3 of run_modes against
-//     the continuum f = (βL)²/(2πL²)·√(EI/ρA), βL = 1.875104, 4.694091, 7.854757, and the
-//     static tip deflection against F·L³/(3EI); cost = time of run_modes (3 lowest modes) and
-//     of a 1000-point log AC sweep (0.5–200 Hz). Fish fin at N = 7 against its converged
-//     answer: modes at N = 1000 and 2000, Richardson extrapolated for O(N⁻²) convergence.
-//  2. Integrator error against cost. Fish fin with the ideal drive
-//     (drive.electrical_dynamics = false: a linear network), 50 periods at 5 Hz from rest,
-//     100 outputs per period: IDA at rtol 1e-3…1e-10 and the exact method. Error: the largest
-//     |difference| over the run and over the deflection outputs, each relative to that output's
-//     peak |value|, against run_transient_exact. Periodic steady state over 61 switching
-//     frequencies (1–7 Hz, step 0.1): PeriodicSolver (direct) against run-until-settled (the
-//     exact transient from rest for K periods, K doubled from 8 until the peaks of two
-//     consecutive periods differ by less than a threshold; peaks refined by a parabola through
-//     the largest sample and its neighbours). Error: the left and right peaks of every
-//     deflection output, relative to that output's largest peak over the sweep, against the
-//     direct method with 1024 samples per period.
-//  3. ngspice side by side. The decks are written by write_spice_deck from the same model and
-//     run by run_ngspice (in-process: libngspice in this process; whole process: the ngspice
-//     program, `ngspice -b -r RAWFILE DECK`). AC: the scene's 1000-point sweep (0–10 Hz);
-//     reference: a dense complex LU of (G + J_g + jωC)·Y = B_ac at ngspice's own frequencies
-//     (f > 0). Transient: emnet's exact solution at ngspice's own time points, excluding ±10ε
-//     around every switching edge (the deck switches with linear edges of width ε). Sweep: one
-//     deck per frequency, run for as many periods as the exact transient needed to settle to
-//     1e-4 per period, peaks of its last period (refined like emnet's run-until-settled).
-//  4. Scale. Fish fin at N = 10 … 10 000, static, modes, a 1000-point AC, IDA over 2 periods and
-//     the 61-frequency switching sweep through the modal reduction: each point is a fresh
-//     process (this program with --scale-point), which reports its own peak resident memory
-//     (VmHWM) and the time of the analysis alone, after reading and building. Growth exponent:
-//     least squares of log(time) on log(N) over the points with N ≥ 300. A point is skipped when
-//     the previous point's time extrapolated with the fitted exponent (at least 1) exceeds the
-//     point budget.
-//  5a. Simplifications: what each costs and saves. Fish fin, band 0–130 Hz, beam.segments =
-//     "auto" at model.tolerance 1e-2, 1e-3, 1e-4: the chosen N, the selection's estimate and
-//     its time, the band modes' error against the bare beam converged by Richardson from
-//     N = 1000 and 2000, and the analyses N serves on the full model, run_modes (5 modes)
-//     and a 1000-point AC sweep over the band, at N against a fixed N = 200 (ratios of
-//     medians, without and with the time to choose). Ideal against RC drive at
-//     the scene's N = 7 and 5 Hz: periodic steady state (exact PeriodicSolver against IDA
-//     shooting) and 50 periods of transient (exact against IDA), cost ratio RC/ideal and
-//     the largest peak-deflection difference relative to the RC peak.
-//  5b. Modal reduction. Fish fin (ideal drive) at N = 7, 100, 500 (--quick: 7, 100): the
-//     1000-point AC sweep (0–10 Hz) by run_ac and by run_ac_reduced (band 10 Hz, tol 1e-2,
-//     1e-3, 1e-4), and the 61-frequency periodic sweep (1–7 Hz) by PeriodicSolver and by
-//     ReducedPeriodicSolver (band 7 Hz) at N = 7 and 100, each timed side by side in this run;
-//     error: the largest difference at every point (every sample of every period), relative
-//     to each probe's largest |value|.
-//  6. Design studies. The fish fin's tolerance study (1000 variants, --quick 40: modes, static
-//     and the 61-frequency switching sweep each) by run_design_study on 1 and 2 threads, the
-//     cost per variant by stage; beside it the first 10 variants (--quick 2) as scripted one
-//     process per variant: emnet's modes, static and sweep-switching commands, and ngspice on
-//     the variant's AC deck. Then tools/benchmark/python_study.py: the Python module's overhead
-//     on one `modes` call and the study through Python, locally and on 1 and 2 Dask workers.
-//
-//  0. Limits. Each analysis of the fish fin (N = 7) against the operation count of the method a
-//     careful implementation would use at this machine's measured dense arithmetic rate, beside
-//     ngspice; and IDA against ngspice at equal error on the RC-loop (nonlinear) fin
-//     (limits.cpp's header comment has the counts).
-//
-// --only 0, 4, 5a, 5b or 6 runs that section alone and writes report-<section>.md.
-//
-// Outputs (in --out): report.md, data files *.dat and gnuplot scripts *.gp for the Pareto
-// plots (tools/bench runs gnuplot), decks/*.cir.
+// --out: the scratch directory (data *.dat and gnuplot scripts *.gp of the plots, decks/*.cir);
+// --report: the report (default out/report.md, or out/report-<section>.md with --only);
+// --figures: where the plots' scripts put their images, bench-<name>.png (default out), linked
+// from the report relative to its directory. --quick: reduced sizes, a smoke run, not a
+// measurement. --only: that section alone (0 limits, 4 scale, 5a simplifications, 5b modal
+// reduction, 6 design studies), without plots.
 //
 // The sections are in tools/benchmark/: limits.cpp (0), discretisation.cpp (1, 4b), ac.cpp and
 // transient.cpp (2, 3), sweep.cpp (the switching sweep), scale.cpp (4), simplifications.cpp (5a,
-// 5b), study.cpp (6); the pieces they share in common.cpp (bench.hpp); the report and the command
-// line here.
+// 5b), study.cpp (6), crosscheck.cpp (the cross-check); the pieces they share in common.cpp
+// (bench.hpp); the report and the command line here.
+#include <filesystem>
+
 #include "bench.hpp"
 
 namespace emnet_bench {
 
 // ---- the report ------------------------------------------------------------------------------
 
-std::string machine_text() {
+namespace {
+
+// "Measured 2026-12-03 11:52 UTC on 2 cores (nproc), AMD EPYC 7B13": the one date of the report.
+std::string machine_text(std::time_t started) {
   std::ifstream cpuinfo("/proc/cpuinfo");
   std::string line, model = "unknown CPU";
   while (std::getline(cpuinfo, line))
@@ -97,9 +42,9 @@ std::string machine_text() {
     }
   const long cores = sysconf(_SC_NPROCESSORS_ONLN);
   char date[64];
-  const std::time_t now = std::time(nullptr);
-  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-  return std::to_string(cores) + " cores (nproc), " + model + "; " + date;
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&started));
+  return std::string("Measured ") + date + " on " + std::to_string(cores) + " cores (`nproc`), " +
+         model;
 }
 
 std::string exponent_text(double exponent) {
@@ -107,59 +52,208 @@ std::string exponent_text(double exponent) {
                                  : std::string("– (too few points within the budget)");
 }
 
-std::string goal_line(const std::string& name, double measured, double goal,
-                      const std::string& pair) {
-  std::ostringstream out;
-  out << "| " << name << " | " << ratio_text(goal) << " | " << ratio_text(measured) << " | "
-      << (std::isfinite(measured) && measured >= goal ? "met" : "**not met**") << " | " << pair
-      << " |\n";
-  return out.str();
+// GitHub's anchor of a heading: lower case, punctuation dropped, spaces as hyphens (the
+// headings are ASCII).
+std::string anchor(const std::string& heading) {
+  std::string out;
+  for (const unsigned char c : heading) {
+    if (std::isalnum(c) || c == '_' || c == '-')
+      out += static_cast<char>(std::tolower(c));
+    else if (c == ' ')
+      out += '-';
+  }
+  return out;
 }
+
+std::string figure(const Settings& settings, const std::string& name, const std::string& caption) {
+  return "![" + name + "](" + settings.figure_link(name) + ")\n\n*" + caption + "*\n\n";
+}
+
+const char* const kParetoCaption =
+    "Error (relative to each output's peak; exact results plotted at 1e-16) against wall time, "
+    "every method and tool of the table above, in-process and whole process; points labelled by "
+    "their setting. Down and to the left is better.";
+
+std::string method_text(const Settings& settings) {
+  std::ostringstream md;
+  md << "- **Timing.** Each item runs once as a warm-up (caches, lazy loading of libraries), then "
+        "again until a count of repetitions or a time budget per item is used up; the tables "
+        "give the median, with the spread (min–max) and the number of runs. An item whose "
+        "warm-up alone takes more than half its budget is timed by that one run and says "
+        "\"1 run\".\n"
+     << "- **In-process** is a function call in the benchmark's own process: emnet from the "
+        "scene file (or from the assembled network, where the row says \"alone\") to the "
+        "result; ngspice through libngspice loaded into the same process, deck to vectors.\n"
+     << "- **Whole process** is a program started and waited for, output to /dev/null: "
+        "`emnet ac|tran|sweep-switching …`, or `ngspice -b -r RAWFILE DECK` (without a rawfile "
+        "or a .control block, `ngspice -b` writes nothing). It is timed from just before the "
+        "program starts until it is reaped, so it includes the program's start, reading the "
+        "scene or deck and writing the results.\n"
+     << "- **The network** is the fish fin (`netlists/fishfin.toml`, N = 7 segments) unless a "
+        "section says otherwise, mostly with the ideal drive "
+        "(`drive.electrical_dynamics = false`, a linear network), so that emnet's exact method "
+        "is the reference for every tool; the scene as it is, with each DEA's RC loop (a "
+        "nonlinear network), where a section says so.\n"
+     << "- **Errors** are relative to each output's peak, the largest over the outputs and over "
+        "the run, the sweep or the frequencies, against the reference each section names. "
+        "ngspice is compared at its own time points and frequencies, its transients away from "
+        "the switching edges (the exported deck switches with short linear edges).\n"
+     << "- **ngspice** runs the decks emnet's SPICE writer exports from the same model (kept "
+        "in the scratch directory's `decks/`).\n"
+     << "- **Goals** are the project's targets for speed, scale and overhead; each is marked "
+        "met or **not met** from this run's numbers.\n"
+     << "- **Variation.** The machine is shared with other work: the times of the same item "
+        "move by about ±30 % from run to run (other processes compete for the "
+     << sysconf(_SC_NPROCESSORS_ONLN)
+     << " cores and their caches), the errors not at all. Compare ratios taken within one "
+        "report rather than times across reports.\n";
+  (void)settings;
+  return md.str();
+}
+
+struct Goal {
+  std::string task;
+  double goal;
+  const Section* section;
+};
+
+// The headline: each task's least favourable pair against its goal, and what meeting a missed
+// goal would take.
+std::string headline_text(const std::vector<Goal>& goals, const Timing& start_up,
+                          const std::string& sweep_goal,
+                          const std::map<std::string, double>& exponents) {
+  std::ostringstream md;
+  md << "How much faster emnet answers the same question than ngspice, for the three tasks both "
+        "can do on the fish fin (ideal drive). For every ngspice run, the fastest emnet run "
+        "whose error is equal or smaller; the ratio of their median times. The table gives the "
+        "least favourable such pair per task (usually ngspice's cheapest, least accurate run); "
+        "the goals are whole-process ratios, a user's command against ngspice's. The tables of "
+        "[Against ngspice](#"
+     << anchor("Against ngspice: AC, transient and switching sweep") << ") have every run.\n\n"
+     << "| task | goal | whole process | | in-process | pair |\n|---|---|---|---|---|---|\n";
+  for (const Goal& g : goals) {
+    const Headline& h = g.section->headline;
+    md << "| " << g.task << " | ≥ " << ratio_text(g.goal) << " | " << ratio_text(h.whole_process)
+       << " | "
+       << (std::isfinite(h.whole_process) && h.whole_process >= g.goal ? "met" : "**not met**")
+       << " | " << ratio_text(h.in_process) << " | " << h.whole_process_pair << " |\n";
+  }
+  md << "\n";
+  for (const Goal& g : goals) {
+    const Headline& h = g.section->headline;
+    if (!std::isfinite(h.whole_process) || h.whole_process >= g.goal ||
+        !std::isfinite(h.whole_process_spice))
+      continue;
+    const double needed = h.whole_process_spice / g.goal;
+    md << "- " << g.task << ": " << ratio_text(g.goal) << " would need emnet's whole process "
+       << "under " << time_text(needed) << " (ngspice's " << time_text(h.whole_process_spice)
+       << " / " << ratio_text(g.goal) << "); it took " << time_text(h.whole_process_own)
+       << ", and starting the program (`emnet --help`) alone takes at least "
+       << time_text(start_up.minimum) << " (the fastest of " << start_up.repetitions << " runs)"
+       << (needed < start_up.minimum
+               ? ": the goal is below the program's start, out of reach of any faster analysis"
+               : "")
+       << ".\n";
+  }
+  md << "\nAgainst ngspice's most accurate run (its smallest error), whole process:";
+  for (const Goal& g : goals) {
+    const Headline& h = g.section->headline;
+    md << " " << g.task << " "
+       << (std::isfinite(h.accurate) ? ratio_text(h.accurate) + " (" + h.accurate_pair + ")"
+                                     : std::string("– (no emnet run as accurate)"))
+       << (&g == &goals.back() ? "." : ";");
+  }
+  md << "\n\nOther goals: the fish fin's 61-frequency sweep under 10 ms in-process: " << sweep_goal
+     << ". Growth of cost with N ([Scale](#" << anchor("Scale: cost against the number of segments")
+     << "), fitted exponent from N = 300; goal ≤ 1.2): static "
+     << exponent_text(exponents.at("static")) << ", modes " << exponent_text(exponents.at("modes"))
+     << ", ac " << exponent_text(exponents.at("ac")) << ", tran "
+     << exponent_text(exponents.at("tran")) << ", sweep " << exponent_text(exponents.at("sweep"))
+     << ".\n";
+  return md.str();
+}
+
+// The title and the one date line: when the run started, where, and how long it took.
+std::string header_text(const Settings& settings, std::time_t started, double seconds) {
+#ifdef NDEBUG
+  const char* const build_kind = "Release build";
+#else
+  const char* const build_kind = "**build with assertions (not Release): not a measurement**";
+#endif
+  std::ostringstream md;
+  md << "# Benchmarks: speed and accuracy\n\n"
+     << machine_text(started) << "; " << build_kind << "; the run took " << time_text(seconds)
+     << "."
+     << (settings.quick ? " **--quick: reduced sizes, a smoke run, not a measurement.**" : "")
+     << "\n\n"
+     << "*Generated by `tools/bench` (`tools/benchmark/`); do not edit by hand: run `tools/bench` "
+        "again.*\n\n";
+  return md.str();
+}
+
+void write_report(const Settings& settings, const std::string& text) {
+  const std::string temporary = settings.report + ".partial";
+  {
+    std::ofstream out(temporary);
+    out << text;
+    if (!out) throw std::runtime_error("cannot write " + temporary);
+  }
+  std::filesystem::rename(temporary, settings.report);
+}
+
+}  // namespace
 
 int run(const Settings& settings) {
   const auto start = Clock::now();
+  const std::time_t started = std::time(nullptr);
   mkdir(settings.out.c_str(), 0755);
+  using Part = std::pair<std::string, std::string>;  // heading, text
   if (!settings.only.empty()) {
     std::map<std::string, double> only_exponents;
-    const std::string file = settings.out + "/report-" + settings.only + ".md";
-    std::ofstream(file) << "Machine: " << machine_text() << ".\n\n"
-                        << (settings.only == "5a" ? "## 5a. Simplifications: what each costs and "
-                                                    "saves\n\n" +
-                                                        simplification_section(settings)
-                            : settings.only == "6"
-                                ? "## 6. Design studies\n\n" + study_section(settings)
-                            : settings.only == "0"
-                                ? "## 0. Limits: each analysis against its arithmetic\n\n" +
-                                      limits_section(settings)
-                            : settings.only == "4"
-                                ? "## 4. Scale\n\n" + scale_section(settings, only_exponents)
-                                : reduction_section(settings));
-    std::cerr << "emnet_bench: " << file << " (" << time_text(seconds_since(start)) << ")\n";
+    const Part part =
+        settings.only == "5a"
+            ? Part{"Simplifications: what each costs and saves", simplification_section(settings)}
+        : settings.only == "6" ? Part{"Design studies", study_section(settings)}
+        : settings.only == "0"
+            ? Part{"Limits: each analysis against its arithmetic", limits_section(settings)}
+        : settings.only == "4"
+            ? Part{"Scale: cost against the number of segments",
+                   scale_section(settings, only_exponents)}
+            : Part{"Modal reduction: speed gained and error", reduction_section(settings)};
+    write_report(settings, header_text(settings, started, seconds_since(start)) + "## " +
+                               part.first + "\n\n" + part.second);
+    std::cerr << "emnet_bench: " << settings.report << " (" << time_text(seconds_since(start))
+              << ")\n";
     return 0;
   }
-  std::cerr << "emnet_bench: 0. limits\n";
+  // The program's start, for the headline: measured first, before the sections load the machine.
+  bool help_ok = true;
+  const Timing start_up = measure_process({settings.emnet, "--help"}, 20, 2.0, help_ok);
+  std::cerr << "emnet_bench: limits\n";
   const std::string limits = limits_section(settings);
   std::vector<ParetoPoint> discretisation_points, ac_points, tran_points, sweep_points;
-  std::cerr << "emnet_bench: 1. discretisation\n";
+  std::cerr << "emnet_bench: discretisation\n";
   const std::string discretisation = discretisation_section(settings, discretisation_points);
-  std::cerr << "emnet_bench: 3. ac\n";
+  std::cerr << "emnet_bench: ac\n";
   const Section ac = ac_section(settings, ac_points);
-  std::cerr << "emnet_bench: 2/3. transient\n";
+  std::cerr << "emnet_bench: transient\n";
   const Section tran = tran_section(settings, tran_points);
-  std::cerr << "emnet_bench: 2/3. switching sweep\n";
+  std::cerr << "emnet_bench: switching sweep\n";
   std::string sweep_goal;
   const Section sweep = sweep_section(settings, sweep_points, sweep_goal);
-  std::cerr << "emnet_bench: 4. scale\n";
+  std::cerr << "emnet_bench: scale\n";
   std::map<std::string, double> exponents;
   const std::string scale = scale_section(settings, exponents);
-  std::cerr << "emnet_bench: 4b. modes, dense against Arnoldi\n";
+  std::cerr << "emnet_bench: modes, dense against Arnoldi\n";
   const std::string modes = modes_section(settings);
-  std::cerr << "emnet_bench: 5a. simplifications\n";
+  std::cerr << "emnet_bench: simplifications\n";
   const std::string simplifications = simplification_section(settings);
-  std::cerr << "emnet_bench: 5b. modal reduction\n";
+  std::cerr << "emnet_bench: modal reduction\n";
   const std::string reduction = reduction_section(settings);
-  std::cerr << "emnet_bench: 6. design studies\n";
+  std::cerr << "emnet_bench: design studies\n";
   const std::string study = study_section(settings);
+  std::cerr << "emnet_bench: cross-check\n";
+  const std::string crosscheck = crosscheck_section(settings);
   write_pareto_plot(settings, "discretisation", "cantilever: discretisation error against cost",
                     discretisation_points);
   write_pareto_plot(settings, "ac", "fish fin AC, 1000 points: error against time", ac_points);
@@ -167,52 +261,55 @@ int run(const Settings& settings) {
                     tran_points);
   write_pareto_plot(settings, "sweep", "fish fin switching sweep, 61 frequencies", sweep_points);
 
-  std::ofstream md(settings.out + "/report.md");
-  md << "# emnet: speed and accuracy\n\n"
-     << "Machine: " << machine_text() << ". Release build; one run of `tools/bench`"
-     << (settings.quick ? " (--quick: reduced sizes, not a measurement)" : "") << ".\n\n"
-     << "## Headline: ngspice time / emnet time at equal or smaller error\n\n"
-     << "For every ngspice run, the fastest emnet run whose error is equal or smaller; the "
-        "ratio of their median times. The table gives the least favourable such pair per "
-        "task (usually ngspice's cheapest run).\n\n"
-     << "| task | goal | measured (whole process) | | pair |\n|---|---|---|---|---|\n"
-     << goal_line("AC, 1000 points", ac.headline.whole_process, 10.0,
-                  ac.headline.whole_process_pair)
-     << goal_line("transient, 50 periods", tran.headline.whole_process, 100.0,
-                  tran.headline.whole_process_pair)
-     << goal_line("switching sweep, 61 frequencies", sweep.headline.whole_process, 100.0,
-                  sweep.headline.whole_process_pair)
-     << "\n| task | measured (in-process) | pair |\n|---|---|---|\n"
-     << "| AC | " << ratio_text(ac.headline.in_process) << " | " << ac.headline.in_process_pair
-     << " |\n| transient | " << ratio_text(tran.headline.in_process) << " | "
-     << tran.headline.in_process_pair << " |\n| switching sweep | "
-     << ratio_text(sweep.headline.in_process) << " | " << sweep.headline.in_process_pair << " |\n\n"
-     << "Other goals: the fish fin's 61-frequency sweep under 10 ms in-process: " << sweep_goal
-     << ". Growth of cost with N (fitted exponent, N ≥ 300; goal ≤ 1.2): static "
-     << exponent_text(exponents["static"]) << ", modes " << exponent_text(exponents["modes"])
-     << ", ac " << exponent_text(exponents["ac"]) << ", tran " << exponent_text(exponents["tran"])
-     << ", sweep " << exponent_text(exponents["sweep"]) << ".\n\n"
-     << "## 0. Limits: each analysis against its arithmetic\n\n"
-     << limits
-     << "\n## Method\n\nTimes are medians of repeated runs after one warm-up run, with min–max "
-        "and the number of runs; slow items (over half their budget) run once, and say "
-        "\"1 run\". In-process: a function call in the benchmark process (libngspice loaded "
-        "into it, no worker process). Whole process: a program started and waited for, output "
-        "to /dev/null (emnet: `build/emnet …`; ngspice: `ngspice -b -r RAWFILE DECK`, since "
-        "without a rawfile or a .control block ngspice -b writes nothing).\n\n"
-     << "## 1. Discretisation\n\n"
-     << discretisation << "![discretisation](pareto-discretisation.png)\n\n"
-     << "## 2 and 3. Integrators and ngspice, side by side\n\n"
-     << ac.markdown << "\n![ac](pareto-ac.png)\n\n"
-     << tran.markdown << "\n![tran](pareto-tran.png)\n\n"
-     << sweep.markdown << "\n![sweep](pareto-sweep.png)\n\n"
-     << "## 4. Scale\n\n"
-     << scale << "\n![scale](scale.png)\n\n"
-     << "## 4b. modes: dense against Arnoldi\n\n"
-     << modes << "## 5a. Simplifications: what each costs and saves\n\n"
-     << simplifications << reduction << "## 6. Design studies\n\n"
-     << study << "Total benchmark time: " << time_text(seconds_since(start)) << ".\n";
-  std::cerr << "emnet_bench: report written to " << settings.out << "/report.md ("
+  const std::vector<Goal> goals = {{"AC, 1000 points", 10.0, &ac},
+                                   {"transient, 50 periods", 100.0, &tran},
+                                   {"switching sweep, 61 frequencies", 100.0, &sweep}};
+  const std::vector<Part> parts = {
+      {"How it is measured", method_text(settings)},
+      {"Headline: emnet against ngspice at equal or smaller error",
+       headline_text(goals, start_up, sweep_goal, exponents)},
+      {"Limits: each analysis against its arithmetic", limits},
+      {"Discretisation: error against the number of segments",
+       discretisation +
+           figure(settings, "discretisation",
+                  "The cantilever's f1..f3 error against the cost of run_modes and of a "
+                  "1000-point ac sweep, one point per N of the table; exact results plotted at "
+                  "1e-16.")},
+      {"Against ngspice: AC, transient and switching sweep",
+       "emnet's methods and ngspice side by side on the same network, each at several settings, "
+       "with the error of each against the section's reference; the "
+       "[headline](#" +
+           anchor("Headline: emnet against ngspice at equal or smaller error") +
+           ") pairs them.\n\n" + ac.markdown + "\n" + figure(settings, "ac", kParetoCaption) +
+           tran.markdown + "\n" + figure(settings, "tran", kParetoCaption) + sweep.markdown + "\n" +
+           figure(settings, "sweep", kParetoCaption)},
+      {"Scale: cost against the number of segments",
+       scale + "\n" +
+           figure(settings, "scale",
+                  "Time of each analysis alone against the number of segments N, one fresh "
+                  "process per point; log–log, so a slope of 1 is linear growth.")},
+      {"Modes: dense against Arnoldi", modes},
+      {"Simplifications: what each costs and saves", simplifications},
+      {"Modal reduction: speed gained and error", reduction},
+      {"Design studies", study},
+      {"Cross-check against ngspice: differences and wall times", crosscheck}};
+
+  std::ostringstream md;
+  md << "What emnet costs and how accurate it is, measured in one run on one machine: each "
+        "analysis against the arithmetic it needs, against ngspice on the same network, "
+        "against closed forms and converged answers; how the cost grows with the size of the "
+        "beam; what the automatic simplifications and the modal reduction cost and save; design "
+        "studies of many variants; and the differences of the cross-check with ngspice. Every "
+        "number below comes from this run; the conclusions that depend on numbers are computed "
+        "from them.\n\n";
+  for (const Part& part : parts) md << "- [" << part.first << "](#" << anchor(part.first) << ")\n";
+  md << "\n";
+  for (const Part& part : parts) md << "## " << part.first << "\n\n" << part.second << "\n";
+  std::string text = md.str();
+  // No blank lines beyond one between blocks.
+  for (size_t at; (at = text.find("\n\n\n")) != std::string::npos;) text.erase(at, 1);
+  write_report(settings, header_text(settings, started, seconds_since(start)) + text);
+  std::cerr << "emnet_bench: report written to " << settings.report << " ("
             << time_text(seconds_since(start)) << ")\n";
   return 0;
 }
@@ -243,6 +340,10 @@ int main(int argc, char** argv) {
       settings.out = value();
     } else if (argument == "--emnet") {
       settings.emnet = value();
+    } else if (argument == "--report") {
+      settings.report = value();
+    } else if (argument == "--figures") {
+      settings.figures = value();
     } else if (argument == "--quick") {
       settings.quick = true;
     } else if (argument == "--only") {
@@ -257,11 +358,15 @@ int main(int argc, char** argv) {
       scale_analysis = value();
       scale_segments = std::stoi(value());
     } else {
-      std::cerr << "usage: emnet_bench [--root DIR] [--out DIR] [--emnet PROGRAM] [--quick] "
-                   "[--only 0|4|5a|5b|6]\n";
+      std::cerr << "usage: emnet_bench [--root DIR] [--out DIR] [--emnet PROGRAM] [--report FILE] "
+                   "[--figures DIR] [--quick] [--only 0|4|5a|5b|6]\n";
       return 2;
     }
   }
+  if (settings.report.empty())
+    settings.report =
+        settings.out + (settings.only.empty() ? "/report.md" : "/report-" + settings.only + ".md");
+  if (settings.figures.empty()) settings.figures = settings.out;
   try {
     if (!scale_analysis.empty()) return scale_point(settings, scale_analysis, scale_segments);
     return run(settings);
