@@ -6,8 +6,8 @@
 //   moment pair −T at a, +T at b (a < b): bending moment T on [a, b], zero elsewhere, so
 //     w = 0 (x ≤ a), T(x − a)²/(2EI) (a ≤ x ≤ b), T(b − a)²/(2EI) + T(b − a)(x − b)/EI (x ≥ b)
 // The segment network has exactly the Hermite element's flexibility (docs/model.md, The beam
-// segment) and loads between nodes enter as consistent nodal loads, so nodal values are exact for
-// every N: the only error is rounding in a sparse LU of a well-conditioned system, hence 1e-10
+// segment) and the mesher puts a node under every load (unequal segments where a load falls
+// inside the uniform grid), so nodal values are exact for every N: the only error is rounding in a sparse LU of a well-conditioned system, hence 1e-10
 // relative.
 #include <gtest/gtest.h>
 
@@ -70,7 +70,8 @@ TEST_P(CantileverStatics, TipMomentMatchesClosedForm) {
 }
 
 TEST_P(CantileverStatics, PartialMomentPairMatchesClosedForm) {
-  // Pair between nodes for every N tested (0.13 L and 0.61 L fall inside segments).
+  // 0.13 L and 0.61 L fall inside the uniform grid's segments for every N tested: the mesher puts
+  // nodes there, so the segments are unequal and the check covers that mesh too.
   const double torque = 0.25, length = 0.5, ei = 2.0, a = 0.13 * length, b = 0.61 * length;
   expect_nodes_match(
       GetParam(), {load(LoadKind::moment, a, -torque), load(LoadKind::moment, b, torque)},

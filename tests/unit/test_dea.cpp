@@ -30,8 +30,9 @@ TEST(DeaForce, CapacitanceOfThePaperElectrode) {
 
 // A top-face DEA over [x0, x1] at voltage V (static, single drive at bias V) is the moment
 // pair T = −z·k_F·V² (docs/model.md, The DEA transducer), so the cantilever deflects (closed form,
-// as in test_beam_static): w(L) = T(x1 − x0)²/(2EI) + T(x1 − x0)(L − x1)/EI. The span falls between
-// nodes; nodal statics are exact, so the tolerance is rounding: 1e-10 relative. The bottom face
+// as in test_beam_static): w(L) = T(x1 − x0)²/(2EI) + T(x1 − x0)(L − x1)/EI. The span's ends fall
+// inside the uniform grid; the mesher puts nodes there, and nodal statics are exact, so the
+// tolerance is rounding: 1e-10 relative. The bottom face
 // gives the opposite sign.
 TEST(DeaForce, StaticMomentPairOnTheBeam) {
   for (Face face : {Face::top, Face::bottom}) {

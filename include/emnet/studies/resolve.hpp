@@ -20,7 +20,7 @@
 // overstates the voltage amplitude at ω by about (ωτ)²/2 relative (the phase lag ωτ is a
 // delay of about τ, which shifts a periodic response in time but not its amplitude). The
 // RC dynamics are kept when the scene has [[circuit]] elements (they act through the loops
-// only), when (a) a probe asks for dea_voltage or dea_current, or (b) this
+// only), when (a) a probe asks for dea_voltage, dea_current or dea_force, or (b) this
 // error at the band's top, (2π·f_high·τ)²/2 with the largest τ of the driven DEAs, exceeds
 // model.tolerance; otherwise the ideal drive is built. (About a bias the force's alternating
 // part 2k_F·V₀·v_C has the voltage's relative error; for a 0/V pulse, whose square follows
@@ -40,8 +40,8 @@
 namespace emnet {
 
 struct ResolveOptions {
-  // A probe outside the scene (the command line's --probe) asks for dea_voltage or
-  // dea_current, which drive.electrical_dynamics = "auto" must then keep.
+  // A probe outside the scene (the command line's --probe) asks for dea_voltage, dea_current or
+  // dea_force, which drive.electrical_dynamics = "auto" must then keep.
   bool electrical_probe_requested = false;
   // What to resolve; a key left out keeps its "auto" (a later resolve chooses it for the scene
   // as it is then: the command line fixes N once per command, and chooses the rest for each
