@@ -179,10 +179,11 @@ std::vector<ParameterInfo> scene_keys() {
               &Scene::beam, &BeamSpec::length);
   keys.back().sensitivity = true;
   {
-    ParameterInfo& segments = add(
-        key("beam", "segments", K::integer, "beam",
-            "N, the number of equal segments the beam is cut into; \"auto\": chosen for [model]'s "
-            "band and tolerance"));
+    ParameterInfo& segments =
+        add(key("beam", "segments", K::integer, "beam",
+                "N, the number of segments the beam is cut into: equal on a plain beam, spread by "
+                "length between the nodes that sections, masses, springs, DEA ends and loads put; "
+                "\"auto\": chosen for [model]'s band and tolerance"));
     segments.required = true;
     segments.range = {Limit::inclusive,       1.0,
                       Limit::inclusive,       100000.0,

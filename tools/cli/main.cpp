@@ -31,8 +31,9 @@ using namespace emnet_cli;
 int main(int argc, char** argv) {
   CLI::App app{
       "emnet: lumped electromechanical network simulator.\n"
-      "Euler-Bernoulli beams cut into N segments, driven by dielectric elastomer actuators, as\n"
-      "Firestone (mobility) networks: force = current, velocity = voltage."};
+      "Bending beams (Euler-Bernoulli or Timoshenko) cut into N segments, with masses, springs\n"
+      "and circuits, driven by dielectric elastomer actuators, as Firestone (mobility)\n"
+      "networks: force = current, velocity = voltage."};
   app.require_subcommand(1);
   app.footer(
       "Exit status: 0 success; 2 bad input; 3 numerical failure; 4 crosscheck: a difference\n"
