@@ -73,6 +73,10 @@ def main():
     left.set_ylabel("variants")
     left.legend()
     right.hist(1e3 * peak, bins=40, color="#d62728")
+    nominal = emnet.sweep_switching(fin, frequencies=[5.0]).outputs["dx4"]
+    right.axvline(1e3 * max(abs(nominal["left"][0]), abs(nominal["right"][0])), color="k",
+                  linestyle="--", label="nominal")
+    right.legend()
     right.set_xlabel("P4 peak deflection, 4 kV switched at 5 Hz [mm]")
     right.set_ylabel("variants")
     figure.suptitle(f"{fin.name}: ±{args.tolerance:g} % on EI, film thickness, electrode width, "
