@@ -128,6 +128,13 @@ std::ostringstream classic_stream() {
   return stream;
 }
 
+// The start of every script body: missing values, the multiplot with its title, the margins
+// that keep the stacked panels' axes aligned.
+std::string multiplot_start(const std::string& title_expression) {
+  return "set datafile missing 'NaN'\nset multiplot title " + title_expression +
+         " font ',13' noenhanced\nset lmargin at screen 0.11\nset rmargin at screen 0.97\n";
+}
+
 // A file that is removed when this goes out of scope (the script gnuplot runs, a temporary
 // image not renamed into place).
 class RemovedAtExit {
@@ -618,10 +625,7 @@ Status write_bode_plot(const std::string& path, const std::string& title,
       script_header(files, "Bode plot", title) + gnuplot_terminal_line(files, kWidthPx, height_px);
   const ScriptBody body = [&](const std::string& data_name) {
     std::ostringstream script = classic_stream();
-    script << "set datafile missing 'NaN'\n"
-           << "set multiplot title " << title_expression << " font ',13' noenhanced\n"
-           << "set lmargin at screen 0.11\nset rmargin at screen 0.97\n"
-           << "set xrange " << range_text(x_lo, x_hi) << "\n"
+    script << multiplot_start(title_expression) << "set xrange " << range_text(x_lo, x_hi) << "\n"
            << (log_frequency ? "set logscale x\n" : "") << "set grid xtics ytics mytics\n"
            << "set border lw 1\n"
            << kMarkerLabelStyle;
@@ -756,9 +760,7 @@ Status write_line_plot(const std::string& path, const std::string& title,
       script_header(files, "Line plot", title) + gnuplot_terminal_line(files, kWidthPx, height_px);
   const ScriptBody body = [&](const std::string& data_name) {
     std::ostringstream script = classic_stream();
-    script << "set datafile missing 'NaN'\n"
-           << "set multiplot title " << title_expression << " font ',13' noenhanced\n"
-           << "set lmargin at screen 0.11\nset rmargin at screen 0.97\n"
+    script << multiplot_start(title_expression)
            << "set grid xtics ytics\nset border lw 1\nset format y '%g'\n"
            << "set offsets 0, 0, graph 0.06, graph 0.06\n"
            << kMarkerLabelStyle
