@@ -44,6 +44,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kGnuplotTimeLimitSeconds = 60;
+// The panels' horizontal extent on the page, in screen fractions (the multiplot's margins).
+constexpr double kPanelLeft = 0.11, kPanelRight = 0.97;
 
 enum class ImageFormat { png, svg };
 
@@ -132,7 +134,8 @@ std::ostringstream classic_stream() {
 // that keep the stacked panels' axes aligned.
 std::string multiplot_start(const std::string& title_expression) {
   return "set datafile missing 'NaN'\nset multiplot title " + title_expression +
-         " font ',13' noenhanced\nset lmargin at screen 0.11\nset rmargin at screen 0.97\n";
+         " font ',13' noenhanced\nset lmargin at screen " + number_text(kPanelLeft) +
+         "\nset rmargin at screen " + number_text(kPanelRight) + "\n";
 }
 
 // A file that is removed when this goes out of scope (the script gnuplot runs, a temporary
@@ -300,8 +303,9 @@ std::string colour_of(int index) {
 }
 
 // Markers closer than this fraction of the x span (in the axis's own scale: log10 on a log
-// axis) share one label. A rotated label is one text line (about 15 px) wide beside its line,
-// about 2 % of a panel 870 px wide, so labels this far apart cannot overlap.
+// axis) share one label: 3 % of a panel 860 px wide is 26 px, about three characters, so two
+// labels this close would sit almost on top of each other and read better as one. Labels farther
+// apart that would still touch are set on separate rows (marker_label_layout).
 constexpr double kMarkerMergeFraction = 0.03;
 
 // Markers inside [x_lo, x_hi], sorted, in groups that share a label.
@@ -338,30 +342,80 @@ std::vector<MarkerGroup> marker_groups(const std::vector<PlotMarker>& markers, d
   return groups;
 }
 
-// Vertical dashed lines (and, with `with_labels`, one label per group beside its first line).
-// A label reads upwards from the bottom of the panel, left of its line, on an opaque
-// background: a marker usually sits at a resonance, where the curves are high, so the bottom of
-// the panel is where the label is least likely to hide a curve.
-std::string marker_lines(const std::vector<MarkerGroup>& groups, bool with_labels) {
-  std::ostringstream out = classic_stream();
-  int arrow = 1, label = 1;
+// Where the marker labels go: horizontal, in a strip between the legend and the top panel, each
+// centred over its lines (shifted to stay on the page) on the lowest row where it overlaps no
+// label already placed. A label's width is estimated from its length at 7.6 px per character
+// (the widest average of the 11-point Sans font; a byte of a multi-byte character counts as one,
+// so the estimate errs wide) plus its box; labels are kept 8 px apart.
+struct MarkerLabelLayout {
+  std::vector<int> row;   // per group; row 0 is next to the panel
+  std::vector<double> x;  // per group: the label's centre [screen fraction]
+  int rows = 0;
+  double strip_px = 0.0;  // the strip's height
+  std::vector<double> y;  // per row: its centre [screen fraction], set by place_rows
+};
+
+constexpr double kLabelCharacterPx = 7.6, kLabelBoxPx = 12.0, kLabelGapPx = 8.0, kLabelRowPx = 22.0,
+                 kLabelStripMarginPx = 6.0;
+
+MarkerLabelLayout marker_label_layout(const std::vector<MarkerGroup>& groups, double x_lo,
+                                      double x_hi, bool log_axis, int width_px) {
+  MarkerLabelLayout layout;
+  if (groups.empty()) return layout;
+  auto position = [&](double x) { return log_axis ? std::log10(x) : x; };
+  const double from = position(x_lo), span = position(x_hi) - from;
+  std::vector<double> row_right;  // the right edge of each row's rightmost label [px]
   for (const auto& group : groups) {
-    for (double x : group.xs) {
-      out << "set arrow " << arrow++ << " from " << number_text(x) << ", graph 0 to "
-          << number_text(x) << ", graph 1 nohead front dt 2 lw 1.5 lc rgb '#b00000'\n";
+    double fraction = 0.0;
+    for (double x : group.xs) fraction += span > 0.0 ? (position(x) - from) / span : 0.5;
+    fraction /= static_cast<double>(group.xs.size());
+    const double width =
+        static_cast<double>(one_line(group.label).size()) * kLabelCharacterPx + kLabelBoxPx;
+    double centre = (kPanelLeft + fraction * (kPanelRight - kPanelLeft)) * width_px;
+    centre = std::min(std::max(centre, 0.5 * width + 4.0), width_px - 0.5 * width - 4.0);
+    const double left = centre - 0.5 * width;
+    size_t row = 0;
+    while (row < row_right.size() && row_right[row] + kLabelGapPx > left) ++row;
+    if (row == row_right.size()) row_right.push_back(-std::numeric_limits<double>::infinity());
+    row_right[row] = std::max(row_right[row], centre + 0.5 * width);
+    layout.row.push_back(static_cast<int>(row));
+    layout.x.push_back(centre / width_px);
+  }
+  layout.rows = static_cast<int>(row_right.size());
+  layout.strip_px = layout.rows * kLabelRowPx + kLabelStripMarginPx;
+  return layout;
+}
+
+// Each row's centre, for a top panel whose top edge is at `panel_top` [screen fraction].
+void place_rows(MarkerLabelLayout& layout, double panel_top, int height_px) {
+  layout.y.clear();
+  for (int r = 0; r < layout.rows; ++r)
+    layout.y.push_back(panel_top + (kLabelStripMarginPx + kLabelRowPx * (r + 0.5)) / height_px);
+}
+
+// Vertical dashed lines at the markers, behind the curves. With a label layout (the top panel),
+// each line runs on up to its label's row, and the labels are drawn there on opaque boxes: a
+// line that crosses a lower row passes behind that row's labels, and no label covers a curve.
+std::string marker_lines(const std::vector<MarkerGroup>& groups, const MarkerLabelLayout* labels) {
+  std::ostringstream out = classic_stream();
+  int arrow = 1;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    for (double x : groups[g].xs) {
+      out << "set arrow " << arrow++ << " from first " << number_text(x) << ", graph 0 to first "
+          << number_text(x) << ", "
+          << (labels ? "screen " + number_text(labels->y[labels->row[g]]) : std::string("graph 1"))
+          << " nohead back dt 2 lw 1.5 lc rgb '#b00000'\n";
     }
-    if (with_labels) {
-      out << "set label " << label++ << " " << gnuplot_string(group.label) << " at "
-          << number_text(group.xs.front())
-          << ", graph 0.03 rotate by 90 left front offset -1.3,0 boxed noenhanced"
-             " tc rgb '#b00000'\n";
+    if (labels) {
+      out << "set label " << 100 + g << " " << gnuplot_string(groups[g].label) << " at screen "
+          << number_text(labels->x[g]) << ", screen " << number_text(labels->y[labels->row[g]])
+          << " center front boxed noenhanced tc rgb '#b00000'\n";
     }
   }
   return out.str();
 }
 
-// Text box of the marker labels: opaque, so a label stays legible over a curve. (gnuplot 5.4
-// leaves the box of rotated text unfilled when it has no border, hence the thin border.)
+// Text box of the marker labels: opaque, so the lines behind a label do not cross its text.
 constexpr const char* kMarkerLabelStyle =
     "set style textbox opaque fillcolor 'white' border lc rgb '#b00000' lw 0.5 margins 1,1\n";
 
@@ -611,22 +665,27 @@ Status write_bode_plot(const std::string& path, const std::string& title,
     legend_entries.push_back(one.label + (one.unit.empty() ? "" : " [" + one.unit + "]"));
   }
   constexpr int kWidthPx = 1000;
-  const int height_px = 750 + 230 * static_cast<int>(units.size() - 1);
+  MarkerLabelLayout marker_labels =
+      marker_label_layout(groups, x_lo, x_hi, log_frequency, kWidthPx);
+  const int height_px = 750 + 230 * static_cast<int>(units.size() - 1) +
+                        static_cast<int>(std::lround(marker_labels.strip_px));
   int title_lines = 1;
   const std::string title_expression = title_text(title, 110, title_lines);
   const LegendLayout legend = legend_layout(legend_entries, "", kWidthPx, height_px, title_lines);
-  // Panels from legend.panel_top down to kBottom: the magnitudes, then the phase.
+  // Panels from under the marker labels down to the bottom: the magnitudes, then the phase.
+  const double top = legend.panel_top - marker_labels.strip_px / height_px;
+  place_rows(marker_labels, top, height_px);
   const double bottom = 70.0 / height_px, gap = 45.0 / height_px;
   std::vector<double> weights(units.size(), 1.0);
   weights.push_back(units.size() > 1 ? 0.8 : 1.0);
-  const auto panels = stacked_panels(legend.panel_top, bottom, gap, weights);
+  const auto panels = stacked_panels(top, bottom, gap, weights);
 
   const std::string preamble =
       script_header(files, "Bode plot", title) + gnuplot_terminal_line(files, kWidthPx, height_px);
   const ScriptBody body = [&](const std::string& data_name) {
     std::ostringstream script = classic_stream();
     script << multiplot_start(title_expression) << "set xrange " << range_text(x_lo, x_hi) << "\n"
-           << (log_frequency ? "set logscale x\n" : "") << "set grid xtics ytics mytics\n"
+           << (log_frequency ? "set logscale x\n" : "") << "set grid xtics ytics\n"
            << "set border lw 1\n"
            << kMarkerLabelStyle;
 
@@ -643,8 +702,8 @@ Status write_bode_plot(const std::string& path, const std::string& title,
                                : "set logscale y\nset format y '%h'\nset yrange [0.1:10]\nset "
                                  "label 99 'no non-zero values to plot' at graph 0.5, graph 0.5 "
                                  "center\n")
-             << (g == 0 ? legend.key_line : "unset key\n") << marker_lines(groups, g == 0)
-             << "plot ";
+             << (g == 0 ? legend.key_line : "unset key\n")
+             << marker_lines(groups, g == 0 ? &marker_labels : nullptr) << "plot ";
       bool first = true;
       for (size_t k = 0; k < series_count; ++k) {
         if (group_of[k] != g) continue;
@@ -675,7 +734,7 @@ Status write_bode_plot(const std::string& path, const std::string& title,
            << "set ylabel 'phase [deg]'\n"
            << (any_magnitude ? "" : "set yrange [-180:180]\n")
            << (step > 0.0 ? "set ytics " + number_text(step) + "\n" : "") << "unset key\n"
-           << marker_lines(groups, false) << "plot ";
+           << marker_lines(groups, nullptr) << "plot ";
     for (size_t k = 0; k < series_count; ++k) {
       script << (k ? ", \\\n     " : "") << gnuplot_string(data_name) << " using 1:" << 3 + 2 * k
              << " with lines lw 2 " << colour_of(static_cast<int>(k)) << " notitle";
@@ -739,17 +798,22 @@ Status write_line_plot(const std::string& path, const std::string& title,
   for (const auto& one : series)
     if (one.in_legend) legend_entries.push_back(one.label);
   constexpr int kWidthPx = 1000;
-  const int height_px = 650 + 260 * static_cast<int>(units.size() - 1);
+  const std::vector<MarkerGroup> groups =
+      any_point ? marker_groups(options.markers, x_lo, x_hi, false) : std::vector<MarkerGroup>{};
+  MarkerLabelLayout marker_labels = marker_label_layout(groups, x_lo, x_hi, false, kWidthPx);
+  const int height_px = 650 + 260 * static_cast<int>(units.size() - 1) +
+                        static_cast<int>(std::lround(marker_labels.strip_px));
   int title_lines = 1;
   const std::string title_expression = title_text(title, 110, title_lines);
   const LegendLayout legend =
       legend_layout(legend_entries, options.legend_note, kWidthPx, height_px, title_lines);
-  // The first panel (the response) a little taller than the others (the drive, other units).
+  // Panels from under the marker labels down; the first (the response) a little taller than the
+  // others (the drive, other units).
+  const double top = legend.panel_top - marker_labels.strip_px / height_px;
+  place_rows(marker_labels, top, height_px);
   std::vector<double> weights(units.size(), 1.0);
   if (units.size() > 1) weights.front() = 1.4;
-  const auto panels = stacked_panels(legend.panel_top, 72.0 / height_px, 40.0 / height_px, weights);
-  const std::vector<MarkerGroup> groups =
-      any_point ? marker_groups(options.markers, x_lo, x_hi, false) : std::vector<MarkerGroup>{};
+  const auto panels = stacked_panels(top, 72.0 / height_px, 40.0 / height_px, weights);
   auto style_of = [&](size_t k) {
     const LineSeries& one = series[k];
     return "with lines lw 2 " + colour_of(one.colour >= 0 ? one.colour : static_cast<int>(k)) +
@@ -777,7 +841,7 @@ Status write_line_plot(const std::string& path, const std::string& title,
              << "set ylabel " << gnuplot_string(axis_label(units[g])) << " noenhanced\n"
              << (group_has_point[g] ? "set yrange [*:*]\n" : "set yrange [0:1]\n")
              << (g == 0 ? legend.key_line + legend.note_line : std::string("unset key\n"))
-             << marker_lines(groups, g == 0) << "plot ";
+             << marker_lines(groups, g == 0 ? &marker_labels : nullptr) << "plot ";
       bool first = true;
       for (size_t k = 0; k < series.size(); ++k) {
         if (group_of[k] != g) continue;

@@ -14,6 +14,7 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "emnet/report/plot.hpp"
@@ -306,9 +307,59 @@ TEST_F(PlotTest, CloseMarkersShareOneLabel) {
       emnet::write_line_plot(image, "m", "f [Hz]", {{"a", {1, 7}, {0, 1}, "mm"}}, options).ok);
   const std::string script = contents(image + ".gp");
   EXPECT_EQ(lines_with(script, "set arrow").size(), 3u) << script;
-  const auto labels = lines_with(script, "rotate by 90");
+  const auto labels = lines_with(script, "boxed");
   ASSERT_EQ(labels.size(), 2u) << script;
-  EXPECT_NE(labels[1].find("f1 = 6.385 Hz; sweep peak 6.4 Hz"), std::string::npos) << labels[1];
+  EXPECT_NE(labels[1].find("'f1 = 6.385 Hz; sweep peak 6.4 Hz'"), std::string::npos) << labels[1];
+}
+
+// The (x, y) screen position of a marker label line "set label N 'TEXT' at screen X, screen Y".
+std::pair<double, double> label_position(const std::string& line) {
+  const auto at = line.rfind(" at screen ");
+  std::istringstream in(line.substr(at + 11));
+  double x = 0.0, y = 0.0;
+  char comma = 0;
+  std::string screen;
+  in >> x >> comma >> screen >> y;
+  return {x, y};
+}
+
+// Marker labels never cover a curve and never overlap. Two markers 5 % of the span apart (too far
+// to share a label, 43 px on the 860 px panel) have labels about 200 px wide: the second goes a
+// row up. A third far away stays on the first row. Every label lies above the top panel (its y
+// above the panel's top margin), and labels on one row are at least their half-widths apart; the
+// width of a label is taken at 6 px per character, below any character of the 11-point Sans
+// font but the narrowest ("i", "l", "."), so the check cannot pass on an overlap of real text.
+TEST_F(PlotTest, MarkerLabelsStandAboveThePanelOnRowsThatDoNotOverlap) {
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  emnet::LinePlotOptions options;
+  options.side_files.data_and_script = true;
+  options.markers = {{3.0, "first resonance = 3.000 Hz"},
+                     {3.3, "second resonance = 3.300 Hz"},
+                     {6.5, "sweep peak 6.5 Hz"}};
+  const std::string image = path("rows.png");
+  ASSERT_TRUE(
+      emnet::write_line_plot(image, "m", "f [Hz]", {{"a", {1, 7}, {0, 1}, "mm"}}, options).ok);
+  const std::string script = contents(image + ".gp");
+  const auto labels = lines_with(script, "boxed");
+  ASSERT_EQ(labels.size(), 3u) << script;
+  const auto top_margin = lines_with(script, "set tmargin at screen");
+  ASSERT_FALSE(top_margin.empty());
+  const double panel_top = std::stod(top_margin.front().substr(22));
+  const double width_px = 1000.0;
+  std::vector<std::pair<double, double>> at;
+  for (const auto& line : labels) {
+    at.push_back(label_position(line));
+    EXPECT_GT(at.back().second, panel_top) << line;
+  }
+  EXPECT_GT(at[1].second, at[0].second) << "the second label goes a row up";
+  EXPECT_DOUBLE_EQ(at[2].second, at[0].second) << "the far label stays on the first row";
+  const std::vector<size_t> lengths = {26, 27, 17};
+  for (size_t i = 0; i < at.size(); ++i)
+    for (size_t j = i + 1; j < at.size(); ++j) {
+      if (at[i].second != at[j].second) continue;
+      const double half_widths = 3.0 * static_cast<double>(lengths[i] + lengths[j]);
+      EXPECT_GT(std::abs(at[i].first - at[j].first) * width_px, half_widths) << i << ", " << j;
+    }
 }
 
 // The marker rule against its reference, the peak of the second-order response

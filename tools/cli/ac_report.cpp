@@ -21,24 +21,25 @@ namespace emnet_cli {
 
 namespace {
 
-// The AC input in a few words, for the plot's title (ac_input_description, emnet/report/
-// describe.hpp, says it in full on the "AC input:" line).
+// The AC input in a few words (empty when there is none), for the plot's title
+// (ac_input_description, emnet/report/describe.hpp, says it in full on the "AC input:" line).
 std::string ac_input_short(const emnet::Scene& scene) {
   const auto& drive = scene.drive;
   std::vector<std::string> parts;
   switch (drive.kind) {
     case emnet::DriveKind::antagonistic:
-      parts.push_back(
-          "the antagonistic drive's switched force level k_F*V^2/2 (V = " + si(drive.voltage, "V") +
-          ", DEAs " + drive.deas[0] + "/" + drive.deas[1] + " in antiphase)");
+      parts.push_back("the antagonistic drive's force level k_F*V^2/2 as a sinusoid (V = " +
+                      si(drive.voltage, "V") + ", DEAs " + drive.deas[0] + " and " + drive.deas[1] +
+                      " in antiphase)");
       break;
     case emnet::DriveKind::switched:
-      parts.push_back("the switched drive's force level k_F*V^2/2 (V = " + si(drive.voltage, "V") +
-                      ", DEA " + drive.deas[0] + ")");
+      parts.push_back("the switched drive's force level k_F*V^2/2 as a sinusoid (V = " +
+                      si(drive.voltage, "V") + ", DEA " + drive.deas[0] + ")");
       break;
     case emnet::DriveKind::bias_differential:
       parts.push_back("v = " + si(drive.amplitude, "V") + " on DEA " + drive.deas[0] +
-                      ", -v on DEA " + drive.deas[1] + " (about V0 = " + si(drive.bias, "V") + ")");
+                      " and -v on DEA " + drive.deas[1] + " (about V0 = " + si(drive.bias, "V") +
+                      ")");
       break;
     case emnet::DriveKind::single:
       parts.push_back("v = " + si(drive.amplitude, "V") + " on DEA " + drive.deas[0] +
@@ -47,16 +48,16 @@ std::string ac_input_short(const emnet::Scene& scene) {
     case emnet::DriveKind::none:
       break;
   }
-  if (!scene.loads.empty()) parts.push_back("the scene's loads");
+  if (!scene.loads.empty()) parts.push_back("the scene's loads at their values");
   for (const emnet::CircuitSpec& element : scene.circuit)
     if (emnet::is_source(element.kind) && element.ac != 0.0)
       parts.push_back(
-          "circuit source " + element.name + "'s ac " +
-          si(element.ac, element.kind == emnet::CircuitKind::voltage_source ? "V" : "A"));
+          "ac " + si(element.ac, element.kind == emnet::CircuitKind::voltage_source ? "V" : "A") +
+          " of circuit source " + element.name);
   std::string text;
   for (size_t k = 0; k < parts.size(); ++k)
     text += (k == 0 ? "" : k + 1 == parts.size() ? " and " : ", ") + parts[k];
-  return text.empty() ? "no input" : text;
+  return text;
 }
 
 void write_ac_files(const AcReportInput& in, const std::vector<emnet::PlotMarker>& markers) {
@@ -88,11 +89,13 @@ void write_ac_files(const AcReportInput& in, const std::vector<emnet::PlotMarker
     for (size_t k = 0; k < markers.size(); ++k)
       if (k >= zeta.size() || emnet::resonance_shows_peak(zeta[k]))
         shown_markers.push_back(markers[k]);
+    const std::string input = ac_input_short(in.prepared.model.scene);
     stop_if_interrupted();
-    check_plot(emnet::write_bode_plot(
-        in.plot,
-        in.prepared.model.scene.name + ": response per " + ac_input_short(in.prepared.model.scene),
-        grid, series, shown_markers, in.spec.log, {in.plot_script}));
+    check_plot(
+        emnet::write_bode_plot(in.plot,
+                               in.prepared.model.scene.name + ": small-signal response" +
+                                   (input.empty() ? std::string(" (no AC input)") : " to " + input),
+                               grid, series, shown_markers, in.spec.log, {in.plot_script}));
   }
 }
 

@@ -14,8 +14,10 @@
 // No axis carries two units: series are grouped by their unit, one panel (one y axis) per
 // group, in the order the units first appear. Colours come from a palette readable on white
 // (no yellow or pale colours); a colour can be shared by several series (the left and right
-// extremes of one output), told apart by a dashed line. Marker labels never overlap: markers
-// closer than 3 % of the x axis's span share one label.
+// extremes of one output), told apart by a dashed line. Marker lines run behind the curves;
+// their labels stand above the top panel, never over a curve, and never overlap: markers closer
+// than 3 % of the x axis's span share one label, and a label that would touch another goes up a
+// row.
 //
 // Titles and labels are written as single-quoted gnuplot strings with control characters
 // replaced by spaces and quotes doubled, and drawn without enhanced-text markup, so any text
@@ -40,9 +42,10 @@ struct BodeSeries {
   std::vector<std::complex<double>> values;
 };
 
-// A vertical dashed line at `frequency_hz` (an x value for line plots) with a text label beside
-// it, e.g. {6.385, "f1 = 6.385 Hz"}. Markers outside the plotted x range are left out; markers
-// closer together than 3 % of the x span get one label, their texts joined by "; ".
+// A vertical dashed line at `frequency_hz` (an x value for line plots) through every panel, with
+// a text label above the top panel, e.g. {6.385, "f1 = 6.385 Hz"}. Markers outside the plotted x
+// range are left out; markers closer together than 3 % of the x span get one label, their texts
+// joined by "; ".
 struct PlotMarker {
   double frequency_hz;
   std::string label;
