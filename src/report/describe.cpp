@@ -5,6 +5,7 @@
 #include <complex>
 #include <cstdio>
 #include <sstream>
+#include <vector>
 
 #include "emnet/core/terminal_text.hpp"
 #include "emnet/core/units.hpp"
@@ -59,6 +60,44 @@ std::string drive_summary(const Scene& scene) {
     if (is_source(element.kind)) sources += (sources.empty() ? "" : ", ") + shown(element.name);
   if (!sources.empty()) out << ", circuit source(s) " << sources;
   return out.str();
+}
+
+// The AC input in a few words (empty when there is none): the plot's title.
+std::string ac_input_summary(const Scene& scene) {
+  const auto& drive = scene.drive;
+  std::vector<std::string> parts;
+  switch (drive.kind) {
+    case DriveKind::antagonistic:
+      parts.push_back("the antagonistic drive's force level k_F*V^2/2 as a sinusoid (V = " +
+                      si(drive.voltage, "V") + ", DEAs " + shown(drive.deas[0]) + " and " +
+                      shown(drive.deas[1]) + " in antiphase)");
+      break;
+    case DriveKind::switched:
+      parts.push_back("the switched drive's force level k_F*V^2/2 as a sinusoid (V = " +
+                      si(drive.voltage, "V") + ", DEA " + shown(drive.deas[0]) + ")");
+      break;
+    case DriveKind::bias_differential:
+      parts.push_back("v = " + si(drive.amplitude, "V") + " on DEA " + shown(drive.deas[0]) +
+                      " and -v on DEA " + shown(drive.deas[1]) +
+                      " (about V0 = " + si(drive.bias, "V") + ")");
+      break;
+    case DriveKind::single:
+      parts.push_back("v = " + si(drive.amplitude, "V") + " on DEA " + shown(drive.deas[0]) +
+                      " (about V0 = " + si(drive.bias, "V") + ")");
+      break;
+    case DriveKind::none:
+      break;
+  }
+  if (!scene.loads.empty()) parts.push_back("the scene's loads at their values");
+  for (const CircuitSpec& element : scene.circuit)
+    if (is_source(element.kind) && element.ac != 0.0)
+      parts.push_back("ac " +
+                      si(element.ac, element.kind == CircuitKind::voltage_source ? "V" : "A") +
+                      " of circuit source " + shown(element.name));
+  std::string text;
+  for (size_t k = 0; k < parts.size(); ++k)
+    text += (k == 0 ? "" : k + 1 == parts.size() ? " and " : ", ") + parts[k];
+  return text;
 }
 
 // What the AC input is, in words: printed with every AC result. `top_hz`: the sweep's highest

@@ -61,7 +61,6 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
            "electrical model (nonlinear); set drive.electrical_dynamics=false for ideal "
            "voltage-driven DEAs, or use the ida method");
   study.outputs = transient_outputs(model, options.outputs);
-  if (options.check_outputs) options.check_outputs(study.outputs);
   const double count = std::round(options.periods * options.points_per_period);
   if (count < 1.0)
     refuse("periods",

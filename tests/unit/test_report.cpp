@@ -180,6 +180,11 @@ TEST(Describe, DriveInWords) {
   // A circuit's sources are named: the gripper finger's amplifier drives it.
   const Scene finger = read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/gripper-finger.toml");
   EXPECT_EQ(drive_summary(finger), "drive none, circuit source(s) amp");
+  // The plot titles' short form of the AC input.
+  EXPECT_EQ(ac_input_summary(finger), "ac 1 V of circuit source amp");
+  EXPECT_EQ(ac_input_summary(read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml")),
+            "the antagonistic drive's force level k_F*V^2/2 as a sinusoid (V = 4000 V, DEAs A and "
+            "B in antiphase)");
 }
 
 }  // namespace

@@ -15,50 +15,10 @@
 #include "emnet/core/units.hpp"
 #include "emnet/report/ac_json.hpp"
 #include "emnet/report/plot.hpp"
-#include "emnet/scene/scene.hpp"
 
 namespace emnet_cli {
 
 namespace {
-
-// The AC input in a few words (empty when there is none), for the plot's title
-// (ac_input_description, emnet/report/describe.hpp, says it in full on the "AC input:" line).
-std::string ac_input_short(const emnet::Scene& scene) {
-  const auto& drive = scene.drive;
-  std::vector<std::string> parts;
-  switch (drive.kind) {
-    case emnet::DriveKind::antagonistic:
-      parts.push_back("the antagonistic drive's force level k_F*V^2/2 as a sinusoid (V = " +
-                      si(drive.voltage, "V") + ", DEAs " + drive.deas[0] + " and " + drive.deas[1] +
-                      " in antiphase)");
-      break;
-    case emnet::DriveKind::switched:
-      parts.push_back("the switched drive's force level k_F*V^2/2 as a sinusoid (V = " +
-                      si(drive.voltage, "V") + ", DEA " + drive.deas[0] + ")");
-      break;
-    case emnet::DriveKind::bias_differential:
-      parts.push_back("v = " + si(drive.amplitude, "V") + " on DEA " + drive.deas[0] +
-                      " and -v on DEA " + drive.deas[1] + " (about V0 = " + si(drive.bias, "V") +
-                      ")");
-      break;
-    case emnet::DriveKind::single:
-      parts.push_back("v = " + si(drive.amplitude, "V") + " on DEA " + drive.deas[0] +
-                      " (about V0 = " + si(drive.bias, "V") + ")");
-      break;
-    case emnet::DriveKind::none:
-      break;
-  }
-  if (!scene.loads.empty()) parts.push_back("the scene's loads at their values");
-  for (const emnet::CircuitSpec& element : scene.circuit)
-    if (emnet::is_source(element.kind) && element.ac != 0.0)
-      parts.push_back(
-          "ac " + si(element.ac, element.kind == emnet::CircuitKind::voltage_source ? "V" : "A") +
-          " of circuit source " + element.name);
-  std::string text;
-  for (size_t k = 0; k < parts.size(); ++k)
-    text += (k == 0 ? "" : k + 1 == parts.size() ? " and " : ", ") + parts[k];
-  return text;
-}
 
 void write_ac_files(const AcReportInput& in, const std::vector<emnet::PlotMarker>& markers) {
   const auto& options = in.options;
@@ -83,19 +43,13 @@ void write_ac_files(const AcReportInput& in, const std::vector<emnet::PlotMarker
     std::vector<emnet::BodeSeries> series;
     for (size_t k = 0; k < probes.size(); ++k)
       series.push_back({probes[k].name + ": " + probes[k].description, probes[k].unit, values[k]});
-    // Only the resonances that show as a peak are marked (emnet::resonance_shows_peak).
-    std::vector<emnet::PlotMarker> shown_markers;
-    const auto& zeta = in.result.resonance_damping_ratios;
-    for (size_t k = 0; k < markers.size(); ++k)
-      if (k >= zeta.size() || emnet::resonance_shows_peak(zeta[k]))
-        shown_markers.push_back(markers[k]);
-    const std::string input = ac_input_short(in.prepared.model.scene);
+    const std::string input = emnet::ac_input_summary(in.prepared.model.scene);
     stop_if_interrupted();
     check_plot(
         emnet::write_bode_plot(in.plot,
                                in.prepared.model.scene.name + ": small-signal response" +
                                    (input.empty() ? std::string(" (no AC input)") : " to " + input),
-                               grid, series, shown_markers, in.spec.log, {in.plot_script}));
+                               grid, series, markers, in.spec.log, {in.plot_script}));
   }
 }
 
@@ -182,8 +136,13 @@ int report_ac(const AcReportInput& in) {
     std::cerr << tolerance_warning(result.reduction->measured_error,
                                    result.reduction->model.tolerance)
               << "\n";
+  // The plot marks the resonances that show as a peak (emnet::resonance_shows_peak).
   std::vector<emnet::PlotMarker> markers;
-  for (double f : result.resonances_hz) markers.push_back({f, "f = " + format("%.6g", f) + " Hz"});
+  for (size_t k = 0; k < result.resonances_hz.size(); ++k)
+    if (emnet::resonance_shows_peak(result.resonance_damping_ratios[k])) {
+      const double f = result.resonances_hz[k];
+      markers.push_back({f, "f = " + format("%.6g", f) + " Hz"});
+    }
   const std::string input = ac_input_description(scene, in.spec.to);
   if (options.json) {
     std::cout << json_text(

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <functional>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -230,6 +231,22 @@ void add_plot_options(CLI::App* command, std::string& plot, bool& plot_script,
                     "with --plot PATH: also write the plotted numbers (PATH.dat) and the gnuplot "
                     "script that draws them (PATH.gp; edit it and run `gnuplot PATH.gp` in its "
                     "directory to re-draw the image)");
+}
+
+std::map<std::string, std::string> axis_labels(const std::string& prefix) {
+  const std::map<std::string, std::string> quantities = {{"m", "deflection"},
+                                                         {"mm", "deflection"},
+                                                         {"m/s", "velocity"},
+                                                         {"rad", "rotation"},
+                                                         {"rad/s", "angular velocity"},
+                                                         {"V", "voltage"},
+                                                         {"A", "current"},
+                                                         {"N", "force"},
+                                                         {"N*m", "moment"}};
+  std::map<std::string, std::string> labels;
+  for (const auto& [unit, quantity] : quantities)
+    labels[unit] = prefix + quantity + " [" + unit + "]";
+  return labels;
 }
 
 void check_plot_options(const std::string& plot, bool plot_script) {

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -200,6 +201,9 @@ PlottedOutputs plotted_outputs(const std::vector<emnet::Probe>& probes,
 // commands that plot (ac, tran, sweep-switching); `what` says what the plot shows.
 void add_plot_options(CLI::App* command, std::string& plot, bool& plot_script,
                       const std::string& what);
+// Each unit's y-axis label in a plot: prefix + quantity + unit ("peak deflection [mm]",
+// "voltage [V]"); a unit not named gets the plot's own "value [unit]".
+std::map<std::string, std::string> axis_labels(const std::string& prefix);
 // --plot-script without --plot: refused.
 void check_plot_options(const std::string& plot, bool plot_script);
 

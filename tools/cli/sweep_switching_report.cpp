@@ -46,9 +46,7 @@ void write_sweep_plot(const SweepReportInput& input,
   options.markers = markers;
   options.legend_note =
       "solid: peak to the left (negative side); dashed: peak to the right (positive side)";
-  options.axis_labels = {{"mm", "peak deflection [mm]"}, {"m", "peak deflection [m]"},
-                         {"rad", "peak rotation [rad]"}, {"m/s", "peak velocity [m/s]"},
-                         {"V", "peak voltage [V]"},      {"A", "peak current [A]"}};
+  options.axis_labels = axis_labels("peak ");
   options.side_files.data_and_script = input.plot_script;
   stop_if_interrupted();
   check_plot(emnet::write_line_plot(input.plot,

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <memory>
 
 #include "emnet/analysis/transient.hpp"
@@ -90,15 +91,18 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   study_options.prepare.electrical_probe_requested = electrical_probe_requested(options);
   study_options.progress = progress_of(options);
   show_phase(options, "building the network");
-  const emnet::TransientStudyResult study =
-      emnet::run_transient_study(std::move(scene), study_options);
+  emnet::TransientStudyResult study = emnet::run_transient_study(std::move(scene), study_options);
   if (!study.status.ok) throw NumericalFailure(study.status.message);
-  // The table, --csv and --json show the outputs asked for; the plot also the plot-only ones.
+  // The table, --csv and --json show the outputs asked for; the plot also the plot-only ones,
+  // whose values are moved out of the result (not copied).
   const size_t shown = study.outputs.size() - plot_only.size();
   const std::vector<emnet::Probe> shown_probes(study.outputs.begin(),
                                                study.outputs.begin() + shown);
-  emnet::TransientResult shown_result = study.result;
-  shown_result.values.resize(shown);
+  auto& values = study.result.values;
+  std::vector<std::vector<double>> plot_only_values(
+      std::make_move_iterator(values.begin() + static_cast<std::ptrdiff_t>(shown)),
+      std::make_move_iterator(values.end()));
+  values.resize(shown);
   PlottedOutputs plotted;
   if (!tran.plot.empty()) {
     plotted = plotted_outputs(shown_probes, options);
@@ -107,7 +111,7 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   const double total = stopwatch.seconds();
   end_progress(options);
   return report_tran({options, tran, study.model, study.system, shown_probes, study.outputs,
-                      plotted, shown_result, study.result.values, study.validity, study.start_text,
+                      plotted, study.result, plot_only_values, study.validity, study.start_text,
                       study.end_time, total});
 }
 

@@ -35,11 +35,12 @@ struct TranReportInput {
   const emnet::System& system;
   const std::vector<emnet::Probe>& probes;  // the outputs shown (table, --csv, --json)
   // The outputs --plot may draw: `probes`, then the plot-only ones (the DEA voltages beside
-  // --probe), with their values; `plotted` indexes these.
+  // --probe); `plotted` indexes these.
   const std::vector<emnet::Probe>& plot_probes;
   const PlottedOutputs& plotted;
-  const emnet::TransientResult& result;                 // of `probes`
-  const std::vector<std::vector<double>>& plot_values;  // [plot probe][time]
+  const emnet::TransientResult& result;  // of `probes`
+  // The values of the plot-only outputs, [plot-only output][time].
+  const std::vector<std::vector<double>>& plot_only_values;
   const emnet::Validity& validity;
   std::string start_text;      // the start state in words
   double end_time = 0.0;       // [s]

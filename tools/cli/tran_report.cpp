@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -45,13 +44,6 @@ emnet::LineSeries sampled_waveform(const emnet::Waveform& waveform,
   return line;
 }
 
-// Each unit's axis in the plot.
-const std::map<std::string, std::string> kAxisLabels = {
-    {"m", "deflection [m]"},   {"m/s", "velocity [m/s]"},
-    {"rad", "rotation [rad]"}, {"rad/s", "angular velocity [rad/s]"},
-    {"V", "voltage [V]"},      {"A", "current [A]"},
-    {"N", "force [N]"},        {"N*m", "moment [N*m]"}};
-
 // The response in the table's units, each unit in its own panel; under it the drive: the DEA
 // voltages among the outputs and, dashed, the voltage (or current) of every source that drives
 // the network: the drive's own sources on the DEAs it names, the circuit's sources.
@@ -62,8 +54,10 @@ void write_tran_plot(const TranReportInput& input) {
   std::vector<emnet::LineSeries> series;
   bool dea_voltages = false;  // the sources are dashed when DEA voltages are drawn beside them
   for (size_t k : input.plotted.indices) {
+    const size_t shown = input.probes.size();
     series.push_back({probes[k].name + " (" + probes[k].description + ")", times,
-                      input.plot_values[k], probes[k].unit});
+                      k < shown ? input.result.values[k] : input.plot_only_values[k - shown],
+                      probes[k].unit});
     dea_voltages |= probes[k].quantity == emnet::ProbeQuantity::dea_voltage;
   }
   if (scene.drive.kind != emnet::DriveKind::none) {
@@ -89,7 +83,7 @@ void write_tran_plot(const TranReportInput& input) {
     series.back().dashed = dea_voltages;
   }
   emnet::LinePlotOptions options;
-  options.axis_labels = kAxisLabels;
+  options.axis_labels = axis_labels("");
   options.side_files.data_and_script = input.tran.plot_script;
   stop_if_interrupted();
   check_plot(emnet::write_line_plot(

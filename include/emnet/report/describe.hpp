@@ -18,4 +18,9 @@ std::string drive_summary(const Scene& scene);
 // square-wave drives' omitted RC factor 1/(1 + j·2π·f·τ) is largest (τ: drive_time_constant).
 std::string ac_input_description(const Scene& scene, double top_hz);
 
+// The AC input in a few words, for a plot's title: "the antagonistic drive's force level
+// k_F*V^2/2 as a sinusoid (V = 4000 V, DEAs A and B in antiphase)", "ac 1 V of circuit source
+// amp"; empty when nothing is driven.
+std::string ac_input_summary(const Scene& scene);
+
 }  // namespace emnet

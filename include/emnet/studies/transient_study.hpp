@@ -13,7 +13,6 @@
 // ("--periods" for the command line, "periods" for the Python module).
 #pragma once
 
-#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,9 +45,7 @@ struct TransientStudyOptions {
   // empty: transient_output_list.
   std::vector<std::string> outputs;
   PrepareOptions prepare;
-  Progress* progress = nullptr;  // one report per output time
-  // Called with the outputs before the run (a front-end's own checks of them may throw).
-  std::function<void(const std::vector<Probe>&)> check_outputs;
+  Progress* progress = nullptr;      // one report per output time
   std::string option_prefix = "--";  // how errors name the options
 };
 
