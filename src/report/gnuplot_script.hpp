@@ -1,0 +1,58 @@
+// Writing and running a gnuplot script for one image (src/report, private to the report layer):
+// the image's file names, text and numbers as gnuplot reads them, and a run of gnuplot that
+// leaves a complete image or the previous one. plot.cpp draws its plots through it.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <sstream>
+#include <string>
+
+#include "emnet/core/errors.hpp"
+
+namespace emnet::gnuplot {
+
+enum class ImageFormat { png, svg };
+
+// The image's directory and the names of the image, its data and its script.
+struct PlotFiles {
+  ImageFormat format = ImageFormat::png;
+  std::filesystem::path directory;  // where gnuplot runs; "." for a bare file name
+  std::string image_name;           // file names relative to `directory`
+  std::string data_name;
+  std::string script_name;
+  std::string data_path;  // full paths, for messages
+  std::string script_path;
+  std::string image_path;
+};
+
+// Splits the image path into directory and file names; fails on an unknown extension.
+Status plot_files_for(const std::string& image_path, PlotFiles& files);
+
+// `text` on one line: each control character (newline, tab, ...) becomes a space.
+std::string one_line(const std::string& text);
+// `text` as a single-quoted gnuplot string: one line, each quote doubled. gnuplot expands
+// neither backslashes, backquotes nor '@' macros inside single quotes.
+std::string gnuplot_string(const std::string& text);
+// A number as gnuplot reads it, independent of the global locale; NaN for a missing point.
+std::string number_text(double value);
+// A text stream for a data file or script, in the classic locale.
+std::ostringstream classic_stream();
+
+// Terminal line of a script; `height` in pixels. The output line follows it (`set output`).
+std::string gnuplot_terminal_line(const PlotFiles& files, int width, int height);
+// The comment that opens a saved script: what it draws, its data, how to re-draw.
+std::string script_header(const PlotFiles& files, const std::string& what,
+                          const std::string& title);
+
+// The script's body for a data file name (the saved data beside the image, or its hidden copy).
+using ScriptBody = std::function<std::string(const std::string& data_name)>;
+
+// With `side_files`, writes the data and the gnuplot script (`preamble`, the output line,
+// `body`) beside the image. Then runs a hidden copy of both that draws into a temporary image
+// and renames that onto the image.
+Status write_script_and_run(const PlotFiles& files, const std::string& preamble,
+                            const ScriptBody& body, const std::string& data,
+                            const std::string& image_path, bool side_files);
+
+}  // namespace emnet::gnuplot
