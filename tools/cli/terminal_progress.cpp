@@ -114,7 +114,12 @@ void TerminalProgress::report(long done, long total, std::string_view what) {
   done_ = done;
   total_ = total;
   any_report_ = true;
-  if (new_step && mode_ == Mode::forced) wake_.notify_one();  // --progress: a line per step
+  if (new_step && mode_ == Mode::forced) {  // --progress: a line per step, as it begins
+    step_lines_.push_back(progress_line(command_, what_, done, total,
+                                        std::chrono::duration<double>(step_start_ - start_).count(),
+                                        0.0, 0, InterruptHandler::interrupted()));
+    wake_.notify_one();
+  }
 }
 
 void TerminalProgress::finish() {
@@ -134,20 +139,8 @@ void TerminalProgress::print_loop() {
   std::unique_lock<std::mutex> lock(mutex_);
   Clock::time_point last_print{};
   bool printed = false;
-  std::string printed_step;
-  while (!stopping_) {
-    wake_.wait_for(lock, std::chrono::milliseconds(100));
-    if (stopping_ || !any_report_) continue;
-    const Clock::time_point now = Clock::now();
-    const bool forced = mode_ == Mode::forced;
-    const bool due = printed ? now - last_print >= interval || (forced && what_ != printed_step)
-                             : forced || now - start_ >= first_delay;
-    if (!due) continue;
-    printed_step = what_;
-    std::string text = progress_line(command_, what_, done_, total_,
-                                     std::chrono::duration<double>(now - start_).count(),
-                                     std::chrono::duration<double>(now - step_start_).count(),
-                                     done_ - step_start_done_, InterruptHandler::interrupted());
+  // Writes `text` as the line (the lock held on entry and on return, released while writing).
+  auto print_line = [&](std::string text, Clock::time_point now) {
     if (terminal_) {
       const size_t width = terminal_width();
       if (text.size() >= width) text.resize(width - 1);  // a wrapped line cannot be rewritten
@@ -163,7 +156,32 @@ void TerminalProgress::print_loop() {
     lock.lock();
     last_print = now;
     printed = true;
+  };
+  // The lines of the steps that began since the last wake-up (--progress), in their order.
+  auto print_step_lines = [&] {
+    std::vector<std::string> lines;
+    lines.swap(step_lines_);
+    for (std::string& line : lines) print_line(std::move(line), Clock::now());
+  };
+  while (!stopping_) {
+    wake_.wait_for(lock, std::chrono::milliseconds(100));
+    if (stopping_ || !any_report_) continue;
+    if (!step_lines_.empty()) {
+      print_step_lines();
+      continue;
+    }
+    const Clock::time_point now = Clock::now();
+    const bool due = printed ? now - last_print >= interval
+                             : mode_ == Mode::automatic && now - start_ >= first_delay;
+    if (due) {
+      print_line(progress_line(command_, what_, done_, total_,
+                               std::chrono::duration<double>(now - start_).count(),
+                               std::chrono::duration<double>(now - step_start_).count(),
+                               done_ - step_start_done_, InterruptHandler::interrupted()),
+                 now);
+    }
   }
+  print_step_lines();  // steps that began after the last wake-up still get their line
   if (terminal_ && shown_width_ > 0) write_stderr("\r" + std::string(shown_width_, ' ') + "\r");
 }
 

@@ -28,6 +28,7 @@
 #include <string>
 #include <string_view>
 #include <thread>
+#include <vector>
 
 #include "emnet/core/progress.hpp"
 
@@ -88,6 +89,9 @@ class TerminalProgress : public emnet::Progress {
   Clock::time_point step_start_ = start_;
   long step_start_done_ = 0;
   size_t shown_width_ = 0;  // characters of the line on the terminal now
+  // --progress: the line of each step that began, as it began, until the printer writes it, so
+  // that no step goes without its line however quickly the next one follows.
+  std::vector<std::string> step_lines_;
   std::thread printer_;
 };
 
