@@ -3,6 +3,7 @@
 import json
 import math
 import os
+import re
 
 from . import _emnet
 
@@ -12,6 +13,19 @@ def input_error(message, key="", where="python"):
     error = _emnet.InputError((f"key '{key}': " if key else "") + message)
     error.where, error.key = where, key
     return error
+
+
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+
+
+def _toml_key(name, key):
+    """A TOML key for `name`: bare when TOML allows it, otherwise a quoted basic string, so a
+    name holding '#', '=', ']', quotes or a newline is one key and never a line of its own."""
+    if not isinstance(name, str):
+        raise input_error(f"a scene key is a string, got {type(name).__name__} {name!r}", key)
+    if _BARE_KEY.fullmatch(name):
+        return name
+    return json.dumps(name, ensure_ascii=False)
 
 
 def _toml_value(value, key):
@@ -28,7 +42,7 @@ def _toml_value(value, key):
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(_toml_value(item, key) for item in value) + "]"
     if isinstance(value, dict):
-        return "{" + ", ".join(f"{name} = {_toml_value(item, key + '.' + name)}"
+        return "{" + ", ".join(f"{_toml_key(name, key)} = {_toml_value(item, f'{key}.{name}')}"
                                for name, item in value.items()) + "}"
     raise input_error(f"a {type(value).__name__} is not a scene value (numbers, strings, "
                       "booleans, lists and dicts are)", key)
@@ -42,13 +56,15 @@ def dict_to_toml(data):
     lines = []
     for table, content in data.items():
         if isinstance(content, dict):
-            lines.append(f"[{table}]")
-            lines += [f"{key} = {_toml_value(value, table + '.' + key)}"
+            lines.append(f"[{_toml_key(table, table)}]")
+            lines += [f"{_toml_key(key, f'{table}.{key}')} = "
+                      f"{_toml_value(value, f'{table}.{key}')}"
                       for key, value in content.items()]
         elif isinstance(content, (list, tuple)) and all(isinstance(e, dict) for e in content):
             for index, entry in enumerate(content):
-                lines.append(f"[[{table}]]")
-                lines += [f"{key} = {_toml_value(value, f'{table}[{index}].{key}')}"
+                lines.append(f"[[{_toml_key(table, table)}]]")
+                lines += [f"{_toml_key(key, f'{table}[{index}].{key}')} = "
+                          f"{_toml_value(value, f'{table}[{index}].{key}')}"
                           for key, value in entry.items()]
         else:
             raise input_error(f"a table (dict) or a list of tables is "
