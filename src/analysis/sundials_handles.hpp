@@ -2,15 +2,29 @@
 #pragma once
 
 #include <ida/ida.h>
+#include <ida/ida_ls.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
+#include <string>
 
 namespace emnet::sundials {
+
+// What a failed IDA call returned, named: "IDASetId: IDA_ILL_INPUT (-22)". IDA's own calls
+// return IDA_* flags; the linear-solver interface (IDASetLinearSolver, IDASetJacFn) returns
+// IDALS_* flags, named by IDAGetLinReturnFlagName. Both name functions return malloc'd text.
+inline std::string describe_flag(const char* call, int flag, bool linear_solver_interface) {
+  char* name = linear_solver_interface ? IDAGetLinReturnFlagName(flag) : IDAGetReturnFlagName(flag);
+  std::string text =
+      std::string(call) + ": " + (name ? name : "unknown flag") + " (" + std::to_string(flag) + ")";
+  std::free(name);
+  return text;
+}
 
 // Compiled kernels of the serial vector operations that IDA calls, installed in each Vector's
 // operation table (IDA's own vectors are clones and share it). Debian's SUNDIALS 6.4.1 is

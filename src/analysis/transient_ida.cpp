@@ -109,6 +109,16 @@ double source_time(const CallbackData& data, double t) {
   return std::clamp(t, data.interval_begin + margin, data.interval_end - margin);
 }
 
+// A callback's unrecoverable failure (IDA stops with the flag the call returns): its reason
+// kept for the message; nothing thrown back into C.
+int unrecoverable(CallbackData& data, const char* why) noexcept {
+  try {
+    data.last_error = why;
+  } catch (...) {
+  }
+  return -1;
+}
+
 int residual_callback(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* user) {
   auto& data = *static_cast<CallbackData*>(user);
   try {
@@ -119,8 +129,9 @@ int residual_callback(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* u
     Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(rr), n) = data.residual;
     return 0;
   } catch (const std::exception& e) {
-    data.last_error = e.what();
-    return -1;
+    return unrecoverable(data, e.what());
+  } catch (...) {
+    return unrecoverable(data, "unknown exception");
   }
 }
 
@@ -142,15 +153,20 @@ int jacobian_callback(realtype /*t*/, realtype cj, N_Vector yy, N_Vector yp, N_V
     }
     return 0;
   } catch (const std::exception& e) {
-    data.last_error = e.what();
-    return -1;
+    return unrecoverable(data, e.what());
+  } catch (...) {
+    return unrecoverable(data, "unknown exception");
   }
 }
 
+// Called from C: nothing may throw out of it (an allocation failure keeps the last message).
 void error_handler(int /*code*/, const char* /*module*/, const char* function, char* message,
                    void* user) {
   auto& data = *static_cast<CallbackData*>(user);
-  data.last_error = std::string(function) + ": " + message;
+  try {
+    data.last_error = std::string(function ? function : "IDA") + ": " + (message ? message : "");
+  } catch (...) {
+  }
 }
 
 // Per-unknown absolute tolerances: the relative tolerance times a scale of the unknown's kind
@@ -258,19 +274,31 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
 
     sundials::Ida ida(context);
     void* mem = ida.get();
-    IDASetErrHandlerFn(mem, error_handler, &data);
-    if (IDAInit(mem, residual_callback, 0.0, yy, yp) != IDA_SUCCESS)
-      return finish(Status::failure("IDAInit failed: " + data.last_error));
-    IDASVtolerances(mem, options.relative_tolerance, atol);
-    IDASetUserData(mem, &data);
-    IDASetId(mem, id);
-    IDASetMaxNumSteps(mem, 100000);  // per output interval
-    if (options.max_step > 0.0) IDASetMaxStep(mem, options.max_step);
+    // Every IDA call's flag is checked; the first failure names the call, its flag and IDA's
+    // own message (error_handler), and ends the run as a numerical failure.
+    std::string failed_call;
+    auto succeeded = [&](const char* call, int flag, bool linear_solver_interface = false) {
+      if (flag == IDA_SUCCESS) return true;  // IDALS_SUCCESS is 0 as well
+      failed_call = sundials::describe_flag(call, flag, linear_solver_interface);
+      if (!data.last_error.empty()) failed_call += ": " + data.last_error;
+      return false;
+    };
+    auto call_failure = [&]() { return finish(Status::failure("IDA setup: " + failed_call)); };
+    if (!succeeded("IDASetErrHandlerFn", IDASetErrHandlerFn(mem, error_handler, &data)) ||
+        !succeeded("IDAInit", IDAInit(mem, residual_callback, 0.0, yy, yp)) ||
+        !succeeded("IDASVtolerances", IDASVtolerances(mem, options.relative_tolerance, atol)) ||
+        !succeeded("IDASetUserData", IDASetUserData(mem, &data)) ||
+        !succeeded("IDASetId", IDASetId(mem, id)) ||
+        !succeeded("IDASetMaxNumSteps", IDASetMaxNumSteps(mem, 100000)) ||  // per output interval
+        (options.max_step > 0.0 &&
+         !succeeded("IDASetMaxStep", IDASetMaxStep(mem, options.max_step))))
+      return call_failure();
     sundials::Matrix jacobian(
         SUNSparseMatrix(n, n, std::max<sunindextype>(pattern.nonzeros(), 1), CSC_MAT, context));
     sundials::LinearSolver solver(SUNLinSol_KLU(yy, jacobian, context));
-    IDASetLinearSolver(mem, solver, jacobian);
-    IDASetJacFn(mem, jacobian_callback);
+    if (!succeeded("IDASetLinearSolver", IDASetLinearSolver(mem, solver, jacobian), true) ||
+        !succeeded("IDASetJacFn", IDASetJacFn(mem, jacobian_callback), true))
+      return call_failure();
 
     // Intervals between breakpoints; outputs inside each.
     const std::vector<double> stops = interval_ends(system, options.end_time);
@@ -287,14 +315,23 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
         result.values[p].push_back(value);
       }
     };
+    // The counters are only read (each getter fails only for a null memory, which the Ida
+    // handle excludes); a getter that fails anyway adds nothing.
     auto accumulate_statistics = [&]() {
+      auto add = [](int flag, long value, long& total) {
+        if (flag == IDA_SUCCESS) total += value;
+      };
       long value = 0;
-      IDAGetNumSteps(mem, &value), result.statistics.steps += value;
-      IDAGetNumResEvals(mem, &value), result.statistics.residual_evaluations += value;
-      IDAGetNumJacEvals(mem, &value), result.statistics.jacobian_evaluations += value;
-      IDAGetNumNonlinSolvIters(mem, &value), result.statistics.newton_iterations += value;
-      IDAGetNumErrTestFails(mem, &value), result.statistics.error_test_failures += value;
-      IDAGetNumNonlinSolvConvFails(mem, &value), result.statistics.convergence_failures += value;
+      add(IDAGetNumSteps(mem, &value), value, result.statistics.steps);
+      add(IDAGetNumResEvals(mem, &value), value, result.statistics.residual_evaluations);
+      add(IDAGetNumJacEvals(mem, &value), value, result.statistics.jacobian_evaluations);
+      add(IDAGetNumNonlinSolvIters(mem, &value), value, result.statistics.newton_iterations);
+      add(IDAGetNumErrTestFails(mem, &value), value, result.statistics.error_test_failures);
+      add(IDAGetNumNonlinSolvConvFails(mem, &value), value, result.statistics.convergence_failures);
+    };
+    auto run_failure = [&](double at) {
+      accumulate_statistics();
+      return finish(Status::failure("IDA at t = " + format_time(at) + " s: " + failed_call));
     };
 
     ConsistentStart consistent_start(form);
@@ -316,7 +353,9 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
         Eigen::Map<Eigen::VectorXd>(yp.data(), n) = up_start;
       }
       if (result.statistics.restarts > 0) accumulate_statistics();
-      if (result.statistics.restarts > 0 || consistent.ok) IDAReInit(mem, t, yy, yp);
+      if ((result.statistics.restarts > 0 || consistent.ok) &&
+          !succeeded("IDAReInit", IDAReInit(mem, t, yy, yp)))
+        return run_failure(t);
       ++result.statistics.restarts;
       if (!consistent.ok) {
         const int ic = IDACalcIC(mem, IDA_YA_YDP_INIT, t + 1e-3 * (stop - t));
@@ -325,7 +364,8 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
                                         " s failed (" + consistent.message + "; then " +
                                         data.last_error +
                                         "); try a nonzero drive.rise_time or --start static"));
-        IDAGetConsistentIC(mem, yy, yp);
+        if (!succeeded("IDAGetConsistentIC", IDAGetConsistentIC(mem, yy, yp)))
+          return run_failure(t);
       }
       // Where the interval begins, for a second attempt with the algebraic unknowns out of
       // the error test (below).
@@ -337,7 +377,7 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
         ++next_output;
       }
       const size_t first_output = next_output, recorded = result.times.size();
-      IDASetStopTime(mem, stop);
+      if (!succeeded("IDASetStopTime", IDASetStopTime(mem, stop))) return run_failure(t);
       while (true) {
         const double target = next_output < outputs.size() && outputs[next_output] < stop
                                   ? outputs[next_output]
@@ -363,11 +403,12 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
           // rtol 1e-6 take 17 s instead of 5 s.)
           result.method = "ida (algebraic unknowns out of the error test after: " + failure + ")";
           suppress_algebraic = true;
-          IDASetSuppressAlg(mem, SUNTRUE);
           Eigen::Map<Eigen::VectorXd>(yy.data(), n) = u_begin;
           Eigen::Map<Eigen::VectorXd>(yp.data(), n) = up_begin;
-          IDAReInit(mem, t_begin, yy, yp);
-          IDASetStopTime(mem, stop);
+          if (!succeeded("IDASetSuppressAlg", IDASetSuppressAlg(mem, SUNTRUE)) ||
+              !succeeded("IDAReInit", IDAReInit(mem, t_begin, yy, yp)) ||
+              !succeeded("IDASetStopTime", IDASetStopTime(mem, stop)))
+            return run_failure(t_begin);
           t = t_begin;
           next_output = first_output;
           result.times.resize(recorded);
