@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -51,8 +52,12 @@ std::vector<std::pair<double, double>> read_pwl_csv(const std::string& scene_pat
     throw InputError(shown, key,
                      "the pwl file is " + std::to_string(size) + " bytes; at most " +
                          std::to_string(scene_limits::file_bytes) + " are read");
+  errno = 0;
   std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw InputError(shown, key, "cannot open the pwl file '" + file + "'");
+  if (!stream)
+    throw InputError(shown, key,
+                     "cannot open the pwl file '" + file + "' (" +
+                         (errno != 0 ? std::strerror(errno) : "unknown reason") + ")");
   std::vector<std::pair<double, double>> points;
   std::string line;
   std::size_t line_number = 0, bytes = 0;

@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <string>
 #include <vector>
@@ -125,14 +126,26 @@ int main(int argc, char** argv) {
               << "; the commands are " << command_list << " (see emnet --help)\n";
     return 2;
   }
+  // The help is output too: a full disk or closed file behind standard output fails it (2).
+  auto help_printed = [&](const CLI::ParseError& e) {
+    const int status = app.exit(e);
+    std::cout.flush();
+    if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      std::cerr << "emnet: error: cannot write the help to standard output ("
+                << std::strerror(errno) << ")\n";
+      return 2;
+    }
+    return status;
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return help_printed(e);
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return help_printed(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "emnet: error: " << e.what() << " (see emnet --help)\n";
+    // CLI11's message quotes the argument as given: control characters escaped here.
+    std::cerr << "emnet: error: " << emnet::terminal_text(e.what()) << " (see emnet --help)\n";
     return 2;
   }
 
@@ -172,6 +185,10 @@ int main(int argc, char** argv) {
     status = failed(130, "interrupted", e.what());
   } catch (const NumericalFailure& e) {
     status = failed(3, "numerical failure", e.what());
+  } catch (const std::bad_alloc&) {
+    status = failed(3, "numerical failure",
+                    "out of memory: the model does not fit in the memory this process may "
+                    "use; fewer segments (--segments), or --reduce where the command has it");
   } catch (const std::exception& e) {
     status = failed(1, "internal error", e.what());
   }

@@ -203,11 +203,20 @@ int report_switching_sweep(const SweepReportInput& input) {
     std::printf("\n");
   }
   if (count > 0) {
-    const std::string unit = all_deflections ? "mm" : outputs[main_probe].probe.unit;
+    // The largest peak-to-peak among the outputs in the main output's unit (swings in other
+    // units do not compare), not the main output's own.
+    size_t widest = main_probe, at = best;
+    auto swing = [&](size_t p, size_t k) { return outputs[p].right[k] - outputs[p].left[k]; };
+    for (size_t p = 0; p < outputs.size(); ++p) {
+      if (outputs[p].probe.unit != outputs[main_probe].probe.unit) continue;
+      for (size_t k = 0; k < count; ++k)
+        if (swing(p, k) > swing(widest, at)) widest = p, at = k;
+    }
+    const std::string unit = all_deflections ? "mm" : outputs[widest].probe.unit;
     std::printf("largest swing of %s at %.7g Hz: %.6g %s left, %.6g %s right\n",
-                shown(outputs[main_probe].probe.name).c_str(), frequencies[best],
-                in_table(result.peak_left), shown(unit).c_str(), in_table(result.peak_right),
-                shown(unit).c_str());
+                shown(outputs[widest].probe.name).c_str(), frequencies[at],
+                in_table(outputs[widest].left[at]), shown(unit).c_str(),
+                in_table(outputs[widest].right[at]), shown(unit).c_str());
   }
   for (const auto& m : markers) std::cout << "marker: " << m.label << "\n";
   write_files();
