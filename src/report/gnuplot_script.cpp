@@ -1,6 +1,7 @@
-// gnuplot for one image: writes the plotted numbers and a gnuplot script, runs gnuplot on them under a
-// time limit, and keeps the numbers (path + ".dat") and the script (path + ".gp") beside the
-// image only when asked (src/report/gnuplot_script.hpp; the plots: include/emnet/report/plot.hpp).
+// gnuplot for one image: writes the plotted numbers and a gnuplot script, runs gnuplot on them
+// under a time limit, and keeps the numbers (path + ".dat") and the script (path + ".gp") beside
+// the image only when asked (src/report/gnuplot_script.hpp; the plots:
+// include/emnet/report/plot.hpp).
 //
 // Every file is written completely or not at all (emnet::OutputFile), and so is the image:
 // gnuplot runs hidden copies of the data and the script, the script's only differences being
@@ -47,6 +48,18 @@ std::string lowercase(std::string text) {
 }  // namespace
 
 Status plot_files_for(const std::string& image_path, PlotFiles& files) {
+  // A name reaches the script (its header, `set output`, the data file's name): a control
+  // character there would end a line of the script, so such a name is refused outright.
+  for (const char c : image_path) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      char code[8];
+      std::snprintf(code, sizeof code, "0x%02x", byte);
+      return Status::failure("plot file '" + one_line(image_path) +
+                             "' holds a control character (byte " + code +
+                             "); give a name without newlines, tabs or other control characters");
+    }
+  }
   const std::filesystem::path path(image_path);
   const std::string extension = lowercase(path.extension().string());
   if (extension == ".png") {

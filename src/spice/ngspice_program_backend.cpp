@@ -57,7 +57,9 @@ class TemporaryDirectory {
 bool read_file_bounded(const std::string& path, std::uint64_t limit, std::string& bytes,
                        std::string& why) {
   bytes.clear();
-  FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  // O_NONBLOCK: a FIFO left at the path opens at once (and is refused below) instead of
+  // blocking open() forever; O_NOFOLLOW: a symbolic link there is not followed.
+  FileDescriptor file(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOFOLLOW));
   if (!file.is_open()) {
     if (errno == ENOENT) return true;
     why = "cannot open the rawfile: " + errno_text(errno);
