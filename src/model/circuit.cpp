@@ -2,6 +2,7 @@
 #include "emnet/model/circuit.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "emnet/core/errors.hpp"
 #include "emnet/elements/capacitor.hpp"
@@ -96,6 +97,94 @@ bool circuit_drives_dea(const Scene& scene, const std::string& dea_name) {
   return std::any_of(scene.circuit.begin(), scene.circuit.end(), [&](const CircuitSpec& element) {
     return dea_of_node_name(element.from) == dea_name || dea_of_node_name(element.to) == dea_name;
   });
+}
+
+std::vector<std::string> circuit_driven_deas(const Scene& scene) {
+  std::vector<std::string> driven;
+  for (const DeaSpec& dea : scene.deas)
+    if (circuit_drives_dea(scene, dea.name)) driven.push_back(dea.name);
+  return driven;
+}
+
+namespace {
+
+// The largest |value| a source's waveform takes: its levels, its sine's crest, its points.
+double circuit_waveform_peak(const Waveform& w) {
+  switch (w.shape) {
+    case Waveform::Shape::dc:
+      return std::abs(w.dc);
+    case Waveform::Shape::pulse:
+      return std::max(std::abs(w.dc), std::abs(w.pulse_high));
+    case Waveform::Shape::sine:
+      return std::abs(w.dc) + std::abs(w.amplitude);
+    case Waveform::Shape::pwl: {
+      double peak = std::abs(w.dc);
+      for (const auto& point : w.points) peak = std::max(peak, std::abs(point.second));
+      return peak;
+    }
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+namespace {
+
+// The circuit's elements that share, through nodes other than ground, a connected part with DEA
+// `dea_name`'s terminal (those outside it are joined to it by ground only and do not move it).
+std::vector<const CircuitSpec*> elements_connected_to(const Scene& scene,
+                                                      const std::string& dea_name) {
+  std::vector<std::string> reached{"dea." + dea_name};
+  std::vector<const CircuitSpec*> connected;
+  std::vector<bool> taken(scene.circuit.size(), false);
+  const auto is_reached = [&](const std::string& node) {
+    return !is_ground_node_name(node) &&
+           std::find(reached.begin(), reached.end(), node) != reached.end();
+  };
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (std::size_t k = 0; k < scene.circuit.size(); ++k) {
+      const CircuitSpec& element = scene.circuit[k];
+      if (taken[k] || !(is_reached(element.from) || is_reached(element.to))) continue;
+      taken[k] = grew = true;
+      connected.push_back(&element);
+      for (const std::string& node : {element.from, element.to})
+        if (!is_ground_node_name(node) && !is_reached(node)) reached.push_back(node);
+    }
+  }
+  return connected;
+}
+
+}  // namespace
+
+CircuitVoltageBound circuit_voltage_bound(const Scene& scene, const std::string& dea_name) {
+  CircuitVoltageBound bound;
+  for (const CircuitSpec* connected : elements_connected_to(scene, dea_name)) {
+    const CircuitSpec& element = *connected;
+    const std::string where = "circuit[" + element.name + "]";
+    if (element.kind == CircuitKind::inductor || element.kind == CircuitKind::current_source) {
+      bound.reason =
+          where + " is a" +
+          std::string(element.kind == CircuitKind::inductor ? "n inductor" : " current source") +
+          ", outside the RC network the maximum principle bounds";
+      return bound;
+    }
+    if (element.kind != CircuitKind::voltage_source) continue;
+    if (!is_ground_node_name(element.from) && !is_ground_node_name(element.to)) {
+      bound.reason = where + " is a voltage source with no terminal on ground";
+      return bound;
+    }
+    const Waveform waveform = circuit_waveform(element);
+    bound.peak = std::max(bound.peak, circuit_waveform_peak(waveform));
+    bound.at_start = std::max(bound.at_start, std::abs(waveform.value(0.0)));
+  }
+  for (const DeaSpec& dea : scene.deas)
+    if (dea.back_coupling && dea.name == dea_name) {
+      bound.reason = "DEA " + dea.name + "'s back-coupling (dea[].back_coupling) injects current";
+      return bound;
+    }
+  bound.bounded = true;
+  return bound;
 }
 
 std::map<std::string, NodeId> add_circuit(Network& network, ModelStructure* structure,

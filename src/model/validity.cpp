@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "emnet/core/units.hpp"
+#include "emnet/model/circuit.hpp"
 #include "emnet/model/model.hpp"
 
 namespace emnet {
@@ -36,8 +37,48 @@ std::vector<DeaVoltage> driven_voltages(const Scene& scene, Of of) {
   for (const DeaSpec& dea : scene.deas)
     if (std::find(scene.drive.deas.begin(), scene.drive.deas.end(), dea.name) !=
         scene.drive.deas.end())
-      voltages.push_back({dea.name, of(dea_drive(scene.drive, dea.name).voltage)});
+      voltages.push_back({dea.name, of(dea_drive(scene.drive, dea.name).voltage), ""});
   return voltages;
+}
+
+// The circuit-driven DEAs with the bound of their voltage (`at_start`: at t = 0, else over the
+// whole waveform); none when the circuit has no proven bound.
+std::vector<DeaVoltage> circuit_bounded_voltages(const Scene& scene, bool at_start) {
+  std::vector<DeaVoltage> voltages;
+  const std::vector<std::string> driven = circuit_driven_deas(scene);
+  if (driven.empty()) return voltages;
+  for (const std::string& dea : driven) {
+    const CircuitVoltageBound bound = circuit_voltage_bound(scene, dea);
+    if (!bound.bounded) continue;
+    voltages.push_back({dea, at_start ? bound.at_start : bound.peak,
+                        std::string("bound: the circuit's largest source level") +
+                            (at_start ? " at t = 0" : "") +
+                            ", which an RC network of grounded voltage sources never exceeds"});
+  }
+  return voltages;
+}
+
+std::vector<DeaVoltage> joined(std::vector<DeaVoltage> first,
+                               const std::vector<DeaVoltage>& second) {
+  first.insert(first.end(), second.begin(), second.end());
+  return first;
+}
+
+// "field not checked: ..." for a scene whose circuit drives DEAs without a known bound, else "".
+std::string unchecked_field_text(const Scene& scene, const std::vector<DeaVoltage>& voltages) {
+  const std::vector<std::string> driven = circuit_driven_deas(scene);
+  std::string text;
+  for (const std::string& dea : driven) {
+    const bool judged = std::any_of(voltages.begin(), voltages.end(),
+                                    [&](const DeaVoltage& v) { return v.dea == dea; });
+    if (judged) continue;
+    const CircuitVoltageBound bound = circuit_voltage_bound(scene, dea);
+    text += std::string(text.empty() ? "" : "; ") + "field not checked for circuit-driven DEA " +
+            dea + ": " +
+            (bound.bounded ? std::string("its voltage was not computed") : bound.reason) +
+            ", so no bound on its voltage is known";
+  }
+  return text;
 }
 
 std::string length_text(double metres) {
@@ -71,11 +112,13 @@ const char* validity_check_name(ValidityCheck check) {
 }
 
 std::vector<DeaVoltage> drive_peak_voltages(const Scene& scene) {
-  return driven_voltages(scene, [](const Waveform& w) { return waveform_peak(w); });
+  return joined(driven_voltages(scene, [](const Waveform& w) { return waveform_peak(w); }),
+                circuit_bounded_voltages(scene, false));
 }
 
 std::vector<DeaVoltage> drive_voltages_at_start(const Scene& scene) {
-  return driven_voltages(scene, [](const Waveform& w) { return std::abs(w.value(0.0)); });
+  return joined(driven_voltages(scene, [](const Waveform& w) { return std::abs(w.value(0.0)); }),
+                circuit_bounded_voltages(scene, true));
 }
 
 Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& deflections,
@@ -118,9 +161,10 @@ Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& d
       throw std::invalid_argument("check_validity: no DEA named '" + voltage.dea + "'");
     const double field = std::abs(voltage.voltage) / dea->dielectric_thickness;
     const double fraction = field / dea->breakdown_field;
-    const std::string numbers = format_number("%.4g V", voltage.voltage) + " / " +
-                                length_text(dea->dielectric_thickness) + " = " +
-                                format_number("%.4g V/um", field * 1e-6);
+    const std::string numbers =
+        format_number("%.4g V", voltage.voltage) +
+        (voltage.bound.empty() ? std::string() : " (" + voltage.bound + ")") + " / " +
+        length_text(dea->dielectric_thickness) + " = " + format_number("%.4g V/um", field * 1e-6);
     if (fraction > worst_fraction) {
       worst_fraction = fraction;
       validity.field_fraction = fraction;
@@ -142,6 +186,8 @@ Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& d
         "a capacitor";
     validity.violations.push_back(violation);
   }
+  const std::string unchecked = unchecked_field_text(scene, voltages);
+  if (!unchecked.empty()) field_text = voltages.empty() ? unchecked : field_text + "; " + unchecked;
   validity.summary = deflection_text + "; " + field_text;
   return validity;
 }

@@ -44,6 +44,9 @@ struct DeflectionPeak {
 struct DeaVoltage {
   std::string dea;
   double voltage = 0.0;
+  // How `voltage` was found when it is a bound, not a level of the drive or a computed value:
+  // named in the summary and the violation's message ("" for none).
+  std::string bound;
 };
 
 enum class ValidityCheck { deflection, electric_field };
@@ -69,6 +72,9 @@ struct Validity {
 
 // Each DEA the drive names with its largest source voltage over the drive: V for the square
 // waves, V0 + v for the sines. The RC loop's capacitor voltage stays within the source's range.
+// Each DEA a [[circuit]] drives (circuit_driven_deas) with the bound circuit_voltage_bound
+// proves (the RC maximum principle over the circuit's sources), its `bound` saying so; none
+// when no bound is known (check_validity then says "field not checked" and why).
 std::vector<DeaVoltage> drive_peak_voltages(const Scene& scene);
 // The same at t = 0 (the state `emnet static` and `tran --start static` apply).
 std::vector<DeaVoltage> drive_voltages_at_start(const Scene& scene);
