@@ -35,7 +35,8 @@ def modes(scene, count=0, dense=False, error_estimate=True, shapes=False, probes
     Returns a Result with modes: frequency_hz [Hz], natural_frequency_hz [Hz], damping_ratio
     [-], pole ([re, im] in 1/s), relative_residual, error_bounded, frequency_error_bound_hz
     [Hz] (the pole's rounding bound), discretisation_error_estimate [-] (numpy arrays, lowest
-    mode first); real_poles; rigid_body_modes; method; cost.
+    mode first; a mode is a pair with damping ratio below 1/sqrt(2), mode_rule); overdamped_pairs;
+    real_poles; rigid_body_modes; method; cost.
     """
     return Result(_emnet.modes(as_scene(scene)._handle, count, dense, error_estimate, shapes,
                                _probes(probes)))
@@ -74,11 +75,13 @@ def tran(scene, periods=10.0, switching_hz=None, method="ida", rtol=1e-6, atol=0
 
 
 def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1,
-                    method="exact", samples=0, rtol=1e-9, outputs=None):
+                    method="exact", samples=0, rtol=1e-9, outputs=None, sources=None):
     """Periodic steady-state extremes against the switching frequency (as `emnet sweep-switching`).
 
     frequencies [Hz] (or from_hz, to_hz, step_hz); method "exact" (linear networks; DEAs as
-    ideal voltage-driven forces, with a note) or "shooting" (IDA, any network; rtol).
+    ideal voltage-driven forces, with a note) or "shooting" (IDA, any network; rtol). sources:
+    the [[circuit]] sources whose frequency is swept (default every periodic one), each keeping
+    its levels, duty, rise/fall and its delay as a fraction of the period.
 
     Returns a Result with frequencies_hz [Hz]; outputs {name: {unit, description, left, right}}:
     the periodic minimum (left) and maximum (right) per frequency in the output's unit; peak_hz
@@ -87,7 +90,7 @@ def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1
     """
     return Result(_emnet.sweep_switching(as_scene(scene)._handle, list(frequencies or []),
                                          from_hz, to_hz, step_hz, method, samples, rtol,
-                                         _probes(outputs)))
+                                         _probes(outputs), _probes(sources)))
 
 
 def identify(scene, target_hz, parameter="beam.bending_stiffness", mode=1):

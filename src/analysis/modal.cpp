@@ -388,12 +388,17 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
       const double y_norm = y.norm();
       mode.vector = y_norm > 0.0 ? Eigen::VectorXcd(y / y_norm) : y;
     }
-    (oscillatory ? result.modes : result.real_poles).push_back(std::move(mode));
+    std::vector<Mode>& list = !oscillatory ? result.real_poles
+                              : mode.damping_ratio < kResonanceDampingLimit
+                                  ? result.modes
+                                  : result.overdamped_pairs;
+    list.push_back(std::move(mode));
   }
   std::sort(result.modes.begin(), result.modes.end(),
             [](const Mode& a, const Mode& b) { return a.frequency_hz < b.frequency_hz; });
-  std::sort(result.real_poles.begin(), result.real_poles.end(),
-            [](const Mode& a, const Mode& b) { return std::abs(a.pole) < std::abs(b.pole); });
+  for (auto* list : {&result.real_poles, &result.overdamped_pairs})
+    std::sort(list->begin(), list->end(),
+              [](const Mode& a, const Mode& b) { return std::abs(a.pole) < std::abs(b.pole); });
   return finish(Status::success());
 }
 

@@ -97,7 +97,7 @@ std::pair<Eigen::SparseMatrix<double>, Eigen::SparseMatrix<double>> expansion_ma
 // The largest |s| among the poles `modal` found (modes and real poles).
 double largest_pole(const ModalResult& modal) {
   double largest = 0.0;
-  for (const auto* list : {&modal.modes, &modal.real_poles})
+  for (const auto* list : {&modal.modes, &modal.overdamped_pairs, &modal.real_poles})
     for (const Mode& m : *list) largest = std::max(largest, std::abs(m.pole));
   return largest;
 }
@@ -260,6 +260,7 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
   };
   std::vector<Candidate> candidates;
   for (const Mode& m : modal.modes) candidates.push_back({&m, true});
+  for (const Mode& m : modal.overdamped_pairs) candidates.push_back({&m, true});
   for (const Mode& m : modal.real_poles) candidates.push_back({&m, false});
   const Eigen::SparseMatrix<Complex> c_complex = system.C.cast<Complex>();
   auto truncate = [&](const Candidate& c) {

@@ -77,8 +77,10 @@ Json to_json(const ModesStudyResult& result, const std::vector<Probe>& probes,
     } else {
       mode["unbounded_reason"] = m.unbounded_reason;
     }
-    if (entry.discretisation_error_estimated)
+    if (entry.discretisation_error_estimated) {
       mode["discretisation_error_estimate"] = entry.discretisation_error;
+      mode["shape_correlation_2n"] = entry.shape_correlation;
+    }
     if (!entry.shape.x_m.empty()) {
       Json nodes = Json::array();
       for (size_t i = 0; i < entry.shape.x_m.size(); ++i)
@@ -111,6 +113,18 @@ Json to_json(const ModesStudyResult& result, const std::vector<Probe>& probes,
     else
       entry["unbounded_reason"] = pole.unbounded_reason;
     out["real_poles"].push_back(entry);
+  }
+  out["mode_rule"] = kModeRule;
+  out["overdamped_pairs"] = Json::array();
+  for (const auto& pair : result.modal.overdamped_pairs) {
+    Json entry = {{"frequency_hz", pair.frequency_hz},
+                  {"damping_ratio", pair.damping_ratio},
+                  {"natural_frequency_hz", pair.natural_frequency_hz},
+                  {"pole_real", pair.pole.real()},
+                  {"pole_imag", pair.pole.imag()},
+                  {"error_bounded", pair.error_bounded}};
+    if (pair.error_bounded) entry["pole_error_bound"] = pair.pole_error;
+    out["overdamped_pairs"].push_back(entry);
   }
   out["rigid_body_modes"] = Json::array();
   for (const auto& name : result.rigid_body_motions) out["rigid_body_modes"].push_back(name);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "emnet/analysis/operating_point.hpp"
@@ -19,17 +20,44 @@ void show_phase(Progress* progress, const char* what) {
   if (progress) progress->report(0, 0, what);
 }
 
+// A mode of the 2N mesh: its frequency and its shape at the N mesh's beam nodes.
+struct RefinedMode {
+  double frequency_hz = 0.0;
+  Eigen::VectorXcd shape;
+};
+
 std::string millimetres_text(double metres) {
   char text[48];
   std::snprintf(text, sizeof text, "%.6g mm", metres * 1e3);
   return text;
 }
 
-// The frequencies of the modes of `scene` refined to 2N segments (empty when its modal
-// analysis fails: the estimate is then left out, not the study); a failed operating point of
-// the refined model fails the study.
-Status refined_frequencies(const Scene& scene, const ModesStudyOptions& options, int count,
-                           std::vector<double>& frequencies) {
+// A mode's deflection and rotation·L (L the beam's length, so both are lengths) at the
+// positions `x` along the beam of `model`: the vector the modal assurance criterion compares.
+Eigen::VectorXcd shape_at(const Model& model, const Mode& mode, const std::vector<double>& x) {
+  Eigen::VectorXcd shape(2 * static_cast<Eigen::Index>(x.size()));
+  for (size_t i = 0; i < x.size(); ++i) {
+    std::complex<double> w = 0.0, slope = 0.0;
+    for (const auto& [index, c] : model.beam.deflection_terms(x[i])) w += c * mode.vector[index];
+    for (const auto& [index, c] : model.beam.slope_terms(x[i])) slope += c * mode.vector[index];
+    shape[static_cast<Eigen::Index>(2 * i)] = w / mode.pole;
+    shape[static_cast<Eigen::Index>(2 * i + 1)] = slope / mode.pole * model.beam.length;
+  }
+  return shape;
+}
+
+// Modal assurance criterion |aᴴb|² / (‖a‖²‖b‖²): 1 for the same shape, 0 for orthogonal ones
+// (0 when either is zero).
+double modal_assurance(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b) {
+  const double norms = a.squaredNorm() * b.squaredNorm();
+  return norms > 0.0 ? std::norm(a.dot(b)) / norms : 0.0;
+}
+
+// The modes of `scene` refined to 2N segments, each as its frequency and its shape at the
+// coarse beam nodes `x` (empty when its modal analysis fails: the estimate is then left out,
+// not the study); a failed operating point of the refined model fails the study.
+Status refined_modes(const Scene& scene, const ModesStudyOptions& options, int count,
+                     const std::vector<double>& x, std::vector<RefinedMode>& refined) {
   Scene doubled = scene;
   doubled.beam.segments = 2 * scene.beam.segments;
   doubled.beam.auto_segments = false;
@@ -43,10 +71,11 @@ Status refined_frequencies(const Scene& scene, const ModesStudyOptions& options,
   if (!point.status.ok) return point.status;
   ModalOptions modal_options;
   modal_options.count = count;
-  modal_options.keep_vectors = false;
+  modal_options.keep_vectors = true;
   const ModalResult fine = run_modes(fine_system, point.rest.operating_point, modal_options);
   if (fine.status.ok)
-    for (const auto& mode : fine.modes) frequencies.push_back(mode.frequency_hz);
+    for (const auto& mode : fine.modes)
+      refined.push_back({mode.frequency_hz, shape_at(fine_model, mode, x)});
   return Status::success();
 }
 
@@ -98,6 +127,47 @@ std::string rigid_body_motion_name(const Model& model, const Eigen::VectorXd& mo
   if (std::abs(pivot) <= 1e-9 * length) pivot = 0.0;  // no "-0"
   return "rotation about x = " + millimetres_text(pivot);
 }
+
+namespace {
+
+// Pairs each mode of N with the unused mode of 2N whose shape at the N mesh's beam nodes is
+// most alike (modal assurance criterion), not by index: an index match pairs different modes
+// when the two meshes find different sets (a pole pair that crosses the mode rule, a mode the
+// iterative solver did not reach). A best correlation below kModeShapeMatchLimit is no match:
+// its correlation is NaN and a note names the mode.
+void match_refined_modes(ModesStudyResult& result, const std::vector<Mode>& modes,
+                         const std::vector<RefinedMode>& refined, std::vector<double>& errors,
+                         std::vector<double>& correlations) {
+  std::vector<bool> used(refined.size(), false);
+  for (size_t k = 0; k < modes.size(); ++k) {
+    const Eigen::VectorXcd coarse = shape_at(result.model, modes[k], result.model.beam.x);
+    double best = 0.0;
+    size_t best_index = refined.size();
+    for (size_t j = 0; j < refined.size(); ++j) {
+      const double mac = used[j] ? 0.0 : modal_assurance(coarse, refined[j].shape);
+      if (mac > best) {
+        best = mac;
+        best_index = j;
+      }
+    }
+    if (best >= kModeShapeMatchLimit) {
+      used[best_index] = true;
+      errors.push_back(richardson_error(modes[k].frequency_hz, refined[best_index].frequency_hz));
+      correlations.push_back(best);
+    } else {
+      char text[160];
+      std::snprintf(text, sizeof text,
+                    "mode %zu (%.6g Hz): no mode of the 2N mesh has its shape (best modal "
+                    "assurance %.3g, below %.2g); its discretisation error is not estimated",
+                    k + 1, modes[k].frequency_hz, best, kModeShapeMatchLimit);
+      result.notes.push_back(text);
+      errors.push_back(std::numeric_limits<double>::quiet_NaN());
+      correlations.push_back(std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+}
+
+}  // namespace
 
 ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& options) {
   const Stopwatch total;
@@ -173,23 +243,20 @@ ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& op
   }
   result.error_estimate_computed =
       options.error_estimate && scene.beam.segments <= kModesErrorEstimateSegmentLimit;
-  std::vector<double> errors;
+  std::vector<double> errors, correlations;  // per mode; NaN error: no match at 2N
   if (result.error_estimate_computed) {
     const Stopwatch stopwatch;
-    std::vector<double> refined;
+    std::vector<RefinedMode> refined;
     // From the scene as given (not as resolved for N): its "auto" keys are resolved for 2N.
-    const Status status = refined_frequencies(
-        scene, options, std::max<int>(static_cast<int>(modes.size()) + 2, 6), refined);
+    const Status status =
+        refined_modes(scene, options, std::max<int>(static_cast<int>(modes.size()) + 2, 6),
+                      result.model.beam.x, refined);
     if (!status.ok) {
       result.status = status;
       result.seconds = total.seconds();
       return result;
     }
-    if (!refined.empty()) {
-      std::vector<double> coarse;
-      for (const auto& mode : modes) coarse.push_back(mode.frequency_hz);
-      errors = richardson_errors(coarse, refined);
-    }
+    if (!refined.empty()) match_refined_modes(result, modes, refined, errors, correlations);
     result.seconds_error_estimate = stopwatch.seconds();
   } else {
     result.notes.push_back(options.error_estimate
@@ -200,7 +267,8 @@ ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& op
   for (size_t k = 0; k < modes.size(); ++k) {
     ModesStudyMode entry;
     entry.mode = modes[k];
-    if (k < errors.size()) {
+    if (k < errors.size() && !std::isnan(correlations[k])) {
+      entry.shape_correlation = correlations[k];
       if (!std::isfinite(errors[k])) {
         result.status =
             Status::failure("non-finite result for a discretisation error estimate of mode " +

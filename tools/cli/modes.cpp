@@ -61,7 +61,7 @@ int run_modes_command(const CommonOptions& options, const emnet::ModesStudyOptio
               << (result.complete ? " (every finite pole of the pencil)"
                                   : " shift-invert Arnoldi (the poles nearest 0)")
               << ", " << study.modes.size() << " oscillatory shown, " << result.real_poles.size()
-              << " real pole(s)"
+              << " real pole(s), " << result.overdamped_pairs.size() << " overdamped pair(s)"
               << (rigid_names.empty() ? "" : ", rigid-body motion: " + rigid_names.front()) << "\n"
               << (result.note.empty()
                       ? ""
@@ -72,6 +72,7 @@ int run_modes_command(const CommonOptions& options, const emnet::ModesStudyOptio
                                    "--dense computes every pole)"
                                  : "") +
                             "\n")
+              << "rule: " << emnet::kModeRule << "\n"
               << "accuracy: 'rounding' bounds each frequency's error from the computation "
                  "(first order: residual in extended precision times the pole's condition); "
                  "discretisation error vs the continuum beam "
@@ -94,6 +95,13 @@ int run_modes_command(const CommonOptions& options, const emnet::ModesStudyOptio
           mode.error_bounded ? format("%.2g", frequency_error(mode)) : "unbounded";
       std::printf("%5zu %16.9g %14.6g %16.9g %12s %14s\n", k + 1, mode.frequency_hz,
                   mode.damping_ratio, mode.natural_frequency_hz, bound.c_str(), err.c_str());
+    }
+    if (!result.overdamped_pairs.empty()) {
+      std::printf("\n%zu overdamped pair(s) (damping ratio >= 1/sqrt(2), not numbered as modes):",
+                  result.overdamped_pairs.size());
+      for (const auto& pair : result.overdamped_pairs)
+        std::printf(" %.4g Hz (zeta %.3g)", pair.frequency_hz, pair.damping_ratio);
+      std::printf("\n");
     }
     if (!result.real_poles.empty()) {
       // Real poles: the DEAs' RC loops and overdamped (Kelvin–Voigt) relaxations; listed in

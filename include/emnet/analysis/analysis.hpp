@@ -186,6 +186,16 @@ std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y,
 // a "mode" at 0.0071 Hz with |Im s|/|s| = 1.1e-8.
 inline constexpr double kNearlyReal = 1e-5;
 
+// A numbered mode is a resonance: an oscillatory pole pair with damping ratio below 1/√2, where
+// a second-order response |1/(1 − (ω/ω_n)² + 2jζω/ω_n)| has a peak (at ω_n·√(1 − 2ζ²)); the
+// Bode markers use the same limit. A pair at or above it (an overdamped pair formed by
+// relaxation poles, e.g. Kelvin–Voigt or RC branches coupled through the structure) shows no
+// peak and moves with the mesh; it is listed apart, in ModalResult::overdamped_pairs.
+inline constexpr double kResonanceDampingLimit = 0.70710678118654752;
+inline constexpr const char* kModeRule =
+    "a mode is an oscillatory pole pair with damping ratio below 1/sqrt(2) (a resonance with a "
+    "peak); pairs at or above it are listed apart as overdamped pairs";
+
 struct ModalOptions {
   int count = 0;  // large pencils: oscillatory poles wanted (0: the 10 lowest)
   // System unknowns up to which the dense method is used (every pole, O(n³)). Measured on the
@@ -220,6 +230,8 @@ struct ModalResult {
   Status status;
   std::vector<Mode> modes;       // oscillatory poles (Im s > 0), sorted by frequency
   std::vector<Mode> real_poles;  // non-oscillatory poles (RC, overdamped), sorted by |s|
+  // Oscillatory pairs with damping ratio ≥ kResonanceDampingLimit (no peak), sorted by |s|
+  std::vector<Mode> overdamped_pairs;
   // Rigid-body motions (pole s = 0): displacement fields on the system's unknowns (m and rad on
   // mechanical across unknowns, 0 elsewhere), an orthonormal basis, largest entry positive.
   std::vector<Eigen::VectorXd> rigid_body_modes;
