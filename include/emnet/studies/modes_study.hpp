@@ -37,8 +37,9 @@ constexpr int kDenseModesLimit = 2000;
 // Segments up to which the N/2N error estimate is computed (the 2N model is built and solved).
 constexpr int kModesErrorEstimateSegmentLimit = 1000;
 // Modal assurance criterion (|aᴴb|²/(‖a‖²‖b‖²) of the shapes at the N mesh's beam nodes) from
-// which a mode of 2N is the same mode as one of N. Measured on the shipped scenes: a mode and its
-// refinement correlate above 0.99; different modes below 0.5.
+// which a mode of 2N is the same mode as one of N. The limit is a choice: a refined mode keeps
+// its shape and distinct modes differ in theirs; the correlations the shipped scenes reach are
+// not yet measured.
 constexpr double kModeShapeMatchLimit = 0.9;
 
 struct ModesStudyOptions {
