@@ -99,34 +99,29 @@ bool circuit_drives_dea(const Scene& scene, const std::string& dea_name) {
   });
 }
 
-std::vector<std::string> circuit_driven_deas(const Scene& scene) {
-  std::vector<std::string> driven;
-  for (const DeaSpec& dea : scene.deas)
-    if (circuit_drives_dea(scene, dea.name)) driven.push_back(dea.name);
-  return driven;
-}
-
-namespace {
-
-// The largest |value| a source's waveform takes: its levels, its sine's crest, its points.
-double circuit_waveform_peak(const Waveform& w) {
-  switch (w.shape) {
+double waveform_largest_magnitude(const Waveform& waveform) {
+  switch (waveform.shape) {
     case Waveform::Shape::dc:
-      return std::abs(w.dc);
+      return std::abs(waveform.dc);
     case Waveform::Shape::pulse:
-      return std::max(std::abs(w.dc), std::abs(w.pulse_high));
+      return std::max(std::abs(waveform.dc), std::abs(waveform.pulse_high));
     case Waveform::Shape::sine:
-      return std::abs(w.dc) + std::abs(w.amplitude);
+      return std::abs(waveform.dc) + std::abs(waveform.amplitude);
     case Waveform::Shape::pwl: {
-      double peak = std::abs(w.dc);
-      for (const auto& point : w.points) peak = std::max(peak, std::abs(point.second));
+      double peak = std::abs(waveform.dc);
+      for (const auto& point : waveform.points) peak = std::max(peak, std::abs(point.second));
       return peak;
     }
   }
   return 0.0;
 }
 
-}  // namespace
+std::vector<std::string> circuit_driven_deas(const Scene& scene) {
+  std::vector<std::string> driven;
+  for (const DeaSpec& dea : scene.deas)
+    if (circuit_drives_dea(scene, dea.name)) driven.push_back(dea.name);
+  return driven;
+}
 
 namespace {
 
@@ -175,7 +170,7 @@ CircuitVoltageBound circuit_voltage_bound(const Scene& scene, const std::string&
       return bound;
     }
     const Waveform waveform = circuit_waveform(element);
-    bound.peak = std::max(bound.peak, circuit_waveform_peak(waveform));
+    bound.peak = std::max(bound.peak, waveform_largest_magnitude(waveform));
     bound.at_start = std::max(bound.at_start, std::abs(waveform.value(0.0)));
   }
   for (const DeaSpec& dea : scene.deas)

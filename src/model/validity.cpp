@@ -13,24 +13,6 @@ namespace emnet {
 
 namespace {
 
-// The largest |value| a waveform takes: its levels, its sine's crest, its points.
-double waveform_peak(const Waveform& w) {
-  switch (w.shape) {
-    case Waveform::Shape::dc:
-      return std::abs(w.dc);
-    case Waveform::Shape::pulse:
-      return std::max(std::abs(w.dc), std::abs(w.pulse_high));
-    case Waveform::Shape::sine:
-      return std::abs(w.dc) + std::abs(w.amplitude);
-    case Waveform::Shape::pwl: {
-      double peak = std::abs(w.dc);
-      for (const auto& point : w.points) peak = std::max(peak, std::abs(point.second));
-      return peak;
-    }
-  }
-  return 0.0;
-}
-
 template <typename Of>
 std::vector<DeaVoltage> driven_voltages(const Scene& scene, Of of) {
   std::vector<DeaVoltage> voltages;
@@ -112,8 +94,9 @@ const char* validity_check_name(ValidityCheck check) {
 }
 
 std::vector<DeaVoltage> drive_peak_voltages(const Scene& scene) {
-  return joined(driven_voltages(scene, [](const Waveform& w) { return waveform_peak(w); }),
-                circuit_bounded_voltages(scene, false));
+  return joined(
+      driven_voltages(scene, [](const Waveform& w) { return waveform_largest_magnitude(w); }),
+      circuit_bounded_voltages(scene, false));
 }
 
 std::vector<DeaVoltage> drive_voltages_at_start(const Scene& scene) {

@@ -39,6 +39,10 @@ namespace emnet {
 // A circuit source's time function and AC phasor (see the top comment).
 Waveform circuit_waveform(const CircuitSpec& element);
 
+// The largest |value| `waveform` takes over time: its levels, a sine's crest, its points (V or A;
+// the drive's waveforms and the circuit's sources alike).
+double waveform_largest_magnitude(const Waveform& waveform);
+
 // Whether a [[circuit]] element of `scene` ends on DEA `dea_name`'s terminal ("dea.NAME").
 bool circuit_drives_dea(const Scene& scene, const std::string& dea_name);
 

@@ -1,0 +1,85 @@
+// Circuit-driven DEAs are DEAs for the validity checks (emnet/model/validity.hpp): a DEA that a
+// [[circuit]] drives through its terminal "dea.X" has its field judged against a voltage bound
+// proved from the circuit (emnet/model/circuit.hpp, circuit_voltage_bound), and where no bound
+// is known the summary says "field not checked" and why instead of "no DEA driven".
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "cli_run.hpp"
+#include "emnet/model/circuit.hpp"
+#include "emnet/model/validity.hpp"
+#include "emnet/scene/scene_reader.hpp"
+
+namespace emnet {
+namespace {
+
+using testing::run_emnet;
+
+const std::string kTweezer = std::string(EMNET_SOURCE_DIR) + "/netlists/tweezer-jaw.toml";
+
+// Reference: the maximum principle of RC networks driven by grounded voltage sources (no node
+// exceeds the sources' levels and 0). In the tweezer each DEA sits behind 4.7 MOhm from its own
+// square source (0 V .. high, src_B inverted), joined to the other only through ground, so each
+// DEA's bound is its own source's level: exactly 2500 V over the waveform (the levels are read
+// from the scene file; the comparison is exact because no arithmetic is done on them).
+TEST(CircuitValidity, EachDeaIsBoundedByTheSourcesOfItsOwnPart) {
+  const Scene scene = read_scene(kTweezer);
+  EXPECT_EQ(circuit_driven_deas(scene), (std::vector<std::string>{"A", "B"}));
+  const Scene raised = read_scene(kTweezer, {"circuit.src_A.high=6kV"});
+  const CircuitVoltageBound a = circuit_voltage_bound(raised, "A");
+  const CircuitVoltageBound b = circuit_voltage_bound(raised, "B");
+  ASSERT_TRUE(a.bounded) << a.reason;
+  ASSERT_TRUE(b.bounded) << b.reason;
+  EXPECT_EQ(a.peak, 6000.0);  // src_A's raised high level
+  EXPECT_EQ(b.peak, 2500.0);  // src_B untouched: src_A reaches B only through ground
+}
+
+// 6 kV on 37 um is 162 V/um, 203 % of the 80 V/um breakdown field: a violation naming DEA A
+// (6000/37e-6/80e6 = 2.027, the closed form of the field fraction, to 1e-12 relative).
+TEST(CircuitValidity, BreakdownFieldOfACircuitDrivenDeaIsAViolation) {
+  const Scene scene = read_scene(kTweezer, {"circuit.src_A.high=6kV"});
+  const Validity validity = check_validity(scene, {}, drive_peak_voltages(scene));
+  ASSERT_FALSE(validity.within());
+  EXPECT_EQ(validity.violations[0].subject, "A");
+  EXPECT_NEAR(validity.field_fraction, 6000.0 / 37e-6 / 80e6, 1e-12 * 2.03);
+  EXPECT_EQ(validity.summary.find("no DEA driven"), std::string::npos) << validity.summary;
+  EXPECT_NE(validity.summary.find("bound:"), std::string::npos) << validity.summary;
+}
+
+// An inductor in the DEA's part of the circuit leaves the RC class: no bound, and the summary
+// says so, naming the element, rather than "no DEA driven".
+TEST(CircuitValidity, NoKnownBoundSaysFieldNotChecked) {
+  std::string text = read_scene_file(kTweezer);
+  const std::string resistor =
+      "kind = \"resistor\"\nfrom = \"in_A\"\nto = \"dea.A\"\nvalue = \"4.7 MOhm\"";
+  const std::size_t at = text.find(resistor);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, resistor.size(),
+               "kind = \"inductor\"\nfrom = \"in_A\"\nto = \"dea.A\"\nvalue = \"1 H\"");
+  const Scene scene = read_scene_text(text, kTweezer);
+  const CircuitVoltageBound a = circuit_voltage_bound(scene, "A");
+  EXPECT_FALSE(a.bounded);
+  EXPECT_NE(a.reason.find("circuit[R_A]"), std::string::npos) << a.reason;
+  const Validity validity = check_validity(scene, {}, drive_peak_voltages(scene));
+  EXPECT_NE(validity.summary.find("field not checked for circuit-driven DEA A"), std::string::npos)
+      << validity.summary;
+  EXPECT_EQ(validity.summary.find("no DEA driven"), std::string::npos) << validity.summary;
+}
+
+// The program: at 6 kV / 37 um the tweezer warns and exits 5 (kExitOutsideValidity) in static;
+// the shipped 2.5 kV says its field fraction (2500/37e-6/80e6 = 84.5 %) and exits 0.
+TEST(CliCircuitValidity, TweezerAtSixKilovoltsExitsOutsideValidity) {
+  const std::string raised = " --set circuit.src_A.high=6kV --set dea.A.dielectric_thickness=37um";
+  const auto run = run_emnet("static " + kTweezer + raised);
+  EXPECT_EQ(run.status, kExitOutsideValidity) << run.out << run.err;
+  EXPECT_NE(run.out.find("WARNING"), std::string::npos) << run.out;
+  const auto shipped = run_emnet("static " + kTweezer);
+  EXPECT_EQ(shipped.status, 0) << shipped.out << shipped.err;
+  EXPECT_NE(shipped.out.find("84.5 % of its breakdown field"), std::string::npos) << shipped.out;
+  EXPECT_EQ(shipped.out.find("no DEA driven"), std::string::npos) << shipped.out;
+}
+
+}  // namespace
+}  // namespace emnet
