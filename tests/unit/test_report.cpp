@@ -82,8 +82,9 @@ TEST(Json, ModesStudyHasTheProgramsKeysAndFiniteNumbers) {
   std::vector<std::string> keys;
   for (auto it = json.begin(); it != json.end(); ++it) keys.push_back(it.key());
   EXPECT_EQ(keys, (std::vector<std::string>{"scene", "automatic_choices", "segments", "modes",
-                                            "real_poles", "rigid_body_modes", "method", "complete",
-                                            "pencil_size", "cost"}));
+                                            "real_poles", "mode_rule", "overdamped_pairs",
+                                            "rigid_body_modes", "method", "complete", "pencil_size",
+                                            "cost"}));
   ASSERT_EQ(json["modes"].size(), 2u);
   for (const char* key :
        {"frequency_hz", "damping_ratio", "natural_frequency_hz", "pole", "relative_residual",

@@ -61,7 +61,11 @@ int run_modes_command(const CommonOptions& options, const emnet::ModesStudyOptio
               << (result.complete ? " (every finite pole of the pencil)"
                                   : " shift-invert Arnoldi (the poles nearest 0)")
               << ", " << study.modes.size() << " oscillatory shown, " << result.real_poles.size()
-              << " real pole(s), " << result.overdamped_pairs.size() << " overdamped pair(s)"
+              << " real pole(s)"
+              << (result.overdamped_pairs.empty()
+                      ? std::string()
+                      : ", " + std::to_string(result.overdamped_pairs.size()) +
+                            " overdamped pair(s)")
               << (rigid_names.empty() ? "" : ", rigid-body motion: " + rigid_names.front()) << "\n"
               << (result.note.empty()
                       ? ""
