@@ -8,15 +8,14 @@
 #include <string>
 
 #include "emnet/report/plot.hpp"
+#include "gnuplot_on_path.hpp"
 #include "test_directory.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-bool gnuplot_available() {
-  return std::system("command -v gnuplot >/dev/null 2>&1") == 0;
-}
+using emnet::testing::gnuplot_available;
 
 class PlotNames : public emnet::testing::TestDirectory {
  protected:
