@@ -10,6 +10,7 @@
 
 #include "emnet/analysis/operating_point.hpp"
 #include "emnet/core/stopwatch.hpp"
+#include "emnet/core/units.hpp"
 #include "emnet/studies/segment_selection.hpp"
 
 namespace emnet {
@@ -155,12 +156,11 @@ void match_refined_modes(ModesStudyResult& result, const std::vector<Mode>& mode
       errors.push_back(richardson_error(modes[k].frequency_hz, refined[best_index].frequency_hz));
       correlations.push_back(best);
     } else {
-      char text[160];
-      std::snprintf(text, sizeof text,
-                    "mode %zu (%.6g Hz): no mode of the 2N mesh has its shape (best modal "
-                    "assurance %.3g, below %.2g); its discretisation error is not estimated",
-                    k + 1, modes[k].frequency_hz, best, kModeShapeMatchLimit);
-      result.notes.push_back(text);
+      result.notes.push_back(
+          "mode " + std::to_string(k + 1) + " (" + format_number("%.6g Hz", modes[k].frequency_hz) +
+          "): no mode of the 2N mesh has its shape (best modal assurance " +
+          format_number("%.3g", best) + ", below " + format_number("%.2g", kModeShapeMatchLimit) +
+          "); its discretisation error is not estimated");
       errors.push_back(std::numeric_limits<double>::quiet_NaN());
       correlations.push_back(std::numeric_limits<double>::quiet_NaN());
     }
