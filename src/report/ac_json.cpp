@@ -15,7 +15,7 @@ Json to_json(const AcStudyResult& result, const Model& model, const std::vector<
   Json out;
   out["scene"] = model.scene.name;
   out["automatic_choices"] = to_json(model.automatic_choices);
-  out["segments"] = model.scene.beam.segments;
+  add_mesh_json(out, model);
   out["input"] = input;
   out["frequencies_hz"] = result.ac.frequencies;
   out["probes"] = Json::array();

@@ -42,6 +42,11 @@ Json to_json(const std::vector<AutomaticChoice>& automatic_choices) {
   return choices;
 }
 
+void add_mesh_json(Json& out, const Model& model) {
+  out["segments"] = static_cast<int>(model.beam.segment_lengths.size());
+  if (model.beam.raised_from > 0) out["segments_asked"] = model.beam.raised_from;
+}
+
 Json to_json(const ModalReduction& m, bool tolerance_met) {
   return {{"status", tolerance_met ? "met" : "NOT MET"},
           {"tolerance", m.tolerance},
@@ -60,7 +65,7 @@ Json to_json(const ModesStudyResult& result, const std::vector<Probe>& probes,
   Json out;
   out["scene"] = model.scene.name;
   out["automatic_choices"] = to_json(model.automatic_choices);
-  out["segments"] = model.scene.beam.segments;
+  add_mesh_json(out, model);
   out["modes"] = Json::array();
   for (const auto& entry : result.modes) {
     const Mode& m = entry.mode;
@@ -186,7 +191,7 @@ Json to_json(const Model& model, const StaticResult& rest,
   Json out;
   out["scene"] = model.scene.name;
   out["automatic_choices"] = to_json(model.automatic_choices);
-  out["segments"] = model.scene.beam.segments;
+  add_mesh_json(out, model);
   out["nodes"] = Json::array();
   for (const auto& row : nodes)
     out["nodes"].push_back({{"x_m", row[0]}, {"deflection_m", row[1]}, {"rotation_rad", row[2]}});

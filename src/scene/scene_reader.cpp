@@ -238,6 +238,12 @@ void SceneReader::read_sections(const toml::table& root, Scene& scene) const {
                                  ", more than the 100000 a "
                                  "beam may have");
     beam.segments = fixed_segments;
+  } else if (!beam.auto_segments && every_section_fixed && fixed_segments != beam.segments) {
+    owner.fail("segments", "is " + std::to_string(beam.segments) +
+                               ", but every section gives its own segment count, adding up to " +
+                               std::to_string(fixed_segments) + " (the mesh they build): leave " +
+                               "beam.segments out, or change the sections' counts " +
+                               "(section[k].segments)");
   } else if (!beam.auto_segments && fixed_segments > beam.segments) {
     owner.fail("segments", "is the beam's total, " + std::to_string(beam.segments) +
                                ", but the sections' own segment counts add up to " +

@@ -54,15 +54,13 @@ double modal_assurance(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b) {
   return norms > 0.0 ? std::norm(a.dot(b)) / norms : 0.0;
 }
 
-// The modes of `scene` refined to 2N segments, each as its frequency and its shape at the
-// coarse beam nodes `x` (empty when its modal analysis fails: the estimate is then left out,
+// The modes of `scene` with every segment halved (2N segments), each as its frequency and its shape
+// at the coarse beam nodes `x` (empty when its modal analysis fails: the estimate is then left out,
 // not the study); a failed operating point of the refined model fails the study.
 Status refined_modes(const Scene& scene, const ModesStudyOptions& options, int count,
                      const std::vector<double>& x, std::vector<RefinedMode>& refined) {
   Scene doubled = scene;
-  doubled.beam.segments = 2 * scene.beam.segments;
-  doubled.beam.auto_segments = false;
-  for (SectionSpec& section : doubled.beam.sections) section.segments *= 2;
+  doubled.beam.refinement = 2;  // every segment of N halved: the nested 2N mesh
   show_phase(options.progress, "building the network");
   const Model fine_model = prepare_model(doubled, options.prepare);
   const System fine_system = fine_model.network.assemble();

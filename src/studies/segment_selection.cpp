@@ -107,13 +107,18 @@ SegmentSelection select_segments(const BeamSpec& beam, double band_from, double 
                                  const std::vector<double>& attachments) {
   const auto start = std::chrono::steady_clock::now();
   SegmentSelection selection;
-  std::map<int, std::vector<double>> cache;
+  // By (N, refinement): the 2N of an estimate is N's mesh with every segment halved.
+  std::map<std::pair<int, int>, std::vector<double>> cache;
   int wanted = 0;  // modes requested from large (Arnoldi) solves
-  auto frequencies = [&](int segments) -> const std::vector<double>& {
-    auto found = cache.find(segments);
+  auto frequencies = [&](int segments, int refinement = 1) -> const std::vector<double>& {
+    auto found = cache.find({segments, refinement});
     if (found != cache.end()) return found->second;
     ++selection.modal_solves;
-    return cache.emplace(segments, beam_frequencies(beam, segments, wanted, attachments))
+    BeamSpec refined = beam;
+    refined.refinement = refinement;
+    return cache
+        .emplace(std::make_pair(segments, refinement),
+                 beam_frequencies(refined, segments, wanted, attachments))
         .first->second;
   };
 
@@ -139,7 +144,7 @@ SegmentSelection select_segments(const BeamSpec& beam, double band_from, double 
       throw std::runtime_error("segment selection: the tolerance " +
                                format_number("%.3g", tolerance) + " needs more than " +
                                std::to_string(maximum_segments) + " segments");
-    const std::vector<double> fine = frequencies(2 * segments);
+    const std::vector<double> fine = frequencies(segments, 2);
     const std::vector<double> coarse = frequencies(segments);
     std::vector<size_t> band;
     for (size_t i = 0; i < fine.size(); ++i)

@@ -79,18 +79,21 @@ TEST(Mesh, NodeAtEveryAttachmentAndSegmentsSpreadByLength) {
   EXPECT_EQ(mesh.segments(), 10);
   EXPECT_EQ(mesh.raised_from, 0);
   // 0.33 m and 0.67 m share 10 segments by length: a node at the mass, equal segments within
-  // each interval, none much longer than L/N (the greedy spread of 5, doubled: 4 and 6).
+  // each interval, the longest as short as ten can make it (3 and 7: 0.110 m and 0.0957 m;
+  // 4 and 6 would leave 0.112 m).
   int at_mass = -1;
   for (size_t k = 0; k < mesh.x.size(); ++k)
     if (mesh.x[k] == 0.33) at_mass = static_cast<int>(k);
-  ASSERT_EQ(at_mass, 4);
+  ASSERT_EQ(at_mass, 3);
   for (size_t k = 0; k + 1 < mesh.x.size(); ++k)
-    EXPECT_NEAR(mesh.x[k + 1] - mesh.x[k], k < 4 ? 0.33 / 4 : 0.67 / 6, 1e-15);
-  // 2N halves every segment: the N/2N error estimates compare nested meshes.
-  beam.segments = 20;
+    EXPECT_NEAR(mesh.x[k + 1] - mesh.x[k], k < 3 ? 0.33 / 3 : 0.67 / 7, 1e-15);
+  // Refinement 2 halves every segment: the N/2N error estimates compare nested meshes.
+  beam.refinement = 2;
   const BeamMesh doubled = mesh_beam(beam, {});
   ASSERT_EQ(doubled.segments(), 20);
-  for (size_t k = 0; k < mesh.x.size(); ++k) EXPECT_NEAR(doubled.x[2 * k], mesh.x[k], 1e-15);
+  for (size_t k = 0; k < mesh.x.size(); ++k) EXPECT_EQ(doubled.x[2 * k], mesh.x[k]);
+  for (size_t k = 0; k + 1 < mesh.x.size(); ++k)
+    EXPECT_NEAR(doubled.x[2 * k + 1], 0.5 * (mesh.x[k] + mesh.x[k + 1]), 1e-15);
 }
 
 TEST(Mesh, SectionsWithTheirOwnCountsAndMoreIntervalsThanSegments) {

@@ -92,6 +92,7 @@ TEST(AcJson, KeysInOrderAndValuesMatchTheClosedForm) {
   Model model;
   model.scene.name = "one mass";
   model.scene.beam.segments = 3;
+  model.beam.segment_lengths.assign(3, 0.1);  // the mesh built: what "segments" reports
 
   const Json json = to_json(study, model, probes, "a unit force", 1.5);
   std::vector<std::string> keys;

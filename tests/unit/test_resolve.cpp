@@ -127,13 +127,14 @@ TEST(ResolveStep, FluidLoadingNotesAsPrintedBefore) {
   ASSERT_GE(automatic.notes.size(), 2u);
   EXPECT_EQ(automatic.notes[0],
             "fluid loading, water (rho = 998.2 kg/m^3, eta = 0.001002 Pa*s, plate width 25 mm), "
-            "Sader 1998: at 2.2397 Hz, the loaded beam's first undamped resonance (fixed point in "
-            "7 steps from the bare beam's 6.44 Hz): Re = 2190, Gamma = 1.0828 + 0.0705i; added "
-            "mass 530.6 g/m (7.27 x the beam's), damping 0.4862 N*s/m^2 to ground");
+            "Sader 1998: at 2.2396 Hz, the loaded beam's first undamped resonance (fixed point in "
+            "7 steps from the bare beam's 6.44 Hz): Re = 2190, Gamma = 1.0828 + 0.07051i; added "
+            "mass 530.6 g/m (7.27 x the beam's), damping 0.4861 N*s/m^2 to ground");
   const std::string& choice = automatic.notes[1];
-  // (The numbers since the mesher puts a node at the DEAs' end, 70 mm, for every N.)
+  // (The numbers since the mesher puts a node at the DEAs' end, 70 mm, for every N, and spreads
+  // the segments by length at every N, 2N being N's mesh halved.)
   EXPECT_EQ(choice.rfind("beam.segments = \"auto\" on the fluid-loaded beam: N = 22: estimated "
-                         "discretisation error 0.00092 over 1 mode(s) up to 2.2413 Hz",
+                         "discretisation error 0.00098 over 1 mode(s) up to 2.2412 Hz",
                          0),
             0u)
       << choice;

@@ -14,8 +14,10 @@
 //      section[].segments spreads that many (at least one per interval) over its intervals; the
 //      other sections share the rest of N (at least one segment per interval). Within a share,
 //      each further segment goes to the interval whose segments are longest (the smallest
-//      largest segment for the count), and an interval's segments are equal. An even share that
-//      could be halved is spread as twice its half, so that 2N halves every segment of N.
+//      largest segment for the count), and an interval's segments are equal: a spread by length
+//      at every N.
+//   3. BeamSpec::refinement > 1 cuts each segment of that mesh into as many equal ones: the
+//      nested finer mesh of the N/2N error estimates (every node of N is a node of 2N).
 // The total can exceed beam.segments when there are more intervals than segments; the mesh says
 // so (BeamMesh::raised_from).
 #pragma once
@@ -30,7 +32,7 @@ namespace emnet {
 struct BeamMesh {
   std::vector<double> x;     // node positions [m], x.front() = 0, x.back() = beam.length
   std::vector<int> section;  // per segment: its index in effective_sections(beam)
-  // The uniform grid of rule 1 (segment length exactly beam.length / N).
+  // The uniform grid of rule 1 (segment length exactly beam.length / N, before refinement).
   bool uniform = false;
   // beam.segments when the attachments needed more segments than it gives; else 0.
   int raised_from = 0;

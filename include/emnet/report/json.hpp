@@ -35,6 +35,10 @@ Json to_json(const Validity& validity);
 // tolerance, band_hz [from, to], seconds).
 Json to_json(const std::vector<AutomaticChoice>& automatic_choices);
 
+// The mesh built: "segments" (the model's segment count, which the attachments can raise above
+// beam.segments) and, when they did, "segments_asked" (beam.segments). Into `out`.
+void add_mesh_json(Json& out, const Model& model);
+
 // A reduced model: status ("met" / "NOT MET" from `tolerance_met`), tolerance, band_hz,
 // cutoff_hz, kept_modes, kept_real_poles, truncated_poles, full_unknowns, modal_method.
 Json to_json(const ModalReduction& reduction, bool tolerance_met);

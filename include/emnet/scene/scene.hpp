@@ -71,6 +71,9 @@ struct BeamSpec {
   // beam.segments = "auto": the resolve step chooses N from [model] (segments is 0 until
   // then; emnet/studies/segment_selection.hpp). An integer, or --segments N, sets it false.
   bool auto_segments = false;
+  // Not a scene key: each segment of the mesh of `segments` is cut into this many equal ones
+  // (emnet/model/mesh.hpp rule 3). 2 gives the N/2N error estimates their nested 2N mesh.
+  int refinement = 1;
   double bending_stiffness = 0.0;                   // beam.bending_stiffness EI [N·m²]
   double mass_per_length = 0.0;                     // beam.mass_per_length ρA [kg/m]
   double rotary_inertia_per_length = 0.0;           // beam.rotary_inertia_per_length ρI [kg·m]

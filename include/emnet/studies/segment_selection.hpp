@@ -2,11 +2,11 @@
 //
 // Convergence model: the lumped-mass chain's modal frequencies converge to the continuum
 // beam's as O(N⁻²), f_N = f∞·(1 + a/N² + …). Richardson extrapolation from N and
-// 2N removes the leading term, f∞ ≈ f_2N + (f_2N − f_N)/3, and estimates the error of N as
-// e_N = |f_N − f∞|/f∞; the worst e_N over the modes in the band (at least the first mode) is
-// the error of N.
-// Search: start from N₀ = 4·k segments, k the number of modes up to the band's top (several
-// segments per half wavelength: mode k has about k half waves); halve while N₀ already
+// 2N (N's mesh with every segment halved, BeamSpec::refinement = 2, so that a is the same
+// constant on both) removes the leading term, f∞ ≈ f_2N + (f_2N − f_N)/3, and estimates the error
+// of N as e_N = |f_N − f∞|/f∞; the worst e_N over the modes in the band (at least the first mode)
+// is the error of N. Search: start from N₀ = 4·k segments, k the number of modes up to the band's
+// top (several segments per half wavelength: mode k has about k half waves); halve while N₀ already
 // meets the tolerance (down to 2·k), else double until it does; then, inside the bracket
 // (largest failing N, smallest passing N), predict N from e ∝ N⁻² (up to three predictions,
 // each one evaluated) and bisect the rest to one segment.
@@ -44,8 +44,9 @@ struct BandOfInterest {
 BandOfInterest band_of_interest(const Scene& scene, const std::string& key);
 
 // Undamped modal frequencies [Hz] of the bare beam chain `beam` (with its point masses and
-// springs) cut into `segments`, with a node at each of `attachments` (the scene's DEA ends and
-// loads, scene_attachment_points), the lowest `count` (all, for a small chain).
+// springs) cut into `segments` (each cut again into beam.refinement), with a node at each of
+// `attachments` (the scene's DEA ends and loads, scene_attachment_points), the lowest `count` (all,
+// for a small chain).
 std::vector<double> beam_frequencies(const BeamSpec& beam, int segments, int count,
                                      const std::vector<double>& attachments = {});
 
