@@ -296,22 +296,24 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
             "shift-invert Arnoldi converged to no pole in " + std::to_string(result.iterations) +
             " restarts (the poles nearest s = 0 form a cluster); --dense computes every pole of "
             "a pencil up to its size limit"));
-      int oscillatory = 0, real = 0;
+      // Modes by the mode rule (is_resonance); real poles and overdamped pairs are the
+      // others, which take converged places without being wanted.
+      int resonant = 0, others = 0;
       for (const Complex& mu : right_pairs.values)
-        (std::abs(mu.imag()) > kNearlyReal * std::abs(mu) ? oscillatory : real) += 1;
-      // Growing the request helps only when real poles took converged places; a request that
+        (is_resonance(sigma_hat - 1.0 / mu) ? resonant : others) += 1;
+      // Growing the request helps only when the others took converged places; a request that
       // did not converge has reached a cluster, and a larger one would not converge either.
       const bool grow =
-          converged == nev && oscillatory / 2 < wanted_modes && attempt < 2 && nev < n - 3;
+          converged == nev && resonant / 2 < wanted_modes && attempt < 2 && nev < n - 3;
       if (!grow) {
         // A shortfall matters when it costs wanted modes (not when only the partner of the
         // last conjugate pair is missing: the pair stands for itself, poles_of).
-        if (converged < nev && (oscillatory + 1) / 2 < wanted_modes)
+        if (converged < nev && (resonant + 1) / 2 < wanted_modes)
           result.note = std::to_string(converged) + " of the " + std::to_string(nev) +
                         " poles requested converged";
         break;
       }
-      nev = std::min(n - 3, std::max(2 * nev, real + 2 * wanted_modes));
+      nev = std::min(n - 3, std::max(2 * nev, others + 2 * wanted_modes));
     }
     if (options.error_bounds) {
       ShiftInvertOperator transposed(lu, e_hat, rigid.left, rigid.transposed_projector_left, true,
@@ -388,10 +390,9 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
       const double y_norm = y.norm();
       mode.vector = y_norm > 0.0 ? Eigen::VectorXcd(y / y_norm) : y;
     }
-    std::vector<Mode>& list = !oscillatory ? result.real_poles
-                              : mode.damping_ratio < kResonanceDampingLimit
-                                  ? result.modes
-                                  : result.overdamped_pairs;
+    std::vector<Mode>& list = !oscillatory              ? result.real_poles
+                              : is_resonance(mode.pole) ? result.modes
+                                                        : result.overdamped_pairs;
     list.push_back(std::move(mode));
   }
   std::sort(result.modes.begin(), result.modes.end(),

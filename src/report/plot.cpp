@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "emnet/analysis/analysis.hpp"
 #include "gnuplot_script.hpp"
 
 namespace emnet {
@@ -316,7 +317,7 @@ std::string title_text(const std::string& title, size_t width, int& lines) {
 }  // namespace
 
 bool resonance_shows_peak(double damping_ratio) {
-  return damping_ratio < 0.70710678118654752;  // 1/sqrt(2)
+  return damping_ratio < kResonanceDampingLimit;  // the mode rule's limit (kModeRule)
 }
 
 Status write_bode_plot(const std::string& path, const std::string& title,

@@ -86,7 +86,7 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
   std::vector<std::pair<double, double>> resonances;
   if (result.reduction) {
     for (const auto& kept : result.reduction->model.kept)
-      if (kept.oscillatory && -kept.pole.real() < kResonanceDampingLimit * std::abs(kept.pole))
+      if (kept.oscillatory && is_resonance(kept.pole))
         resonances.emplace_back(std::abs(kept.pole.imag()) / two_pi,
                                 -kept.pole.real() / std::abs(kept.pole));
     std::sort(resonances.begin(), resonances.end());
@@ -98,8 +98,7 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
     double largest = 0.0;
     for (const auto& pole : result.ac.poles) largest = std::max(largest, std::abs(pole));
     for (const auto& pole : result.ac.poles)
-      if (pole.imag() > kNearlyReal * std::abs(pole) && std::abs(pole) > 1e-9 * largest &&
-          -pole.real() < kResonanceDampingLimit * std::abs(pole))  // a mode (kModeRule)
+      if (pole.imag() > 0.0 && std::abs(pole) > 1e-9 * largest && is_resonance(pole))
         resonances.emplace_back(pole.imag() / two_pi, -pole.real() / std::abs(pole));
     std::sort(resonances.begin(), resonances.end());
   } else {

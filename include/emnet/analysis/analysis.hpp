@@ -192,6 +192,14 @@ inline constexpr double kNearlyReal = 1e-5;
 // relaxation poles, e.g. Kelvin–Voigt or RC branches coupled through the structure) shows no
 // peak and moves with the mesh; it is listed apart, in ModalResult::overdamped_pairs.
 inline constexpr double kResonanceDampingLimit = 0.70710678118654752;
+// Whether `pole` [rad/s] (either one of its conjugate pair) is a numbered mode by kModeRule:
+// oscillatory (|Im s| above kNearlyReal·|s|) with damping ratio −Re s/|s| below
+// kResonanceDampingLimit. The one test of the modes, the AC markers and the Arnoldi request.
+inline bool is_resonance(std::complex<double> pole) {
+  const double magnitude = std::abs(pole);
+  return std::abs(pole.imag()) > kNearlyReal * magnitude &&
+         -pole.real() < kResonanceDampingLimit * magnitude;
+}
 inline constexpr const char* kModeRule =
     "a mode is an oscillatory pole pair with damping ratio below 1/sqrt(2) (a resonance with a "
     "peak); pairs at or above it are listed apart as overdamped pairs";
