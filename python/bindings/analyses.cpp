@@ -221,23 +221,27 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
 
 py::dict run_sweep(const SceneHandle& handle, std::vector<double> frequencies, double from_hz,
                    double to_hz, double step_hz, const std::string& method, int samples,
-                   double rtol, const std::vector<std::string>& outputs) {
+                   double rtol, const std::vector<std::string>& outputs,
+                   const std::vector<std::string>& sources) {
   emnet::Stopwatch stopwatch;
   emnet::SwitchingSweepResult result;
   emnet::SweptModel swept;
   {
     py::gil_scoped_release release;
-    if (method != "exact" && method != "shooting")
-      throw InputError("method", "method", "must be 'exact' or 'shooting', got '" + method + "'");
+    if (method != "auto" && method != "exact" && method != "shooting")
+      throw InputError("method", "method",
+                       "must be 'auto', 'exact' or 'shooting', got '" + method + "'");
     emnet::SwitchingSweepOptions options;
     options.frequencies = frequencies;
     options.from = from_hz;
     options.to = to_hz;
     options.step = step_hz;
     options.method = method == "shooting" ? emnet::SwitchingSweepMethod::shooting
-                                          : emnet::SwitchingSweepMethod::exact;
+                     : method == "exact"  ? emnet::SwitchingSweepMethod::exact
+                                          : emnet::SwitchingSweepMethod::automatic;
     options.samples = samples;
     options.rtol = rtol;
+    options.sources = sources;
     emnet::check_switching_sweep_options(options);
     const auto grid = emnet::switching_frequencies(options);
     swept = emnet::prepare_swept_model(with_segments(handle.scene), options.method, outputs,
@@ -458,7 +462,7 @@ void bind_analyses(py::module_& m) {
         arg("start") = "rest", arg("points_per_period") = 100, arg("outputs") = none);
   m.def("sweep_switching", &run_sweep, arg("scene"), arg("frequencies") = std::vector<double>{},
         arg("from_hz") = 1.0, arg("to_hz") = 7.0, arg("step_hz") = 0.1, arg("method") = "exact",
-        arg("samples") = 0, arg("rtol") = 1e-9, arg("outputs") = none);
+        arg("samples") = 0, arg("rtol") = 1e-9, arg("outputs") = none, arg("sources") = none);
   m.def("identify", &run_identify, arg("scene"), arg("target_hz"),
         arg("parameter") = "beam.bending_stiffness", arg("mode") = 1);
   m.def("sensitivity", &run_sensitivity, arg("scene"), arg("modes") = 3, arg("parameters") = none,

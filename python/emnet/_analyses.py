@@ -2,7 +2,7 @@
 
 from . import _emnet
 from ._results import Result
-from ._scene import as_scene
+from ._scene import as_scene, numbers
 
 
 def _probes(probes):
@@ -75,20 +75,24 @@ def tran(scene, periods=10.0, switching_hz=None, method="ida", rtol=1e-6, atol=0
 
 
 def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1,
-                    method="exact", samples=0, rtol=1e-9, outputs=None):
+                    method="auto", samples=0, rtol=1e-9, outputs=None, sources=None):
     """Periodic steady-state extremes against the switching frequency (as `emnet sweep-switching`).
 
-    frequencies [Hz] (or from_hz, to_hz, step_hz); method "exact" (linear networks; DEAs as
-    ideal voltage-driven forces, with a note) or "shooting" (IDA, any network; rtol).
+    frequencies [Hz] (or from_hz, to_hz, step_hz); method "auto" (exact for a linear network,
+    reduced above 1000 unknowns, shooting where a [[circuit]] drives the DEAs; the choice in the
+    notes), "exact" (linear networks; DEAs as ideal voltage-driven forces, with a note) or
+    "shooting" (IDA, any network; rtol). sources:
+    the [[circuit]] sources whose frequency is swept (default every periodic one), each keeping
+    its levels, duty, rise/fall and its delay as a fraction of the period.
 
     Returns a Result with frequencies_hz [Hz]; outputs {name: {unit, description, left, right}}:
     the periodic minimum (left) and maximum (right) per frequency in the output's unit; peak_hz
     (the largest peak-to-peak of the last output); accuracy (worst_periodicity_residual); cost;
     notes; validity.
     """
-    return Result(_emnet.sweep_switching(as_scene(scene)._handle, list(frequencies or []),
+    return Result(_emnet.sweep_switching(as_scene(scene)._handle, numbers(frequencies, "frequencies"),
                                          from_hz, to_hz, step_hz, method, samples, rtol,
-                                         _probes(outputs)))
+                                         _probes(outputs), _probes(sources)))
 
 
 def identify(scene, target_hz, parameter="beam.bending_stiffness", mode=1):

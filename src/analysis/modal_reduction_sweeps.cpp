@@ -145,10 +145,48 @@ ReducedPeriodicSolver::ReducedPeriodicSolver(const System& system,
     return;
   }
   ReductionOptions periodic = options;
-  periodic.cutoff_hz = options.band / options.tolerance;
+  if (!(periodic.cutoff_hz > 0.0)) periodic.cutoff_hz = options.band / options.tolerance;
   periodic.dense_limit = std::max(options.dense_limit, 600);
   periodic.series_correction = false;
   reduction_ = reduce_modal(system, Eigen::VectorXd::Zero(system.size()), inputs, periodic);
+}
+
+namespace {
+
+// The largest step of `w` within a period [its unit]: a pulse's high − low, a pwl's largest
+// difference between consecutive points, a sine's peak-to-peak, 0 for dc.
+double largest_step(const Waveform& w) {
+  switch (w.shape) {
+    case Waveform::Shape::pulse:
+      return std::abs(w.pulse_high - w.dc);
+    case Waveform::Shape::sine:
+      return 2.0 * std::abs(w.amplitude);
+    case Waveform::Shape::pwl: {
+      double step = 0.0;
+      for (size_t k = 0; k + 1 < w.points.size(); ++k)
+        step = std::max(step, std::abs(w.points[k + 1].second - w.points[k].second));
+      return step;
+    }
+    case Waveform::Shape::dc:
+      return 0.0;
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+double ReducedPeriodicSolver::edge_error_estimate(const System& system,
+                                                  const std::vector<Probe>& probes,
+                                                  const std::vector<double>& scale) const {
+  double worst = 0.0;
+  for (size_t p = 0; p < probes.size() && p < scale.size(); ++p) {
+    double error = 0.0;
+    for (size_t j = 0; j < waveforms_.size(); ++j)
+      error += std::abs(reduction_.correction_response(probes[p], 0.0, static_cast<int>(j))) *
+               largest_step(system.excitation.waveforms[static_cast<size_t>(waveforms_[j])]);
+    if (scale[p] > 0.0) worst = std::max(worst, error / scale[p]);
+  }
+  return worst;
 }
 
 PeriodicResult ReducedPeriodicSolver::solve(const System& given, const std::vector<Probe>& probes,

@@ -631,7 +631,7 @@ PeriodicResult run_periodic_shooting(const System& given, const std::vector<Prob
 }
 
 void check_periodic_memory(int unknowns, const std::string& option) {
-  const double bytes = kPeriodicDenseBytesPerUnknown2 * unknowns * static_cast<double>(unknowns);
+  const double bytes = periodic_memory_bytes(unknowns);
   if (bytes <= kPeriodicDenseMemoryLimit) return;
   throw InputError(option, option,
                    "the exact periodic method decomposes a dense matrix of the network's " +

@@ -3,6 +3,7 @@
 #include "emnet/model/drive.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "emnet/core/errors.hpp"
@@ -157,6 +158,105 @@ void check_overlap_fits(const Scene& scene, double frequency_hz, const std::stri
                          " makes DEA A's on-time leave the period " +
                          format_number("%.6g s", period) + " at " +
                          format_number("%.6g Hz", frequency_hz) + " (" + where + ")");
+}
+
+namespace {
+
+bool is_periodic(const WaveformSpec& w) {
+  switch (w.kind) {
+    case WaveformKind::square:
+    case WaveformKind::sine:
+      return w.frequency > 0.0;
+    case WaveformKind::pulse:
+      return w.period > 0.0;
+    case WaveformKind::dc:
+    case WaveformKind::pwl:
+      return false;
+  }
+  return false;
+}
+
+double own_frequency(const WaveformSpec& w) {
+  return w.kind == WaveformKind::pulse ? 1.0 / w.period : w.frequency;
+}
+
+}  // namespace
+
+std::vector<size_t> switched_sources(const Scene& scene, const std::vector<std::string>& names) {
+  std::vector<size_t> switched;
+  for (const std::string& name : names) {
+    auto found = std::find_if(scene.circuit.begin(), scene.circuit.end(),
+                              [&](const CircuitSpec& c) { return c.name == name; });
+    if (found == scene.circuit.end() || !is_source(found->kind))
+      throw InputError(scene.file, "circuit",
+                       "the switched source \"" + name + "\" is not a [[circuit]] source");
+    if (!is_periodic(found->waveform))
+      throw InputError(scene.file, "circuit." + name + ".waveform",
+                       "the switched source \"" + name + "\" has the non-periodic waveform \"" +
+                           waveform_kind_name(found->waveform.kind) +
+                           "\": only square, sine and pulse with a period switch");
+    const size_t index = static_cast<size_t>(found - scene.circuit.begin());
+    if (std::find(switched.begin(), switched.end(), index) == switched.end())
+      switched.push_back(index);
+  }
+  if (names.empty())
+    for (size_t k = 0; k < scene.circuit.size(); ++k)
+      if (is_source(scene.circuit[k].kind) && is_periodic(scene.circuit[k].waveform))
+        switched.push_back(k);
+  return switched;
+}
+
+std::vector<std::string> set_switching_frequency(Scene& scene, double frequency_hz,
+                                                 const std::vector<std::string>& sources) {
+  if (!(frequency_hz > 0.0) || !std::isfinite(frequency_hz))
+    throw InputError(scene.file, "drive.frequency",
+                     "a switching frequency must be finite and > 0 Hz, not " +
+                         format_number("%.6g", frequency_hz));
+  const std::vector<size_t> switched = switched_sources(scene, sources);
+  if (switched.empty() && !scene.circuit.empty() && scene.drive.kind == DriveKind::none)
+    throw InputError(scene.file, "circuit",
+                     "nothing switches: drive.kind is \"none\" and no [[circuit]] source has a "
+                     "periodic waveform (square, sine, pulse with a period)");
+  std::vector<std::string> notes;
+  scene.drive.frequency = frequency_hz;
+  const double period = 1.0 / frequency_hz;
+  std::vector<double> own;
+  for (size_t k : switched) {
+    CircuitSpec& source = scene.circuit[k];
+    WaveformSpec& w = source.waveform;
+    const double old_period = 1.0 / own_frequency(w);
+    own.push_back(own_frequency(w));
+    w.delay *= period / old_period;
+    if (w.kind == WaveformKind::pulse) {
+      w.width *= period / old_period;
+      w.period = period;
+    } else {
+      w.frequency = frequency_hz;
+    }
+    const double edges = w.kind == WaveformKind::sine ? 0.0 : w.rise + w.fall_time();
+    const double on = w.kind == WaveformKind::pulse ? w.width : 0.0;
+    if (!(edges + on < period))
+      throw InputError(scene.file, "circuit." + source.name + ".rise",
+                       "the rise and fall" + std::string(on > 0.0 ? " and the width" : "") +
+                           " of source \"" + source.name + "\" (" +
+                           format_with_unit(edges + on, "s") + ") do not fit in the period " +
+                           format_with_unit(period, "s") + " at " +
+                           format_with_unit(frequency_hz, "Hz"));
+  }
+  if (!own.empty() &&
+      *std::min_element(own.begin(), own.end()) != *std::max_element(own.begin(), own.end()))
+    notes.push_back("the switched sources had different frequencies (" +
+                    format_with_unit(*std::min_element(own.begin(), own.end()), "Hz") + " to " +
+                    format_with_unit(*std::max_element(own.begin(), own.end()), "Hz") +
+                    "): all are set to the switching frequency");
+  for (size_t k = 0; k < scene.circuit.size(); ++k)
+    if (is_source(scene.circuit[k].kind) &&
+        std::find(switched.begin(), switched.end(), k) == switched.end())
+      notes.push_back("source " + scene.circuit[k].name + " (" +
+                      waveform_kind_name(scene.circuit[k].waveform.kind) +
+                      (is_periodic(scene.circuit[k].waveform) ? ", not named" : ", not periodic") +
+                      ") keeps its own waveform");
+  return notes;
 }
 
 }  // namespace emnet

@@ -143,11 +143,12 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
       }
       cost.static_state += stopwatch.seconds();
     } else {
-      // The exact method's model: the DEAs as ideal voltage-driven forces where the scene has
-      // their electrical model (as `emnet sweep-switching`; the nominal scene passed
-      // prepare_swept_model's checks in column_layout).
+      // As `emnet sweep-switching` chooses (SwitchingSweepMethod::automatic): the exact
+      // method's model, the DEAs as ideal voltage-driven forces, where the scene has their
+      // electrical model through [drive]; shooting on the model as it is where a [[circuit]]
+      // drives them (the nominal scene passed prepare_swept_model's checks in column_layout).
       std::optional<Model> ideal;
-      if (system.is_nonlinear()) {
+      if (system.is_nonlinear() && model.scene.circuit.empty()) {
         Scene ideal_scene = model.scene;
         set_electrical_dynamics(ideal_scene, false);
         ideal = prepare_model(ideal_scene);
@@ -238,8 +239,8 @@ ColumnLayout column_layout(const Model& model, const DesignStudyOptions& options
                          [f](double g) { return std::abs(g - f) <= 1e-12 * f; }) -
             layout.sweep_frequencies.begin()));
       layout.sweep_outputs =
-          switching_sweep_outputs(prepare_swept_model(model.scene, SwitchingSweepMethod::exact, {},
-                                                      {}, layout.sweep_frequencies.back())
+          switching_sweep_outputs(prepare_swept_model(model.scene, SwitchingSweepMethod::automatic,
+                                                      {}, {}, layout.sweep_frequencies.back())
                                       .model,
                                   {});
       layout.columns.push_back("sweep.peak_hz");

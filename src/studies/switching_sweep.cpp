@@ -13,6 +13,7 @@
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/operating_point.hpp"
 #include "emnet/analysis/periodic.hpp"
+#include "emnet/analysis/transient.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/model/drive.hpp"
@@ -60,24 +61,65 @@ std::vector<double> switching_frequencies(const SwitchingSweepOptions& options) 
   return frequencies;
 }
 
-void check_swept_drive(const Scene& scene) {
+void check_swept_drive(const Scene& scene, const std::vector<std::string>& sources) {
   // (A scene of loads alone, drive kind none without a circuit, keeps its periodic state of
   // constant loads, as before.)
-  if (scene.drive.kind == DriveKind::none && !scene.circuit.empty())
-    throw InputError(scene.file, "drive.kind",
-                     "the switching sweep varies the frequency of the [drive]'s square wave, but "
-                     "the scene's drive.kind is \"none\" and its [[circuit]] sources keep their "
-                     "own waveforms: sweep a source's frequency with --set "
-                     "circuit.NAME.frequency=F and tran instead");
+  const std::vector<size_t> switched = switched_sources(scene, sources);
+  if (scene.drive.kind == DriveKind::none && !scene.circuit.empty() && switched.empty())
+    throw InputError(scene.file, "circuit",
+                     "the switching sweep varies the frequency of the [drive] and of the "
+                     "[[circuit]]'s periodic sources, but drive.kind is \"none\" and no "
+                     "circuit source is periodic (square, sine, pulse with a period)");
 }
+
+namespace {
+
+// `options` with SwitchingSweepMethod::automatic replaced by what it chooses (the header), the
+// reason in `notes`.
+SwitchingSweepOptions resolve_sweep_method(const Model& model, const SwitchingSweepOptions& given,
+                                           std::vector<std::string>& notes) {
+  SwitchingSweepOptions options = given;
+  if (options.method != SwitchingSweepMethod::automatic) return options;
+  const System system = model.network.assemble();
+  if (system.is_nonlinear() && !options.reduce) {
+    options.method = SwitchingSweepMethod::shooting;
+    notes.push_back("method: shooting, since the network is nonlinear (" +
+                    std::string(model.scene.circuit.empty()
+                                    ? "the DEAs' RC loops"
+                                    : "DEAs driven through the [[circuit]]") +
+                    "); the exact method needs a linear one");
+    return options;
+  }
+  options.method = SwitchingSweepMethod::exact;
+  if (options.reduce || system.size() <= options.dense_limit) return options;
+  options.reduce = true;
+  if (!(options.reduction.band > 0.0)) {
+    const std::vector<double> frequencies = switching_frequencies(options);
+    options.reduction.band = *std::max_element(frequencies.begin(), frequencies.end());
+    options.reduction.tolerance = model.scene.model.tolerance;
+  }
+  notes.push_back(
+      "method: reduced, since the network's " + std::to_string(system.size()) +
+      " unknowns are more than the " + std::to_string(options.dense_limit) +
+      " up to which the dense exact method is chosen (its time grows as the cube: it would " +
+      "need about " + format_number("%.3g", periodic_memory_bytes(system.size()) / 1e9) +
+      " GB); modes below f_c with a static correction, checked below");
+  return options;
+}
+
+}  // namespace
 
 void check_switching_sweep_options(const SwitchingSweepOptions& options) {
   switching_frequencies(options);
   const int samples = samples_or_default(options);
   if (samples < 8 || samples > 1000000)
     throw InputError("--samples", "--samples", "must be from 8 to 1000000 (inclusive)");
-  if (options.reduce && options.method != SwitchingSweepMethod::exact)
+  if (options.reduce && options.method == SwitchingSweepMethod::shooting)
     throw InputError("--reduce", "--method", "--reduce replaces the exact method, not shooting");
+  if (!valid_relative_tolerance(options.rtol))
+    throw InputError("--rtol", "--rtol", kRelativeToleranceRange);
+  if (options.dense_limit < 0)
+    throw InputError("dense_limit", "dense_limit", "must be >= 0 (a number of unknowns)");
 }
 
 SwitchingSweepResult run_switching_sweep(const Model& model, const SwitchingSweepOptions& options) {
@@ -85,16 +127,18 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const SwitchingSwee
 }
 
 SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
-                                         const SwitchingSweepOptions& options) {
+                                         const SwitchingSweepOptions& given) {
   const Stopwatch stopwatch;
-  check_switching_sweep_options(options);
+  check_switching_sweep_options(given);
+  std::vector<std::string> method_notes;
+  const SwitchingSweepOptions options = resolve_sweep_method(model, given, method_notes);
   const std::vector<double> frequencies = switching_frequencies(options);
   const int samples = samples_or_default(options);
   const bool exact = options.method == SwitchingSweepMethod::exact;
   const std::vector<Probe>& probes = options.outputs;
   if (probes.empty())
     throw InputError(model.scene.file, "probe", "the switching sweep needs at least one output");
-  check_swept_drive(scene);
+  check_swept_drive(scene, options.sources);
   if (options.reduce)
     for (const auto& probe : probes)
       if (probe.quantity != ProbeQuantity::deflection && probe.quantity != ProbeQuantity::rotation)
@@ -109,6 +153,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
 
   SwitchingSweepResult result;
   result.method = options.reduce ? "reduced" : exact ? "exact" : "shooting";
+  result.notes = method_notes;
   auto fail = [&](const std::string& message) {
     result.status = Status::failure(message);
     result.seconds = stopwatch.seconds();
@@ -118,8 +163,17 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   // the drive sources' waveforms made again per frequency (the same b(t) as a model built at
   // that frequency). With drive.electrical_dynamics = "auto" left in the scene the choice may
   // change with the frequency (its default band is 10 x f): then a model per frequency.
-  const bool excitation_only = !scene.drive.electrical_dynamics_auto;
-  if (!excitation_only)
+  const bool circuit_switched = !switched_sources(scene, options.sources).empty();
+  const bool excitation_only = !scene.drive.electrical_dynamics_auto && !circuit_switched;
+  if (circuit_switched) {
+    Scene probe_scene = scene;
+    for (const std::string& note : set_switching_frequency(probe_scene, highest, options.sources))
+      result.notes.push_back(note);
+    result.notes.push_back(
+        "the circuit's periodic sources switched at each sweep frequency (a model per "
+        "frequency), each keeping its levels, duty, rise and fall; a delay keeps its fraction "
+        "of the period");
+  } else if (!excitation_only)
     result.notes.push_back(
         "drive.electrical_dynamics = \"auto\": a model prepared per switching frequency (the "
         "choice of the DEAs' RC dynamics may change with it)");
@@ -149,7 +203,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
     } else {
       const Stopwatch model_stopwatch;
       Scene at = scene;
-      at.drive.frequency = f;
+      set_switching_frequency(at, f, options.sources);
       swept = prepare_model(at).network.assemble();
       result.model_seconds += model_stopwatch.seconds();
     }
@@ -261,14 +315,51 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   if (check && !result.frequencies.empty()) {
     // The full exact method at the first, the largest-swing and the last frequency, against the
     // reduced solution there (solved again: the sweep keeps no samples).
-    phase("checking the reduction against the full exact method");
+    phase("checking the reduction");
     const Stopwatch check_stopwatch;
     check->model = reduced->reduction();
     check->tolerance = options.reduction.tolerance;
     std::vector<size_t> picked{0, best, result.frequencies.size() - 1};
     std::sort(picked.begin(), picked.end());
     picked.erase(std::unique(picked.begin(), picked.end()), picked.end());
+    // The reference: the full exact method where its dense decomposition is the automatic
+    // choice's size, else a reduction with ten times the cut-off.
+    check->against_full = result.unknowns <= options.dense_limit;
     std::unique_ptr<PeriodicSolver> full;
+    std::unique_ptr<ReducedPeriodicSolver> wider;
+    ReductionOptions wider_options = options.reduction;
+    wider_options.cutoff_hz = 10.0 * check->model.cutoff_hz;
+    check->reference = check->against_full
+                           ? "the full exact periodic solution"
+                           : "a reduction with ten times the cut-off (" +
+                                 format_with_unit(wider_options.cutoff_hz, "Hz") + ")";
+    auto reference_at = [&](const System& system, double f) {
+      if (check->against_full) {
+        if (!full) {
+          const Stopwatch build_stopwatch;
+          full = std::make_unique<PeriodicSolver>(system);
+          check->full_build_seconds = build_stopwatch.seconds();
+        }
+        return full->solve(system, probes, 1.0 / f, samples);
+      }
+      if (!wider) {
+        phase("checking against a reduction with ten times the cut-off");
+        const Stopwatch build_stopwatch;
+        wider = std::make_unique<ReducedPeriodicSolver>(system, wider_options);
+        check->full_build_seconds = build_stopwatch.seconds();
+        check->reference += ", " + std::to_string(wider->reduction().kept_modes) + " mode(s) and " +
+                            std::to_string(wider->reduction().kept_real_poles) +
+                            " real pole(s) against " + std::to_string(check->model.kept_modes) +
+                            " and " + std::to_string(check->model.kept_real_poles);
+      }
+      if (!wider->reduction().status.ok) {
+        PeriodicResult failed;
+        failed.status =
+            Status::failure("the wider reduction: " + wider->reduction().status.message);
+        return failed;
+      }
+      return wider->solve(system, probes, 1.0 / f, samples);
+    };
     for (size_t k : picked) {
       if (cancel_requested(options.progress)) {
         result.cancelled = true;
@@ -276,12 +367,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
       }
       const double f = result.frequencies[k];
       const System& system = system_at(f);
-      if (!full) {
-        const Stopwatch build_stopwatch;
-        full = std::make_unique<PeriodicSolver>(system);
-        check->full_build_seconds = build_stopwatch.seconds();
-      }
-      const PeriodicResult exact_there = full->solve(system, probes, 1.0 / f, samples);
+      const PeriodicResult exact_there = reference_at(system, f);
       if (!exact_there.status.ok)
         return fail("sweep-switching --reduce check at " + format_with_unit(f, "Hz") + ": " +
                     exact_there.status.message);
@@ -298,7 +384,18 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
           check->reduced_solve_seconds > 0.0
               ? std::min({check->reduced_solve_seconds, solve_seconds_at[k], again->seconds})
               : std::min(solve_seconds_at[k], again->seconds);
-      const double error = periodic_difference(*again, exact_there);
+      double error = periodic_difference(*again, exact_there);
+      if (!check->against_full) {  // and what neither reduction keeps: the edge estimate
+        std::vector<double> scale;
+        for (const std::vector<double>& values : again->values) {
+          double largest = 0.0;
+          for (double v : values) largest = std::max(largest, std::abs(v));
+          scale.push_back(largest);
+        }
+        const double edge = reduced->edge_error_estimate(system, probes, scale);
+        check->edge_estimates.push_back(edge);
+        error = std::max(error, edge);
+      }
       if (!std::isfinite(error))
         return fail("sweep-switching --reduce check at " + format_with_unit(f, "Hz") +
                     ": non-finite difference between the reduced and the full solution");
@@ -335,14 +432,18 @@ SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
                                const std::string& probe_option) {
   SweptModel swept{prepare_model(scene, prepare), scene, {}};
   check_swept_drive(swept.model.scene);
-  if (method != SwitchingSweepMethod::exact) return swept;
+  if (method == SwitchingSweepMethod::shooting) return swept;
+  const bool automatic = method == SwitchingSweepMethod::automatic;
   for (const auto& text : probe_texts)
-    if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0)
+    if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0) {
+      if (automatic) return swept;  // the RC loop is asked for: shooting (run_switching_sweep)
       throw InputError(probe_option, text,
                        "the exact periodic method models the DEAs as ideal voltage-driven "
                        "forces, without the RC loop whose voltage and current this probe asks "
                        "for; use the shooting method");
+    }
   const bool nonlinear = swept.model.network.assemble().is_nonlinear();
+  if (nonlinear && !swept.model.scene.circuit.empty() && automatic) return swept;
   if (nonlinear && !swept.model.scene.circuit.empty())
     throw InputError(swept.model.scene.file, "circuit",
                      "the exact periodic method models the DEAs as ideal voltage-driven forces, "

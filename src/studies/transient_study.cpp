@@ -34,14 +34,11 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
   if (options.switching_hz) {
     if (!(*options.switching_hz > 0.0) || !std::isfinite(*options.switching_hz))
       refuse("switching", "must be a positive frequency in Hz (> 0)");
-    set_parameter(scene, "drive.frequency", *options.switching_hz);
+    set_switching_frequency(scene, *options.switching_hz);  // drive and periodic sources
   }
   if (!(options.periods > 0.0) || options.periods > 1e6)
     refuse("periods", "must be > 0 and at most 1e6 (inclusive)");
-  if (!(options.rtol >= 1e-13 && options.rtol < 1.0))
-    refuse("rtol",
-           "must be >= 1e-13 (below that, double-precision rounding of the residual exceeds the "
-           "tolerance) and < 1");
+  if (!valid_relative_tolerance(options.rtol)) refuse("rtol", kRelativeToleranceRange);
   if (!(options.atol >= 0.0) || !std::isfinite(options.atol)) refuse("atol", "must be >= 0");
   if (!(options.max_step >= 0.0) || !std::isfinite(options.max_step))
     refuse("max-step", "must be >= 0 (0: no limit)");

@@ -25,13 +25,14 @@ namespace {
 
 struct SweepOptions {
   double from = 1.0, to = 7.0, step = 0.1;
-  std::string method = "exact";
+  std::string method = "auto";
   int samples = 0;  // 0: the method's default
   double rtol = 1e-9;
   std::string plot;
   bool plot_script = false;
   bool reduce = false;
-  std::string tolerance, band;  // --reduce
+  std::string tolerance, band;       // --reduce
+  std::vector<std::string> sources;  // --source: the circuit sources switched (default all)
 };
 
 int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
@@ -41,10 +42,12 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   study.to = sweep.to;
   study.step = sweep.step;
   study.method = sweep.method == "shooting" ? emnet::SwitchingSweepMethod::shooting
-                                            : emnet::SwitchingSweepMethod::exact;
+                 : sweep.method == "exact"  ? emnet::SwitchingSweepMethod::exact
+                                            : emnet::SwitchingSweepMethod::automatic;
   study.samples = sweep.samples;
   study.rtol = sweep.rtol;
   study.reduce = sweep.reduce;
+  study.sources = sweep.sources;
   emnet::check_switching_sweep_options(study);
   check_plot_options(sweep.plot, sweep.plot_script);
   if (!sweep.reduce && (!sweep.tolerance.empty() || !sweep.band.empty()))
@@ -73,12 +76,11 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   const emnet::SwitchingSweepResult result = emnet::run_switching_sweep(model, swept.scene, study);
   if (result.cancelled) throw Interrupted("interrupted");
   if (!result.status.ok) throw NumericalFailure(result.status.message);
+  notes.insert(notes.end(), result.notes.begin(), result.notes.end());
   SweepReportInput report{options, model, result, notes};
   report.plot = sweep.plot;
   report.plot_script = sweep.plot_script;
   report.plotted = plotted;
-  report.reduce = sweep.reduce;
-  report.method = sweep.method;
   report.total_seconds = stopwatch.seconds();
   return report_switching_sweep(report);
 }
@@ -96,8 +98,12 @@ Command add_sweep_switching_command(CLI::App& app, CommonOptions& options) {
   sweep_command->add_option("--from", sweep_options->from, "first switching frequency [Hz] (1)");
   sweep_command->add_option("--to", sweep_options->to, "last switching frequency [Hz] (7)");
   sweep_command->add_option("--step", sweep_options->step, "frequency step [Hz] (0.1)");
-  sweep_command->add_option("--method", sweep_options->method, "exact (default) or shooting")
-      ->check(CLI::IsMember({"exact", "shooting"}));
+  sweep_command
+      ->add_option("--method", sweep_options->method,
+                   "auto (default: exact for a linear network, reduced above 1000 unknowns, "
+                   "shooting where the DEAs are driven through a nonlinear [[circuit]]), exact "
+                   "or shooting")
+      ->check(CLI::IsMember({"auto", "exact", "shooting"}));
   sweep_command->add_option("--samples", sweep_options->samples,
                             "samples per period before refining the extremes (default 64 "
                             "for the exact method, whose extremes are global whatever the "
@@ -112,6 +118,11 @@ Command add_sweep_switching_command(CLI::App& app, CommonOptions& options) {
   sweep_command->add_flag("--reduce", sweep_options->reduce,
                           "periodic state of a modal reduction (modes below band/tolerance, "
                           "static correction as a feed-through), checked against the exact one");
+  sweep_command->add_option("--source", sweep_options->sources,
+                            "a [[circuit]] source whose frequency is swept (repeatable; default "
+                            "every periodic source: square, sine, pulse with a period), keeping "
+                            "its levels, duty, rise/fall and its delay as a fraction of the "
+                            "period");
   add_reduction_tolerance_and_band(sweep_command, sweep_options->tolerance, sweep_options->band);
 
   return {sweep_command,

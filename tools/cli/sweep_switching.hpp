@@ -20,8 +20,6 @@ struct SweepReportInput {
   std::string plot;            // --plot path, or empty
   bool plot_script = false;    // --plot-script: the plot's .dat and .gp too
   PlottedOutputs plotted;      // what --plot draws
-  bool reduce = false;         // --reduce
-  std::string method;          // --method
   double total_seconds = 0.0;  // the command from its start
 };
 

@@ -71,9 +71,10 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   if (tran.switching) {
     if (!(*tran.switching > 0.0) || !std::isfinite(*tran.switching))
       throw InputError("--switching", "--switching", "must be a positive frequency in Hz (> 0)");
-    options.overrides.push_back("drive.frequency=" + format("%.17g", *tran.switching));
   }
   emnet::TransientStudyOptions study_options;
+  // The drive's and the circuit's periodic sources' frequency (emnet::set_switching_frequency).
+  study_options.switching_hz = tran.switching;
   study_options.periods = tran.periods;
   study_options.points_per_period = tran.points_per_period;
   study_options.method =

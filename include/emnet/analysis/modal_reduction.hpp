@@ -206,6 +206,15 @@ class ReducedPeriodicSolver {
   // (src/analysis/exponential_series.hpp): samples at t = T·s/samples.
   PeriodicResult solve(const System& system, const std::vector<Probe>& probes, double period,
                        int samples = 256) const;
+  // The error the static correction makes at the switching edges, for when no full solution
+  // fits: an edge starts the truncated poles' transients from their static part, which the
+  // feed-through D follows at once, so the reduced state is off by up to
+  //   max over probes of Σ_j |probe·D_j|·(largest step of input j's waveform) / scale[p]
+  // just after an edge (scale[p]: the probe's largest |value|). An estimate: an underdamped
+  // truncated pair can overshoot its static part (up to twice it), and a slowly decaying one
+  // carries over from the edges before. Sine inputs count their peak-to-peak as a step.
+  double edge_error_estimate(const System& system, const std::vector<Probe>& probes,
+                             const std::vector<double>& scale) const;
 
  private:
   ModalReduction reduction_;

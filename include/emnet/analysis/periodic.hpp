@@ -76,6 +76,14 @@ PeriodicResult run_periodic_shooting(const System& system, const std::vector<Pro
 constexpr double kPeriodicDenseBytesPerUnknown2 = 256.0;
 constexpr double kPeriodicDenseMemoryLimit = 4e9;  // bytes
 
+// Unknowns up to which an automatic choice takes the dense exact method: its decomposition
+// takes under a minute there (44 s at 1206 unknowns, above), a reduction beyond.
+constexpr int kPeriodicDenseAutomaticUnknowns = 1000;
+// The bytes of the dense decomposition of `unknowns` unknowns (the estimate above).
+inline double periodic_memory_bytes(int unknowns) {
+  return kPeriodicDenseBytesPerUnknown2 * unknowns * static_cast<double>(unknowns);
+}
+
 // InputError naming `option` when the exact periodic method's decomposition of `unknowns`
 // unknowns would need more than kPeriodicDenseMemoryLimit.
 void check_periodic_memory(int unknowns, const std::string& option);

@@ -26,10 +26,19 @@ enum class StartState {
   static_  // the static state under the sources' values at t = 0 (the first half-period)
 };
 
+// IDA's relative tolerance: at least 1e-13 (below it the double-precision rounding of the
+// residual exceeds the tolerance) and below 1; false for NaN.
+inline bool valid_relative_tolerance(double rtol) {
+  return rtol >= 1e-13 && rtol < 1.0;
+}
+constexpr const char* kRelativeToleranceRange =
+    "must be >= 1e-13 (below that, double-precision rounding of the residual exceeds the "
+    "tolerance) and < 1";
+
 struct TransientOptions {
   double end_time = 1.0;             // [s]
   std::vector<double> output_times;  // increasing, in [0, end_time]
-  double relative_tolerance = 1e-6;  // IDA
+  double relative_tolerance = 1e-6;  // IDA; valid_relative_tolerance
   double absolute_tolerance = 0.0;   // IDA; 0: relative_tolerance × a scale per unknown
   double max_step = 0.0;             // IDA; 0: unlimited
   StartState start = StartState::rest;

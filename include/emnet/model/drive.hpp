@@ -88,6 +88,27 @@ Excitation drive_excitation(const Model& model, const Excitation& assembled, dou
 // `which`, when given, receives that DEA's name.
 double drive_time_constant(const Scene& scene, std::string* which = nullptr);
 
+// The scene's periodic [[circuit]] sources: square and sine (frequency > 0) and pulse with a
+// period > 0. With `names` empty every one of them, else exactly those named (circuit[].name);
+// indices into scene.circuit. InputError naming the scene file and "circuit" for a name that
+// is not a circuit source or whose waveform is not periodic.
+std::vector<size_t> switched_sources(const Scene& scene, const std::vector<std::string>& names);
+
+// Sets the switching frequency of `scene` to `frequency_hz` [Hz], the one home of this for
+// the switching sweep, the design study's sweep and the transient's `switching_hz`:
+// drive.frequency (the [drive]'s square wave, and the period of a transient), and the
+// frequency of every source switched_sources(scene, sources) gives, all to the same F
+// (sources of different frequencies included). Each source keeps its levels (low > high, an
+// inverted source, included), duty, rise and fall [s] and sine phase; a pulse's period becomes
+// 1/F and its width keeps its fraction of the period; the delay keeps its fraction of the
+// period (a phase-shifted pair stays shifted by the same phase). Returns notes for the
+// sources left as they are (dc, pwl, a single pulse) and for sources whose own frequencies
+// differed. InputError (scene file, the circuit or drive key) when nothing switches (a
+// [[circuit]] without a periodic source and drive.kind = "none"), or when a source's rise
+// and fall (and a pulse's width) no longer fit in the period 1/F.
+std::vector<std::string> set_switching_frequency(Scene& scene, double frequency_hz,
+                                                 const std::vector<std::string>& sources = {});
+
 // drive.overlap is in seconds: DEA A's on-time duty·T + overlap must stay inside the period
 // (less the rise time at both edges) at the switching frequency `frequency_hz` too. InputError
 // naming the scene file and drive.overlap, and `where` (the option that asked for the frequency).

@@ -40,13 +40,18 @@
 
 namespace emnet {
 
-enum class SwitchingSweepMethod { exact, shooting };
+// automatic: exact where the swept network is linear (after prepare_swept_model, a [drive]'s
+// DEAs are ideal voltage-driven forces), shooting where it is not (DEAs driven through a
+// [[circuit]]); with exact, the reduction (`reduce`, at the model's tolerance and the sweep's
+// top as band) where the dense state matrix would exceed the memory limit
+// (check_periodic_memory). The choice and its reason are in the result's notes.
+enum class SwitchingSweepMethod { automatic, exact, shooting };
 
 struct SwitchingSweepOptions {
   // The switching frequencies [Hz]; when empty, from, from + step, … up to `to` (inclusive).
   std::vector<double> frequencies;
   double from = 1.0, to = 7.0, step = 0.1;
-  SwitchingSweepMethod method = SwitchingSweepMethod::exact;
+  SwitchingSweepMethod method = SwitchingSweepMethod::automatic;
   // Samples per period; 0: the method's default (64 exact, 256 shooting). The exact method's
   // extremes are global whatever the count; shooting refines the largest samples by a parabola.
   int samples = 0;
@@ -64,6 +69,13 @@ struct SwitchingSweepOptions {
   // that several sweeps of one network decompose it once (a design study's variant); made here
   // when null. A solver of another network fails the sweep ("the network differs").
   std::shared_ptr<const PeriodicSolver> solver;
+  // The [[circuit]] sources whose frequency the sweep varies (circuit[].name); empty: every
+  // periodic source (set_switching_frequency in emnet/model/drive.hpp). With switched sources
+  // a model is prepared per frequency.
+  std::vector<std::string> sources;
+  // Unknowns up to which `automatic` takes the dense exact method (above: the reduction) and a
+  // reduction is checked against the full exact method (above: against a wider reduction).
+  int dense_limit = kPeriodicDenseAutomaticUnknowns;
 };
 
 // The periodic extremes of one output over the sweep: left[k], right[k] at frequencies[k].
@@ -72,16 +84,24 @@ struct SwitchingSweepOutput {
   std::vector<double> left, right;  // periodic minimum and maximum [probe.unit]
 };
 
-// The reduced sweep against the full exact one at a few frequencies.
+// The reduced sweep against the full exact one at a few frequencies. Above the dense limit
+// (SwitchingSweepOptions::dense_limit), where the full one is not computed, the error at each
+// check frequency is the larger of the difference from a reduction with ten times the cut-off
+// and the edge estimate of what the reduction truncates (ReducedPeriodicSolver::
+// edge_error_estimate; it covers poles neither reduction found, e.g. beyond a cluster that stops
+// Arnoldi): estimates, not bounds.
 struct SwitchingSweepReductionCheck {
-  ModalReduction model;                     // what was kept (modes, real poles, cut-off)
-  double build_seconds = 0.0;               // poles, left vectors, static solves
+  bool against_full = true;            // false: the wider reduction and the edge estimate
+  std::string reference;               // "the full exact periodic solution", or the wider reduction
+  std::vector<double> edge_estimates;  // per check frequency, when not against_full
+  ModalReduction model;                // what was kept (modes, real poles, cut-off)
+  double build_seconds = 0.0;          // poles, left vectors, static solves
   std::vector<double> frequencies, errors;  // check frequencies [Hz], periodic_difference there
   double measured_error = 0.0;              // the largest of errors
   double tolerance = 0.0;                   // the reduction's tolerance
   bool tolerance_met = false;               // measured_error <= tolerance
-  double full_build_seconds = 0.0;          // the full PeriodicSolver's decomposition
-  double full_solve_seconds = 0.0;          // per frequency: the fastest full solve at the checks
+  double full_build_seconds = 0.0;          // the reference's decomposition (or reduction)
+  double full_solve_seconds = 0.0;          // per frequency: the reference's fastest solve
   double reduced_solve_seconds = 0.0;       // the same for the reduced solves there
 };
 
@@ -122,9 +142,10 @@ struct SwitchingSweepResult {
 std::vector<double> switching_frequencies(const SwitchingSweepOptions& options);
 // The checks of the options alone (the frequencies, samples from 8 to 1000000 after the
 // default, reduce with the exact method only), as run_switching_sweep makes them first.
-// InputError naming drive.kind for a scene driven by its [[circuit]] sources (drive kind none):
-// the sweep has no drive frequency to vary there.
-void check_swept_drive(const Scene& scene);
+// InputError (scene file, "circuit") for a scene with nothing to switch: drive.kind "none"
+// with a [[circuit]] none of whose `sources` (empty: all its sources) is periodic, or a named
+// source that is missing or not periodic (switched_sources in emnet/model/drive.hpp).
+void check_swept_drive(const Scene& scene, const std::vector<std::string>& sources = {});
 void check_switching_sweep_options(const SwitchingSweepOptions& options);
 
 // The model a sweep runs on, and the scene it varies. For the exact method the network must be
