@@ -15,6 +15,32 @@ def input_error(message, key="", where="python"):
     return error
 
 
+def numbers(values, key):
+    """`values` (None, a number, or any sequence of numbers: list, tuple, numpy array, pandas
+    Series) as a list of floats; an emnet.InputError naming `key` for anything else."""
+    if values is None:
+        return []
+    if isinstance(values, (str, bytes)):
+        raise input_error(f"numbers are wanted, got the text {values!r}", key)
+    if hasattr(values, "tolist"):  # numpy arrays and scalars, pandas Series
+        values = values.tolist()
+    if not isinstance(values, (list, tuple)):
+        values = [values]
+    out = []
+    for value in values:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise input_error(f"numbers are wanted, got {type(value).__name__} {value!r}", key)
+        out.append(float(value))
+    return out
+
+
+def _plain(value):
+    """numpy scalars and arrays as Python numbers and lists (TOML and the bindings take those)."""
+    if type(value).__module__ == "numpy" and hasattr(value, "tolist"):
+        return value.tolist()
+    return value
+
+
 _BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
 
 
@@ -29,6 +55,7 @@ def _toml_key(name, key):
 
 
 def _toml_value(value, key):
+    value = _plain(value)
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, int):

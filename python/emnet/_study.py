@@ -6,7 +6,7 @@ import sys
 import time
 
 from . import _emnet
-from ._scene import Scene, as_scene, input_error
+from ._scene import Scene, as_scene, input_error, numbers
 
 
 def _vary_texts(vary):
@@ -14,8 +14,10 @@ def _vary_texts(vary):
         return []
     if isinstance(vary, str):
         return [vary]
-    if isinstance(vary, dict):
-        return [f"{key}={spec}" for key, spec in vary.items()]
+    if isinstance(vary, dict):  # a spec is a text, or the values themselves (any sequence)
+        return [f"{key}={spec}" if isinstance(spec, str)
+                else f"{key}=" + ",".join(repr(v) for v in numbers(spec, key))
+                for key, spec in vary.items()]
     return list(vary)
 
 
@@ -106,8 +108,8 @@ def study(scene, vary=None, *, samples=0, seed=1, variants=None, analyses=("mode
     keys = list(table.columns)
     values = numpy.ascontiguousarray(table.to_numpy(dtype=float))
     options = {"analyses": _analyses_text(analyses), "modes": modes,
-               "sweep_frequencies": list(sweep_frequencies or []),
-               "report_frequencies": list(at or [])}
+               "sweep_frequencies": numbers(sweep_frequencies, "sweep_frequencies"),
+               "report_frequencies": numbers(at, "at")}
     if client is None:
         parts = [(0, values, _emnet.run_study(scene._handle, keys, values, threads=threads,
                                               progress=progress, **options))]

@@ -350,7 +350,9 @@ struct PeriodicSolver::Impl {
       throw std::runtime_error(
           "the state matrix is too close to defective for the exact "
           "periodic method (condition " +
-          std::to_string(condition) + "); use --method shooting");
+          std::to_string(condition) +
+          "); the shooting method (a periodic state by Newton on one period of IDA) does not "
+          "need the decomposition");
     // Poles at s = 0: the invariants of differentiated constraints (zero for every consistent
     // state), or a free body when there are more of them than hidden constraints (solve()).
     invariant.assign(static_cast<size_t>(lambda.size()), false);
@@ -639,7 +641,8 @@ void check_periodic_memory(int unknowns, const std::string& option) {
                        format_number("%.3g", bytes / 1e9) +
                        " GB (256 bytes per unknown squared), where at most " +
                        format_number("%.0f", kPeriodicDenseMemoryLimit / 1e9) +
-                       " GB is allowed (inclusive); use fewer --segments or --method shooting");
+                       " GB is allowed (inclusive); use fewer --segments, the modal "
+                       "reduction or the shooting method where the command has them");
 }
 
 }  // namespace emnet

@@ -146,7 +146,8 @@ AutomaticChoice choose_electrical_dynamics(const Scene& scene, bool electrical_p
     // input of a square-wave drive is its force level applied directly, never through the loops.
     if (square_wave)
       choice.reason +=
-          "; it matters to tran, sweep-switching --method shooting and the DEA probes; ac's "
+          "; it matters to the time-domain analyses (tran, and the shooting method of the "
+          "switching sweep) and to the DEA probes; ac's "
           "input for this drive is the force k_F*V^2/2 applied directly, not through the RC "
           "loops, so ac changes with this choice only through dea[].back_coupling";
   }

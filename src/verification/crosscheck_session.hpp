@@ -8,6 +8,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -131,6 +132,12 @@ class CrosscheckSession {
   NgspiceResult run_deck(CrosscheckAnalysis analysis, const SpiceDeck& deck,
                          const std::string& label, bool failure_allowed = false) {
     if (!options_.keep_decks_directory.empty()) {
+      // The directory is made when missing (and its parents), as `mkdir -p` would.
+      std::error_code made;
+      std::filesystem::create_directories(options_.keep_decks_directory, made);
+      if (made)
+        throw InputError("--keep-decks", options_.keep_decks_directory,
+                         "cannot make the directory: " + made.message());
       const std::string path = options_.keep_decks_directory + "/" +
                                spice_identifier(model_.scene.name) + "-crosscheck-" + label +
                                ".cir";

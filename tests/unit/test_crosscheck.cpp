@@ -7,6 +7,8 @@
 #include <cmath>
 #include <complex>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -70,8 +72,9 @@ TEST(Crosscheck, SwitchedDrivePassesAgainstNgspice) {
 }
 
 // The cantilever's step load from rest: ngspice stops with "timestep too small" at max steps
-// below ~T/1000 (docs/commands.md, "Cross-check"), so the default run (T/2000) must retry at max step T/200 and say so;
-// ngspice's own steps are far smaller there (its error control at reltol 1e-6 binds).
+// below ~T/1000 (docs/commands.md, "Cross-check"), so the default run (T/2000) must retry at max
+// step T/200 and say so; ngspice's own steps are far smaller there (its error control at reltol
+// 1e-6 binds).
 TEST(Crosscheck, CantileverPassesAgainstNgspice) {
   if (!ngspice_available()) GTEST_SKIP() << "ngspice is not installed";
   const auto run = emnet::testing::run_emnet(
@@ -130,6 +133,26 @@ TEST(Crosscheck, BadAnalysisNameIsBadInput) {
                                              " --analysis op,pz");
   EXPECT_EQ(run.status, 2) << run.err;
   EXPECT_NE(run.err.find("pz"), std::string::npos) << run.err;
+}
+
+// --keep-decks into a directory that does not exist yet: made (with its parents), the op deck
+// written there; it failed with "cannot open" before. A path under a regular file cannot be
+// made: exit 2 naming --keep-decks and the reason.
+TEST(Crosscheck, KeepDecksMakesItsDirectory) {
+  const std::string base = ::testing::TempDir() + "emnet_keep_decks_" + std::to_string(getpid());
+  const std::string directory = base + "/new/decks";
+  const auto run = emnet::testing::run_emnet("crosscheck " + source_path("netlists/fishfin.toml") +
+                                             " --analysis op --keep-decks " + directory);
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_TRUE(std::filesystem::exists(directory + "/fishfin-crosscheck-op.cir")) << run.out;
+  const std::string file = base + "/file";
+  std::ofstream(file) << "x";
+  const auto refused =
+      emnet::testing::run_emnet("crosscheck " + source_path("netlists/fishfin.toml") +
+                                " --analysis op --keep-decks " + file + "/decks");
+  EXPECT_EQ(refused.status, 2) << refused.err;
+  EXPECT_NE(refused.err.find("--keep-decks"), std::string::npos) << refused.err;
+  std::filesystem::remove_all(base);
 }
 
 // 1/|H|² of an isolated mode's displacement response is quadratic in f²: the three-point fit

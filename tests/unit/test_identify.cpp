@@ -167,6 +167,16 @@ TEST(Identify, DefaultOutputNamesTheBendingStiffnessAsBefore) {
       << run.out;
 }
 
+// identify has no --method: its refusals do not advise one (they said "use --method
+// shooting").
+TEST(Identify, RefusalAtScaleAdvisesNoOptionItLacks) {
+  const auto run = run_emnet("identify " + scene("fishfin.toml") +
+                             " --resonance 5 --peak P4=9.3mm --segments 800");
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_NE(run.err.find("--segments"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("--method"), std::string::npos) << run.err;
+}
+
 TEST(Identify, UnknownFitKeyExitsTwoNamingIt) {
   const auto run = run_emnet("identify " + scene("fishfin.toml") +
                              " --resonance 6 --fit spring.clamp.stiffness");
