@@ -301,8 +301,7 @@ Model build_model(const Scene& scene) {
     for (const DeaLayout& layout : model.deas) terminals.emplace(layout.name, layout.source_node);
     model.circuit_nodes = add_circuit(network, structure, scene, terminals);
     std::string driven;
-    for (const DeaSpec& spec : scene.deas)
-      if (circuit_drives_dea(scene, spec.name)) driven += " " + spec.name;
+    for (const std::string& name : circuit_driven_deas(scene)) driven += " " + name;
     model.notes.push_back("circuit: " + std::to_string(scene.circuit.size()) + " element(s), " +
                           std::to_string(model.circuit_nodes.size()) + " node(s) of its own" +
                           (driven.empty() ? std::string("; it drives no DEA")

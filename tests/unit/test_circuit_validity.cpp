@@ -4,6 +4,10 @@
 // is known the summary says "field not checked" and why instead of "no DEA driven".
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -11,6 +15,8 @@
 #include "emnet/model/circuit.hpp"
 #include "emnet/model/validity.hpp"
 #include "emnet/scene/scene_reader.hpp"
+#include "emnet/studies/resolve.hpp"
+#include "emnet/studies/transient_study.hpp"
 
 namespace emnet {
 namespace {
@@ -79,6 +85,41 @@ TEST(CliCircuitValidity, TweezerAtSixKilovoltsExitsOutsideValidity) {
   EXPECT_EQ(shipped.status, 0) << shipped.out << shipped.err;
   EXPECT_NE(shipped.out.find("84.5 % of its breakdown field"), std::string::npos) << shipped.out;
   EXPECT_EQ(shipped.out.find("no DEA driven"), std::string::npos) << shipped.out;
+}
+
+// The tweezer with a 1000 H inductor after a 1 kOhm R_A: no bound (an inductor), so the field
+// was "not checked"; the transient now judges the voltage it computed. Reference: the series
+// RLC's step response (back-coupling off, so the DEA's loop is a pure RLC: C its capacitance, R
+// the 1 kOhm plus its 0.5 MOhm electrode), peak V·(1 + exp(−ζπ/√(1 − ζ²))) at t = π/ω_d,
+// 4309 V here, 146 % of the 2960 V breakdown. Tolerance 1e-3: the largest of the output samples
+// (every 6.25 us, a phase step of 0.015 rad: 5e-5 low) at IDA's rtol 1e-8.
+TEST(CircuitValidity, TransientJudgesTheComputedVoltageWhereNoBoundIsKnown) {
+  std::ifstream file(kTweezer);
+  std::string text((std::istreambuf_iterator<char>(file)), {});
+  const std::string series = "to = \"dea.A\"\nvalue = \"4.7 MOhm\"";
+  ASSERT_NE(text.find(series), std::string::npos);
+  text.replace(text.find(series), series.size(),
+               "to = \"mid_A\"\nvalue = \"1 kOhm\"\n\n[[circuit]]\nname = \"L_A\"\nkind = "
+               "\"inductor\"\nfrom = \"mid_A\"\nto = \"dea.A\"\nvalue = \"1000 H\"");
+  const std::string path = ::testing::TempDir() + "tweezer_inductor.toml";
+  std::ofstream(path) << text;
+  const Scene scene = read_scene(path, {"beam.segments=8"});
+  TransientStudyOptions options;
+  options.periods = 0.05;  // 6.25 ms: the first peak at 1.29 ms
+  options.points_per_period = 20000;
+  options.rtol = 1e-8;
+  const TransientStudyResult run = run_transient_study(scene, options);
+  ASSERT_TRUE(run.status.ok) << run.status.message;
+  const DeaLayout& dea = run.model.deas[0];
+  ASSERT_EQ(dea.name, "A");
+  const double r = 1e3 + dea.electrode_resistance, c = dea.capacitance, l = 1000.0;
+  const double zeta = 0.5 * r * std::sqrt(c / l);
+  const double peak = 2500.0 * (1.0 + std::exp(-zeta * M_PI / std::sqrt(1.0 - zeta * zeta)));
+  ASSERT_FALSE(run.validity.within()) << run.validity.summary;
+  const double breakdown = 80e6 * 37e-6;
+  EXPECT_NEAR(run.validity.field_fraction * breakdown, peak, 1e-3 * peak) << run.validity.summary;
+  EXPECT_NE(run.validity.summary.find("computed at the output times"), std::string::npos)
+      << run.validity.summary;
 }
 
 }  // namespace
