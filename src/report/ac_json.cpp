@@ -17,6 +17,7 @@ Json to_json(const AcStudyResult& result, const Model& model, const std::vector<
   out["automatic_choices"] = to_json(model.automatic_choices);
   add_mesh_json(out, model);
   out["input"] = input;
+  out["notes"] = result.notes;
   out["frequencies_hz"] = result.ac.frequencies;
   out["probes"] = Json::array();
   for (size_t k = 0; k < probes.size(); ++k) {

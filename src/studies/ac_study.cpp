@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "emnet/core/units.hpp"
+#include "emnet/model/circuit.hpp"
 
 namespace emnet {
 
@@ -50,6 +51,36 @@ void require_ac_input(const Model& model, const System& system) {
   if (system.b_ac().norm() == 0.0)
     throw InputError(model.scene.file, "drive.kind", no_ac_input_reason(model.scene));
 }
+
+namespace {
+
+// A note per circuit-driven DEA with its electrical model whose voltage at the operating point
+// is 0 V (within 1e-9 of the largest DEA voltage there, or exactly): an AC input through the
+// circuit moves nothing through it.
+std::vector<std::string> zero_voltage_dea_notes(const Model& model,
+                                                const Eigen::VectorXd& operating_point) {
+  std::vector<std::pair<std::string, double>> voltages;
+  double largest = 0.0;
+  for (const std::string& name : circuit_driven_deas(model.scene))
+    for (const DeaLayout& dea : model.deas)
+      if (dea.name == name && dea.electrode_node != ground) {
+        double u = 0.0;
+        for (const auto& [index, c] : model.parse_probe("dea_voltage:" + name).terms)
+          u += c * operating_point[index];
+        voltages.emplace_back(name, std::abs(u));
+        largest = std::max(largest, std::abs(u));
+      }
+  std::vector<std::string> notes;
+  for (const auto& [name, u] : voltages)
+    if (u <= 1e-9 * largest)
+      notes.push_back("DEA " + name +
+                      " is at 0 V at the operating point (its sources at t = 0): its force "
+                      "k_F*V^2 has no part linear in an AC input (2*k_F*V0*v = 0), so the input "
+                      "moves nothing through it");
+  return notes;
+}
+
+}  // namespace
 
 AcStudyResult run_ac_study(const Model& model, const System& system,
                            const Eigen::VectorXd& operating_point, const AcStudyOptions& options) {
@@ -117,6 +148,18 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
       result.resonance_damping_ratios.push_back(zeta);
     }
 
+  result.notes = zero_voltage_dea_notes(model, operating_point);
+  bool every_response_zero = true;
+  for (const auto& values : result.ac.values)
+    for (const auto& v : values) every_response_zero &= v == 0.0;
+  if (every_response_zero && !result.ac.values.empty()) {
+    std::string why;
+    for (const std::string& note : result.notes) why += "; " + note;
+    throw InputError(
+        model.scene.file, "circuit",
+        "the AC input reaches no output: every response is exactly zero" +
+            (why.empty() ? std::string(" (the input and the outputs are not coupled)") : why));
+  }
   for (size_t k = 0; k < probes.size(); ++k)
     if (probes[k].quantity == ProbeQuantity::deflection) {
       result.peaks.push_back({probes[k].name, 0.0});

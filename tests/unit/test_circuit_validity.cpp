@@ -122,5 +122,26 @@ TEST(CircuitValidity, TransientJudgesTheComputedVoltageWhereNoBoundIsKnown) {
       << run.validity.summary;
 }
 
+// The inverted source is at 0 V at t = 0, so its DEA's k_F·V² force has no part linear in an AC
+// input there: an AC input on src_B alone moved nothing and said nothing (an all-zero Bode
+// plot, exit 0). Now a note names the DEA (the shipped scene, its input on src_A, has it too:
+// B adds nothing to the response), and where every output is exactly zero the command
+// refuses, naming circuit.
+TEST(CliAcInput, AnInputAboutZeroVoltsIsSaidAndAnAllZeroResponseRefused) {
+  const std::string on_b =
+      "ac " + kTweezer + " --segments 8 --set circuit.src_A.ac=0 --set circuit.src_B.ac=1V";
+  const auto noted = run_emnet(on_b);
+  EXPECT_EQ(noted.status, 0) << noted.err;
+  EXPECT_NE(noted.out.find("note: DEA B is at 0 V at the operating point"), std::string::npos)
+      << noted.out;
+  const auto refused = run_emnet(on_b + " --probe tip");
+  EXPECT_EQ(refused.status, 2) << refused.out;
+  EXPECT_NE(refused.err.find("key 'circuit'"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("every response is exactly zero"), std::string::npos) << refused.err;
+  const auto shipped = run_emnet("ac " + kTweezer + " --segments 8 --probe tip");
+  EXPECT_EQ(shipped.status, 0) << shipped.err;
+  EXPECT_EQ(shipped.out.find("DEA A is at 0 V"), std::string::npos) << shipped.out;
+}
+
 }  // namespace
 }  // namespace emnet

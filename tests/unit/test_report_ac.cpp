@@ -98,8 +98,8 @@ TEST(AcJson, KeysInOrderAndValuesMatchTheClosedForm) {
   std::vector<std::string> keys;
   for (const auto& item : json.items()) keys.push_back(item.key());
   EXPECT_EQ(keys, (std::vector<std::string>{"scene", "automatic_choices", "segments", "input",
-                                            "frequencies_hz", "probes", "resonances_hz", "accuracy",
-                                            "cost", "validity"}));
+                                            "notes", "frequencies_hz", "probes", "resonances_hz",
+                                            "accuracy", "cost", "validity"}));
   EXPECT_EQ(json["scene"], "one mass");
   EXPECT_EQ(json["segments"], 3);
   EXPECT_EQ(json["input"], "a unit force");

@@ -152,6 +152,7 @@ int report_ac(const AcReportInput& in) {
     return validity_exit(result.validity);
   }
   print_header(in.prepared.model, in.prepared.system);
+  for (const std::string& note : result.notes) std::cout << "note: " << shown(note) << "\n";
   std::cout << input << "\n"
             << "sweep: " << result.ac.frequencies.size() << " points, " << si(in.spec.from, "Hz")
             << " to " << si(in.spec.to, "Hz") << (in.spec.log ? " (log)" : " (lin)") << "\n";

@@ -54,11 +54,13 @@ std::vector<std::string> plot_only_outputs(const emnet::Scene& scene,
       scene.drive.electrical_dynamics_auto)
     return extra;
   for (const emnet::DeaSpec& dea : scene.deas) {
-    const std::string name = "u_" + dea.name;
-    if (std::find(options.probes.begin(), options.probes.end(), name) == options.probes.end() &&
-        std::find(options.probes.begin(), options.probes.end(), "dea_voltage:" + dea.name) ==
-            options.probes.end())
-      extra.push_back(name);
+    // By its probe text, which every scene parses ("u_X" is an output name only where no
+    // scene probe already shows that voltage under a name of its own).
+    const std::string text = "dea_voltage:" + dea.name;
+    if (std::find(options.probes.begin(), options.probes.end(), "u_" + dea.name) ==
+            options.probes.end() &&
+        std::find(options.probes.begin(), options.probes.end(), text) == options.probes.end())
+      extra.push_back(text);
   }
   return extra;
 }

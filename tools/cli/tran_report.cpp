@@ -66,7 +66,9 @@ void write_tran_plot(const TranReportInput& input) {
       // In the colour of the DEA's own voltage, when that is drawn.
       int colour = -1;
       for (size_t k = 0; k < input.plotted.indices.size(); ++k)
-        if (probes[input.plotted.indices[k]].name == "u_" + dea) colour = static_cast<int>(k);
+        if (probes[input.plotted.indices[k]].name == "u_" + dea ||
+            probes[input.plotted.indices[k]].name == "dea_voltage:" + dea)
+          colour = static_cast<int>(k);
       series.push_back(sampled_waveform(emnet::dea_drive(scene.drive, dea).voltage, times,
                                         "DEA " + dea + " drive source voltage", "V"));
       series.back().dashed = dea_voltages;

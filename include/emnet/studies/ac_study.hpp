@@ -58,11 +58,15 @@ struct AcStudyResult {
   std::vector<double> resonance_damping_ratios;  // each resonance's damping ratio −Re s/|s|
   std::vector<DeflectionPeak> peaks;             // per deflection probe, its largest |response|
   Validity validity;
+  // What the input cannot reach: a circuit-driven DEA whose operating voltage is 0 V, whose
+  // k_F·V² force has no part linear in the AC input (2·k_F·u₀·U = 0).
+  std::vector<std::string> notes;
 };
 
 // The study on a model already built and its operating point (the static state, or zero for
 // a linear network: analysis/operating_point.hpp). A system with no AC input is an InputError
-// (require_ac_input).
+// (require_ac_input); so is an input that reaches no output (every response exactly zero,
+// e.g. a circuit source's ac about a DEA at 0 V), naming "circuit" with the notes.
 AcStudyResult run_ac_study(const Model& model, const System& system,
                            const Eigen::VectorXd& operating_point, const AcStudyOptions& options);
 
