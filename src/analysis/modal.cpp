@@ -152,10 +152,9 @@ std::vector<Eigen::VectorXd> rigid_body_motions(const RigidBodySpace& space,
   return out;
 }
 
-}  // namespace
-
-ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,
-                      const ModalOptions& options) {
+// run_modes without its guard.
+ModalResult compute_modes(const System& system, const Eigen::VectorXd& operating_point,
+                          const ModalOptions& options) {
   Timed<ModalResult> timed;
   ModalResult& result = timed.result;
   result.unknowns = system.size();
@@ -401,6 +400,27 @@ ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_poi
     std::sort(list->begin(), list->end(),
               [](const Mode& a, const Mode& b) { return std::abs(a.pole) < std::abs(b.pole); });
   return finish(Status::success());
+}
+
+}  // namespace
+
+ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,
+                      const ModalOptions& options) {
+  // An eigen-solver that gives up (Eigen's or Spectra's "Schur decomposition failed", on a
+  // pencil whose values span hundreds of orders of magnitude, e.g. a 1e300 kg mass) is a
+  // numerical failure with its reason, not an internal error.
+  try {
+    return compute_modes(system, operating_point, options);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& error) {
+    ModalResult failed;
+    failed.unknowns = system.size();
+    failed.status = Status::failure(
+        std::string("the eigen-solver failed: ") + error.what() +
+        " (the network's values may span too many orders of magnitude for double precision)");
+    return failed;
+  }
 }
 
 }  // namespace emnet

@@ -652,6 +652,15 @@ void SceneReader::read_provenance_table(const toml::table& table, const std::str
                     "names no scene key: '" + first_segment + "' is not a scene table" +
                         did_you_mean(first_segment, candidates));
     }
+    // The entry's last part must be one of the table's keys: TABLE.KEY (in an array of tables,
+    // every entry's KEY) or TABLE.NAME.KEY, TABLE[NAME].KEY, TABLE.INDEX.KEY.
+    const std::string last = entry.substr(entry.find_last_of(".]") + 1);
+    if (entry.find_first_of(".[") == std::string::npos ||
+        std::find(named->keys.begin(), named->keys.end(), last) == named->keys.end()) {
+      locator_.fail(&node, key,
+                    "names no scene key: '" + last + "' is not a key of [" + named->name + "]" +
+                        did_you_mean(last, named->keys));
+    }
     const auto* text = node.as_string();
     if (text == nullptr) {
       locator_.fail(&node, key,

@@ -350,12 +350,19 @@ SceneParameterAddress fitted_parameter(const Scene& scene, const IdentifyOptions
 // Throws when `key` (canonical) has a [provenance] entry (in any form --set takes) that makes
 // it a given: "paper: ..." or "data sheet: ...".
 void refuse_given(const Scene& scene, const std::string& key) {
+  // A table-wide entry ("mass.mass": every [[mass]]'s mass) covers each entry's key.
+  const std::string table_wide =
+      key.substr(0, key.find_first_of(".[")) + "." + key.substr(key.find_last_of(".]") + 1);
   for (const auto& [entry_key, origin] : scene.provenance) {
     std::string canonical;
-    try {
-      canonical = find_scene_parameter_address(scene, entry_key, "provenance").key;
-    } catch (const InputError&) {
-      continue;  // names no key of this scene
+    if (entry_key == table_wide) {
+      canonical = key;
+    } else {
+      try {
+        canonical = find_scene_parameter_address(scene, entry_key, "provenance").key;
+      } catch (const InputError&) {
+        continue;  // names no entry of this scene (the reader checked its key)
+      }
     }
     if (canonical != key) continue;
     if (origin.rfind("paper", 0) == 0 || origin.rfind("data sheet", 0) == 0)

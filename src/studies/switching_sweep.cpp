@@ -454,13 +454,20 @@ SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
     for (const auto& dea : swept.model.deas)
       tau = std::max(tau, dea.electrode_resistance * dea.capacitance);
     swept.notes.push_back(
-        "exact method: DEAs as ideal voltage-driven forces (their RC time "
-        "constant " +
+        "exact method: DEAs as ideal voltage-driven forces, the electrical model the scene "
+        "gives them (drive.electrical_dynamics) set aside (their RC time constant " +
         format_with_unit(tau, "s") + " is " + format_number("%.2g", tau * highest_hz) +
         " of the shortest period); the shooting method integrates the full "
         "model");
     set_electrical_dynamics(swept.scene, false);
     swept.model = prepare_model(swept.scene, prepare);
+    // The rebuilt model's own note would say the scene set it false; the note above says why.
+    auto& notes = swept.model.notes;
+    notes.erase(std::remove_if(notes.begin(), notes.end(),
+                               [](const std::string& note) {
+                                 return note.rfind("DEA electrical dynamics left out", 0) == 0;
+                               }),
+                notes.end());
   }
   return swept;
 }

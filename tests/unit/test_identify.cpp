@@ -177,6 +177,40 @@ TEST(Identify, RefusalAtScaleAdvisesNoOptionItLacks) {
   EXPECT_EQ(run.err.find("--method"), std::string::npos) << run.err;
 }
 
+// The tweezer with its pad mass given by a table-wide entry ("mass.mass", every [[mass]]'s
+// mass) from a paper: identify --fit mass.pad.mass fitted it (only "mass[pad].mass" counted);
+// now refused, naming the entry. A misspelt key is refused by the reader with a suggestion
+// (it was accepted silently).
+TEST(Provenance, TableWideEntriesProtectEveryEntryAndMisspeltKeysAreRefused) {
+  std::ifstream file(scene("tweezer-jaw.toml"));
+  std::stringstream buffer;
+  buffer << file.rdbuf();
+  std::string text = buffer.str();
+  const std::string assumed = "\"mass.mass\" = \"assumed:";
+  ASSERT_NE(text.find(assumed), std::string::npos);
+  std::string given = text;
+  given.replace(given.find(assumed), assumed.size(), "\"mass.mass\" = \"paper:");
+  const std::string given_path =
+      ::testing::TempDir() + "tweezer_given_" + std::to_string(getpid()) + ".toml";
+  std::ofstream(given_path) << given;
+  const auto fitted =
+      run_emnet("identify " + given_path + " --segments 8 --resonance 15 --fit mass.pad.mass");
+  EXPECT_EQ(fitted.status, 2) << fitted.out;
+  EXPECT_NE(fitted.err.find("provenance.mass.mass"), std::string::npos) << fitted.err;
+
+  std::string misspelt = text;
+  misspelt.replace(misspelt.find(assumed), assumed.size(), "\"mass.mas\" = \"assumed:");
+  const std::string misspelt_path =
+      ::testing::TempDir() + "tweezer_misspelt_" + std::to_string(getpid()) + ".toml";
+  std::ofstream(misspelt_path) << misspelt;
+  const auto refused = run_emnet("static " + misspelt_path);
+  EXPECT_EQ(refused.status, 2) << refused.out;
+  EXPECT_NE(refused.err.find("provenance.mass.mas"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("did you mean"), std::string::npos) << refused.err;
+  std::remove(given_path.c_str());
+  std::remove(misspelt_path.c_str());
+}
+
 TEST(Identify, UnknownFitKeyExitsTwoNamingIt) {
   const auto run = run_emnet("identify " + scene("fishfin.toml") +
                              " --resonance 6 --fit spring.clamp.stiffness");

@@ -856,10 +856,10 @@ TEST(SceneReaderBounds, AtMostTheLimitOfLoadsAndDeas) {
 TEST(SceneReaderBounds, AtMostTheLimitOfProvenanceEntries) {
   std::string text = kMinimalScene + "[provenance]\n";
   for (std::size_t i = 0; i < scene_limits::provenance_entries; ++i)
-    text += "\"beam.k" + std::to_string(i) + "\" = \"assumed: a\"\n";
+    text += "\"mass.m" + std::to_string(i) + ".mass\" = \"assumed: a\"\n";
   EXPECT_EQ(read_scene_text(text, kFileName).provenance.size(), scene_limits::provenance_entries);
-  text += "\"beam.last\" = \"assumed: a\"\n";
-  expect_error(read_error(text), at_line(text, "beam.last"), "provenance.beam.last",
+  text += "\"mass.z.mass\" = \"assumed: a\"\n";
+  expect_error(read_error(text), at_line(text, "mass.z.mass"), "provenance.mass.z.mass",
                "more than 10000 [provenance] entries; a scene may have at most 10000");
 }
 

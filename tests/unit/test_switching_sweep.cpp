@@ -222,6 +222,21 @@ TEST(SwitchingSweep, EdgeEstimateFindsWhatAStoppedPoleSearchMisses) {
   EXPECT_FALSE(estimated.reduction->tolerance_met);
 }
 
+// A scene with drive.electrical_dynamics = true swept by the exact method: the notes said
+// "drive.electrical_dynamics = false" (the rebuilt ideal model's own note), the opposite of the
+// scene. Now one note says the electrical model is set aside, and none says false.
+TEST(SwitchingSweep, ExactMethodSaysItSetsTheElectricalModelAside) {
+  const SweptModel swept =
+      prepare_swept_model(read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml",
+                                     {"drive.electrical_dynamics=true"}),
+                          SwitchingSweepMethod::exact, {}, {}, 7.0);
+  std::string notes;
+  for (const std::string& note : swept.notes) notes += note + "\n";
+  for (const std::string& note : swept.model.notes) notes += note + "\n";
+  EXPECT_EQ(notes.find("drive.electrical_dynamics = false"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("set aside"), std::string::npos) << notes;
+}
+
 // Reference: the exact sweep. Shooting: IDA at rtol 1e-10 per period (its error ~1e-9 of the
 // peak), extremes from 2048 samples refined by a parabola (vertex error ~(2π·3/2048)⁴ ≈ 1e-8
 // for the third harmonic); the exact extremes are Newton-refined to rounding: 1e-6 of the

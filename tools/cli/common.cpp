@@ -207,8 +207,8 @@ void print_header(const emnet::Model& model, const emnet::System& system) {
   for (const auto& note : model.notes) std::cout << "note: " << shown(note) << "\n";
 }
 
-void check_csv(const emnet::Status& status) {
-  if (!status.ok) throw FileError("--csv: " + status.message);
+void check_csv(const emnet::Status& status, const std::string& option) {
+  if (!status.ok) throw FileError(option + ": " + status.message);
 }
 
 void write_csv(const std::string& path, const std::vector<std::string>& header,

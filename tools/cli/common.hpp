@@ -137,7 +137,7 @@ int validity_exit(const emnet::Validity& validity);
 void print_header(const emnet::Model& model, const emnet::System& system);
 
 // The Status of writing the --csv file as a FileError ("--csv: <why>").
-void check_csv(const emnet::Status& status);
+void check_csv(const emnet::Status& status, const std::string& option = "--csv");
 
 // A CSV file of `count` rows, row i filled by fill_row(i, row), written completely or not at
 // all (emnet/report/csv.hpp); FileError when it cannot be. The rows are formatted as they are

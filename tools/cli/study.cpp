@@ -1,8 +1,10 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <memory>
 
 #include "cli/common.hpp"
@@ -25,8 +27,8 @@ using emnet::InputError;
 struct StudyCommandOptions {
   std::vector<std::string> vary;
   std::string variants;
-  std::size_t samples = 0;
-  std::uint64_t seed = 1;
+  std::string samples = "0";  // strict unsigned integers (CLI11 wrapped -1 into 2^64 − 1)
+  std::string seed = "1";
   std::string analyses = "modes";
   int modes = 1;
   std::vector<double> at;
@@ -35,6 +37,19 @@ struct StudyCommandOptions {
   int threads = 0;
   std::string output;
 };
+
+// `text` as an unsigned integer from 0 to `largest` (digits only: no sign, exponent or
+// fraction, no wrap-around), else an InputError naming `option`.
+std::uint64_t parse_unsigned(const std::string& text, const std::string& option,
+                             std::uint64_t largest) {
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size() || value > largest)
+    throw InputError(option, option,
+                     "must be a whole number from 0 to " + std::to_string(largest) + ", got '" +
+                         shown(text.substr(0, 40)) + (text.size() > 40 ? "…" : "") + "'");
+  return value;
+}
 
 int run_study_command(const CommonOptions& options, const StudyCommandOptions& cmd) {
   refuse_option(!options.probes.empty(), "--probe",
@@ -45,17 +60,20 @@ int run_study_command(const CommonOptions& options, const StudyCommandOptions& c
                      "beam.bending_stiffness=normal(100%,5%)) or --variants FILE.csv");
   if (!cmd.vary.empty() && !cmd.variants.empty())
     throw InputError("--variants", "--variants", "give --vary or --variants, not both");
+  const std::uint64_t samples = parse_unsigned(cmd.samples, "--samples", 1000000);
+  const std::uint64_t seed =
+      parse_unsigned(cmd.seed, "--seed", std::numeric_limits<std::uint64_t>::max());
   const emnet::Scene scene = load_scene(options);
   emnet::VariantTable table;
   if (!cmd.variants.empty()) {
-    if (cmd.samples != 0)
+    if (samples != 0)
       throw InputError("--samples", "--samples", "--variants lists the variants; --samples draws");
     table = emnet::read_variants_csv(scene, cmd.variants);
   } else {
     std::vector<emnet::Variation> variations;
     for (const auto& text : cmd.vary)
       variations.push_back(emnet::parse_variation(scene, text, "--vary"));
-    table = emnet::make_variants(variations, cmd.samples, cmd.seed);
+    table = emnet::make_variants(variations, samples, seed);
   }
   emnet::DesignStudyOptions study;
   study.analyses = emnet::parse_study_analyses(cmd.analyses, "--analysis");
@@ -74,6 +92,7 @@ int run_study_command(const CommonOptions& options, const StudyCommandOptions& c
   }
   study.progress = progress_of(options);
   const std::string output = !cmd.output.empty() ? cmd.output : options.csv;
+  const std::string output_option = !cmd.output.empty() ? "-o/--output" : "--csv";
   const bool json_file = output.size() > 5 && output.substr(output.size() - 5) == ".json";
   if (!output.empty() && !json_file &&
       !(output.size() > 4 && output.substr(output.size() - 4) == ".csv"))
@@ -150,9 +169,9 @@ int run_study_command(const CommonOptions& options, const StudyCommandOptions& c
     if (json_file) {
       emnet::OutputFile file(output);
       file.write(json_text(json) + "\n");
-      check_csv(file.commit());
+      check_csv(file.commit(), output_option);
     } else {
-      check_csv(emnet::write_design_study_csv(output, result));
+      check_csv(emnet::write_design_study_csv(output, result), output_option);
     }
   }
   return result.outside_validity > 0 ? emnet::kExitOutsideValidity : 0;

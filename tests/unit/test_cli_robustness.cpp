@@ -1,0 +1,50 @@
+// Inputs a robustness pass found mishandled by the command line: counts that CLI11 wrapped or
+// clamped silently, a study's -o failure named --csv, an eigen-solver failure reported as an
+// internal error.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cli_run.hpp"
+
+namespace {
+
+using emnet::testing::run_emnet;
+
+const std::string kCantilever = std::string(EMNET_SOURCE_DIR) + "/netlists/cantilever.toml";
+const std::string kFinger = std::string(EMNET_SOURCE_DIR) + "/netlists/gripper-finger.toml";
+
+// --samples -1 read "more than 1000000 variants"; --seed -1, 2^64 and 1e23 ran with a seed
+// clamped or wrapped (the same variants for all three). Each is now refused naming its option.
+TEST(CliRobustness, StudyCountsAreWholeNumbersInRange) {
+  const std::string study =
+      "study " + kCantilever + " --vary 'beam.bending_stiffness=uniform(1,2)' --analysis modes ";
+  for (const std::string& bad :
+       {"--samples -1", "--samples 2.5", "--samples 1000001 --seed 1", "--samples 3 --seed -1",
+        "--samples 3 --seed 18446744073709551616", "--samples 3 --seed 1e23"}) {
+    const auto run = run_emnet(study + bad);
+    EXPECT_EQ(run.status, 2) << bad << ": " << run.err;
+    EXPECT_NE(run.err.find("must be a whole number"), std::string::npos) << bad << ": " << run.err;
+  }
+  const auto good = run_emnet(study + "--samples 3 --seed 18446744073709551615 --quiet");
+  EXPECT_EQ(good.status, 0) << good.err;
+}
+
+// A study's -o that cannot be written says -o/--output, not --csv.
+TEST(CliRobustness, StudyOutputFailureNamesTheOptionGiven) {
+  const auto run = run_emnet("study " + kCantilever +
+                             " --vary beam.bending_stiffness=1,2 --quiet -o /nonexistent/x.csv");
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_NE(run.err.find("-o/--output"), std::string::npos) << run.err;
+}
+
+// A 1e300 kg sensor mass: the eigen-solver gives up ("Schur decomposition failed", exit 1 as an
+// internal error before); now a numerical failure, exit 3, with its reason.
+TEST(CliRobustness, AnEigenSolverFailureIsANumericalFailure) {
+  const auto run = run_emnet("modes " + kFinger + " --set mass.sensor.mass=1e300");
+  EXPECT_EQ(run.status, 3) << run.err;
+  EXPECT_NE(run.err.find("eigen-solver failed"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("internal error"), std::string::npos) << run.err;
+}
+
+}  // namespace
