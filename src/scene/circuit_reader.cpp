@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "emnet/core/bounded_file.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "parameter_relations.hpp"
 #include "scene_reader_internal.hpp"
@@ -41,34 +42,14 @@ std::vector<std::pair<double, double>> read_pwl_csv(const std::string& scene_pat
   namespace fs = std::filesystem;
   const fs::path path = fs::path(scene_path).parent_path() / fs::path(file);
   const std::string shown = path.string();
-  std::error_code error;
-  const fs::file_status status = fs::status(path, error);
-  if (status.type() == fs::file_type::not_found)
-    throw InputError(shown, key, "cannot open the pwl file '" + file + "' (no such file)");
-  if (status.type() != fs::file_type::regular)
-    throw InputError(shown, key, "the pwl file '" + file + "' is not a regular file");
-  const std::uintmax_t size = fs::file_size(path, error);
-  if (!error && size > scene_limits::file_bytes)
-    throw InputError(shown, key,
-                     "the pwl file is " + std::to_string(size) + " bytes; at most " +
-                         std::to_string(scene_limits::file_bytes) + " are read");
-  errno = 0;
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream)
-    throw InputError(shown, key,
-                     "cannot open the pwl file '" + file + "' (" +
-                         (errno != 0 ? std::strerror(errno) : "unknown reason") + ")");
+  std::istringstream stream(read_bounded_regular_file(shown, scene_limits::file_bytes,
+                                                      "the pwl file '" + file + "'", key));
   std::vector<std::pair<double, double>> points;
   std::string line;
-  std::size_t line_number = 0, bytes = 0;
+  std::size_t line_number = 0;
   bool header_seen = false;
   while (std::getline(stream, line)) {
     ++line_number;
-    bytes += line.size() + 1;
-    if (bytes > scene_limits::file_bytes)
-      throw InputError(
-          shown, key,
-          "the pwl file is larger than " + std::to_string(scene_limits::file_bytes) + " bytes");
     const std::string where = shown + ":" + std::to_string(line_number);
     std::string text = trim(line);
     if (text.empty() || text[0] == '#') continue;
@@ -111,7 +92,6 @@ std::vector<std::pair<double, double>> read_pwl_csv(const std::string& scene_pat
                            std::to_string(scene_limits::pwl_points));
     points.emplace_back(time, value);
   }
-  if (stream.bad()) throw InputError(shown, key, "cannot read the pwl file '" + file + "'");
   if (points.empty()) throw InputError(shown, key, "the pwl file '" + file + "' has no points");
   return points;
 }

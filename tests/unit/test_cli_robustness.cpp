@@ -2,6 +2,8 @@
 // clamped silently, a study's -o failure named --csv, an eigen-solver failure reported as an
 // internal error.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <string>
 
@@ -28,6 +30,23 @@ TEST(CliRobustness, StudyCountsAreWholeNumbersInRange) {
   }
   const auto good = run_emnet(study + "--samples 3 --seed 18446744073709551615 --quiet");
   EXPECT_EQ(good.status, 0) << good.err;
+}
+
+// --variants had no type or size limit: /dev/zero grew to 8.4 GB, a FIFO blocked. Now it is
+// read as the scene and pwl files are (emnet/core/bounded_file.hpp): a regular file, opened
+// without blocking, at most 256 MiB.
+TEST(CliRobustness, VariantsFileIsARegularFileOfBoundedSize) {
+  const std::string study = "study " + kCantilever + " --analysis modes --variants ";
+  const auto device = run_emnet(study + "/dev/zero", "timeout 20 ");
+  EXPECT_EQ(device.status, 2) << device.err;
+  EXPECT_NE(device.err.find("not a regular file (a character device)"), std::string::npos)
+      << device.err;
+  const std::string fifo = ::testing::TempDir() + "emnet_variants_fifo_" + std::to_string(getpid());
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const auto pipe = run_emnet(study + fifo, "timeout 20 ");
+  EXPECT_EQ(pipe.status, 2) << pipe.err;
+  EXPECT_NE(pipe.err.find("not a regular file (a pipe)"), std::string::npos) << pipe.err;
+  unlink(fifo.c_str());
 }
 
 // A study's -o that cannot be written says -o/--output, not --csv.

@@ -560,7 +560,7 @@ TEST(SceneReaderError, FileThatIsNotThere) {
     FAIL() << "expected an InputError";
   } catch (const InputError& error) {
     EXPECT_EQ(error.where(), path);
-    EXPECT_EQ(std::string(error.what()), path + ": cannot open file");
+    EXPECT_EQ(std::string(error.what()), path + ": cannot open the scene file (no such file)");
   }
 }
 
@@ -889,8 +889,8 @@ TEST(SceneReaderBounds, SceneFileMustBeARegularFile) {
   } catch (const InputError& error) {
     EXPECT_EQ(error.where(), "/dev/zero");
     EXPECT_STREQ(error.what(),
-                 "/dev/zero: not a regular file (a character device); a scene is read from a "
-                 "regular file");
+                 "/dev/zero: not a regular file (a character device); the scene file is read "
+                 "from a regular file");
   }
 }
 
@@ -912,9 +912,7 @@ TEST(SceneReaderBounds, SceneFileAtMostTheSizeLimit) {
   } catch (const InputError& error) {
     EXPECT_EQ(error.where(), path);
     EXPECT_EQ(std::string(error.what()),
-              path +
-                  ": the file is 4194305 bytes; a scene file may have at most 4194304 bytes "
-                  "(4 MiB)");
+              path + ": the file is 4194305 bytes; the scene file may have at most 4194304 bytes");
   }
   // Text in memory is held to the same limit.
   expect_error(read_error(text + "\n"), kFileName, "",
