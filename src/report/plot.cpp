@@ -176,6 +176,23 @@ std::string unset_markers() {
   return "unset arrow\nunset label\n";
 }
 
+// The reference lines of the panel of `unit` (arrows and labels 500 on; the next panel's
+// unset_markers clears them).
+std::string reference_lines(const std::vector<ReferenceLine>& lines, const std::string& unit) {
+  std::string out;
+  for (size_t k = 0; k < lines.size(); ++k) {
+    if (lines[k].unit != unit || !std::isfinite(lines[k].value)) continue;
+    const std::string at = number_text(lines[k].value);
+    out += "set arrow " + std::to_string(500 + k) + " from graph 0, first " + at +
+           " to graph 1, first " + at + " nohead front lc rgb '#c00000' dt 3 lw 1.5\n";
+    if (!lines[k].label.empty())
+      out += "set label " + std::to_string(500 + k) + " " + gnuplot_string(lines[k].label) +
+             " at graph 0.005, first " + at +
+             " offset 0, 0.6 left front tc rgb '#c00000' font ',9' noenhanced\n";
+  }
+  return out;
+}
+
 // "[lo:hi]" for a range of finite values, or "[*:*]" when there is nothing finite or one value.
 std::string range_text(double lo, double hi) {
   if (!(lo < hi)) return "[*:*]";
@@ -188,6 +205,19 @@ double phase_tic_step(double span) {
   if (span <= 1080.0) return 90.0;
   if (span <= 2160.0) return 180.0;
   return 0.0;
+}
+
+// A series' legend entry: its label on one line, cut to kLegendCharacters (with "...") at a
+// word boundary where it can be. A longer entry made gnuplot leave the key out altogether
+// (descriptions of reaction, strain and DEA-force probes run to 120 characters); the full
+// description stays in the table and the data file.
+constexpr size_t kLegendCharacters = 72;
+std::string legend_label(const std::string& label) {
+  std::string text = one_line(label);
+  if (text.size() <= kLegendCharacters) return text;
+  size_t cut = text.rfind(' ', kLegendCharacters - 3);
+  if (cut == std::string::npos || cut < kLegendCharacters / 2) cut = kLegendCharacters - 3;
+  return text.substr(0, cut) + "...";
 }
 
 // The legend: one row of entries between the page title and the top panel, wrapped into as
@@ -415,7 +445,8 @@ Status write_bode_plot(const std::string& path, const std::string& title,
 
   std::vector<std::string> legend_entries;
   for (const auto& one : series) {
-    legend_entries.push_back(one.label + (one.unit.empty() ? "" : " [" + one.unit + "]"));
+    legend_entries.push_back(
+        legend_label(one.label + (one.unit.empty() ? "" : " [" + one.unit + "]")));
   }
   constexpr int kWidthPx = 1000;
   MarkerLabelLayout marker_labels =
@@ -549,7 +580,7 @@ Status write_line_plot(const std::string& path, const std::string& title,
 
   std::vector<std::string> legend_entries;
   for (const auto& one : series)
-    if (one.in_legend) legend_entries.push_back(one.label);
+    if (one.in_legend) legend_entries.push_back(legend_label(one.label));
   constexpr int kWidthPx = 1000;
   const std::vector<MarkerGroup> groups =
       any_point ? marker_groups(options.markers, x_lo, x_hi, false) : std::vector<MarkerGroup>{};
@@ -594,14 +625,16 @@ Status write_line_plot(const std::string& path, const std::string& title,
              << "set ylabel " << gnuplot_string(axis_label(units[g])) << " noenhanced\n"
              << (group_has_point[g] ? "set yrange [*:*]\n" : "set yrange [0:1]\n")
              << (g == 0 ? legend.key_line + legend.note_line : std::string("unset key\n"))
-             << marker_lines(groups, g == 0 ? &marker_labels : nullptr) << "plot ";
+             << marker_lines(groups, g == 0 ? &marker_labels : nullptr)
+             << reference_lines(options.reference_lines, units[g]) << "plot ";
       bool first = true;
       for (size_t k = 0; k < series.size(); ++k) {
         if (group_of[k] != g) continue;
         script << (first ? "" : ", \\\n     ") << gnuplot_string(data_name) << " index " << k
                << " using 1:2 " << style_of(k) << " "
-               << (series[k].in_legend && g == 0 ? "title " + gnuplot_string(series[k].label)
-                                                 : std::string("notitle"));
+               << (series[k].in_legend && g == 0
+                       ? "title " + gnuplot_string(legend_label(series[k].label))
+                       : std::string("notitle"));
         first = false;
       }
       // One key for the figure: the other panels' series join it from the first panel.
@@ -609,7 +642,7 @@ Status write_line_plot(const std::string& path, const std::string& title,
         for (size_t k = 0; k < series.size(); ++k) {
           if (group_of[k] == 0 || !series[k].in_legend) continue;
           script << ", \\\n     NaN " << style_of(k) << " title "
-                 << gnuplot_string(series[k].label);
+                 << gnuplot_string(legend_label(series[k].label));
         }
       }
       script << "\n";

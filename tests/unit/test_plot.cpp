@@ -263,6 +263,31 @@ TEST_F(PlotTest, SeriesAreGroupedByUnitOnePanelEach) {
   EXPECT_EQ(second.find("index 2 "), std::string::npos) << second;
 }
 
+// A legend entry longer than 72 characters made gnuplot leave the whole key out (a transient of
+// reaction, strain and DEA-force probes, whose descriptions run to 120 characters): each entry
+// is cut at a word boundary with "...", the short ones kept whole.
+TEST_F(PlotTest, LongLegendEntriesAreCutSoThatTheKeyIsDrawn) {
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  const std::string long_label =
+      "strain@20mm,top,1.5mm (strain of the top face at x = 20 mm, z = 1.5 mm from the neutral "
+      "plane (positive stretched))";
+  const std::string line = path("legend.png");
+  emnet::LinePlotOptions options;
+  options.side_files.data_and_script = true;
+  ASSERT_TRUE(emnet::write_line_plot(
+                  line, "t", "time [s]",
+                  {{"tip", {0, 1}, {0, 1e-3}, "m"}, {long_label, {0, 1}, {0, 2e-4}, ""}}, options)
+                  .ok);
+  const std::string script = contents(line + ".gp");
+  EXPECT_NE(script.find("title 'tip'"), std::string::npos) << script;
+  EXPECT_EQ(script.find("positive stretched"), std::string::npos) << script;
+  const size_t cut = script.find("title 'strain@20mm,top,1.5mm (strain of the top face");
+  ASSERT_NE(cut, std::string::npos) << script;
+  const std::string title = script.substr(cut + 7, script.find('\'', cut + 7) - cut - 7);
+  EXPECT_LE(title.size(), 72u) << title;
+  EXPECT_EQ(title.substr(title.size() - 3), "...") << title;
+}
+
 // A shared colour and a dashed line: the two series given one colour index are drawn in the same
 // colour, the dashed one with a dash type, and a series left out of the legend has no title.
 TEST_F(PlotTest, PairedSeriesShareAColour) {

@@ -33,4 +33,27 @@ TEST_F(CliTranPlot, DeaVoltageUnderAProbeNameOfItsOwnStillPlots) {
   EXPECT_TRUE(std::filesystem::exists(path("f.png")));
 }
 
+// Plots of a result outside validity showed nothing of it. The fin's sweep through its
+// resonance swings 10.7 % of L (limit 10 %, exit 5): its plot draws the limit at ±12.25 mm
+// (its deflections are in mm); a transient inside the limit draws none.
+TEST_F(CliTranPlot, DeflectionLimitIsDrawnWhereTheResultLeavesIt) {
+  if (!emnet::testing::gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+  const auto sweep = emnet::testing::run_emnet("sweep-switching " + fin + " --plot " +
+                                               path("sweep.png") + " --plot-script");
+  ASSERT_EQ(sweep.status, 5) << sweep.err;
+  std::ifstream sweep_script(path("sweep.png.gp"));
+  const std::string text((std::istreambuf_iterator<char>(sweep_script)), {});
+  EXPECT_NE(text.find("set arrow 500 from graph 0, first 12.25 "), std::string::npos) << text;
+  EXPECT_NE(text.find("first -12.25 "), std::string::npos) << text;
+  EXPECT_NE(text.find("deflection limit +/-12.25 mm (model.deflection_limit)"), std::string::npos)
+      << text;
+  const auto tran = emnet::testing::run_emnet("tran " + fin + " --periods 1 --plot " +
+                                              path("tran.png") + " --plot-script");
+  ASSERT_EQ(tran.status, 0) << tran.err;
+  std::ifstream tran_script(path("tran.png.gp"));
+  const std::string inside((std::istreambuf_iterator<char>(tran_script)), {});
+  EXPECT_EQ(inside.find("set arrow 500"), std::string::npos) << inside;
+}
+
 }  // namespace

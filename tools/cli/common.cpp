@@ -233,6 +233,20 @@ void add_plot_options(CLI::App* command, std::string& plot, bool& plot_script,
                     "directory to re-draw the image)");
 }
 
+std::vector<emnet::ReferenceLine> deflection_limit_lines(const emnet::Validity& validity,
+                                                         const std::string& unit, double scale) {
+  std::vector<emnet::ReferenceLine> lines;
+  for (const emnet::ValidityViolation& violation : validity.violations)
+    if (violation.check == emnet::ValidityCheck::deflection) {
+      const std::string label = "deflection limit +/-" + format("%.4g", violation.limit * scale) +
+                                " " + unit + " (" + violation.key + ")";
+      lines.push_back({unit, violation.limit * scale, label});
+      lines.push_back({unit, -violation.limit * scale, ""});
+      break;  // one limit for every output
+    }
+  return lines;
+}
+
 std::map<std::string, std::string> axis_labels(const std::string& prefix) {
   const std::map<std::string, std::string> quantities = {{"m", "deflection"},
                                                          {"mm", "deflection"},
@@ -246,6 +260,7 @@ std::map<std::string, std::string> axis_labels(const std::string& prefix) {
   std::map<std::string, std::string> labels;
   for (const auto& [unit, quantity] : quantities)
     labels[unit] = prefix + quantity + " [" + unit + "]";
+  labels[""] = prefix + "strain [-]";  // the one quantity without a unit (it read "value")
   return labels;
 }
 

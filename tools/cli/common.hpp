@@ -31,6 +31,7 @@
 #include "emnet/report/csv.hpp"
 #include "emnet/report/describe.hpp"
 #include "emnet/report/json.hpp"
+#include "emnet/report/plot.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "terminal_progress.hpp"
 
@@ -138,6 +139,11 @@ void print_header(const emnet::Model& model, const emnet::System& system);
 
 // The Status of writing the --csv file as a FileError ("--csv: <why>").
 void check_csv(const emnet::Status& status, const std::string& option = "--csv");
+
+// Outside the deflection limit, the limit's lines at ±limit·scale in the panel of `unit` (the
+// plot shows where the result left the model's validity); none when it is inside.
+std::vector<emnet::ReferenceLine> deflection_limit_lines(const emnet::Validity& validity,
+                                                         const std::string& unit, double scale);
 
 // A CSV file of `count` rows, row i filled by fill_row(i, row), written completely or not at
 // all (emnet/report/csv.hpp); FileError when it cannot be. The rows are formatted as they are

@@ -47,6 +47,8 @@ void write_sweep_plot(const SweepReportInput& input,
   options.legend_note =
       "solid: peak to the left (negative side); dashed: peak to the right (positive side)";
   options.axis_labels = axis_labels("peak ");
+  options.reference_lines =
+      deflection_limit_lines(input.result.validity, all_deflections ? "mm" : "m", scale);
   options.side_files.data_and_script = input.plot_script;
   stop_if_interrupted();
   check_plot(emnet::write_line_plot(input.plot,

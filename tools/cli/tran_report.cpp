@@ -86,6 +86,7 @@ void write_tran_plot(const TranReportInput& input) {
   }
   emnet::LinePlotOptions options;
   options.axis_labels = axis_labels("");
+  options.reference_lines = deflection_limit_lines(input.validity, "m", 1.0);
   options.side_files.data_and_script = input.tran.plot_script;
   stop_if_interrupted();
   check_plot(emnet::write_line_plot(

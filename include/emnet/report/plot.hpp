@@ -86,8 +86,17 @@ struct LineSeries {
   bool in_legend = true;  // false: drawn without a legend entry (its pair's entry names it)
 };
 
+// A horizontal line across the panel of `unit` at `value` (a model's limit, e.g. the
+// deflection limit ±model.deflection_limit·L), dotted in red with `label` above it.
+struct ReferenceLine {
+  std::string unit;
+  double value = 0.0;
+  std::string label;
+};
+
 struct LinePlotOptions {
   std::vector<PlotMarker> markers;
+  std::vector<ReferenceLine> reference_lines;
   // Each panel's y-axis label by unit; a unit not named here is labelled "value [unit]".
   std::map<std::string, std::string> axis_labels;
   // One line of text under the legend, e.g. which line style is which side.
