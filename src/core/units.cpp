@@ -16,6 +16,8 @@
 #include <string>
 #include <system_error>
 
+#include "emnet/core/terminal_text.hpp"
+
 namespace emnet {
 
 bool Dimension::operator==(const Dimension& other) const {
@@ -224,8 +226,14 @@ bool resolve_unit_symbol(const std::string& symbol, ParsedUnit& resolved) {
   return false;
 }
 
+// A piece of the input quoted in a message: escaped (a NUL cut the message where it was
+// printed) and at most 60 bytes (a 100 000-character value was echoed whole, twice).
+std::string quoted(const std::string& text) {
+  return terminal_excerpt(text, 60);
+}
+
 [[noreturn]] void throw_malformed_unit(const std::string& unit_text, const std::string& why) {
-  throw std::invalid_argument("malformed unit '" + unit_text + "': " + why);
+  throw std::invalid_argument("malformed unit '" + quoted(unit_text) + "': " + why);
 }
 
 // Reads an optional exponent ("^2", "^-1", "²", "⁻¹") at `position`; 1 if there is none.
@@ -310,8 +318,10 @@ ParsedUnit parse_unit(const std::string& unit_text) {
     const std::string symbol = unit_text.substr(symbol_begin, position - symbol_begin);
     ParsedUnit factor;
     if (!resolve_unit_symbol(symbol, factor)) {
-      if (symbol == trim(unit_text)) throw std::invalid_argument("unknown unit '" + symbol + "'");
-      throw std::invalid_argument("unknown unit '" + symbol + "' in '" + trim(unit_text) + "'");
+      if (symbol == trim(unit_text))
+        throw std::invalid_argument("unknown unit '" + quoted(symbol) + "'");
+      throw std::invalid_argument("unknown unit '" + quoted(symbol) + "' in '" +
+                                  quoted(trim(unit_text)) + "'");
     }
     const int exponent = direction * read_unit_exponent(unit_text, position);
     result.dimension = result.dimension.times(factor.dimension.raised_to(exponent));
@@ -340,7 +350,7 @@ double parse_quantity(const std::string& text, const Dimension& expected) {
     word += static_cast<char>(std::tolower(static_cast<unsigned char>(trimmed[i])));
   }
   if (word == "nan" || word == "inf") {
-    throw std::invalid_argument("not a finite number: '" + trimmed + "'");
+    throw std::invalid_argument("not a finite number: '" + quoted(trimmed) + "'");
   }
   std::size_t digit_count = 0;
   while (position < trimmed.size()) {
@@ -354,7 +364,7 @@ double parse_quantity(const std::string& text, const Dimension& expected) {
     ++position;
   }
   if (digit_count == 0) {
-    throw std::invalid_argument("not a number: '" + trimmed + "', " + expectation);
+    throw std::invalid_argument("not a number: '" + quoted(trimmed) + "', " + expectation);
   }
   long long decimal_exponent = 0;
   if (position < trimmed.size() && (trimmed[position] == 'e' || trimmed[position] == 'E')) {
@@ -387,10 +397,10 @@ double parse_quantity(const std::string& text, const Dimension& expected) {
   const auto [end, error] =
       std::from_chars(scientific.data(), scientific.data() + scientific.size(), value);
   if (error == std::errc::result_out_of_range || !std::isfinite(value)) {
-    throw std::invalid_argument("number out of range: '" + trimmed + "'");
+    throw std::invalid_argument("number out of range: '" + quoted(trimmed) + "'");
   }
   if (error != std::errc() || end != scientific.data() + scientific.size()) {
-    throw std::invalid_argument("not a number: '" + trimmed + "', " + expectation);
+    throw std::invalid_argument("not a number: '" + quoted(trimmed) + "', " + expectation);
   }
   if (unit_text.empty() && expected != dim::none) {
     throw std::invalid_argument("missing unit, expected " + describe_dimension(expected));
@@ -404,7 +414,7 @@ double parse_quantity(const std::string& text, const Dimension& expected) {
     } else {
       actual = "has dimension " + unit.dimension.text();
     }
-    throw std::invalid_argument("unit '" + unit_text + "' " + actual + ", expected " +
+    throw std::invalid_argument("unit '" + quoted(unit_text) + "' " + actual + ", expected " +
                                 describe_dimension(expected));
   }
 

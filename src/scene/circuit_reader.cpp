@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "emnet/core/bounded_file.hpp"
+#include "emnet/core/terminal_text.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "parameter_relations.hpp"
 #include "scene_reader_internal.hpp"
@@ -75,10 +76,12 @@ std::vector<std::pair<double, double>> read_pwl_csv(const std::string& scene_pat
       throw InputError(where, key,
                        "expected two numbers, time [s] and value [SI], separated by a comma; "
                        "got '" +
-                           trim(line) + "'");
+                           terminal_excerpt(trim(line), 60) + "'");
     }
     if (!std::isfinite(time) || !std::isfinite(value))
-      throw InputError(where, key, "the time and value must be finite, got '" + trim(line) + "'");
+      throw InputError(
+          where, key,
+          "the time and value must be finite, got '" + terminal_excerpt(trim(line), 60) + "'");
     if (time < 0.0)
       throw InputError(where, key, "the time must be >= 0 s, got " + format_number(time) + " s");
     if (!points.empty() && !(time > points.back().first))

@@ -19,6 +19,7 @@
 #include "emnet/analysis/periodic.hpp"
 #include "emnet/core/bounded_file.hpp"
 #include "emnet/core/stopwatch.hpp"
+#include "emnet/core/terminal_text.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/model/outputs.hpp"
@@ -303,7 +304,8 @@ Variation parse_variation(const Scene& scene, const std::string& text, const std
     try {
       return parse_study_value(field, dimension, nominal, fraction_only);
     } catch (const std::invalid_argument& error) {
-      throw InputError(where, address.key, "'" + field + "': " + error.what());
+      throw InputError(where, address.key,
+                       "'" + terminal_excerpt(field, 60) + "': " + error.what());
     }
   };
   const auto open = spec.find('(');
@@ -312,8 +314,9 @@ Variation parse_variation(const Scene& scene, const std::string& text, const std
     const auto arguments = split(spec.substr(open + 1, spec.size() - open - 2), ",");
     auto expect = [&](std::size_t count, const char* form) {
       if (arguments.size() != count)
-        throw InputError(where, address.key,
-                         "expected " + std::string(form) + ", got '" + spec + "'");
+        throw InputError(
+            where, address.key,
+            "expected " + std::string(form) + ", got '" + terminal_excerpt(spec, 60) + "'");
     };
     if (name == "linspace" || name == "logspace") {
       expect(3, (name + "(from,to,count)").c_str());
@@ -323,7 +326,7 @@ Variation parse_variation(const Scene& scene, const std::string& text, const std
       if (end == arguments[2].c_str() || *end != '\0' || count < 1 || count > 1000000)
         throw InputError(where, address.key,
                          "the count of " + name + " must be an integer from 1 to 1000000, got '" +
-                             arguments[2] + "'");
+                             terminal_excerpt(arguments[2], 60) + "'");
       if (name == "logspace" && !(from > 0.0 && to > 0.0))
         throw InputError(where, address.key, "logspace needs from > 0 and to > 0");
       for (long k = 0; k < count; ++k) {
@@ -494,7 +497,8 @@ VariantTable read_variants_csv(const Scene& scene, const std::string& path) {
       try {
         row.push_back(parse_study_value(fields[k], dimensions[k], nominals[k], false));
       } catch (const std::invalid_argument& error) {
-        throw InputError(where, table.keys[k], "'" + fields[k] + "': " + error.what());
+        throw InputError(where, table.keys[k],
+                         "'" + terminal_excerpt(fields[k], 60) + "': " + error.what());
       }
     }
     table.rows.push_back(std::move(row));

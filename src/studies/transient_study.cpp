@@ -80,6 +80,13 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
     refuse("periods", "must be > 0 and at most 1e6 (inclusive)");
   if (!valid_relative_tolerance(options.rtol)) refuse("rtol", kRelativeToleranceRange);
   if (!(options.atol >= 0.0) || !std::isfinite(options.atol)) refuse("atol", "must be >= 0");
+  // IDA weighs each unknown's error by 1/(rtol·|y| + atol) and sums the squares: below 1e-150
+  // the squares of an unknown at zero overflow, and IDA failed with a misleading "tstop ...
+  // behind t".
+  if (options.atol > 0.0 && options.atol < 1e-150)
+    refuse("atol",
+           "must be 0 (a scale per unknown) or at least 1e-150: below that IDA's error weights "
+           "1/atol overflow when squared");
   if (!(options.max_step >= 0.0) || !std::isfinite(options.max_step))
     refuse("max-step", "must be >= 0 (0: no limit)");
   if (options.points_per_period < 2 || options.points_per_period > 100000)

@@ -5,6 +5,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cstdio>
+#include <fstream>
 #include <string>
 
 #include "cli_run.hpp"
@@ -47,6 +49,35 @@ TEST(CliRobustness, VariantsFileIsARegularFileOfBoundedSize) {
   EXPECT_EQ(pipe.status, 2) << pipe.err;
   EXPECT_NE(pipe.err.find("not a regular file (a pipe)"), std::string::npos) << pipe.err;
   unlink(fifo.c_str());
+}
+
+// A NUL in a variants CSV value cut the message where it was printed, and a 100 000-character
+// value was echoed whole, twice: the quoted input is escaped and cut to 60 bytes.
+TEST(CliRobustness, QuotedInputIsEscapedAndShort) {
+  const std::string csv = ::testing::TempDir() + "emnet_nul_" + std::to_string(getpid()) + ".csv";
+  {
+    std::ofstream file(csv, std::ios::binary);
+    file << "beam.bending_stiffness\n" << std::string("1", 1) << '\0' << "x N*m^2\n";
+  }
+  const auto nul = run_emnet("study " + kCantilever + " --analysis modes --variants " + csv);
+  EXPECT_EQ(nul.status, 2) << nul.err;
+  EXPECT_NE(nul.err.find("1\\x00x N*m^2"), std::string::npos) << nul.err;
+  std::remove(csv.c_str());
+  const auto long_value =
+      run_emnet("study " + kCantilever + " --analysis modes --vary beam.bending_stiffness=" +
+                std::string(100000, '7') + "x");
+  EXPECT_EQ(long_value.status, 2) << long_value.err.substr(0, 400);
+  EXPECT_LT(long_value.err.size(), 1000u) << long_value.err.substr(0, 400);
+}
+
+// tran --atol 1e-300 failed inside IDA with "tstop ... behind t"; refused up front, exit 2.
+TEST(CliRobustness, AnAbsoluteToleranceThatOverflowsIdasWeightsIsRefused) {
+  const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+  const auto run = run_emnet("tran " + fin + " --periods 1 --atol 1e-300");
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_NE(run.err.find("1e-150"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("tstop"), std::string::npos) << run.err;
+  EXPECT_EQ(run_emnet("tran " + fin + " --periods 1 --atol 1e-12").status, 0);
 }
 
 // A study's -o that cannot be written says -o/--output, not --csv.
