@@ -2,6 +2,8 @@
 // include/emnet/model/outputs.hpp.
 #include "emnet/model/outputs.hpp"
 
+#include "emnet/model/circuit.hpp"
+
 namespace emnet {
 
 int speckle_point_reference(const Model& model) {
@@ -48,6 +50,15 @@ std::vector<ModelOutput> dea_electrical_outputs(const Model& model) {
       outputs.push_back(std::move(current));
     }
   return outputs;
+}
+
+std::vector<CircuitDeaVoltageProbe> circuit_dea_voltage_probes(const Model& model) {
+  std::vector<CircuitDeaVoltageProbe> probes;
+  for (const std::string& name : circuit_driven_deas(model.scene))
+    for (const DeaLayout& dea : model.deas)
+      if (dea.name == name && dea.electrode_node != ground)
+        probes.push_back({name, model.parse_probe("dea_voltage:" + name)});
+  return probes;
 }
 
 namespace {

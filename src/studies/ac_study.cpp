@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "emnet/core/units.hpp"
-#include "emnet/model/circuit.hpp"
+#include "emnet/model/outputs.hpp"
 
 namespace emnet {
 
@@ -61,15 +61,12 @@ std::vector<std::string> zero_voltage_dea_notes(const Model& model,
                                                 const Eigen::VectorXd& operating_point) {
   std::vector<std::pair<std::string, double>> voltages;
   double largest = 0.0;
-  for (const std::string& name : circuit_driven_deas(model.scene))
-    for (const DeaLayout& dea : model.deas)
-      if (dea.name == name && dea.electrode_node != ground) {
-        double u = 0.0;
-        for (const auto& [index, c] : model.parse_probe("dea_voltage:" + name).terms)
-          u += c * operating_point[index];
-        voltages.emplace_back(name, std::abs(u));
-        largest = std::max(largest, std::abs(u));
-      }
+  for (const CircuitDeaVoltageProbe& one : circuit_dea_voltage_probes(model)) {
+    double u = 0.0;
+    for (const auto& [index, c] : one.probe.terms) u += c * operating_point[index];
+    voltages.emplace_back(one.dea, std::abs(u));
+    largest = std::max(largest, std::abs(u));
+  }
   std::vector<std::string> notes;
   for (const auto& [name, u] : voltages)
     if (u <= 1e-9 * largest)

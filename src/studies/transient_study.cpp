@@ -7,7 +7,6 @@
 
 #include "emnet/core/errors.hpp"
 #include "emnet/core/stopwatch.hpp"
-#include "emnet/model/circuit.hpp"
 #include "emnet/model/drive.hpp"
 #include "emnet/model/outputs.hpp"
 #include "emnet/scene/parameters.hpp"
@@ -28,34 +27,18 @@ std::vector<Probe> transient_outputs(const Model& model, const std::vector<std::
 
 namespace {
 
-// The film voltages of the circuit-driven DEAs that have their electrical model: computed
-// with the outputs, so that the field check has a value where the circuit gives no bound (an
-// inductor, a current source or back-coupling: "field not checked" before).
-std::vector<Probe> circuit_dea_voltage_probes(const Model& model) {
-  std::vector<Probe> probes;
-  for (const std::string& name : circuit_driven_deas(model.scene))
-    for (const DeaLayout& dea : model.deas)
-      if (dea.name == name && dea.electrode_node != ground)
-        probes.push_back(model.parse_probe("dea_voltage:" + name));
-  return probes;
-}
-
-// `voltages` with each DEA of `probes` that has no proven bound there at the largest |value| of
-// its `values` [V] (at the output times: a peak between them is missed, so a bound, which
-// never is, is kept where there is one).
-void judge_computed_voltages(std::vector<DeaVoltage>& voltages, const Model& model,
-                             const std::vector<Probe>& probes,
+// `voltages` with each DEA of `judged` (circuit_dea_voltage_probes, computed with the outputs so
+// that the field check has a value where the circuit gives no bound: an inductor, a current
+// source or back-coupling) that has no proven bound there at the largest |value| of its
+// `values` [V] (at the output times: a peak between them is missed, so a bound, which never
+// is, is kept where there is one).
+void judge_computed_voltages(std::vector<DeaVoltage>& voltages,
+                             const std::vector<CircuitDeaVoltageProbe>& judged,
                              const std::vector<std::vector<double>>& values) {
-  const std::vector<std::string> names = circuit_driven_deas(model.scene);
-  size_t k = 0;
-  for (const std::string& name : names) {
-    bool has_probe = false;
-    for (const DeaLayout& dea : model.deas)
-      has_probe |= dea.name == name && dea.electrode_node != ground;
-    if (!has_probe || k >= probes.size()) continue;
+  for (size_t k = 0; k < judged.size() && k < values.size(); ++k) {
+    const std::string& name = judged[k].dea;
     double largest = 0.0;
     for (double v : values[k]) largest = std::max(largest, std::abs(v));
-    ++k;
     const bool bounded = std::any_of(voltages.begin(), voltages.end(),
                                      [&](const DeaVoltage& v) { return v.dea == name; });
     if (!bounded)
@@ -133,9 +116,9 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
   for (long k = 0; k <= outputs; ++k)
     transient.output_times.push_back(transient.end_time * static_cast<double>(k) / outputs);
   study.end_time = transient.end_time;
-  const std::vector<Probe> judged = circuit_dea_voltage_probes(model);
+  const std::vector<CircuitDeaVoltageProbe> judged = circuit_dea_voltage_probes(model);
   std::vector<Probe> computed = study.outputs;
-  computed.insert(computed.end(), judged.begin(), judged.end());
+  for (const CircuitDeaVoltageProbe& one : judged) computed.push_back(one.probe);
   study.result = options.method == TransientMethod::exact
                      ? run_transient_exact(study.system, computed, transient)
                      : run_transient_ida(study.system, computed, transient);
@@ -162,7 +145,7 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
         peaks.back().peak = std::max(peaks.back().peak, std::abs(v));
     }
   std::vector<DeaVoltage> voltages = drive_peak_voltages(model.scene);
-  judge_computed_voltages(voltages, model, judged, judged_values);
+  judge_computed_voltages(voltages, judged, judged_values);
   study.validity = check_validity(model.scene, peaks, voltages);
   study.seconds = stopwatch.seconds();
   return study;

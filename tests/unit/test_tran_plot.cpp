@@ -42,8 +42,7 @@ TEST_F(CliTranPlot, DeflectionLimitIsDrawnWhereTheResultLeavesIt) {
   const auto sweep = emnet::testing::run_emnet("sweep-switching " + fin + " --plot " +
                                                path("sweep.png") + " --plot-script");
   ASSERT_EQ(sweep.status, 5) << sweep.err;
-  std::ifstream sweep_script(path("sweep.png.gp"));
-  const std::string text((std::istreambuf_iterator<char>(sweep_script)), {});
+  const std::string text = contents("sweep.png.gp");
   EXPECT_NE(text.find("set arrow 500 from graph 0, first 12.25 "), std::string::npos) << text;
   EXPECT_NE(text.find("first -12.25 "), std::string::npos) << text;
   EXPECT_NE(text.find("deflection limit +/-12.25 mm (model.deflection_limit)"), std::string::npos)
@@ -51,8 +50,7 @@ TEST_F(CliTranPlot, DeflectionLimitIsDrawnWhereTheResultLeavesIt) {
   const auto tran = emnet::testing::run_emnet("tran " + fin + " --periods 1 --plot " +
                                               path("tran.png") + " --plot-script");
   ASSERT_EQ(tran.status, 0) << tran.err;
-  std::ifstream tran_script(path("tran.png.gp"));
-  const std::string inside((std::istreambuf_iterator<char>(tran_script)), {});
+  const std::string inside = contents("tran.png.gp");
   EXPECT_EQ(inside.find("set arrow 500"), std::string::npos) << inside;
 }
 

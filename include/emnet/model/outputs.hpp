@@ -54,6 +54,15 @@ std::vector<ModelOutput> speckle_point_differences(const Model& model);
 // u_X and i_X of every DEA with an electrical model, in DEA order (u before i).
 std::vector<ModelOutput> dea_electrical_outputs(const Model& model);
 
+// The film voltage probe (dea_voltage:X) of each DEA a [[circuit]] drives (circuit_driven_deas,
+// in its order) that has its electrical model (an electrode node): what tran judges where the
+// circuit proves no bound, and what ac reads at the operating point.
+struct CircuitDeaVoltageProbe {
+  std::string dea;
+  Probe probe;
+};
+std::vector<CircuitDeaVoltageProbe> circuit_dea_voltage_probes(const Model& model);
+
 // What tran (and sweep-switching, mismatch) show: the scene's probes, P_k replaced by dx_k, then
 // u_X, i_X of every DEA with an electrical model unless a scene probe shows that quantity
 // already. A deck's list: every probe a deck carries, the dx_k, then the same u_X, i_X.
