@@ -1,16 +1,18 @@
 // Output files written completely or not at all; see include/emnet/core/output_file.hpp.
 #include "emnet/core/output_file.hpp"
 
-#include <atomic>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
+
+#include "emnet/core/temporary_files.hpp"
 
 namespace emnet {
 
@@ -57,6 +59,7 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
     descriptor_ = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (descriptor_ >= 0) {
       temporary_ = candidate;
+      register_temporary_path(temporary_);
     } else if (errno != EEXIST) {
       fail("cannot write", errno);
       return;
@@ -72,6 +75,7 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
 OutputFile::~OutputFile() {
   if (descriptor_ >= 0) ::close(descriptor_);
   if (!committed_ && !temporary_.empty()) ::unlink(temporary_.c_str());
+  unregister_temporary_path(temporary_);
 }
 
 void OutputFile::fail(const std::string& what, int error_number) {
@@ -114,7 +118,10 @@ Status OutputFile::commit() {
     descriptor_ = -1;
   }
   if (status_.ok && !temporary_.empty()) {
-    if (::rename(temporary_.c_str(), target_.c_str()) != 0) fail("cannot write", errno);
+    if (::rename(temporary_.c_str(), target_.c_str()) != 0)
+      fail("cannot write", errno);
+    else
+      unregister_temporary_path(temporary_);
   }
   if (status_.ok) committed_ = true;
   return status_;

@@ -323,13 +323,17 @@ ProcessResult run_process(const ProcessOptions& options) {
       timed_out = true;
       break;
     }
+    if (options.stop_requested && options.stop_requested()) {
+      stopped = true;
+      break;
+    }
     pollfd descriptors[4] = {{outputs[0].pipe.read_end.get(), POLLIN, 0},
                              {outputs[1].pipe.read_end.get(), POLLIN, 0},
                              {supervisor.control(), POLLIN, 0},
                              {input.write_end.get(), POLLOUT, 0}};
     const double remaining = seconds_between(now, deadline);
-    const int ready =
-        ::poll(descriptors, 4, static_cast<int>(std::ceil(std::min(remaining, 1.0) * 1000)));
+    const double wait = std::min(remaining, options.stop_requested ? 0.1 : 1.0);
+    const int ready = ::poll(descriptors, 4, static_cast<int>(std::ceil(wait * 1000)));
     if (ready < 0 && errno != EINTR) return failed("poll failed: " + errno_text(errno), errno);
     if (ready <= 0) continue;
     if (descriptors[3].revents) {

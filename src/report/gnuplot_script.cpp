@@ -4,13 +4,15 @@
 // include/emnet/report/plot.hpp).
 //
 // Every file is written completely or not at all (emnet::OutputFile), and so is the image:
-// gnuplot runs hidden copies of the data and the script, the script's only differences being
-// the data file it reads and its output, a temporary image beside the real one, which is
-// renamed onto the image when gnuplot has succeeded and written a non-empty file; a failure
-// leaves the previous image, if any, never a half-written one. The hidden copies are removed
-// afterwards. gnuplot is started without a shell, through the process helper
-// (emnet/core/process.hpp), as
-//   gnuplot -d .NAME.gp.PID.run      (in DIRECTORY, standard input /dev/null)
+// gnuplot runs on copies of the data and the script in a private directory beside the image
+// (".emnet-plot-XXXXXX", mode 0700, made by mkdtemp: no other user can place, replace or read a
+// file in it, whatever the image's directory allows), drawing into that directory; the drawing
+// is renamed onto the image when gnuplot has succeeded and written a non-empty file, and only
+// then are the asked-for data and script written beside it. A failure or a cancellation leaves
+// the previous image, if any, never a half-written one, and no side files of a new one. The
+// directory is removed afterwards (and by the command line when a signal ends it). gnuplot is
+// started without a shell, through the process helper (emnet/core/process.hpp), as
+//   gnuplot -d script.gp      (in the private directory, standard input /dev/null)
 // under a time limit of 60 s that kills it and everything it started; its standard output and
 // error are kept (the first 1 MiB) for the message when it fails. A saved script names its files
 // relative to its directory, so it can be re-run from there.
@@ -33,6 +35,7 @@
 
 #include "emnet/core/output_file.hpp"
 #include "emnet/core/process.hpp"
+#include "emnet/core/temporary_files.hpp"
 
 namespace emnet::gnuplot {
 
@@ -118,27 +121,6 @@ std::ostringstream classic_stream() {
   return stream;
 }
 
-namespace {
-
-// A file that is removed when this goes out of scope (the script gnuplot runs, a temporary
-// image not renamed into place).
-class RemovedAtExit {
- public:
-  explicit RemovedAtExit(std::string path) : path_(std::move(path)) {}
-  ~RemovedAtExit() {
-    std::error_code ignored;
-    std::filesystem::remove(path_, ignored);
-  }
-  RemovedAtExit(const RemovedAtExit&) = delete;
-  RemovedAtExit& operator=(const RemovedAtExit&) = delete;
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
-
-}  // namespace
-
 std::string gnuplot_terminal_line(const PlotFiles& files, int width, int height) {
   std::ostringstream out;
   if (files.format == ImageFormat::png) {
@@ -177,50 +159,60 @@ std::string last_lines(const std::string& output, size_t count) {
   return text;
 }
 
-// Runs gnuplot on the script `script_name` (in the image's directory) under a time limit and
-// checks that it wrote a non-empty `image_path`.
-Status run_gnuplot(const PlotFiles& files, const std::string& script_name,
-                   const std::string& image_path, bool side_files);
+// Runs gnuplot on `script_name` in `directory` under a time limit (stopped when `output`'s
+// progress is cancelled) and checks that it wrote a non-empty `image_path`; `gnuplot_missing`
+// says that it could not be started.
+Status run_gnuplot(const PlotFiles& files, const std::string& directory,
+                   const std::string& script_name, const std::string& image_path,
+                   const PlotOutput& output, bool& gnuplot_missing);
 
 }  // namespace
 
 Status write_script_and_run(const PlotFiles& files, const std::string& preamble,
                             const ScriptBody& body, const std::string& data,
-                            const std::string& image_path, bool side_files) {
-  if (side_files) {
-    if (Status status = write_output_file(files.data_path, data); !status.ok) return status;
-    if (Status status = write_output_file(files.script_path, preamble + "set output " +
-                                                                 gnuplot_string(files.image_name) +
-                                                                 "\n" + body(files.data_name));
-        !status.ok)
-      return status;
-  }
-  const std::string unique = std::to_string(::getpid());
-  const std::string run_name = "." + files.script_name + "." + unique + ".run";
-  const std::string data_name = "." + files.data_name + "." + unique + ".run";
-  const std::string image_name = "." + files.image_name + "." + unique + ".drawing";
-  const RemovedAtExit run_script((files.directory / run_name).string());
-  const RemovedAtExit run_data((files.directory / data_name).string());
-  const RemovedAtExit drawing((files.directory / image_name).string());
-  if (Status status = write_output_file(run_data.path(), data); !status.ok) return status;
+                            const std::string& image_path, const PlotOutput& output) {
+  if (cancel_requested(output.progress)) return cancelled_status();
+  TemporaryDirectory work;
+  if (Status made = work.create(files.directory.string(), ".emnet-plot-"); !made.ok)
+    return Status::failure("cannot write '" + image_path + "': " + made.message);
+  const std::string drawing_name =
+      std::string("drawing") + (files.format == ImageFormat::png ? ".png" : ".svg");
+  const std::string drawing = work.path() + "/" + drawing_name;
+  if (Status status = write_output_file(work.path() + "/data", data); !status.ok) return status;
   if (Status status = write_output_file(
-          run_script.path(),
-          preamble + "set output " + gnuplot_string(image_name) + "\n" + body(data_name));
+          work.path() + "/script.gp",
+          preamble + "set output " + gnuplot_string(drawing_name) + "\n" + body("data"));
       !status.ok)
     return status;
-  if (Status status = run_gnuplot(files, run_name, drawing.path(), side_files); !status.ok)
+  const auto write_side_files = [&] {
+    if (Status status = write_output_file(files.data_path, data); !status.ok) return status;
+    return write_output_file(
+        files.script_path,
+        preamble + "set output " + gnuplot_string(files.image_name) + "\n" + body(files.data_name));
+  };
+  bool gnuplot_missing = false;
+  if (Status status =
+          run_gnuplot(files, work.path(), "script.gp", drawing, output, gnuplot_missing);
+      !status.ok) {
+    // Without gnuplot the data and the script are still of use (drawn elsewhere).
+    if (gnuplot_missing && output.data_and_script) {
+      if (Status written = write_side_files(); !written.ok) return written;
+    }
     return status;
-  if (std::rename(drawing.path().c_str(), image_path.c_str()) != 0) {
+  }
+  if (std::rename(drawing.c_str(), image_path.c_str()) != 0) {
     std::error_code error(errno, std::generic_category());
     return Status::failure("cannot write '" + image_path + "': " + error.message());
   }
-  return Status::success();
+  return output.data_and_script ? write_side_files() : Status::success();
 }
 
 namespace {
 
-Status run_gnuplot(const PlotFiles& files, const std::string& script_name,
-                   const std::string& image_path, bool side_files) {
+Status run_gnuplot(const PlotFiles& files, const std::string& directory,
+                   const std::string& script_name, const std::string& image_path,
+                   const PlotOutput& output_options, bool& gnuplot_missing) {
+  const bool side_files = output_options.data_and_script;
   std::error_code ignored;
   // gnuplot's standard output and error, in the order they come, the first 1 MiB.
   std::string output;
@@ -231,7 +223,9 @@ Status run_gnuplot(const PlotFiles& files, const std::string& script_name,
   });
   ProcessOptions gnuplot;
   gnuplot.arguments = {"gnuplot", "-d", script_name};
-  gnuplot.working_directory = files.directory.string();
+  gnuplot.working_directory = directory;
+  if (output_options.progress != nullptr)
+    gnuplot.stop_requested = [&] { return cancel_requested(output_options.progress); };
   gnuplot.standard_output = keep;
   gnuplot.standard_error = keep;
   gnuplot.timeout_seconds = kGnuplotTimeLimitSeconds;
@@ -242,9 +236,11 @@ Status run_gnuplot(const PlotFiles& files, const std::string& script_name,
   const std::string details = last_lines(output, 8);
   const std::string output_note = details.empty() ? "" : ":\n  " + details;
   using How = ProcessResult::How;
+  if (end.how == How::stopped) return cancelled_status();
   if (end.how == How::failed)
     return Status::failure("cannot run gnuplot for '" + drawn + "': " + end.problem);
   if (end.how == How::not_started) {
+    gnuplot_missing = true;
     return Status::failure(
         "cannot run gnuplot: it is not installed or not on PATH (Debian package gnuplot-nox, "
         "installed by tools/setup-deps)" +

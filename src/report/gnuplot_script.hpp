@@ -9,6 +9,7 @@
 #include <string>
 
 #include "emnet/core/errors.hpp"
+#include "emnet/report/plot.hpp"
 
 namespace emnet::gnuplot {
 
@@ -48,11 +49,12 @@ std::string script_header(const PlotFiles& files, const std::string& what,
 // The script's body for a data file name (the saved data beside the image, or its hidden copy).
 using ScriptBody = std::function<std::string(const std::string& data_name)>;
 
-// With `side_files`, writes the data and the gnuplot script (`preamble`, the output line,
-// `body`) beside the image. Then runs a hidden copy of both that draws into a temporary image
-// and renames that onto the image.
+// Draws `preamble`, the output line and `body` over `data` in a private temporary directory
+// beside the image and renames the drawing onto `image_path`; then, with
+// `output.data_and_script`, writes the data and the script (reading the data beside it) beside
+// the image. Cancelled through `output.progress`: no file written, cancelled_status().
 Status write_script_and_run(const PlotFiles& files, const std::string& preamble,
                             const ScriptBody& body, const std::string& data,
-                            const std::string& image_path, bool side_files);
+                            const std::string& image_path, const PlotOutput& output);
 
 }  // namespace emnet::gnuplot

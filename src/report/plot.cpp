@@ -354,7 +354,7 @@ Status write_bode_plot(const std::string& path, const std::string& title,
                        const std::vector<double>& frequencies_hz,
                        const std::vector<BodeSeries>& series,
                        const std::vector<PlotMarker>& markers, bool log_frequency,
-                       PlotSideFiles side_files) {
+                       const PlotOutput& output) {
   PlotFiles files;
   if (Status status = plot_files_for(path, files); !status.ok) return status;
   if (series.empty()) return Status::failure("Bode plot '" + path + "': no series to plot");
@@ -526,7 +526,7 @@ Status write_bode_plot(const std::string& path, const std::string& title,
     script << "\n\nunset multiplot\n";
     return script.str();
   };
-  return write_script_and_run(files, preamble, body, data.str(), path, side_files.data_and_script);
+  return write_script_and_run(files, preamble, body, data.str(), path, output);
 }
 
 Status write_line_plot(const std::string& path, const std::string& title,
@@ -650,8 +650,7 @@ Status write_line_plot(const std::string& path, const std::string& title,
     script << "\nunset multiplot\n";
     return script.str();
   };
-  return write_script_and_run(files, preamble, body, data.str(), path,
-                              options.side_files.data_and_script);
+  return write_script_and_run(files, preamble, body, data.str(), path, options.output);
 }
 
 }  // namespace emnet

@@ -17,6 +17,7 @@
 
 #include "core/posix_handles.hpp"
 #include "emnet/core/process.hpp"
+#include "emnet/core/temporary_files.hpp"
 #include "emnet/core/terminal_text.hpp"
 #include "ngspice_backends.hpp"
 #include "ngspice_messages.hpp"
@@ -25,32 +26,6 @@
 namespace emnet {
 
 namespace {
-
-class TemporaryDirectory {
- public:
-  TemporaryDirectory() = default;
-  TemporaryDirectory(const TemporaryDirectory&) = delete;
-  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
-  bool create(std::string& why) {
-    const char* base = std::getenv("TMPDIR");
-    std::string pattern = std::string(base && *base ? base : "/tmp") + "/emnet-ngspice-XXXXXX";
-    if (!::mkdtemp(pattern.data())) {
-      why = "cannot create a temporary directory (" + pattern + "): " + errno_text(errno);
-      return false;
-    }
-    path_ = pattern;
-    return true;
-  }
-  ~TemporaryDirectory() {
-    if (path_.empty()) return;
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
 
 // Reads the file at `path` into `bytes` when it holds at most `limit` bytes; a missing file
 // gives no bytes. The size is the file's own (fstat), never a claim inside it.
@@ -99,8 +74,9 @@ BackendAttempt run_program_backend(const std::vector<std::string>& lines,
     return attempt;
   };
   TemporaryDirectory directory;
+  if (Status made = directory.create("", "emnet-ngspice-"); !made.ok)
+    return fail_here(made.message);
   std::string why;
-  if (!directory.create(why)) return fail_here(why);
   const std::string deck_path = directory.path() + "/deck.cir";
   const std::string rawfile_path = directory.path() + "/deck.raw";
   {

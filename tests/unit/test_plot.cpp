@@ -191,6 +191,35 @@ TEST_F(PlotTest, UnwritablePathIsAFailedStatus) {
   EXPECT_FALSE(status.ok);
 }
 
+// A cancelled plot writes nothing: not before gnuplot starts, nor when the cancellation comes
+// while gnuplot runs (the process helper asks before its first wait, so the second question,
+// the first one asked while gnuplot runs, stops it).
+class CancelledAfter : public emnet::Progress {
+ public:
+  explicit CancelledAfter(int answers) : answers_(answers) {}
+  void report(long, long, std::string_view) override {}
+  bool cancelled() const override { return ++asked_ > answers_; }
+
+ private:
+  int answers_;
+  mutable int asked_ = 0;
+};
+
+TEST_F(PlotTest, ACancelledPlotWritesNoFile) {
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  for (const int answers : {0, 1}) {
+    const CancelledAfter progress(answers);
+    emnet::LinePlotOptions options;
+    options.output.data_and_script = true;
+    options.output.progress = &progress;
+    const auto status =
+        emnet::write_line_plot(path("line.png"), "t", "x", {{"a", {0, 1}, {0, 1}, "m"}}, options);
+    EXPECT_FALSE(status.ok) << answers;
+    EXPECT_EQ(status.message, emnet::kCancelledMessage) << answers;
+    EXPECT_EQ(entries(), 0u) << answers;  // no image, no side files, no private directory
+  }
+}
+
 TEST_F(PlotTest, BadArgumentsAreFailedStatuses) {
   const auto response = oscillator_response(10);
   // Unknown image type.
@@ -244,7 +273,7 @@ TEST_F(PlotTest, SeriesAreGroupedByUnitOnePanelEach) {
   const std::string line = path("line.png");
   emnet::LinePlotOptions options;
   options.axis_labels = {{"m", "deflection [m]"}, {"V", "voltage [V]"}};
-  options.side_files.data_and_script = true;
+  options.output.data_and_script = true;
   ASSERT_TRUE(emnet::write_line_plot(line, "t", "time [s]",
                                      {{"tip", {0, 1}, {0, 1e-3}, "m"},
                                       {"u_A", {0, 1}, {0, 3e3}, "V"},
@@ -273,7 +302,7 @@ TEST_F(PlotTest, LongLegendEntriesAreCutSoThatTheKeyIsDrawn) {
       "plane (positive stretched))";
   const std::string line = path("legend.png");
   emnet::LinePlotOptions options;
-  options.side_files.data_and_script = true;
+  options.output.data_and_script = true;
   ASSERT_TRUE(emnet::write_line_plot(
                   line, "t", "time [s]",
                   {{"tip", {0, 1}, {0, 1e-3}, "m"}, {long_label, {0, 1}, {0, 2e-4}, ""}}, options)
@@ -298,7 +327,7 @@ TEST_F(PlotTest, PairedSeriesShareAColour) {
   right.dashed = true;
   right.in_legend = false;
   emnet::LinePlotOptions options;
-  options.side_files.data_and_script = true;
+  options.output.data_and_script = true;
   options.legend_note = "solid: left; dashed: right";
   const std::string image = path("pair.png");
   ASSERT_TRUE(emnet::write_line_plot(image, "pair", "f [Hz]", {left, right}, options).ok);
@@ -324,7 +353,7 @@ TEST_F(PlotTest, PairedSeriesShareAColour) {
 TEST_F(PlotTest, CloseMarkersShareOneLabel) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   emnet::LinePlotOptions options;
-  options.side_files.data_and_script = true;
+  options.output.data_and_script = true;
   options.markers = {{6.385, "f1 = 6.385 Hz"}, {6.4, "sweep peak 6.4 Hz"}, {2.0, "other"}};
   const std::string image = path("markers.png");
   ASSERT_TRUE(
@@ -356,7 +385,7 @@ std::pair<double, double> label_position(const std::string& line) {
 TEST_F(PlotTest, MarkerLabelsStandAboveThePanelOnRowsThatDoNotOverlap) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   emnet::LinePlotOptions options;
-  options.side_files.data_and_script = true;
+  options.output.data_and_script = true;
   options.markers = {{3.0, "first resonance = 3.000 Hz"},
                      {3.3, "second resonance = 3.300 Hz"},
                      {6.5, "sweep peak 6.5 Hz"}};

@@ -36,7 +36,7 @@ TEST_F(PlotNames, ANewlineInTheNameRunsNoCommand) {
   // (gnuplot runs in the image's directory, the test directory, where X would appear).
   const std::string image = path("a\nsystem(\"touch X\")\n#.png");
   emnet::LinePlotOptions options;
-  options.side_files.data_and_script = true;
+  options.output.data_and_script = true;
   const auto status = emnet::write_line_plot(image, "t", "x", kLine, options);
   EXPECT_FALSE(status.ok);
   EXPECT_NE(status.message.find("control character"), std::string::npos) << status.message;

@@ -279,5 +279,17 @@ TEST(Process, RunsNoForkHandlerOfTheCaller) {
   EXPECT_EQ(fork_handler_calls.load(), before);
 }
 
+// stop_requested (a Ctrl-C flag) stops a program that prints nothing: the poll wakes at least
+// every 100 ms to ask. A quiet `sleep 30` asked to stop once it runs ends as `stopped`, far
+// inside its 20 s time limit (the 20 s is a hang guard, not a timing assertion).
+TEST(Process, StopRequestedStopsAQuietProgram) {
+  ProcessOptions options;
+  int asked = 0;
+  options.stop_requested = [&] { return ++asked > 3; };
+  const ProcessResult result = run_shell("exec sleep 30", options);
+  EXPECT_EQ(result.how, ProcessResult::How::stopped) << result.description();
+  EXPECT_EQ(asked, 4);
+}
+
 }  // namespace
 }  // namespace emnet

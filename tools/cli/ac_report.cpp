@@ -49,7 +49,7 @@ void write_ac_files(const AcReportInput& in, const std::vector<emnet::PlotMarker
         emnet::write_bode_plot(in.plot,
                                in.prepared.model.scene.name + ": small-signal response" +
                                    (input.empty() ? std::string(" (no AC input)") : " to " + input),
-                               grid, series, markers, in.spec.log, {in.plot_script}));
+                               grid, series, markers, in.spec.log, plot_output(in.plot_script)));
   }
 }
 

@@ -219,7 +219,28 @@ void write_csv(const std::string& path, const std::vector<std::string>& header,
 
 // A plot's Status as a FileError (gnuplot missing or failing is no numerical failure).
 void check_plot(const emnet::Status& status) {
-  if (!status.ok) throw FileError("--plot: " + status.message);
+  if (status.ok) return;
+  if (status.message == emnet::kCancelledMessage) throw Interrupted("interrupted");
+  throw FileError("--plot: " + status.message);
+}
+
+namespace {
+
+// Ctrl-C as a Progress that reports nothing: for the plots, whose gnuplot runs are stopped by it.
+class InterruptOnly : public emnet::Progress {
+ public:
+  void report(long, long, std::string_view) override {}
+  bool cancelled() const override { return InterruptHandler::interrupted(); }
+};
+
+}  // namespace
+
+emnet::PlotOutput plot_output(bool plot_script) {
+  static const InterruptOnly interrupt;
+  emnet::PlotOutput output;
+  output.data_and_script = plot_script;
+  output.progress = &interrupt;
+  return output;
 }
 
 void add_plot_options(CLI::App* command, std::string& plot, bool& plot_script,
@@ -231,6 +252,11 @@ void add_plot_options(CLI::App* command, std::string& plot, bool& plot_script,
                     "with --plot PATH: also write the plotted numbers (PATH.dat) and the gnuplot "
                     "script that draws them (PATH.gp; edit it and run `gnuplot PATH.gp` in its "
                     "directory to re-draw the image)");
+}
+
+PlotUnit plot_unit(const std::string& si_unit) {
+  if (si_unit == "m") return {"mm", 1e3};
+  return {si_unit, 1.0};
 }
 
 std::vector<emnet::ReferenceLine> deflection_limit_lines(const emnet::Validity& validity,

@@ -140,6 +140,14 @@ void print_header(const emnet::Model& model, const emnet::System& system);
 // The Status of writing the --csv file as a FileError ("--csv: <why>").
 void check_csv(const emnet::Status& status, const std::string& option = "--csv");
 
+// A plotted quantity's unit and the factor from SI to it: lengths in mm in every plot (the
+// tables' unit of a deflection), every other unit as it is.
+struct PlotUnit {
+  std::string unit;
+  double scale = 1.0;
+};
+PlotUnit plot_unit(const std::string& si_unit);
+
 // Outside the deflection limit, the limit's lines at ±limit·scale in the panel of `unit` (the
 // plot shows where the result left the model's validity); none when it is inside.
 std::vector<emnet::ReferenceLine> deflection_limit_lines(const emnet::Validity& validity,
@@ -161,6 +169,9 @@ void write_csv(const std::string& path, const std::vector<std::string>& header,
 
 // A plot's Status as a FileError (gnuplot missing or failing is no numerical failure).
 void check_plot(const emnet::Status& status);
+// What a plot writes besides its image (--plot-script) and its cancellation by Ctrl-C: gnuplot
+// is stopped and no file written.
+emnet::PlotOutput plot_output(bool plot_script);
 
 struct Prepared {
   emnet::Model model;

@@ -20,7 +20,6 @@
 #include <cstring>
 #include <iostream>
 #include <new>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -149,12 +148,11 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  // Ctrl-C sets a flag that the analyses poll (terminal_progress.hpp); the progress line
-  // goes to standard error. `crosscheck` polls none (ngspice runs on its own), so Ctrl-C keeps
-  // its default there: it ends the program at once (an output file is renamed into place only
-  // when complete).
-  std::optional<InterruptHandler> interrupt_handler;
-  if (!*crosscheck_command) interrupt_handler.emplace();
+  // Before any thread starts (terminal_progress.hpp): Ctrl-C sets a flag that the analyses
+  // poll; SIGTERM, SIGHUP and a second Ctrl-C remove the temporaries and end the program.
+  // `crosscheck` polls none (ngspice runs on its own), so Ctrl-C ends it at once, its
+  // temporaries removed (an output file is renamed into place only when complete).
+  const InterruptHandler signal_handling(/*interrupt_cancels=*/!*crosscheck_command);
   using Mode = TerminalProgress::Mode;
   TerminalProgress reporter("emnet " + app.get_subcommands().front()->get_name(),
                             options.quiet      ? Mode::quiet

@@ -1,11 +1,15 @@
 // Progress line on standard error and Ctrl-C for the command line; see terminal_progress.hpp.
 #include "terminal_progress.hpp"
 
+#include <pthread.h>
+#include <signal.h>
 #include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 
+#include "emnet/core/temporary_files.hpp"
 #include "emnet/core/terminal_text.hpp"
 
 namespace emnet_cli {
@@ -13,11 +17,36 @@ namespace emnet_cli {
 namespace {
 
 std::atomic<bool> interrupt_received{false};
-static_assert(std::atomic<bool>::is_always_lock_free,
-              "a signal handler may only set a lock-free flag");
 
-extern "C" void on_interrupt(int) {
-  interrupt_received.store(true);
+// Removes the registered temporaries, then lets `signal_number` take its default action on this
+// thread: the program ends by it (a shell reports 128 + N).
+[[noreturn]] void end_by_signal(int signal_number) {
+  emnet::remove_registered_temporaries();
+  struct sigaction default_action {};
+  default_action.sa_handler = SIG_DFL;
+  sigemptyset(&default_action.sa_mask);
+  ::sigaction(signal_number, &default_action, nullptr);
+  sigset_t just_this;
+  sigemptyset(&just_this);
+  sigaddset(&just_this, signal_number);
+  ::pthread_sigmask(SIG_UNBLOCK, &just_this, nullptr);
+  ::raise(signal_number);
+  std::_Exit(128 + signal_number);  // a signal whose default action does not end the program
+}
+
+void watch_signals(sigset_t watched, bool interrupt_cancels) {
+  for (;;) {
+    int signal_number = 0;
+    if (::sigwait(&watched, &signal_number) != 0) continue;
+    if (signal_number == SIGINT && interrupt_cancels && !interrupt_received.exchange(true))
+      continue;
+    end_by_signal(signal_number);
+  }
+}
+
+bool ignored_at_start(int signal_number) {
+  struct sigaction current {};
+  return ::sigaction(signal_number, nullptr, &current) == 0 && current.sa_handler == SIG_IGN;
 }
 
 // A duration as it is read: "3.1 s", "4 min 05 s", "2 h 13 min".
@@ -74,18 +103,13 @@ std::string progress_line(const std::string& command, const std::string& what, l
   return text;
 }
 
-InterruptHandler::InterruptHandler() {
-  struct sigaction action {};
-  action.sa_handler = on_interrupt;
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND;  // a second Ctrl-C: the default action, the program ends
-  if (::sigaction(SIGINT, nullptr, &previous_) != 0) return;
-  if (previous_.sa_handler == SIG_IGN) return;  // started with SIGINT ignored: keep it so
-  installed_ = ::sigaction(SIGINT, &action, nullptr) == 0;
-}
-
-InterruptHandler::~InterruptHandler() {
-  if (installed_) ::sigaction(SIGINT, &previous_, nullptr);
+InterruptHandler::InterruptHandler(bool interrupt_cancels) {
+  sigset_t watched;
+  sigemptyset(&watched);
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP})
+    if (!ignored_at_start(signal_number)) sigaddset(&watched, signal_number);
+  if (::pthread_sigmask(SIG_BLOCK, &watched, nullptr) != 0) return;  // default actions stay
+  std::thread(watch_signals, watched, interrupt_cancels).detach();
 }
 
 bool InterruptHandler::interrupted() {

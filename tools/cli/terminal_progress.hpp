@@ -12,12 +12,19 @@
 //   emnet ac: AC frequencies 1234/50000 (2.5 %), 3.1 s, about 2 min left
 // A step without counts (a dense eigen-decomposition) shows its time so far only.
 //
-// Ctrl-C: InterruptHandler installs a SIGINT handler that only sets an atomic flag, which
-// cancelled() returns: the analysis stops at its next step with the Status "cancelled" and the
-// command exits with status 130 without writing any output file. The handler is reset after the
-// first signal, so a second Ctrl-C ends the program at once (during a step that cannot stop,
-// such as an eigen-decomposition). A SIGINT that was ignored when the program started (a
-// background job) stays ignored.
+// Signals: InterruptHandler blocks SIGINT, SIGTERM and SIGHUP in every thread (it is made before
+// any other thread starts, and threads inherit the mask) and takes them in one watcher thread
+// (sigwait), so no handler runs inside the analyses. When Ctrl-C cancels (every command but
+// `crosscheck`, whose ngspice runs poll nothing), the first SIGINT only sets a flag, which
+// cancelled() returns: the analysis stops at its next step with the Status "cancelled", a
+// running gnuplot is stopped, and the command exits with status 130 without writing any output
+// file. Any other of these signals (a second Ctrl-C, during a step that cannot stop such as an
+// eigen-decomposition; SIGTERM; SIGHUP; Ctrl-C in `crosscheck`) removes the temporary files and
+// directories still registered (include/emnet/core/temporary_files.hpp: output files not yet
+// renamed into place, gnuplot's and ngspice's private directories) and then ends the program by
+// the signal's default action. Programs it started die with it (include/emnet/core/process.hpp).
+// A signal that was ignored when the program started (SIGINT of a background job, SIGHUP under
+// nohup) stays ignored.
 #pragma once
 
 #include <atomic>
@@ -36,16 +43,13 @@ namespace emnet_cli {
 
 class InterruptHandler {
  public:
-  InterruptHandler();
-  ~InterruptHandler();  // restores the previous SIGINT disposition
+  // `interrupt_cancels`: the first SIGINT sets the flag (else it ends the program at once, as
+  // the other signals do). Lives as long as the program: the watcher thread is never stopped.
+  explicit InterruptHandler(bool interrupt_cancels);
   InterruptHandler(const InterruptHandler&) = delete;
   InterruptHandler& operator=(const InterruptHandler&) = delete;
-  // True once SIGINT was received.
+  // True once SIGINT was received and cancels.
   static bool interrupted();
-
- private:
-  struct sigaction previous_ {};
-  bool installed_ = false;
 };
 
 // The text of a progress line, without the carriage return: `elapsed` seconds since the command

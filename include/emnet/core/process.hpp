@@ -88,6 +88,10 @@ struct ProcessOptions {
   double timeout_seconds = 60.0;
   // RLIMIT_FSIZE of the program and of everything it starts, in bytes.
   std::uint64_t file_size_limit = UINT64_MAX;
+  // Asked at least every 100 ms while the program runs (on the calling thread); true stops it
+  // like an output callback's false: killed with everything it started, the result `stopped`.
+  // E.g. a Ctrl-C flag. Empty: never asked.
+  std::function<bool()> stop_requested;
 };
 
 struct ProcessResult {
@@ -95,7 +99,8 @@ struct ProcessResult {
     exited,       // `exit_status`
     signalled,    // `signal_number`
     timed_out,    // still running at the time limit: killed with everything it started
-    stopped,      // an output callback returned false: killed with everything it started
+    stopped,      // an output callback returned false or stop_requested() true: killed with
+                  // everything it started
     not_started,  // `error_number`: not found in PATH, or exec failed
     failed,       // `problem` (and `error_number` when a system call failed): no pipe, no fork
   };

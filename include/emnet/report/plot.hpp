@@ -9,7 +9,9 @@
 // a temporary file renamed into place, include/emnet/core/output_file.hpp): a failure leaves the
 // previous file, if any, never a truncated one. gnuplot runs under a time limit; every failure
 // (gnuplot missing, an unwritable directory, a full disk, a gnuplot error, a timeout) is
-// returned as a failed Status, never thrown.
+// returned as a failed Status, never thrown. gnuplot reads and writes only inside a private
+// directory (mode 0700, made by mkdtemp beside the image and removed afterwards), so no other
+// user can swap its files; the image is renamed from there onto the path.
 //
 // No axis carries two units: series are grouped by their unit, one panel (one y axis) per
 // group, in the order the units first appear. Colours come from a palette readable on white
@@ -30,6 +32,7 @@
 #include <vector>
 
 #include "emnet/core/errors.hpp"
+#include "emnet/core/progress.hpp"
 
 namespace emnet {
 
@@ -56,10 +59,14 @@ struct PlotMarker {
 // ζ < 1/√2 (d|H|/dr = 0 at r² = 1 − 2ζ²); a more damped mode has no peak to point at.
 bool resonance_shows_peak(double damping_ratio);
 
-// Whether the data (path + ".dat") and the gnuplot script (path + ".gp") are written beside the
-// image.
-struct PlotSideFiles {
+/// What a plot writes besides its image, and when it stops.
+struct PlotOutput {
+  /// Also write the data (path + ".dat") and the gnuplot script (path + ".gp") beside the
+  /// image, once the image is drawn.
   bool data_and_script = false;
+  /// Asked while gnuplot draws (at least every 100 ms): when cancelled, gnuplot is killed, no
+  /// file is written and the plot returns cancelled_status(). Null: not cancellable.
+  const Progress* progress = nullptr;
 };
 
 // Bode plot: one magnitude panel per unit of the series (logarithmic axis; its range fits the
@@ -74,7 +81,7 @@ Status write_bode_plot(const std::string& path, const std::string& title,
                        const std::vector<double>& frequencies_hz,
                        const std::vector<BodeSeries>& series,
                        const std::vector<PlotMarker>& markers, bool log_frequency = false,
-                       PlotSideFiles side_files = {});
+                       const PlotOutput& output = {});
 
 // One curve of a line plot: points (x[i], y[i]); x and y must have the same length.
 struct LineSeries {
@@ -101,7 +108,7 @@ struct LinePlotOptions {
   std::map<std::string, std::string> axis_labels;
   // One line of text under the legend, e.g. which line style is which side.
   std::string legend_note;
-  PlotSideFiles side_files;
+  PlotOutput output;
 };
 
 // x-y line plot on linear axes, for time-domain and sweep plots: one panel per unit of the
