@@ -89,7 +89,7 @@ TEST_F(CliFiles, TranProbesReachTheCsvAndThePlot) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(contents(csv).substr(0, contents(csv).find('\n')), "time_s,tip_m,P4_m");
   const std::string data = contents(path("tran.png.dat"));
-  EXPECT_NE(data.find("tip (deflection at x = 122.5 mm) [m]"), std::string::npos) << data;
+  EXPECT_NE(data.find("tip (deflection at x = 122.5 mm) [mm]"), std::string::npos) << data;
   EXPECT_NE(data.find("P4 ("), std::string::npos) << data;
   EXPECT_EQ(data.find("dx2"), std::string::npos) << data;
   // Probes of different units are plotted, each unit in its own panel: no axis has two units.
@@ -97,7 +97,7 @@ TEST_F(CliFiles, TranProbesReachTheCsvAndThePlot) {
                                  path("mixed.png") + " --plot-script");
   ASSERT_EQ(mixed.status, 0) << mixed.err;
   const std::string script = contents(path("mixed.png.gp"));
-  EXPECT_NE(script.find("set ylabel 'deflection [m]'"), std::string::npos) << script;
+  EXPECT_NE(script.find("set ylabel 'deflection [mm]'"), std::string::npos) << script;
   EXPECT_NE(script.find("set ylabel 'voltage [V]'"), std::string::npos) << script;
   // The drive in its own panel under the response: DEA A's and B's source voltages.
   const std::string tip_data = contents(path("tran.png.dat"));

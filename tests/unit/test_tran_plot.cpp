@@ -54,4 +54,29 @@ TEST_F(CliTranPlot, DeflectionLimitIsDrawnWhereTheResultLeavesIt) {
   EXPECT_EQ(inside.find("set arrow 500"), std::string::npos) << inside;
 }
 
+// Lengths in one unit across plots (the transient's were in m, the sweep's in mm, and the
+// sweep's only when every output was a deflection): mm in every plot, whatever else is drawn,
+// the deflection limit included (1 % of L = 1.225 mm, exceeded by the fin's transient).
+TEST_F(CliTranPlot, LengthsAreInMillimetresInEveryPlot) {
+  if (!emnet::testing::gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+  const auto tran = emnet::testing::run_emnet(
+      "tran " + fin + " --periods 1 --probe tip --probe u_A --set model.deflection_limit=0.01" +
+      " --plot " + path("tran.png") + " --plot-script");
+  ASSERT_EQ(tran.status, 5) << tran.err;
+  const std::string tran_script = contents("tran.png.gp");
+  EXPECT_NE(tran_script.find("set ylabel 'deflection [mm]'"), std::string::npos) << tran_script;
+  EXPECT_NE(tran_script.find("deflection limit +/-1.225 mm"), std::string::npos) << tran_script;
+  const auto sweep = emnet::testing::run_emnet("sweep-switching " + fin +
+                                               " --from 4 --to 6 --step 1 --probe tip --probe "
+                                               "rotation@0.1 --plot " +
+                                               path("sweep.png") + " --plot-script");
+  ASSERT_EQ(sweep.status, 0) << sweep.err;
+  const std::string sweep_script = contents("sweep.png.gp");
+  EXPECT_NE(sweep_script.find("set ylabel 'peak deflection [mm]'"), std::string::npos)
+      << sweep_script;
+  EXPECT_NE(sweep_script.find("set ylabel 'peak rotation [rad]'"), std::string::npos)
+      << sweep_script;
+}
+
 }  // namespace

@@ -16,25 +16,25 @@ namespace emnet_cli {
 namespace {
 
 // The peaks against the switching frequency: one colour per output, its left extreme solid and
-// its right one dashed, one legend entry per output; deflections in mm as in the table when
-// every plotted output is one, else each output in its own unit, one panel per unit.
+// its right one dashed, one legend entry per output; each unit in its panel, lengths in mm as
+// in every plot (plot_unit).
 void write_sweep_plot(const SweepReportInput& input,
                       const std::vector<emnet::PlotMarker>& markers) {
   const auto& outputs = input.result.outputs;
   const auto& frequencies = input.result.frequencies;
   bool all_deflections = true;
   for (size_t p : input.plotted.indices) all_deflections &= outputs[p].probe.unit == "m";
-  const double scale = all_deflections ? 1e3 : 1.0;
   std::vector<emnet::LineSeries> series;
   int colour = 0;
   for (size_t p : input.plotted.indices) {
     const emnet::Probe& probe = outputs[p].probe;
-    const std::string unit = all_deflections ? "mm" : probe.unit;
-    emnet::LineSeries left{probe.name + " (" + probe.description + ")", frequencies, {}, unit};
-    emnet::LineSeries right{probe.name + " right", frequencies, {}, unit};
+    const PlotUnit shown = plot_unit(probe.unit);
+    emnet::LineSeries left{
+        probe.name + " (" + probe.description + ")", frequencies, {}, shown.unit};
+    emnet::LineSeries right{probe.name + " right", frequencies, {}, shown.unit};
     for (size_t k = 0; k < frequencies.size(); ++k) {
-      left.y.push_back(outputs[p].left[k] * scale);
-      right.y.push_back(outputs[p].right[k] * scale);
+      left.y.push_back(outputs[p].left[k] * shown.scale);
+      right.y.push_back(outputs[p].right[k] * shown.scale);
     }
     left.colour = right.colour = colour++;
     right.dashed = true;
@@ -48,8 +48,8 @@ void write_sweep_plot(const SweepReportInput& input,
       "solid: peak to the left (negative side); dashed: peak to the right (positive side)";
   options.axis_labels = axis_labels("peak ");
   options.reference_lines =
-      deflection_limit_lines(input.result.validity, all_deflections ? "mm" : "m", scale);
-  options.side_files.data_and_script = input.plot_script;
+      deflection_limit_lines(input.result.validity, plot_unit("m").unit, plot_unit("m").scale);
+  options.output = plot_output(input.plot_script);
   stop_if_interrupted();
   check_plot(emnet::write_line_plot(input.plot,
                                     input.model.scene.name + ": periodic steady-state peak " +

@@ -44,9 +44,10 @@ emnet::LineSeries sampled_waveform(const emnet::Waveform& waveform,
   return line;
 }
 
-// The response in the table's units, each unit in its own panel; under it the drive: the DEA
-// voltages among the outputs and, dashed, the voltage (or current) of every source that drives
-// the network: the drive's own sources on the DEAs it names, the circuit's sources.
+// The response, each unit in its own panel (lengths in mm as in every plot: plot_unit); under it
+// the drive: the DEA voltages among the outputs and, dashed, the voltage (or current) of every
+// source that drives the network: the drive's own sources on the DEAs it names, the circuit's
+// sources.
 void write_tran_plot(const TranReportInput& input) {
   const auto& probes = input.plot_probes;
   const auto& times = input.result.times;
@@ -54,10 +55,13 @@ void write_tran_plot(const TranReportInput& input) {
   std::vector<emnet::LineSeries> series;
   bool dea_voltages = false;  // the sources are dashed when DEA voltages are drawn beside them
   for (size_t k : input.plotted.indices) {
-    const size_t shown = input.probes.size();
-    series.push_back({probes[k].name + " (" + probes[k].description + ")", times,
-                      k < shown ? input.result.values[k] : input.plot_only_values[k - shown],
-                      probes[k].unit});
+    const size_t in_table = input.probes.size();
+    const PlotUnit shown = plot_unit(probes[k].unit);
+    std::vector<double> values =
+        k < in_table ? input.result.values[k] : input.plot_only_values[k - in_table];
+    for (double& value : values) value *= shown.scale;
+    series.push_back(
+        {probes[k].name + " (" + probes[k].description + ")", times, values, shown.unit});
     dea_voltages |= probes[k].quantity == emnet::ProbeQuantity::dea_voltage;
   }
   if (scene.drive.kind != emnet::DriveKind::none) {
@@ -86,8 +90,9 @@ void write_tran_plot(const TranReportInput& input) {
   }
   emnet::LinePlotOptions options;
   options.axis_labels = axis_labels("");
-  options.reference_lines = deflection_limit_lines(input.validity, "m", 1.0);
-  options.side_files.data_and_script = input.tran.plot_script;
+  options.reference_lines =
+      deflection_limit_lines(input.validity, plot_unit("m").unit, plot_unit("m").scale);
+  options.output = plot_output(input.tran.plot_script);
   stop_if_interrupted();
   check_plot(emnet::write_line_plot(
       input.tran.plot, scene.name + ": " + drive_summary(scene) + ", " + input.result.method,
