@@ -63,9 +63,10 @@ std::vector<emnet::Probe> parse_probes(const emnet::Model& model,
 }
 
 emnet::PreparedModel prepare(const emnet::Scene& scene, const std::vector<std::string>& probes,
-                             bool require_static) {
+                             bool require_static, emnet::Progress* progress = nullptr) {
   emnet::OperatingPointOptions options;
   options.require_static = require_static;
+  options.static_options.progress = progress;
   emnet::PreparedModel p =
       emnet::prepare_at_rest(with_segments(scene), prepare_for(probes), options);
   require(p.status, "");
@@ -83,12 +84,12 @@ py::dict run_static(const SceneHandle& handle, const std::vector<std::string>& p
   emnet::PreparedModel p;
   std::vector<emnet::Probe> probes;
   emnet::StaticStudyValues values;
-  {
-    py::gil_scoped_release release;
-    p = prepare(handle.scene, probe_texts, true);
+  run_interruptible([&](emnet::Progress* progress) {
+    p = prepare(handle.scene, probe_texts, true, progress);
     probes = parse_probes(p.model, probe_texts);
     values = emnet::static_study_values(p.model, p.system, p.rest, probes);
-  }
+  });
+
   return to_python(emnet::to_json(p.model, p.rest, values.nodes, probes, values.probe_values,
                                   values.validity, stopwatch.seconds()))
       .cast<py::dict>();
@@ -101,8 +102,7 @@ py::dict run_modes(const SceneHandle& handle, int count, bool dense, bool error_
   emnet::Stopwatch stopwatch;
   emnet::ModesStudyResult study;
   std::vector<emnet::Probe> probes;
-  {
-    py::gil_scoped_release release;
+  run_interruptible([&](emnet::Progress* progress) {
     emnet::ModesStudyOptions options;
     if (count < 0) throw InputError("count", "count", "must be >= 0 (0: the default request)");
     options.count = count;
@@ -110,10 +110,12 @@ py::dict run_modes(const SceneHandle& handle, int count, bool dense, bool error_
     options.error_estimate = error_estimate;
     options.shapes = shapes;
     options.prepare = prepare_for(probe_texts);
+    options.progress = progress;
     study = emnet::run_modes_study(with_segments(handle.scene), options);
     require(study.status, "modes: ");
     probes = parse_probes(study.model, probe_texts);
-  }
+  });
+
   return to_python(emnet::to_json(study, probes, stopwatch.seconds())).cast<py::dict>();
 }
 
@@ -128,8 +130,7 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
   std::vector<emnet::Probe> probes;
   emnet::AcStudyResult result;
   std::string input;
-  {
-    py::gil_scoped_release release;
+  run_interruptible([&](emnet::Progress* progress) {
     emnet::AcSpec spec = handle.scene.ac;
     if (from_hz) spec.from = *from_hz;
     if (to_hz) spec.to = *to_hz;
@@ -147,12 +148,13 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
       throw InputError("from_hz", "from_hz", "a log scale needs from_hz > 0");
     if (!reduce && (tolerance || band_hz))
       throw InputError("tolerance/band_hz", "reduce", "tolerance and band_hz need reduce=True");
-    p = prepare(handle.scene, probe_texts, false);
+    p = prepare(handle.scene, probe_texts, false, progress);
     probes = parse_probes(p.model, probe_texts);
     emnet::require_ac_input(p.model, p.system);
     emnet::AcStudyOptions options;
     options.sweep = spec;
     options.probes = probes;
+    options.progress = progress;
     if (reduce) {
       emnet::ReductionOptions reduction;
       reduction.tolerance = tolerance.value_or(p.model.scene.model.tolerance);
@@ -163,7 +165,8 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
     result = emnet::run_ac_study(p.model, p.system, p.rest.operating_point, options);
     require(result.status, reduce ? "ac (reduced): " : "ac: ");
     input = emnet::ac_input_description(p.model.scene, spec.to);
-  }
+  });
+
   py::dict out = to_python(emnet::to_json(result, p.model, probes, input, stopwatch.seconds()))
                      .cast<py::dict>();
   // The complex responses themselves, beside magnitude and phase: [probe][frequency].
@@ -185,8 +188,7 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
                   const std::vector<std::string>& outputs) {
   emnet::TransientStudyResult study;
   emnet::TransientStudyOptions options;
-  {
-    py::gil_scoped_release release;
+  run_interruptible([&](emnet::Progress* progress) {
     if (method != "ida" && method != "exact")
       throw InputError("method", "method", "must be 'ida' or 'exact', got '" + method + "'");
     if (start != "rest" && start != "static")
@@ -203,9 +205,11 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
     options.outputs = outputs;
     options.prepare = prepare_for(outputs);
     options.option_prefix = "";
+    options.progress = progress;
     study = emnet::run_transient_study(with_segments(handle.scene), options);
     require(study.status, "");
-  }
+  });
+
   const emnet::TransientRunDescription run{study.model.scene.name,
                                            study.model.automatic_choices,
                                            study.start_text,
@@ -226,8 +230,7 @@ py::dict run_sweep(const SceneHandle& handle, std::vector<double> frequencies, d
   emnet::Stopwatch stopwatch;
   emnet::SwitchingSweepResult result;
   emnet::SweptModel swept;
-  {
-    py::gil_scoped_release release;
+  run_interruptible([&](emnet::Progress* progress) {
     if (method != "auto" && method != "exact" && method != "shooting")
       throw InputError("method", "method",
                        "must be 'auto', 'exact' or 'shooting', got '" + method + "'");
@@ -248,9 +251,11 @@ py::dict run_sweep(const SceneHandle& handle, std::vector<double> frequencies, d
                                        prepare_for(outputs),
                                        *std::max_element(grid.begin(), grid.end()), "outputs");
     options.outputs = emnet::switching_sweep_outputs(swept.model, outputs);
+    options.progress = progress;
     result = emnet::run_switching_sweep(swept.model, swept.scene, options);
     require(result.status, "sweep_switching: ");
-  }
+  });
+
   py::dict out;
   out["scene"] = swept.model.scene.name;
   out["method"] = result.method;
@@ -285,15 +290,16 @@ py::dict run_sweep(const SceneHandle& handle, std::vector<double> frequencies, d
 py::dict run_identify(const SceneHandle& handle, double target_hz, const std::string& parameter,
                       int mode) {
   emnet::IdentifyResult result;
-  {
-    py::gil_scoped_release release;
+  run_interruptible([&](emnet::Progress* progress) {
     emnet::IdentifyOptions options;
     options.target_hz = target_hz;
     options.parameter = parameter;
     options.mode_number = mode;
+    options.progress = progress;
     result = emnet::identify(with_segments(handle.scene), options);
     require(result.status, "identify: ");
-  }
+  });
+
   py::dict out;
   out["parameter"] = result.parameter.key;
   out["value"] = result.parameter.value;
@@ -314,31 +320,33 @@ py::dict run_sensitivity(const SceneHandle& handle, int modes,
   emnet::Stopwatch stopwatch;
   emnet::SensitivityResult result;
   emnet::Scene scene;
-  {
-    py::gil_scoped_release release;
+  run_interruptible([&](emnet::Progress* progress) {
     scene = with_segments(handle.scene);
     if (modes < 1) throw InputError("modes", "modes", "must be >= 1");
     emnet::SensitivityOptions options;
     options.modes = modes;
     options.check = check;
+    options.progress = progress;
     result = emnet::run_sensitivity(scene, parameters, options);
     require(result.status, "sensitivity: ");
-  }
+  });
+
   return to_python(emnet::to_json(result, scene, check, stopwatch.seconds())).cast<py::dict>();
 }
 
 py::dict run_mismatch(const SceneHandle& handle, std::optional<double> frequency_hz,
                       const std::string& output, double change) {
   emnet::MismatchResult result;
-  {
-    py::gil_scoped_release release;
+  run_interruptible([&](emnet::Progress* progress) {
     emnet::MismatchOptions options;
     options.frequency_hz = frequency_hz;
     options.output = output;
     options.change = change;
+    options.progress = progress;
     result = emnet::run_mismatch(with_segments(handle.scene), options);
     require(result.status, "mismatch: ");
-  }
+  });
+
   py::dict out;
   out["output"] = result.output;
   out["frequency_hz"] = result.frequency_hz;

@@ -95,4 +95,34 @@ py::object to_python(const emnet::Json& json) {
   return std::move(list);
 }
 
+PythonInterrupts::PythonInterrupts(emnet::Progress* forward)
+    : forward_(forward),
+      owner_(std::this_thread::get_id()),
+      last_check_(std::chrono::steady_clock::now()) {}
+
+void PythonInterrupts::report(long done, long total, std::string_view what) {
+  if (forward_ != nullptr) forward_->report(done, total, what);
+}
+
+bool PythonInterrupts::cancelled() const {
+  if (interrupted_.load()) return true;
+  if (std::this_thread::get_id() != owner_) return false;
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_check_ < std::chrono::milliseconds(50)) return false;
+  last_check_ = now;
+  const py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() != 0) {
+    PyErr_Fetch(&type_, &value_, &traceback_);
+    interrupted_.store(true);
+  }
+  return interrupted_.load();
+}
+
+void PythonInterrupts::raise_if_interrupted() {
+  if (!interrupted_.load() || type_ == nullptr) return;
+  PyErr_Restore(type_, value_, traceback_);
+  type_ = value_ = traceback_ = nullptr;
+  throw py::error_already_set();
+}
+
 }  // namespace emnet_python

@@ -16,11 +16,12 @@ namespace emnet_python {
 namespace {
 
 SceneHandle read_handle(const std::string& text, const std::string& name,
-                        const std::vector<std::string>& overrides) {
+                        const std::vector<std::string>& overrides, const emnet::SceneFiles& files) {
   SceneHandle handle;
   {
     py::gil_scoped_release release;
-    handle.scene = emnet::read_scene_text(text, name, overrides);
+    handle.scene = emnet::read_scene_text(text, name, overrides, files);
+    handle.files = emnet::scene_files(handle.scene);
   }
   handle.text = text;
   handle.name = name;
@@ -63,11 +64,12 @@ PYBIND11_MODULE(_emnet, module) {
               py::gil_scoped_release release;
               text = emnet::read_scene_file(path);
             }
-            return read_handle(text, path, overrides);
+            return read_handle(text, path, overrides, {});
           },
           py::arg("path"), py::arg("overrides") = std::vector<std::string>{})
       .def_static("parse", &read_handle, py::arg("text"), py::arg("name"),
-                  py::arg("overrides") = std::vector<std::string>{})
+                  py::arg("overrides") = std::vector<std::string>{},
+                  py::arg("files") = emnet::SceneFiles{})
       .def("copy", [](const SceneHandle& handle) { return handle; })
       .def("get", [](const SceneHandle& handle,
                      const std::string& key) { return emnet::get_parameter(handle.scene, key); })
@@ -97,7 +99,8 @@ PYBIND11_MODULE(_emnet, module) {
       .def_property_readonly("file", [](const SceneHandle& h) { return h.name; })
       .def_property_readonly("text", [](const SceneHandle& h) { return h.text; })
       .def_property_readonly("overrides", [](const SceneHandle& h) { return h.overrides; })
-      .def_property_readonly("sets", [](const SceneHandle& h) { return h.sets; });
+      .def_property_readonly("sets", [](const SceneHandle& h) { return h.sets; })
+      .def_property_readonly("files", [](const SceneHandle& h) { return h.files; });
 
   bind_analyses(module);
   bind_studies(module);

@@ -74,17 +74,18 @@ py::dict run_study(const SceneHandle& handle, const std::vector<std::string>& ke
   }
   emnet::DesignStudyResult result;
   StderrProgress reporter;
-  {
-    py::gil_scoped_release release;
-    emnet::DesignStudyOptions options;
-    options.analyses = emnet::parse_study_analyses(analyses, "analyses");
-    options.mode_count = modes;
-    options.sweep_frequencies = sweep_frequencies;
-    options.report_frequencies = report_frequencies;
-    options.threads = threads;
-    if (progress) options.progress = &reporter;
-    result = emnet::run_design_study(handle.scene, table, options);
-  }
+  run_interruptible(
+      [&](emnet::Progress* interrupts) {
+        emnet::DesignStudyOptions options;
+        options.analyses = emnet::parse_study_analyses(analyses, "analyses");
+        options.mode_count = modes;
+        options.sweep_frequencies = sweep_frequencies;
+        options.report_frequencies = report_frequencies;
+        options.threads = threads;
+        options.progress = interrupts;
+        result = emnet::run_design_study(handle.scene, table, options);
+      },
+      progress ? &reporter : nullptr);
   const auto rows = static_cast<py::ssize_t>(result.rows.size());
   const auto columns = static_cast<py::ssize_t>(result.columns.size());
   py::array_t<double> results({rows, columns});

@@ -123,7 +123,8 @@ class Scene:
 
     scene.get(key) gives a numeric key's value in SI; scene.with_values({key: value_SI}) a new
     scene with those values changed directly (no file read again: what a study does per variant).
-    Scenes pickle (as their text, overrides and changed values), so they travel to Dask workers.
+    Scenes pickle (as their text, overrides, changed values and the pwl files they read, as data),
+    so they travel to Dask workers and compute there what they compute here.
     """
 
     def __init__(self, path=None, set=None, *, _handle=None):
@@ -183,18 +184,22 @@ class Scene:
         """A copy read again with more overrides ({key: value}, units allowed)."""
         handle = self._handle
         fresh = _emnet.SceneHandle.parse(handle.text, handle.file,
-                                         list(handle.overrides) + _override_texts(overrides))
+                                         list(handle.overrides) + _override_texts(overrides),
+                                         handle.files)
         for key, value in handle.sets:
             fresh.set(key, value)
         return Scene(_handle=fresh)
 
     def __getstate__(self):
+        # The pwl files it read travel as data: a worker in another directory, or after the file
+        # changed, rebuilds the very scene that was read here.
         h = self._handle
         return {"text": h.text, "file": h.file, "overrides": list(h.overrides),
-                "sets": list(h.sets)}
+                "sets": list(h.sets), "files": dict(h.files)}
 
     def __setstate__(self, state):
-        handle = _emnet.SceneHandle.parse(state["text"], state["file"], state["overrides"])
+        handle = _emnet.SceneHandle.parse(state["text"], state["file"], state["overrides"],
+                                          state.get("files", {}))
         for key, value in state["sets"]:
             handle.set(key, value)
         self._handle = handle

@@ -4,6 +4,7 @@
 // sources, a DC path to ground from every node). Part of the reader (scene_reader.cpp).
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -37,14 +38,21 @@ namespace {
 // tab or spaces; blank lines and lines starting with '#' skipped; one header line (the first
 // line that is not two numbers, before any data) allowed. Errors name the file and line; `key`
 // is the scene key that names the file ("circuit[amp].file").
+// `supplied`: the file's contents when the caller gave them (emnet::SceneFiles), else null.
 std::vector<std::pair<double, double>> read_pwl_csv(const std::string& scene_path,
-                                                    const std::string& file,
-                                                    const std::string& key) {
+                                                    const std::string& file, const std::string& key,
+                                                    const std::string* supplied) {
   namespace fs = std::filesystem;
   const fs::path path = fs::path(scene_path).parent_path() / fs::path(file);
   const std::string shown = path.string();
-  std::istringstream stream(read_bounded_regular_file(shown, scene_limits::file_bytes,
-                                                      "the pwl file '" + file + "'", key));
+  if (supplied != nullptr && supplied->size() > scene_limits::file_bytes)
+    throw InputError(shown, key,
+                     "the pwl file '" + file + "' is " + std::to_string(supplied->size()) +
+                         " bytes; at most " + std::to_string(scene_limits::file_bytes));
+  std::istringstream stream(supplied != nullptr
+                                ? *supplied
+                                : read_bounded_regular_file(shown, scene_limits::file_bytes,
+                                                            "the pwl file '" + file + "'", key));
   std::vector<std::pair<double, double>> points;
   std::string line;
   std::size_t line_number = 0;
@@ -201,7 +209,13 @@ void SceneReader::read_waveform(const Section& reader, const toml::table& entry,
                     "...] or file = \"NAME.csv\"");
       if (from_file) {
         waveform.file = reader.string("file");
-        waveform.points = read_pwl_csv(locator_.display_name(), waveform.file, reader.key("file"));
+        const std::string* supplied = nullptr;
+        if (files_ != nullptr) {
+          if (const auto found = files_->find(waveform.file); found != files_->end())
+            supplied = &found->second;
+        }
+        waveform.points =
+            read_pwl_csv(locator_.display_name(), waveform.file, reader.key("file"), supplied);
         break;
       }
       const toml::array* array = entry.get_as<toml::array>("points");
@@ -352,4 +366,25 @@ void SceneReader::check_circuit_topology(const toml::table& root, const Scene& s
 }
 
 }  // namespace scene_reading
+SceneFiles scene_files(const Scene& scene) {
+  SceneFiles files;
+  for (const CircuitSpec& element : scene.circuit) {
+    const WaveformSpec& waveform = element.waveform;
+    if (waveform.kind != WaveformKind::pwl || waveform.file.empty()) continue;
+    std::string text = "# time [s], value [SI]: the points emnet read from this file\n";
+    // std::to_chars: the shortest text that reads back as the same double, in no locale.
+    char number[32];
+    const auto append = [&](double x, char after) {
+      text.append(number, std::to_chars(number, number + sizeof number, x).ptr);
+      text += after;
+    };
+    for (const auto& [time, value] : waveform.points) {
+      append(time, ',');
+      append(value, '\n');
+    }
+    files[waveform.file] = std::move(text);
+  }
+  return files;
+}
+
 }  // namespace emnet

@@ -718,7 +718,7 @@ Scene SceneReader::read(const toml::table& root) const {
 using scene_reading::SceneReader;
 
 Scene read_scene_text(const std::string& text, const std::string& display_name,
-                      const std::vector<std::string>& overrides) {
+                      const std::vector<std::string>& overrides, const SceneFiles& files) {
   const std::string name = display_name.empty() ? std::string("<scene>") : display_name;
   if (const std::optional<TomlInputProblem> problem = find_toml_input_problem(text)) {
     throw InputError(problem->line > 0 ? name + ":" + std::to_string(problem->line) : name, "",
@@ -734,7 +734,7 @@ Scene read_scene_text(const std::string& text, const std::string& display_name,
     const std::string where = parsed.line > 0 ? name + ":" + std::to_string(parsed.line) : name;
     throw InputError(where, "", "not a valid TOML file: " + parsed.description);
   }
-  const SceneReader reader(name);
+  const SceneReader reader(name, &files);
   for (const std::string& assignment : overrides)
     apply_override(*parsed.table, assignment, reader.locator());
   return reader.read(*parsed.table);

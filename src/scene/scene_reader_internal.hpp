@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,9 @@ std::string defined_deas(const std::vector<std::string>& names);
 
 class SceneReader {
  public:
-  explicit SceneReader(const std::string& display_name) : locator_(display_name) {}
+  // `files`: contents supplied for files the scene names (emnet::SceneFiles); may be null.
+  SceneReader(const std::string& display_name, const std::map<std::string, std::string>* files)
+      : locator_(display_name), files_(files) {}
 
   const Locator& locator() const { return locator_; }
   Scene read(const toml::table& root) const;
@@ -62,6 +65,7 @@ class SceneReader {
                              Scene& scene) const;
 
   Locator locator_;
+  const std::map<std::string, std::string>* files_;
 };
 
 }  // namespace scene_reading

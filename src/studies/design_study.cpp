@@ -577,7 +577,9 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
                                          : std::max(1u, std::thread::hardware_concurrency());
   threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
   result.threads = static_cast<int>(threads);
-  std::atomic<std::size_t> next{0}, done{0};
+  // `done`: rows taken and finished; `computed`: of those, the ones not skipped by a cancellation
+  // (what the progress reports).
+  std::atomic<std::size_t> next{0}, done{0}, computed{0};
   auto work = [&] {
     for (;;) {
       const std::size_t index = next.fetch_add(1);
@@ -597,6 +599,7 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
           row.status = Status::failure(error.what());
         }
         if (!row.status.ok) row.values.clear();
+        computed.fetch_add(1);
       }
       done.fetch_add(1);
     }
@@ -606,15 +609,19 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
   if (options.progress == nullptr) {
     work();
   } else {
-    // The calling thread reports; a worker of its own does the calling thread's share.
+    // The calling thread reports and asks for cancellation (a Progress may see it only there:
+    // Python runs its signal handlers on its main thread); a worker of its own does the calling
+    // thread's share.
     pool.emplace_back(work);
     for (int tick = 0; done.load() < count; ++tick) {
       if (tick % 10 == 0)
-        options.progress->report(static_cast<long>(done.load()), static_cast<long>(count),
+        options.progress->report(static_cast<long>(computed.load()), static_cast<long>(count),
                                  "variants");
+      static_cast<void>(options.progress->cancelled());
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
-    options.progress->report(static_cast<long>(count), static_cast<long>(count), "variants");
+    options.progress->report(static_cast<long>(computed.load()), static_cast<long>(count),
+                             "variants");
   }
   for (auto& thread : pool) thread.join();
   for (const VariantResult& row : result.rows) {

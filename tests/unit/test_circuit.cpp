@@ -311,6 +311,32 @@ TEST(CircuitReader, PwlFromCsvEqualsTheSamePwlInline) {
   EXPECT_DOUBLE_EQ(wa.value(5.75e-3), 2000.0);
 }
 
+// The files a scene read, as data (scene_files: what a pickled Python scene carries): read back
+// with the scene's text in place of the file, they give the same points bit for bit, even after
+// the file changed or went (a worker in another directory), with values that have no short
+// decimal form (1/3, 0.1 + 0.2).
+TEST(CircuitReader, PwlFilesAsDataRebuildTheSamePoints) {
+  const TemporaryDirectory directory;
+  char csv[128];
+  std::snprintf(csv, sizeof csv, "0,0\n%.17g,%.17g\n%.17g,3000\n", 1.0 / 3.0 * 1e-3, 0.1 + 0.2,
+                7e-3 / 3.0);
+  directory.write("drive.csv", csv);
+  const std::string text =
+      scene_text(kNoDrive, amplifier("waveform = \"pwl\"\nfile = \"drive.csv\""));
+  const std::string path = directory.write("file.toml", text);
+  const Scene read = read_scene(path);
+  const SceneFiles files = scene_files(read);
+  ASSERT_EQ(files.size(), 1u);
+  ASSERT_EQ(files.count("drive.csv"), 1u);
+  std::filesystem::remove(directory.path / "drive.csv");
+  const Scene rebuilt = read_scene_text(text, path, {}, files);
+  ASSERT_EQ(rebuilt.circuit[0].waveform.points.size(), 3u);
+  EXPECT_EQ(rebuilt.circuit[0].waveform.points, read.circuit[0].waveform.points);
+  EXPECT_EQ(scene_files(rebuilt), files);
+  // Without the data the missing file is an error, as before.
+  EXPECT_THROW(read_scene_text(text, path), InputError);
+}
+
 TEST(CircuitReader, CsvPwlErrorsNameTheFileAndLine) {
   const TemporaryDirectory directory;
   const std::string missing = directory.write(

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -54,9 +55,21 @@ Scene read_scene(const std::string& path, const std::vector<std::string>& overri
 // at most scene_limits::file_bytes, read without reading past that. Throws InputError.
 std::string read_scene_file(const std::string& path);
 
-// The same as read_scene for scene text already in memory; `display_name` stands for the file in
-// messages and in Scene::file.
+/// Files a scene names (a pwl waveform's CSV, `circuit[].file`) by the name the scene gives
+/// them, with their contents.
+using SceneFiles = std::map<std::string, std::string>;
+
+/// The same as read_scene for scene text already in memory; `display_name` stands for the file in
+/// messages and in Scene::file.
+/// @param files  files the scene names, taken from here instead of the disk (for a scene rebuilt
+///               in another process or directory from its text, which must compute what it
+///               computed where it was read); a name not here is read from the disk
+/// @throws InputError on any problem, naming the file, line and key
 Scene read_scene_text(const std::string& text, const std::string& display_name,
-                      const std::vector<std::string>& overrides = {});
+                      const std::vector<std::string>& overrides = {}, const SceneFiles& files = {});
+
+/// The files `scene` read (its pwl CSV files), rebuilt from the values it holds: CSV of the
+/// shortest round-trip numbers, which read_scene_text turns back into the same values bit for bit.
+SceneFiles scene_files(const Scene& scene);
 
 }  // namespace emnet
