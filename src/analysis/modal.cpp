@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -399,6 +400,13 @@ ModalResult compute_modes(const System& system, const Eigen::VectorXd& operating
   for (auto* list : {&result.real_poles, &result.overdamped_pairs})
     std::sort(list->begin(), list->end(),
               [](const Mode& a, const Mode& b) { return std::abs(a.pole) < std::abs(b.pole); });
+  // ModalResult's invariants: modes are resonances (Im s > 0, the mode rule), the overdamped
+  // pairs oscillatory but not resonances.
+  assert(std::all_of(result.modes.begin(), result.modes.end(), [](const Mode& mode) {
+    return mode.pole.imag() > 0.0 && is_resonance(mode.pole);
+  }));
+  assert(std::none_of(result.overdamped_pairs.begin(), result.overdamped_pairs.end(),
+                      [](const Mode& mode) { return is_resonance(mode.pole); }));
   return finish(Status::success());
 }
 

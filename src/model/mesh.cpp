@@ -2,7 +2,10 @@
 #include "emnet/model/mesh.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <queue>
 #include <stdexcept>
 
@@ -178,8 +181,16 @@ BeamMesh refine(const BeamMesh& mesh, int parts) {
 BeamMesh mesh_beam(const BeamSpec& beam, const std::vector<double>& attachments) {
   if (beam.refinement < 1)
     throw std::logic_error("mesh_beam: refinement " + std::to_string(beam.refinement) + " < 1");
-  const BeamMesh mesh = spread_mesh(beam, attachments);
-  return beam.refinement == 1 ? mesh : refine(mesh, beam.refinement);
+  BeamMesh mesh = spread_mesh(beam, attachments);
+  if (beam.refinement > 1) mesh = refine(mesh, beam.refinement);
+  // BeamMesh's invariants: nodes from 0 to L, strictly increasing; a section per segment.
+  assert(mesh.x.size() >= 2 && mesh.x.front() == 0.0 &&
+         std::abs(mesh.x.back() - beam.length) <=
+             4 * std::numeric_limits<double>::epsilon() * beam.length);
+  assert(std::is_sorted(mesh.x.begin(), mesh.x.end(), std::less_equal<double>()) &&
+         std::adjacent_find(mesh.x.begin(), mesh.x.end()) == mesh.x.end());
+  assert(mesh.section.size() + 1 == mesh.x.size());
+  return mesh;
 }
 
 }  // namespace emnet
