@@ -530,6 +530,25 @@ std::vector<StudyAnalysis> parse_study_analyses(const std::string& text, const s
   return analyses;
 }
 
+namespace {
+
+// A key that no variant can set (beam.bending_stiffness on a beam of [[section]]s) is an input
+// error, not a study of failed rows: tried on the nominal scene with its own value.
+void refuse_a_key_no_variant_can_set(const Scene& nominal, const std::string& key) {
+  Scene trial = nominal;
+  try {
+    set_parameter(trial, key, get_parameter(nominal, key));
+  } catch (const InputError& error) {
+    const std::string prefix = error.where() + ": key '" + error.key() + "': ";
+    std::string reason = error.what();
+    if (reason.rfind(prefix, 0) == 0) reason.erase(0, prefix.size());
+    if (reason.rfind("is not set in scene", 0) == 0) return;  // no nominal value: the rows decide
+    throw InputError("--vary", error.key(), reason);
+  }
+}
+
+}  // namespace
+
 DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table,
                                    const DesignStudyOptions& options) {
   const Stopwatch stopwatch;
@@ -563,6 +582,7 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
   for (const std::string& key : table.keys) {
     const SceneParameterAddress address = find_scene_parameter_address(nominal, key, "--vary");
     result.key_units.push_back(parameter_unit(*address.info, nominal, address.entry));
+    refuse_a_key_no_variant_can_set(nominal, key);
   }
   const Model nominal_model = prepare_model(nominal);
   result.unknowns = static_cast<int>(nominal_model.network.assemble().size());

@@ -215,5 +215,23 @@ TEST_F(DesignStudyFiles, AFailingVariantIsARowWithItsReason) {
   EXPECT_EQ(second.substr(second.size() - 4), ",,,,");  // no validity, no results
 }
 
+// A key no variant can set was a study of failed rows with exit 0 (the tweezer jaw's
+// beam.bending_stiffness, which its [[section]]s set): refused before the run, naming the key and
+// the reason.
+TEST(DesignStudy, AKeyNoVariantCanSetIsRefusedBeforeTheRun) {
+  const Scene tweezer = read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/tweezer-jaw.toml");
+  VariantTable table;
+  table.keys = {"beam.bending_stiffness"};
+  table.rows = {{1e-3}, {2e-3}};
+  try {
+    run_design_study(tweezer, table, DesignStudyOptions{});
+    FAIL() << "accepted";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.key(), "beam.bending_stiffness");
+    EXPECT_NE(std::string(error.what()).find("section[].bending_stiffness"), std::string::npos)
+        << error.what();
+  }
+}
+
 }  // namespace
 }  // namespace emnet
