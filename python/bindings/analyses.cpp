@@ -89,7 +89,6 @@ py::dict run_static(const SceneHandle& handle, const std::vector<std::string>& p
     probes = parse_probes(p.model, probe_texts);
     values = emnet::static_study_values(p.model, p.system, p.rest, probes);
   });
-
   return to_python(emnet::to_json(p.model, p.rest, values.nodes, probes, values.probe_values,
                                   values.validity, stopwatch.seconds()))
       .cast<py::dict>();
@@ -115,7 +114,6 @@ py::dict run_modes(const SceneHandle& handle, int count, bool dense, bool error_
     require(study.status, "modes: ");
     probes = parse_probes(study.model, probe_texts);
   });
-
   return to_python(emnet::to_json(study, probes, stopwatch.seconds())).cast<py::dict>();
 }
 
@@ -166,7 +164,6 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
     require(result.status, reduce ? "ac (reduced): " : "ac: ");
     input = emnet::ac_input_description(p.model.scene, spec.to);
   });
-
   py::dict out = to_python(emnet::to_json(result, p.model, probes, input, stopwatch.seconds()))
                      .cast<py::dict>();
   // The complex responses themselves, beside magnitude and phase: [probe][frequency].
@@ -209,7 +206,6 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
     study = emnet::run_transient_study(with_segments(handle.scene), options);
     require(study.status, "");
   });
-
   const emnet::TransientRunDescription run{study.model.scene.name,
                                            study.model.automatic_choices,
                                            study.start_text,
@@ -255,7 +251,6 @@ py::dict run_sweep(const SceneHandle& handle, std::vector<double> frequencies, d
     result = emnet::run_switching_sweep(swept.model, swept.scene, options);
     require(result.status, "sweep_switching: ");
   });
-
   py::dict out;
   out["scene"] = swept.model.scene.name;
   out["method"] = result.method;
@@ -299,7 +294,6 @@ py::dict run_identify(const SceneHandle& handle, double target_hz, const std::st
     result = emnet::identify(with_segments(handle.scene), options);
     require(result.status, "identify: ");
   });
-
   py::dict out;
   out["parameter"] = result.parameter.key;
   out["value"] = result.parameter.value;
@@ -330,7 +324,6 @@ py::dict run_sensitivity(const SceneHandle& handle, int modes,
     result = emnet::run_sensitivity(scene, parameters, options);
     require(result.status, "sensitivity: ");
   });
-
   return to_python(emnet::to_json(result, scene, check, stopwatch.seconds())).cast<py::dict>();
 }
 
@@ -346,7 +339,6 @@ py::dict run_mismatch(const SceneHandle& handle, std::optional<double> frequency
     result = emnet::run_mismatch(with_segments(handle.scene), options);
     require(result.status, "mismatch: ");
   });
-
   py::dict out;
   out["output"] = result.output;
   out["frequency_hz"] = result.frequency_hz;

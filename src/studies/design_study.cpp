@@ -7,9 +7,11 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <mutex>
 #include <random>
 #include <sstream>
 #include <thread>
@@ -600,6 +602,8 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
   // `done`: rows taken and finished; `computed`: of those, the ones not skipped by a cancellation
   // (what the progress reports).
   std::atomic<std::size_t> next{0}, done{0}, computed{0};
+  std::mutex finished_mutex;
+  std::condition_variable finished;
   auto work = [&] {
     for (;;) {
       const std::size_t index = next.fetch_add(1);
@@ -621,7 +625,10 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
         if (!row.status.ok) row.values.clear();
         computed.fetch_add(1);
       }
-      done.fetch_add(1);
+      if (done.fetch_add(1) + 1 == count) {
+        const std::lock_guard<std::mutex> lock(finished_mutex);
+        finished.notify_all();
+      }
     }
   };
   std::vector<std::thread> pool;
@@ -638,7 +645,9 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
         options.progress->report(static_cast<long>(computed.load()), static_cast<long>(count),
                                  "variants");
       static_cast<void>(options.progress->cancelled());
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      // Woken by the last row, so that a short study does not wait out a tick.
+      std::unique_lock<std::mutex> lock(finished_mutex);
+      finished.wait_for(lock, std::chrono::milliseconds(10), [&] { return done.load() == count; });
     }
     options.progress->report(static_cast<long>(computed.load()), static_cast<long>(count),
                              "variants");
