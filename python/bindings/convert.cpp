@@ -6,7 +6,7 @@
 namespace emnet_python {
 
 void require(const emnet::Status& status, const std::string& prefix) {
-  if (!status.ok) throw NumericalFailure(prefix + status.message);
+  if (!status.ok()) throw NumericalFailure(prefix + status.message);
 }
 
 py::array_t<double> to_array(const std::vector<double>& values) {

@@ -95,10 +95,10 @@ py::dict run_study(const SceneHandle& handle, const std::vector<std::string>& ke
   std::vector<double> seconds;
   for (py::ssize_t i = 0; i < rows; ++i) {
     const auto& row = result.rows[static_cast<std::size_t>(i)];
-    status.push_back(row.status.ok ? std::string("ok") : "failed: " + row.status.message);
+    status.push_back(row.status.ok() ? std::string("ok") : "failed: " + row.status.message);
     validity.push_back(emnet::validity_text(row));
     for (py::ssize_t j = 0; j < columns; ++j)
-      out(i, j) = row.status.ok ? row.values[static_cast<std::size_t>(j)] : NAN;
+      out(i, j) = row.status.ok() ? row.values[static_cast<std::size_t>(j)] : NAN;
     seconds.push_back(row.cost.total());
   }
   py::dict dict;

@@ -119,12 +119,12 @@ class DirectAcSolver {
       }
       if (residual <= std::max(1e-13, 4 * pivoted_residual_)) break;
     }
-    if (Status accurate = check_residual(residual, "the AC solve at f = " + hz(f)); !accurate.ok)
+    if (Status accurate = check_residual(residual, "the AC solve at f = " + hz(f)); !accurate.ok())
       return accurate;
     y = column_scale_.cwiseProduct(y);
     for (size_t p = 0; p < probes_.size(); ++p) {
       values[p] = probe_phasor(probes_[p], y, omega);
-      if (Status finite = check_finite_response(values[p], probes_[p], f); !finite.ok)
+      if (Status finite = check_finite_response(values[p], probes_[p], f); !finite.ok())
         return finite;
     }
     return Status::success();
@@ -144,7 +144,7 @@ class DirectAcSolver {
     residual =
         (static_operator_->matrix().cast<std::complex<double>>() * z - rhs_).norm() / rhs_norm_;
     if (Status accurate = check_residual(residual, "the AC solve at f = 0 (static limit)");
-        !accurate.ok)
+        !accurate.ok())
       return accurate;
     for (size_t p = 0; p < probes_.size(); ++p) {
       std::complex<double> sum = 0.0;
@@ -152,7 +152,7 @@ class DirectAcSolver {
         const bool mech = static_operator_->mechanical()[static_cast<size_t>(index)];
         if ((mech ? 1 : 0) - probes_[p].integrations == 0) sum += coefficient * z[index];
       }
-      if (Status finite = check_finite_response(sum, probes_[p], f); !finite.ok) return finite;
+      if (Status finite = check_finite_response(sum, probes_[p], f); !finite.ok()) return finite;
       values[p] = sum;
     }
     return Status::success();
@@ -201,7 +201,7 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
       return finish(cancelled_status());
     PoleResidueSweep sweep =
         pole_residue_sweep(system, operating_point, direct->g_matrix(), frequencies, probes);
-    if (sweep.ok) {
+    if (sweep.applies) {
       // Checked against the direct solve where its rounding is largest.
       std::vector<double> peak(probes.size(), 0.0);
       for (size_t p = 0; p < probes.size(); ++p)
@@ -211,7 +211,7 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
       for (size_t index : points) {
         if (Status solved =
                 direct->solve(frequencies[index], values, residual, result.pivot_searches);
-            !solved.ok)
+            !solved.ok())
           return finish(solved);
         result.max_relative_residual = std::max(result.max_relative_residual, residual);
         for (size_t p = 0; p < probes.size(); ++p)
@@ -249,7 +249,7 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
                     static_cast<long>(frequencies.size()), "AC frequencies"))
       return finish(cancelled_status());
     if (Status solved = direct->solve(frequencies[step], values, residual, result.pivot_searches);
-        !solved.ok)
+        !solved.ok())
       return finish(solved);
     result.max_relative_residual = std::max(result.max_relative_residual, residual);
     for (size_t p = 0; p < probes.size(); ++p) result.values[p].push_back(values[p]);

@@ -163,7 +163,7 @@ PoleResidueSweep pole_residue_sweep(const System& system, const Eigen::VectorXd&
           sweep.values.clear();
           return sweep;
         }
-    sweep.ok = true;
+    sweep.applies = true;
   } catch (const std::exception& e) {
     sweep.why_not = e.what();
   }

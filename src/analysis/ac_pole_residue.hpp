@@ -29,8 +29,8 @@
 namespace emnet {
 
 struct PoleResidueSweep {
-  bool ok = false;
-  std::string why_not;  // when !ok: why the form does not apply (the direct solve is used)
+  bool applies = false;
+  std::string why_not;  // when !applies: why the form does not apply (the direct solve is used)
   std::vector<std::vector<std::complex<double>>> values;  // [probe][frequency]
   std::vector<std::complex<double>> poles;                // λ_k [1/s]
   double basis_condition = 0.0;                           // κ₁(V)

@@ -91,7 +91,7 @@ Status ConsistentStart::make_consistent(double source_time, Eigen::VectorXd& u,
     // previous iterate's J_w (the same for a linear network), so that a converged iterate
     // needs no new J_w.
     if (iteration == 0)
-      if (Status status = factorise(consistency_matrix(trial_u, trial_up)); !status.ok)
+      if (Status status = factorise(consistency_matrix(trial_u, trial_up)); !status.ok())
         return status;
     worst = relative_residual(source_time, trial_u, trial_up, residual);
     if (worst <= 1e-14 || (iteration > 0 && worst <= 1e-11)) {
@@ -100,7 +100,7 @@ Status ConsistentStart::make_consistent(double source_time, Eigen::VectorXd& u,
       return Status::success();
     }
     if (iteration > 0)
-      if (Status status = factorise(consistency_matrix(trial_u, trial_up)); !status.ok)
+      if (Status status = factorise(consistency_matrix(trial_u, trial_up)); !status.ok())
         return status;
     const Eigen::VectorXd step =
         scaling_.column.cwiseProduct(lu_.solve(scaling_.row.cwiseProduct(residual)));

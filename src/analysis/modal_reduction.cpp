@@ -208,7 +208,7 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
   for (int count = 4;; count *= 2) {
     modal_options.count = count;
     modal = run_modes(system, operating_point, modal_options);
-    if (!modal.status.ok) return finish(Status::failure("modes: " + modal.status.message));
+    if (!modal.status.ok()) return finish(modal.status.with_context("modes: "));
     if (modal.complete) break;
     const double largest = largest_pole(modal);
     if (largest >= omega_c) break;

@@ -74,7 +74,7 @@ AcReductionResult run_ac_reduced(const System& system, const Eigen::VectorXd& op
   Stopwatch start;
   result.model = reduce_modal(system, operating_point, {rhs}, options);
   result.reduce_seconds = start.seconds();
-  if (!result.model.status.ok) return finish(Status::failure(result.model.status.message));
+  if (!result.model.status.ok()) return finish(result.model.status);
 
   start.restart();
   result.ac.frequencies = frequencies;
@@ -98,7 +98,7 @@ AcReductionResult run_ac_reduced(const System& system, const Eigen::VectorXd& op
   result.check_frequencies = check_frequencies(frequencies, result.ac.values);
   const AcResult full = run_ac(system, operating_point, result.check_frequencies, probes);
   result.check_seconds = start.seconds();
-  if (!full.status.ok) return finish(Status::failure("full model check: " + full.status.message));
+  if (!full.status.ok()) return finish(full.status.with_context("full model check: "));
   std::vector<std::vector<Complex>> reduced_at_checks(probes.size());
   for (size_t p = 0; p < probes.size(); ++p)
     for (double f : result.check_frequencies)
@@ -198,8 +198,8 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& given, const std::vect
   result.method = "reduced";
   result.period = period;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
-  if (!reduction_.status.ok) return finish(reduction_.status);
-  if (Status pieces = require_piecewise_linear(system); !pieces.ok) return finish(pieces);
+  if (!reduction_.status.ok()) return finish(reduction_.status);
+  if (Status pieces = require_piecewise_linear(system); !pieces.ok()) return finish(pieces);
   if (system.size() != reduction_.full_unknowns || system.is_nonlinear())
     return finish(Status::failure("the network differs from the one that was reduced"));
   for (const Probe& probe : probes)
@@ -254,7 +254,7 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& given, const std::vect
   std::vector<Eigen::VectorXcd> start_of;
   if (Status periodic = periodic_interval_starts(lambda, edges, particular, particular_slope, {},
                                                  start_of, result.periodicity_residual);
-      !periodic.ok)
+      !periodic.ok())
     return finish(periodic);
 
   // Probe p in interval i at offset h: offset_pi + slope_pi·h + Re Σ_k a_pik·e^{λ_k h} (one pole

@@ -10,10 +10,9 @@ OperatingPoint operating_point(const System& system, const OperatingPointOptions
   const Stopwatch stopwatch;
   OperatingPoint point;
   point.rest = solve_static(system, options.static_options);
-  if (!point.rest.status.ok) {
-    if (options.require_static || system.is_nonlinear() ||
-        point.rest.status.message == kCancelledMessage) {
-      point.status = Status::failure("static operating point: " + point.rest.status.message);
+  if (!point.rest.status.ok()) {
+    if (options.require_static || system.is_nonlinear() || point.rest.status.cancelled()) {
+      point.status = point.rest.status.with_context("static operating point: ");
       point.seconds = stopwatch.seconds();
       return point;
     }

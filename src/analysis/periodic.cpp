@@ -403,7 +403,7 @@ PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Prob
   result.period = period;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   if (!impl_) return finish(status_);
-  if (Status pieces = require_piecewise_linear(system); !pieces.ok) return finish(pieces);
+  if (Status pieces = require_piecewise_linear(system); !pieces.ok()) return finish(pieces);
   if (system.size() != impl_->system.size() || system.is_nonlinear())
     return finish(Status::failure("the network differs from the one the solver decomposed"));
   for (const Probe& probe : probes)
@@ -470,7 +470,7 @@ PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Prob
   if (Status periodic =
           periodic_interval_starts(lambda, edges, particular, particular_slope, impl_->invariant,
                                    start_of, result.periodicity_residual);
-      !periodic.ok)
+      !periodic.ok())
     return finish(periodic);
 
   // Each probe is linear in (x, f, f'): p = gᵀx + c(f) + d(f'). In modal coordinates, inside
@@ -529,6 +529,14 @@ PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Prob
   return finish(Status::success());
 }
 
+namespace {
+
+// A one-period run stopped by the caller's cancellation (its Status code), out of the shooting
+// iteration.
+struct ShootingCancelled {};
+
+}  // namespace
+
 PeriodicResult run_periodic_shooting(const System& given, const std::vector<Probe>& probes,
                                      double period, double rtol, int samples,
                                      const Progress* progress) {
@@ -574,7 +582,8 @@ PeriodicResult run_periodic_shooting(const System& given, const std::vector<Prob
       for (Eigen::Index k = 0; k < nd; ++k)
         (*options.initial_state)[state[static_cast<size_t>(k)]] = x0[k];
       const TransientResult run = run_transient_ida(system, {}, options);
-      if (!run.status.ok) throw std::runtime_error(run.status.message);
+      if (run.status.cancelled()) throw ShootingCancelled{};
+      if (!run.status.ok()) throw std::runtime_error(run.status.message);
       x_end.resize(nd);
       for (Eigen::Index k = 0; k < nd; ++k)
         x_end[k] = run.final_state[state[static_cast<size_t>(k)]];
@@ -608,10 +617,10 @@ PeriodicResult run_periodic_shooting(const System& given, const std::vector<Prob
       (*options.initial_state)[state[static_cast<size_t>(k)]] = x[k];
     for (int s = 0; s < samples; ++s) options.output_times.push_back(period * s / samples);
     if (Status periodic = check_residual(result.periodicity_residual, "shooting: x(T) = x(0)");
-        !periodic.ok)
+        !periodic.ok())
       return finish(periodic);
     const TransientResult run = run_transient_ida(system, probes, options);
-    if (!run.status.ok) return finish(run.status);
+    if (!run.status.ok()) return finish(run.status);
     result.times = run.times;
     result.values = run.values;
     // Sampled extremes refined by a parabola through the neighbouring samples.
@@ -627,6 +636,8 @@ PeriodicResult run_periodic_shooting(const System& given, const std::vector<Prob
                                        middle - 0.25 * (left - right) * offset);
     });
     return finish(Status::success());
+  } catch (const ShootingCancelled&) {
+    return finish(cancelled_status());
   } catch (const std::exception& e) {
     return finish(Status::failure(std::string("shooting: ") + e.what()));
   }

@@ -65,7 +65,7 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
   result.method = "exact";
   result.values.assign(probes.size(), {});
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
-  if (Status pieces = require_piecewise_linear(system); !pieces.ok) return finish(pieces);
+  if (Status pieces = require_piecewise_linear(system); !pieces.ok()) return finish(pieces);
   for (const Probe& probe : probes)
     if (!is_linear(probe))
       return finish(Status::failure("the exact method takes linear outputs; probe '" + probe.name +
@@ -78,8 +78,7 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
     Eigen::VectorXd x = Eigen::VectorXd::Zero(space.state_size());
     if (options.start == StartState::static_) {
       const StaticResult rest = solve_static(system);
-      if (!rest.status.ok)
-        return finish(Status::failure("static start state: " + rest.status.message));
+      if (!rest.status.ok()) return finish(rest.status.with_context("static start state: "));
       x = space.state_of(form.from_static(rest.state));
     }
     const std::vector<double> stops = interval_ends(system, options.end_time);
@@ -210,7 +209,7 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
     }
     // Distinct exponentials of M (none in the modal form).
     result.statistics.steps = static_cast<long>(cache.size());
-    if (Status finite = check_finite_outputs(result, probes, "the exact method"); !finite.ok)
+    if (Status finite = check_finite_outputs(result, probes, "the exact method"); !finite.ok())
       return finish(Status::failure(finite.message +
                                     " (values beyond double precision: check the scene's "
                                     "magnitudes)"));

@@ -183,7 +183,7 @@ Eigen::VectorXd absolute_tolerances(const DisplacementForm& form, const StaticRe
     return static_cast<int>(u.domain) * 2 + (u.kind == Unknown::Kind::node_across ? 0 : 1);
   };
   double largest[6] = {0, 0, 0, 0, 0, 0};
-  if (rest.status.ok)
+  if (rest.status.ok())
     for (int k = 0; k < n; ++k)
       largest[kind(k)] = std::max(largest[kind(k)], std::abs(rest.state[k]));
   const double omega = 2 * M_PI * frequency;
@@ -191,7 +191,7 @@ Eigen::VectorXd absolute_tolerances(const DisplacementForm& form, const StaticRe
   if (rhs.norm() > 0.0) {
     using Complex = std::complex<double>;
     const Eigen::SparseMatrix<double> g =
-        linearised_g(system, rest.status.ok ? rest.operating_point : Eigen::VectorXd::Zero(n));
+        linearised_g(system, rest.status.ok() ? rest.operating_point : Eigen::VectorXd::Zero(n));
     Eigen::SparseMatrix<Complex> matrix =
         g.cast<Complex>() + Complex(0.0, omega) * system.C.cast<Complex>();
     matrix.makeCompressed();
@@ -246,8 +246,7 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
         return finish(Status::failure("initial state of the wrong size"));
       u0 = *options.initial_state;
     } else if (options.start == StartState::static_) {
-      if (!rest.status.ok)
-        return finish(Status::failure("static start state: " + rest.status.message));
+      if (!rest.status.ok()) return finish(rest.status.with_context("static start state: "));
       u0 = form.from_static(rest.state);
     }
     const double frequency = 1.0 / options.end_time;
@@ -348,16 +347,16 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
       Eigen::VectorXd up_start = Eigen::Map<const Eigen::VectorXd>(yp.data(), n);
       const Status consistent =
           consistent_start.make_consistent(source_time(data, t), u_start, up_start);
-      if (consistent.ok) {
+      if (consistent.ok()) {
         Eigen::Map<Eigen::VectorXd>(yy.data(), n) = u_start;
         Eigen::Map<Eigen::VectorXd>(yp.data(), n) = up_start;
       }
       if (result.statistics.restarts > 0) accumulate_statistics();
-      if ((result.statistics.restarts > 0 || consistent.ok) &&
+      if ((result.statistics.restarts > 0 || consistent.ok()) &&
           !succeeded("IDAReInit", IDAReInit(mem, t, yy, yp)))
         return run_failure(t);
       ++result.statistics.restarts;
-      if (!consistent.ok) {
+      if (!consistent.ok()) {
         const int ic = IDACalcIC(mem, IDA_YA_YDP_INIT, t + 1e-3 * (stop - t));
         if (ic != IDA_SUCCESS)
           return finish(Status::failure("consistent initial values at t = " + format_time(t) +
@@ -432,7 +431,7 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
     }
     accumulate_statistics();
     result.final_state = Eigen::Map<const Eigen::VectorXd>(yy.data(), n);
-    if (Status finite = check_finite_outputs(result, probes, "IDA"); !finite.ok)
+    if (Status finite = check_finite_outputs(result, probes, "IDA"); !finite.ok())
       return finish(finite);
     if (!result.final_state.allFinite())
       return finish(Status::failure(

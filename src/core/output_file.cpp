@@ -79,19 +79,19 @@ OutputFile::~OutputFile() {
 }
 
 void OutputFile::fail(const std::string& what, int error_number) {
-  if (!status_.ok) return;
+  if (!status_.ok()) return;
   status_ = Status::failure(what + " '" + path_ + "': " + std::strerror(error_number));
 }
 
 void OutputFile::write(std::string_view text) {
-  if (!status_.ok || committed_) return;
+  if (!status_.ok() || committed_) return;
   buffer_.append(text.data(), text.size());
   if (buffer_.size() >= kBufferBytes) flush_buffer();
 }
 
 bool OutputFile::flush_buffer() {
   size_t written = 0;
-  while (status_.ok && written < buffer_.size()) {
+  while (status_.ok() && written < buffer_.size()) {
     const ssize_t n = ::write(descriptor_, buffer_.data() + written, buffer_.size() - written);
     if (n < 0) {
       if (errno == EINTR) continue;
@@ -103,27 +103,27 @@ bool OutputFile::flush_buffer() {
     }
   }
   buffer_.clear();
-  return status_.ok;
+  return status_.ok();
 }
 
 Status OutputFile::commit() {
   if (committed_) return Status::failure("'" + path_ + "' was already written");
-  if (status_.ok) flush_buffer();
+  if (status_.ok()) flush_buffer();
   // fsync reports the write errors some file systems only find when the data reach the disk;
   // a device or a pipe cannot be synced (EINVAL), which is not an error.
-  if (status_.ok && ::fsync(descriptor_) != 0 && errno != EINVAL && errno != EROFS)
+  if (status_.ok() && ::fsync(descriptor_) != 0 && errno != EINVAL && errno != EROFS)
     fail("cannot write", errno);
   if (descriptor_ >= 0) {
     if (::close(descriptor_) != 0 && errno != EINTR) fail("cannot write", errno);
     descriptor_ = -1;
   }
-  if (status_.ok && !temporary_.empty()) {
+  if (status_.ok() && !temporary_.empty()) {
     if (::rename(temporary_.c_str(), target_.c_str()) != 0)
       fail("cannot write", errno);
     else
       unregister_temporary_path(temporary_);
   }
-  if (status_.ok) committed_ = true;
+  if (status_.ok()) committed_ = true;
   return status_;
 }
 

@@ -15,13 +15,13 @@ std::string number_text(double value) {
 }
 
 std::string status_text(const Status& status) {
-  return status.ok ? std::string("ok") : "failed: " + status.message;
+  return status.ok() ? std::string("ok") : "failed: " + status.message;
 }
 
 }  // namespace
 
 std::string validity_text(const VariantResult& row) {
-  if (!row.status.ok) return "";
+  if (!row.status.ok()) return "";
   if (row.validity.within()) return "within";
   std::string text = "OUTSIDE:";
   for (const auto& violation : row.validity.violations) text += " " + violation.message + ";";
@@ -75,7 +75,7 @@ Json to_json(const DesignStudyResult& result) {
     row["values"] = values;
     row["status"] = status_text(result.rows[i].status);
     row["validity"] = validity_text(result.rows[i]);
-    if (result.rows[i].status.ok) {
+    if (result.rows[i].status.ok()) {
       Json results = Json::object();
       for (std::size_t k = 0; k < result.columns.size(); ++k)
         results[result.columns[k]] = result.rows[i].values[k];

@@ -173,19 +173,19 @@ Status write_script_and_run(const PlotFiles& files, const std::string& preamble,
                             const std::string& image_path, const PlotOutput& output) {
   if (cancel_requested(output.progress)) return cancelled_status();
   TemporaryDirectory work;
-  if (Status made = work.create(files.directory.string(), ".emnet-plot-"); !made.ok)
+  if (Status made = work.create(files.directory.string(), ".emnet-plot-"); !made.ok())
     return Status::failure("cannot write '" + image_path + "': " + made.message);
   const std::string drawing_name =
       std::string("drawing") + (files.format == ImageFormat::png ? ".png" : ".svg");
   const std::string drawing = work.path() + "/" + drawing_name;
-  if (Status status = write_output_file(work.path() + "/data", data); !status.ok) return status;
+  if (Status status = write_output_file(work.path() + "/data", data); !status.ok()) return status;
   if (Status status = write_output_file(
           work.path() + "/script.gp",
           preamble + "set output " + gnuplot_string(drawing_name) + "\n" + body("data"));
-      !status.ok)
+      !status.ok())
     return status;
   const auto write_side_files = [&] {
-    if (Status status = write_output_file(files.data_path, data); !status.ok) return status;
+    if (Status status = write_output_file(files.data_path, data); !status.ok()) return status;
     return write_output_file(
         files.script_path,
         preamble + "set output " + gnuplot_string(files.image_name) + "\n" + body(files.data_name));
@@ -193,10 +193,10 @@ Status write_script_and_run(const PlotFiles& files, const std::string& preamble,
   bool gnuplot_missing = false;
   if (Status status =
           run_gnuplot(files, work.path(), "script.gp", drawing, output, gnuplot_missing);
-      !status.ok) {
+      !status.ok()) {
     // Without gnuplot the data and the script are still of use (drawn elsewhere).
     if (gnuplot_missing && output.data_and_script) {
-      if (Status written = write_side_files(); !written.ok) return written;
+      if (Status written = write_side_files(); !written.ok()) return written;
     }
     return status;
   }

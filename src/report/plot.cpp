@@ -356,7 +356,7 @@ Status write_bode_plot(const std::string& path, const std::string& title,
                        const std::vector<PlotMarker>& markers, bool log_frequency,
                        const PlotOutput& output) {
   PlotFiles files;
-  if (Status status = plot_files_for(path, files); !status.ok) return status;
+  if (Status status = plot_files_for(path, files); !status.ok()) return status;
   if (series.empty()) return Status::failure("Bode plot '" + path + "': no series to plot");
   if (frequencies_hz.empty()) return Status::failure("Bode plot '" + path + "': no frequencies");
   for (const auto& one : series) {
@@ -533,7 +533,7 @@ Status write_line_plot(const std::string& path, const std::string& title,
                        const std::string& x_label, const std::vector<LineSeries>& series,
                        const LinePlotOptions& options) {
   PlotFiles files;
-  if (Status status = plot_files_for(path, files); !status.ok) return status;
+  if (Status status = plot_files_for(path, files); !status.ok()) return status;
   if (series.empty()) return Status::failure("line plot '" + path + "': no series to plot");
   for (const auto& one : series) {
     if (one.x.size() != one.y.size()) {

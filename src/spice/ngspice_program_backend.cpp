@@ -74,7 +74,7 @@ BackendAttempt run_program_backend(const std::vector<std::string>& lines,
     return attempt;
   };
   TemporaryDirectory directory;
-  if (Status made = directory.create("", "emnet-ngspice-"); !made.ok)
+  if (Status made = directory.create("", "emnet-ngspice-"); !made.ok())
     return fail_here(made.message);
   std::string why;
   const std::string deck_path = directory.path() + "/deck.cir";

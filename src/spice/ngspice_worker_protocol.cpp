@@ -155,7 +155,7 @@ std::string encode_seconds(double seconds) {
 }
 
 std::string encode_status(const Status& status) {
-  return std::string(1, status.ok ? '\1' : '\0') + cut_to(status.message, kMaxTextRecordBytes);
+  return std::string(1, status.ok() ? '\1' : '\0') + cut_to(status.message, kMaxTextRecordBytes);
 }
 
 bool decode_vector(const std::string& bytes, NgspiceVector& vector) {

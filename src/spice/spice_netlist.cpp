@@ -53,7 +53,7 @@ void DeckWriter::write_outputs() {
     throw std::invalid_argument(
         "write_spice_deck: a tran deck from the static state needs options.static_state "
         "(solve_static of the model's network)");
-  if (static_start && !options_.static_state->status.ok)
+  if (static_start && !options_.static_state->status.ok())
     throw InputError(
         where(), "--start",
         "static: the network has no static state (" + options_.static_state->status.message + ")");

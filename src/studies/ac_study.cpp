@@ -97,15 +97,15 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
   if (options.reduction) {
     show_phase(options.progress, "modal reduction and its check");
     result.reduction = run_ac_reduced(system, operating_point, grid, probes, *options.reduction);
-    if (!result.reduction->status.ok)
+    if (!result.reduction->status.ok())
       return fail(AcStudyStage::reduction, result.reduction->status);
     result.ac = result.reduction->ac;
-    if (!result.ac.status.ok) return fail(AcStudyStage::sweep, result.ac.status);
+    if (!result.ac.status.ok()) return fail(AcStudyStage::sweep, result.ac.status);
   } else {
     AcOptions sweep_options;
     sweep_options.progress = options.progress;
     result.ac = run_ac(system, operating_point, grid, probes, sweep_options);
-    if (!result.ac.status.ok) return fail(AcStudyStage::sweep, result.ac.status);
+    if (!result.ac.status.ok()) return fail(AcStudyStage::sweep, result.ac.status);
   }
 
   // Resonances: the reduced model's kept modes, else the full model's (a failed modal
@@ -135,7 +135,7 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
     if (system.size() > modal_options.dense_limit) modal_options.count = 10;
     show_phase(options.progress, "modes for the resonance markers");
     const ModalResult modes = run_modes(system, operating_point, modal_options);
-    if (modes.status.ok)
+    if (modes.status.ok())
       for (const auto& mode : modes.modes)
         resonances.emplace_back(mode.frequency_hz, mode.damping_ratio);
   }

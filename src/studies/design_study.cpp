@@ -115,7 +115,7 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
   op_options.require_static = has(options.analyses, StudyAnalysis::static_state);
   const OperatingPoint op = operating_point(system, op_options);
   cost.operating_point += stopwatch.seconds();
-  if (!op.status.ok) return op.status;
+  if (!op.status.ok()) return op.status;
   std::vector<DeflectionPeak> deflections;  // for the validity check
   for (StudyAnalysis analysis : options.analyses) {
     stopwatch.restart();
@@ -125,7 +125,7 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
       modal.keep_vectors = false;
       const ModalResult result = run_modes(system, op.rest.operating_point, modal);
       cost.modes += stopwatch.seconds();
-      if (!result.status.ok) return Status::failure("modes: " + result.status.message);
+      if (!result.status.ok()) return result.status.with_context("modes: ");
       if (result.modes.size() < static_cast<std::size_t>(options.mode_count))
         return Status::failure("modes: " + std::to_string(result.modes.size()) +
                                " oscillatory mode(s) found, " + std::to_string(options.mode_count) +
@@ -166,7 +166,7 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
       sweep.outputs = {layout.sweep_outputs.back()};
       sweep.first_mode = false;
       const SwitchingSweepResult peak = run_switching_sweep(swept, swept.scene, sweep);
-      if (!peak.status.ok) return Status::failure("sweep-switching: " + peak.status.message);
+      if (!peak.status.ok()) return peak.status.with_context("sweep-switching: ");
       values.push_back(peak.peak_frequency);
       if (layout.sweep_outputs.back().quantity == ProbeQuantity::deflection) {
         double largest = 0.0;  // over every frequency of the sweep
@@ -182,7 +182,7 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
         sweep.outputs = layout.sweep_outputs;
         sweep.solver = peak.solver;  // one decomposition per variant
         const SwitchingSweepResult at = run_switching_sweep(swept, swept.scene, sweep);
-        if (!at.status.ok) return Status::failure("sweep-switching: " + at.status.message);
+        if (!at.status.ok()) return at.status.with_context("sweep-switching: ");
         for (const SwitchingSweepOutput& output : at.outputs)
           for (std::size_t k = 0; k < layout.report_indices.size(); ++k) {
             values.push_back(output.left[k]);
@@ -622,7 +622,7 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
         } catch (const std::exception& error) {
           row.status = Status::failure(error.what());
         }
-        if (!row.status.ok) row.values.clear();
+        if (!row.status.ok()) row.values.clear();
         computed.fetch_add(1);
       }
       if (done.fetch_add(1) + 1 == count) {
@@ -654,8 +654,8 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
   }
   for (auto& thread : pool) thread.join();
   for (const VariantResult& row : result.rows) {
-    if (!row.status.ok) ++result.failed;
-    if (row.status.ok && !row.validity.within()) ++result.outside_validity;
+    if (!row.status.ok()) ++result.failed;
+    if (row.status.ok() && !row.validity.within()) ++result.outside_validity;
     result.cost.build += row.cost.build;
     result.cost.operating_point += row.cost.operating_point;
     result.cost.modes += row.cost.modes;

@@ -274,7 +274,7 @@ class Identification {
     extremes_options.where = "--peak";
     const PeriodicExtremesResult extremes = periodic_extremes(scene, extremes_options);
     ++result_.periodic_solves;
-    if (!extremes.status.ok) throw FitStopped{extremes.status};
+    if (!extremes.status.ok()) throw FitStopped{extremes.status};
     return extremes.peak;
   }
 
@@ -284,7 +284,7 @@ class Identification {
     const Model model = prepare_model(scene);
     const System system = model.network.assemble();
     const OperatingPoint point = operating_point(system);
-    if (!point.status.ok) throw FitStopped{point.status};
+    if (!point.status.ok()) throw FitStopped{point.status};
     if (point.about_zero && !noted_about_zero_) {
       result_.notes.push_back(point.note);
       noted_about_zero_ = true;
@@ -294,7 +294,7 @@ class Identification {
     if (system.size() > modal_options.dense_limit) modal_options.count = options_.mode_number + 5;
     const ModalResult modes = run_modes(system, point.rest.operating_point, modal_options);
     ++result_.modal_solves;
-    if (!modes.status.ok || static_cast<int>(modes.modes.size()) < options_.mode_number)
+    if (!modes.status.ok() || static_cast<int>(modes.modes.size()) < options_.mode_number)
       stop("identify: mode " + std::to_string(options_.mode_number) + " not found");
     const double frequency =
         modes.modes[static_cast<size_t>(options_.mode_number - 1)].frequency_hz;

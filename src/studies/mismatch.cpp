@@ -75,7 +75,7 @@ MismatchResult run_mismatch(const Scene& scene, const MismatchOptions& options) 
     }
     const PeriodicExtremesResult extremes = periodic_extremes(changed, extremes_options);
     ++result.periodic_solves;
-    if (!extremes.status.ok) {
+    if (!extremes.status.ok()) {
       result.status = extremes.status;
       return false;
     }

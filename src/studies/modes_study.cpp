@@ -67,12 +67,12 @@ Status refined_modes(const Scene& scene, const ModesStudyOptions& options, int c
   OperatingPointOptions point_options;
   point_options.static_options.progress = options.progress;
   const OperatingPoint point = operating_point(fine_system, point_options);
-  if (!point.status.ok) return point.status;
+  if (!point.status.ok()) return point.status;
   ModalOptions modal_options;
   modal_options.count = count;
   modal_options.keep_vectors = true;
   const ModalResult fine = run_modes(fine_system, point.rest.operating_point, modal_options);
-  if (fine.status.ok)
+  if (fine.status.ok())
     for (const auto& mode : fine.modes)
       refined.push_back({mode.frequency_hz, shape_at(fine_model, mode, x)});
   return Status::success();
@@ -182,7 +182,7 @@ ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& op
     point_options.static_options.progress = options.progress;
     OperatingPoint point = operating_point(result.system, point_options);
     result.seconds_operating_point = point.seconds;
-    if (!point.status.ok) {
+    if (!point.status.ok()) {
       result.status = point.status;
       result.seconds = total.seconds();
       return result;
@@ -207,8 +207,8 @@ ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& op
   }
   result.modal = run_modes(result.system, result.rest.operating_point, modal_options);
   result.seconds_modal = result.modal.seconds;
-  if (!result.modal.status.ok) {
-    result.status = Status::failure("modes: " + result.modal.status.message);
+  if (!result.modal.status.ok()) {
+    result.status = result.modal.status.with_context("modes: ");
     result.seconds = total.seconds();
     return result;
   }
@@ -228,7 +228,7 @@ ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& op
       result.status = Status::failure("non-finite result for a damping ratio" + which);
     else if (!std::isfinite(modes[k].natural_frequency_hz))
       result.status = Status::failure("non-finite result for a natural frequency" + which);
-    if (!result.status.ok) {
+    if (!result.status.ok()) {
       result.seconds = total.seconds();
       return result;
     }
@@ -249,7 +249,7 @@ ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& op
     const Status status =
         refined_modes(scene, options, std::max<int>(static_cast<int>(modes.size()) + 2, 6),
                       result.model.beam.x, refined);
-    if (!status.ok) {
+    if (!status.ok()) {
       result.status = status;
       result.seconds = total.seconds();
       return result;

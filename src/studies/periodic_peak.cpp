@@ -37,8 +37,8 @@ PeriodicExtremesResult periodic_extremes(Scene scene, const PeriodicExtremesOpti
   const PeriodicSolver solver(system);
   const PeriodicResult periodic = solver.solve(system, probes, 1.0 / options.frequency_hz, 256);
   result.seconds = stopwatch.seconds();
-  if (!periodic.status.ok) {
-    result.status = Status::failure("periodic state: " + periodic.status.message);
+  if (!periodic.status.ok()) {
+    result.status = periodic.status.with_context("periodic state: ");
     return result;
   }
   if (!std::isfinite(periodic.minimum[0])) {

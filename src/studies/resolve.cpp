@@ -28,12 +28,12 @@ double first_beam_resonance(const Scene& scene, const BeamSpec& beam) {
   options.count = 1;
   options.keep_vectors = false;
   const ModalResult result = run_modes(system, Eigen::VectorXd::Zero(system.size()), options);
-  if (!result.status.ok || result.modes.empty())
+  if (!result.status.ok() || result.modes.empty())
     throw InputError(
         scene.file, "environment.frequency",
         "the beam's first resonance, at which the fluid loading is evaluated, was "
         "not found (" +
-            (result.status.ok ? std::string("no oscillatory mode") : result.status.message) +
+            (result.status.ok() ? std::string("no oscillatory mode") : result.status.message) +
             "); give environment.frequency");
   return result.modes.front().frequency_hz;
 }

@@ -85,7 +85,7 @@ std::vector<double> beam_frequencies(const BeamSpec& beam, int segments, int cou
   // dense pencil (its cost grows as n³; at N = 52, 318 unknowns, 30 ms against 2 ms).
   if (count > 0) options.dense_limit = std::max(100, 10 * count);
   const ModalResult result = run_modes(system, Eigen::VectorXd::Zero(system.size()), options);
-  if (!result.status.ok)
+  if (!result.status.ok())
     throw std::runtime_error("segment selection: modes at N = " + std::to_string(segments) + ": " +
                              result.status.message);
   std::vector<double> frequencies;

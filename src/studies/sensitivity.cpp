@@ -72,7 +72,7 @@ Linearised linearise(const Scene& scene) {
   Linearised result;
   result.system = prepare_model(scene).network.assemble();
   const OperatingPoint point = operating_point(result.system);
-  if (!point.status.ok) {
+  if (!point.status.ok()) {
     result.status = point.status;
     return result;
   }
@@ -157,10 +157,10 @@ SensitivityResult run_sensitivity(const Scene& scene, const std::vector<std::str
   }
 
   const Linearised nominal = linearise(scene);
-  if (!nominal.status.ok) return finish(nominal.status);
+  if (!nominal.status.ok()) return finish(nominal.status);
   const int wanted = std::max(options.modes, 1);
   const ModalResult modal = modes_of(nominal, wanted, true);
-  if (!modal.status.ok) return finish(Status::failure("modes: " + modal.status.message));
+  if (!modal.status.ok()) return finish(modal.status.with_context("modes: "));
   if (modal.modes.empty()) return finish(Status::failure("the network has no oscillatory mode"));
   result.modes.assign(modal.modes.begin(),
                       modal.modes.begin() + std::min<size_t>(modal.modes.size(), wanted));
@@ -185,7 +185,7 @@ SensitivityResult run_sensitivity(const Scene& scene, const std::vector<std::str
   }
 
   if (Status accurate = check_residual(result.left_vector_residual, "left eigenvector");
-      !accurate.ok)
+      !accurate.ok())
     return finish(accurate);
 
   double check_seconds = 0.0;
@@ -198,9 +198,9 @@ SensitivityResult run_sensitivity(const Scene& scene, const std::vector<std::str
     const double h = options.matrix_relative_step * std::abs(p);
     const Linearised up = linearise(with_parameter(scene, parameter.key, p + h));
     const Linearised down = linearise(with_parameter(scene, parameter.key, p - h));
-    if (!up.status.ok || !down.status.ok)
+    if (!up.status.ok() || !down.status.ok())
       return finish(Status::failure(
-          parameter.key + " ± step: " + (up.status.ok ? down.status : up.status).message));
+          parameter.key + " ± step: " + (up.status.ok() ? down.status : up.status).message));
     if (up.system.size() != nominal.system.size() || down.system.size() != nominal.system.size())
       return finish(Status::failure(parameter.key + " changes the network's unknowns"));
     const Eigen::SparseMatrix<std::complex<double>> dg =
@@ -225,9 +225,9 @@ SensitivityResult run_sensitivity(const Scene& scene, const std::vector<std::str
         std::vector<std::vector<Mode>> sides;
         for (double sign : {+1.0, -1.0}) {
           const Linearised side = linearise(with_parameter(scene, parameter.key, p + sign * step));
-          if (!side.status.ok) return finish(side.status);
+          if (!side.status.ok()) return finish(side.status);
           const ModalResult side_modes = modes_of(side, wanted, false);
-          if (!side_modes.status.ok || side_modes.modes.size() < result.modes.size())
+          if (!side_modes.status.ok() || side_modes.modes.size() < result.modes.size())
             return finish(Status::failure(parameter.key + " check: modes not found"));
           sides.push_back(side_modes.modes);
         }

@@ -154,11 +154,12 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   SwitchingSweepResult result;
   result.method = options.reduce ? "reduced" : exact ? "exact" : "shooting";
   result.notes = method_notes;
-  auto fail = [&](const std::string& message) {
-    result.status = Status::failure(message);
+  auto stop = [&](const Status& status) {
+    result.status = status;
     result.seconds = stopwatch.seconds();
     return result;
   };
+  auto fail = [&](const std::string& message) { return stop(Status::failure(message)); };
   // Only the drive's excitation changes with the frequency: `model`'s G and C assembled once,
   // the drive sources' waveforms made again per frequency (the same b(t) as a model built at
   // that frequency). With drive.electrical_dynamics = "auto" left in the scene the choice may
@@ -225,7 +226,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
       check->build_seconds = build_stopwatch.seconds();
       result.decomposition_seconds += check->build_seconds;
     }
-    if (!reduced->reduction().status.ok) {
+    if (!reduced->reduction().status.ok()) {
       reduction_failure = "sweep-switching --reduce: " + reduced->reduction().status.message;
       return std::nullopt;
     }
@@ -254,7 +255,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
     }
     if (!keep_going(options.progress, k, count, "switching frequencies")) {
       result.cancelled = true;
-      return fail(std::string(kCancelledMessage));
+      return stop(cancelled_status());
     }
     PeriodicResult r;
     if (options.reduce) {
@@ -266,7 +267,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
     } else {
       r = run_periodic_shooting(system, probes, 1.0 / f, options.rtol, samples, options.progress);
     }
-    if (!r.status.ok)
+    if (!r.status.ok())
       return fail("sweep-switching at " + format_with_unit(f, "Hz") + ": " + r.status.message);
     for (size_t p = 0; p < probes.size(); ++p)
       if (!std::isfinite(r.minimum[p]) || !std::isfinite(r.maximum[p]))
@@ -352,10 +353,9 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
                             " real pole(s) against " + std::to_string(check->model.kept_modes) +
                             " and " + std::to_string(check->model.kept_real_poles);
       }
-      if (!wider->reduction().status.ok) {
+      if (!wider->reduction().status.ok()) {
         PeriodicResult failed;
-        failed.status =
-            Status::failure("the wider reduction: " + wider->reduction().status.message);
+        failed.status = wider->reduction().status.with_context("the wider reduction: ");
         return failed;
       }
       return wider->solve(system, probes, 1.0 / f, samples);
@@ -363,17 +363,17 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
     for (size_t k : picked) {
       if (cancel_requested(options.progress)) {
         result.cancelled = true;
-        return fail(std::string(kCancelledMessage));
+        return stop(cancelled_status());
       }
       const double f = result.frequencies[k];
       const System& system = system_at(f);
       const PeriodicResult exact_there = reference_at(system, f);
-      if (!exact_there.status.ok)
+      if (!exact_there.status.ok())
         return fail("sweep-switching --reduce check at " + format_with_unit(f, "Hz") + ": " +
                     exact_there.status.message);
       const std::optional<PeriodicResult> again = reduced_at(system, f);
       if (!again) return fail(reduction_failure);
-      if (!again->status.ok)
+      if (!again->status.ok())
         return fail("sweep-switching --reduce at " + format_with_unit(f, "Hz") + ": " +
                     again->status.message);
       // Per frequency: the fastest check solve (the first also fills per-probe caches).
@@ -417,7 +417,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
     modal.keep_vectors = false;
     if (system.size() > modal.dense_limit) modal.count = 3;
     const ModalResult modes = run_modes(system, rest.rest.operating_point, modal);
-    if (rest.status.ok && modes.status.ok && !modes.modes.empty() &&
+    if (rest.status.ok() && modes.status.ok() && !modes.modes.empty() &&
         std::isfinite(modes.modes[0].frequency_hz))
       result.first_mode_hz = modes.modes[0].frequency_hz;
     result.first_mode_seconds = modes_stopwatch.seconds();

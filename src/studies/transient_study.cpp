@@ -123,7 +123,7 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
                      ? run_transient_exact(study.system, computed, transient)
                      : run_transient_ida(study.system, computed, transient);
   std::vector<std::vector<double>> judged_values;
-  if (study.result.status.ok && !judged.empty()) {
+  if (study.result.status.ok() && !judged.empty()) {
     judged_values.assign(study.result.values.end() - static_cast<long>(judged.size()),
                          study.result.values.end());
     study.result.values.resize(study.outputs.size());
@@ -132,8 +132,8 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
       options.start == StartState::static_
           ? "the static state under the drive's first half-period"
           : "at rest (every unknown zero before t = 0; the drive switches on at t = 0)";
-  if (!study.result.status.ok) {
-    study.status = Status::failure("tran: " + study.result.status.message);
+  if (!study.result.status.ok()) {
+    study.status = study.result.status.with_context("tran: ");
     study.seconds = stopwatch.seconds();
     return study;
   }

@@ -54,7 +54,7 @@ std::vector<CrosscheckAnalysis> parse_crosscheck_analyses(const std::string& tex
 }
 
 bool CrosscheckReport::all_pass() const {
-  if (!status.ok) return false;
+  if (!status.ok()) return false;
   for (const auto& row : rows)
     if (!row.pass) return false;
   return true;

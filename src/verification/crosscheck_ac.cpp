@@ -37,7 +37,7 @@ void CrosscheckSession::ac() {
   const Stopwatch stopwatch;
   const AcResult result = run_ac(sys, operating.operating_point, frequencies, probes);
   const double emnet_seconds = stopwatch.seconds();
-  if (!result.status.ok) throw CrosscheckFailure("emnet ac: " + result.status.message);
+  if (!result.status.ok()) throw CrosscheckFailure("emnet ac: " + result.status.message);
 
   // Outputs: magnitude and weighted phase, each relative to the output's own peak.
   CrosscheckRow magnitude, phase;

@@ -20,7 +20,7 @@ void CrosscheckSession::modal() {
   const Stopwatch stopwatch;
   const ModalResult modes = run_modes(sys, operating.operating_point);
   const double emnet_seconds = stopwatch.seconds();
-  if (!modes.status.ok) throw CrosscheckFailure("emnet modes: " + modes.status.message);
+  if (!modes.status.ok()) throw CrosscheckFailure("emnet modes: " + modes.status.message);
   // The output whose peaks are read: "tip", else the last deflection probe.
   const Probe* output = nullptr;
   for (const auto& probe : model_.probes)
@@ -68,7 +68,7 @@ void CrosscheckSession::modal() {
     for (std::size_t i = 0; i < frequencies.size(); ++i)
       spice_magnitude.push_back(std::abs(complex_at(spice, i)));
     const AcResult own = run_ac(sys, operating.operating_point, frequencies, {*output});
-    if (!own.status.ok) throw CrosscheckFailure("emnet ac (modal): " + own.status.message);
+    if (!own.status.ok()) throw CrosscheckFailure("emnet ac (modal): " + own.status.message);
     for (const auto& v : own.values[0]) emnet_magnitude.push_back(std::abs(v));
     double spice_peak = 0.0, emnet_peak = 0.0;
     const bool spice_visible = parabolic_peak_frequency(frequencies, spice_magnitude, spice_peak);

@@ -20,7 +20,7 @@ void CrosscheckSession::op() {
   const Stopwatch stopwatch;
   const StaticResult result = solve_static(sys);
   const double emnet_seconds = stopwatch.seconds();
-  if (!result.status.ok) throw CrosscheckFailure("emnet static: " + result.status.message);
+  if (!result.status.ok()) throw CrosscheckFailure("emnet static: " + result.status.message);
   std::map<std::string, Group> groups;
   std::vector<std::string> order;
   for (std::size_t k = 0; k < deck.unknowns.size(); ++k) {

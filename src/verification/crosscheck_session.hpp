@@ -141,11 +141,11 @@ class CrosscheckSession {
       const std::string path = options_.keep_decks_directory + "/" +
                                spice_identifier(model_.scene.name) + "-crosscheck-" + label +
                                ".cir";
-      if (const Status written = write_output_file(path, deck.text); !written.ok)
+      if (const Status written = write_output_file(path, deck.text); !written.ok())
         throw InputError("--keep-decks", path, written.message);
     }
     NgspiceResult result = run_ngspice(deck.text, options_.ngspice);
-    if (!result.status.ok && !failure_allowed) {
+    if (!result.status.ok() && !failure_allowed) {
       std::string text = "ngspice on the " + label + " deck: " + result.status.message;
       const std::string messages = result.messages_text();
       if (!messages.empty()) {
@@ -236,7 +236,7 @@ class CrosscheckSession {
     if (!rest_ready_) {
       OperatingPoint point = operating_point(system);
       rest_ready_ = true;
-      if (!point.status.ok) throw CrosscheckFailure("emnet " + point.status.message);
+      if (!point.status.ok()) throw CrosscheckFailure("emnet " + point.status.message);
       if (point.about_zero) report_.notes.push_back(point.note);
       rest_ = std::move(point.rest);
     }

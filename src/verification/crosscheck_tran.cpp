@@ -37,9 +37,9 @@ void CrosscheckSession::tran() {
   double first_mode_period = 0.0;
   {
     const OperatingPoint operating = operating_point(sys);
-    if (!operating.status.ok) throw CrosscheckFailure("emnet " + operating.status.message);
+    if (!operating.status.ok()) throw CrosscheckFailure("emnet " + operating.status.message);
     const ModalResult modes = run_modes(sys, operating.rest.operating_point);
-    if (modes.status.ok && !modes.modes.empty())
+    if (modes.status.ok() && !modes.modes.empty())
       first_mode_period = 1.0 / modes.modes.front().frequency_hz;
   }
   double period = 0.0;
@@ -81,7 +81,7 @@ void CrosscheckSession::tran() {
   // A step load from rest near a massless node can make ngspice give up ("timestep too
   // small") when its max step is tight (the cantilever below about T/1000); one retry with a
   // max step of T/200, said in the notes — the tolerance stays the same.
-  const bool gave_up = !ng.status.ok || !(stopped_at(ng) >= d.end_time * (1.0 - 1e-9));
+  const bool gave_up = !ng.status.ok() || !(stopped_at(ng) >= d.end_time * (1.0 - 1e-9));
   if (gave_up && options_.tran_points_per_period > 200 &&
       lower(ng.messages_text()).find("timestep too small") != std::string::npos) {
     report_.notes.push_back("tran: ngspice gave up (" + last_error_line(ng) + ") with max step T/" +
@@ -90,7 +90,7 @@ void CrosscheckSession::tran() {
     d.output_step = step_period / 200;
     deck = write_spice_deck(m, d);
     ng = run_deck(CrosscheckAnalysis::tran, deck, "tran");
-  } else if (!ng.status.ok) {
+  } else if (!ng.status.ok()) {
     ng = run_deck(CrosscheckAnalysis::tran, deck, "tran");  // reports the failure
   }
   report_.notes.push_back("tran: " + number("%.4g", options_.tran_periods) + " x " + period_from +
@@ -140,7 +140,7 @@ void CrosscheckSession::tran() {
     for (const double rtol : {1e-10, 1e-9, 1e-8}) {
       t.relative_tolerance = rtol;
       reference = run_transient_ida(sys, probes, t);
-      if (reference.status.ok) {
+      if (reference.status.ok()) {
         report_.notes.push_back("tran: the network is nonlinear; the reference is IDA at rtol " +
                                 number("%.0e", rtol) + ", not the exact method" +
                                 (failures.empty() ? std::string() : " (" + failures + ")"));
@@ -151,7 +151,7 @@ void CrosscheckSession::tran() {
     }
   }
   const double emnet_seconds = stopwatch.seconds();
-  if (!reference.status.ok)
+  if (!reference.status.ok())
     throw CrosscheckFailure("emnet tran (" + std::string(linear ? "exact" : "ida") +
                             "): " + reference.status.message);
   if (reference.times.size() != unique_times.size())

@@ -31,7 +31,7 @@ void build_and_solve(const emnet::Scene& scene) {
   const emnet::Model model = emnet::prepare_model(scene);
   const emnet::System system = model.network.assemble();
   const emnet::StaticResult result = emnet::solve_static(system);
-  if (!result.status.ok) {
+  if (!result.status.ok()) {
     if (result.status.message.empty()) std::abort();  // a failure must say why
     return;
   }

@@ -31,7 +31,7 @@ TEST(HardModes, SegmentLimitWithoutAFreeEndAndWithARigidRotation) {
     ModalOptions options;
     options.count = 1;
     const ModalResult modes = run_modes(system, Eigen::VectorXd::Zero(system.size()), options);
-    ASSERT_TRUE(modes.status.ok) << modes.status.message;
+    ASSERT_TRUE(modes.status.ok()) << modes.status.message;
     EXPECT_EQ(modes.rigid_body_modes.size(), c.rigid);
     EXPECT_TRUE(modes.real_poles.empty()) << modes.real_poles.size();
     ASSERT_FALSE(modes.modes.empty());

@@ -71,10 +71,10 @@ void report(const char* what, const TransientResult& r) {
   std::printf(
       "[measured] %s: %s ok=%d %.3f s, %ld steps, %ld res, %ld jac, %ld etf, %ld ncf, "
       "%ld restarts%s%s\n",
-      what, r.method.c_str(), r.status.ok ? 1 : 0, r.seconds, r.statistics.steps,
+      what, r.method.c_str(), r.status.ok() ? 1 : 0, r.seconds, r.statistics.steps,
       r.statistics.residual_evaluations, r.statistics.jacobian_evaluations,
       r.statistics.error_test_failures, r.statistics.convergence_failures, r.statistics.restarts,
-      r.status.ok ? "" : ": ", r.status.message.c_str());
+      r.status.ok() ? "" : ": ", r.status.message.c_str());
 }
 
 bool all_finite(const TransientResult& r) {
@@ -114,8 +114,8 @@ TEST(HardStiff, IdaMatchesExactOnTheFishFinAt21Segments) {
   const TransientResult ida = run_transient_ida(system, model.probes, options);
   report("fish fin N=21 exact", exact);
   report("fish fin N=21 rtol 1e-6", ida);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
-  ASSERT_TRUE(ida.status.ok) << ida.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+  ASSERT_TRUE(ida.status.ok()) << ida.status.message;
   for (size_t p = 0; p < model.probes.size(); ++p) {
     if (model.probes[p].name == "P1") continue;  // at the clamp: zero by construction
     const double peak = peak_of(exact.values[p]);
@@ -138,15 +138,15 @@ TEST(HardStiff, ExactMethodHoldsTheStaticStateAt35Segments) {
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  ASSERT_TRUE(rest.status.ok()) << rest.status.message;
   TransientOptions options;
   options.start = StartState::static_;
   options.end_time = 0.5 / scene.drive.frequency;  // the first edge after t = 0 is at T/2
   options.output_times = uniform_times(0.45 / scene.drive.frequency, 9);
   const TransientResult exact = run_transient_exact(system, model.probes, options);
   const TransientResult ida = run_transient_ida(system, model.probes, options);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
-  ASSERT_TRUE(ida.status.ok) << ida.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+  ASSERT_TRUE(ida.status.ok()) << ida.status.message;
   double exact_drift = 0.0, ida_drift = 0.0;
   for (size_t p = 0; p < model.probes.size(); ++p) {
     if (model.probes[p].name == "P1") continue;
@@ -190,7 +190,7 @@ void check_convergence_to_500(const std::vector<std::string>& extra, const char*
     runs.push_back(run_transient_ida(system, model.probes, options));
     probes = model.probes;
     report((std::string(label) + " N=" + std::to_string(n)).c_str(), runs.back());
-    ASSERT_TRUE(runs.back().status.ok) << runs.back().status.message;
+    ASSERT_TRUE(runs.back().status.ok()) << runs.back().status.message;
     ASSERT_TRUE(all_finite(runs.back()));
   }
   const auto& y500 = runs[0].values;
@@ -250,7 +250,7 @@ TEST(HardUndamped, CantileverOverThousandPeriodsIdaDriftsLessThanPeriodsTimesRto
   {
     const System unforced = model.network.assemble();
     const ModalResult modes = run_modes(unforced, Eigen::VectorXd::Zero(unforced.size()));
-    ASSERT_TRUE(modes.status.ok) << modes.status.message;
+    ASSERT_TRUE(modes.status.ok()) << modes.status.message;
     ASSERT_EQ(modes.modes.size(), 3u);
     EXPECT_LT(modes.modes[0].damping_ratio, 1e-12);
     f1 = modes.modes[0].frequency_hz;
@@ -267,8 +267,8 @@ TEST(HardUndamped, CantileverOverThousandPeriodsIdaDriftsLessThanPeriodsTimesRto
   const TransientResult ida = run_transient_ida(system, model.probes, options);
   report("undamped cantilever N=3, 1000 periods", exact);
   report("undamped cantilever N=3, 1000 periods, rtol 1e-8", ida);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
-  ASSERT_TRUE(ida.status.ok) << ida.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+  ASSERT_TRUE(ida.status.ok()) << ida.status.message;
   ASSERT_EQ(exact.times.size(), options.output_times.size());
   ASSERT_EQ(ida.times.size(), options.output_times.size());
   EXPECT_EQ(ida.statistics.restarts, 2 * periods);
@@ -338,7 +338,7 @@ TEST(HardSwitching, RestartsEqualEdgesAndDeflectionIsContinuous) {
     if (!electrical) results.push_back(run_transient_exact(system, model.probes, options));
     for (const TransientResult& r : results) {
       report(electrical ? "edges, electrical dynamics" : "edges, ideal drive", r);
-      ASSERT_TRUE(r.status.ok) << r.status.message;
+      ASSERT_TRUE(r.status.ok()) << r.status.message;
       EXPECT_EQ(r.statistics.restarts, 5) << r.method;
       ASSERT_EQ(r.times.size(), options.output_times.size()) << r.method;
       for (size_t i = 0; i < r.times.size(); ++i)
@@ -411,9 +411,9 @@ TEST(HardResonance, LightlyDampedOscillatorGrowsAsTheClosedForm) {
   report("zeta 1e-4 oscillator, 1000 periods", exact);
   report("zeta 1e-4 oscillator, 1000 periods, rtol 1e-9", ida);
   report("zeta 1e-4 oscillator, 1000 periods, rtol 1e-10", ida_tight);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
-  ASSERT_TRUE(ida.status.ok) << ida.status.message;
-  ASSERT_TRUE(ida_tight.status.ok) << ida_tight.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+  ASSERT_TRUE(ida.status.ok()) << ida.status.message;
+  ASSERT_TRUE(ida_tight.status.ok()) << ida_tight.status.message;
   ASSERT_EQ(exact.times.size(), options.output_times.size());
   ASSERT_EQ(ida.times.size(), options.output_times.size());
   ASSERT_EQ(ida_tight.times.size(), options.output_times.size());
@@ -483,8 +483,8 @@ TEST(HardMultiscale, NanosecondElectricalTimeConstantMatchesTheIdealDrive) {
   const TransientResult ida = run_transient_ida(system, model.probes, options);
   const TransientResult exact = run_transient_exact(ideal_system, ideal.probes, options);
   report("tau = 1 ns, electrical dynamics, rtol 1e-8", ida);
-  ASSERT_TRUE(ida.status.ok) << ida.status.message;
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
+  ASSERT_TRUE(ida.status.ok()) << ida.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
   ASSERT_TRUE(all_finite(ida));
   EXPECT_EQ(ida.statistics.restarts, 2 * periods);
   for (size_t p = 0; p < model.probes.size(); ++p) {
@@ -540,7 +540,7 @@ TEST(HardScaling, FirstModeMatchesTheContinuumWithinTheLumpingError) {
       ModalOptions every_pole;  // the dense method: every pole, for the count below
       every_pole.dense_limit = 100000;
       const ModalResult modes = run_modes(system, Eigen::VectorXd::Zero(system.size()), every_pole);
-      ASSERT_TRUE(modes.status.ok) << modes.status.message;
+      ASSERT_TRUE(modes.status.ok()) << modes.status.message;
       ASSERT_FALSE(modes.modes.empty());
       relative[b] = modes.modes[0].natural_frequency_hz / continuum_f1(beam) - 1;
       count[b] = modes.modes.size() + modes.real_poles.size();
@@ -593,7 +593,7 @@ TEST(HardScaling, MicrometreAndMetreBeamsIdaMatchesExactAndResponsesAreScaleFree
     ida.push_back(run_transient_ida(system, model.probes, options));
     report((std::string(beam.name) + " beam").c_str(), exact.back());
     report((std::string(beam.name) + " beam, rtol 1e-8").c_str(), ida.back());
-    ASSERT_TRUE(ida.back().status.ok) << ida.back().status.message;
+    ASSERT_TRUE(ida.back().status.ok()) << ida.back().status.message;
     ASSERT_EQ(ida.back().times.size(), options.output_times.size());
     // Dimensionless: divide by the static tip deflection.
     const double static_tip = beam.force * std::pow(beam.length, 3) / (3 * beam.bending_stiffness);
@@ -601,7 +601,7 @@ TEST(HardScaling, MicrometreAndMetreBeamsIdaMatchesExactAndResponsesAreScaleFree
       for (auto& series : r->values)
         for (double& value : series) value /= static_tip;
   }
-  ASSERT_TRUE(exact[1].status.ok) << exact[1].status.message;
+  ASSERT_TRUE(exact[1].status.ok()) << exact[1].status.message;
   const char* names[] = {"tip", "mid"};
   for (size_t p = 0; p < 2; ++p) {
     const double peak = peak_of(exact[1].values[p]);
@@ -613,7 +613,7 @@ TEST(HardScaling, MicrometreAndMetreBeamsIdaMatchesExactAndResponsesAreScaleFree
         names[p], peak, metre_error / peak, micro_error / peak);
     EXPECT_LT(metre_error, 1e-6 * peak) << names[p];
     EXPECT_LT(micro_error, 1e-6 * peak) << names[p];
-    ASSERT_TRUE(exact[0].status.ok) << exact[0].status.message;
+    ASSERT_TRUE(exact[0].status.ok()) << exact[0].status.message;
     const double scale_error = max_difference(exact[0].values[p], exact[1].values[p]);
     std::printf("[measured]   %s: exact micro - exact metre %.2e of the peak\n", names[p],
                 scale_error / peak);
@@ -644,7 +644,7 @@ TEST(HardZero, ZeroDriveStaysExactlyAtRestWithEveryMethodAndModel) {
       std::vector<TransientResult> results = {run_transient_ida(system, model.probes, options)};
       if (!electrical) results.push_back(run_transient_exact(system, model.probes, options));
       for (const TransientResult& r : results) {
-        ASSERT_TRUE(r.status.ok) << r.method << ": " << r.status.message;
+        ASSERT_TRUE(r.status.ok()) << r.method << ": " << r.status.message;
         ASSERT_EQ(r.times.size(), options.output_times.size());
         size_t nonzero = 0;
         for (const auto& series : r.values)

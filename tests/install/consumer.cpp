@@ -22,7 +22,7 @@ int main() {
   const emnet::System system = network.assemble();
   const emnet::ModalResult modes = emnet::run_modes(system, Eigen::VectorXd::Zero(system.size()));
   const double exact = 1.0 / (2.0 * M_PI * std::sqrt(mass * compliance));
-  if (!modes.status.ok || modes.modes.size() != 1) {
+  if (!modes.status.ok() || modes.modes.size() != 1) {
     std::fprintf(stderr, "consumer: modes failed: %s\n", modes.status.message.c_str());
     return 1;
   }

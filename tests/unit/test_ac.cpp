@@ -40,10 +40,10 @@ TEST(AcFixtures, OneMassSpringMatchesClosedForm) {
   const NodeId v = one.velocity;
   const System system = one.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok);
+  ASSERT_TRUE(rest.status.ok());
   const auto grid = frequency_grid(0.01, 20.0, 200, true);
   const AcResult ac = run_ac(system, rest.operating_point, grid, {displacement_of(v)});
-  ASSERT_TRUE(ac.status.ok) << ac.status.message;
+  ASSERT_TRUE(ac.status.ok()) << ac.status.message;
   for (size_t i = 0; i < grid.size(); ++i) {
     const double w = two_pi * grid[i];
     const Complex exact = 1.0 / Complex(k - m * w * w, w * c);
@@ -70,11 +70,11 @@ TEST(AcFixtures, TwoMassSpringMatchesClosedForm) {
   network.add<CurrentSource>("F", ground, v2, unit_ac());
   const System system = network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok);
+  ASSERT_TRUE(rest.status.ok());
   const auto grid = frequency_grid(0.1, 10.0, 500, false);
   const AcResult ac =
       run_ac(system, rest.operating_point, grid, {displacement_of(v1), displacement_of(v2)});
-  ASSERT_TRUE(ac.status.ok) << ac.status.message;
+  ASSERT_TRUE(ac.status.ok()) << ac.status.message;
   for (size_t i = 0; i < grid.size(); ++i) {
     const double w = two_pi * grid[i];
     const Complex a11(k1 + k2 - m1 * w * w, w * (c1 + c2)), a12(-k2, -w * c2),
@@ -98,9 +98,9 @@ TEST(AcConsistency, LowFrequencyEqualsStatic) {
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok);
+  ASSERT_TRUE(rest.status.ok());
   const AcResult ac = run_ac(system, rest.operating_point, {0.0, 1e-3}, model.probes);
-  ASSERT_TRUE(ac.status.ok) << ac.status.message;
+  ASSERT_TRUE(ac.status.ok()) << ac.status.message;
   for (size_t p = 0; p < model.probes.size(); ++p) {
     const double s = static_probe_value(system, rest, model.probes[p]);
     EXPECT_NEAR(ac.values[p][0].real(), s, 1e-12 * std::abs(s));
@@ -116,9 +116,9 @@ TEST(AcConsistency, FishFinAcAtZeroEqualsStaticStateWithAOn) {
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  ASSERT_TRUE(rest.status.ok()) << rest.status.message;
   const AcResult ac = run_ac(system, rest.operating_point, {0.0}, model.probes);
-  ASSERT_TRUE(ac.status.ok) << ac.status.message;
+  ASSERT_TRUE(ac.status.ok()) << ac.status.message;
   for (size_t p = 0; p < model.probes.size(); ++p) {
     if (model.probes[p].name == "P1") continue;  // at the clamp: zero by construction
     const double s = static_probe_value(system, rest, model.probes[p]);
@@ -142,13 +142,13 @@ TEST(AcConsistency, ModalFrequenciesSitAtTheAcPeaks) {
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
   const ModalResult modes = run_modes(system, rest.operating_point);
-  ASSERT_TRUE(modes.status.ok);
+  ASSERT_TRUE(modes.status.ok());
   ASSERT_GE(modes.modes.size(), 3u);
   for (size_t k = 0; k < 3; ++k) {
     const double f = modes.modes[k].frequency_hz;
     const auto grid = frequency_grid(0.99 * f, 1.01 * f, 10001, false);
     const AcResult ac = run_ac(system, rest.operating_point, grid, model.probes);
-    ASSERT_TRUE(ac.status.ok);
+    ASSERT_TRUE(ac.status.ok());
     size_t best = 0;
     for (size_t i = 0; i < grid.size(); ++i)
       if (std::abs(ac.values[0][i]) > std::abs(ac.values[0][best])) best = i;
@@ -169,10 +169,10 @@ TEST(AcAccuracy, RefinedNearTheResonanceOfALargeFin) {
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  ASSERT_TRUE(rest.status.ok()) << rest.status.message;
   const std::vector<double> grid = frequency_grid(6.3, 6.6, 31, false);
   const AcResult ac = run_ac(system, rest.operating_point, grid, model.probes);
-  ASSERT_TRUE(ac.status.ok) << ac.status.message;
+  ASSERT_TRUE(ac.status.ok()) << ac.status.message;
 
   using Wide = std::complex<long double>;
   using WideMatrix = Eigen::SparseMatrix<Wide>;

@@ -34,7 +34,7 @@ TEST(AcPoleResidue, OneMassMatchesTheClosedFormFromZeroFrequency) {
   const auto grid = frequency_grid(0.0, 20.0, 201, false);
   const AcResult ac = run_ac(system, Eigen::VectorXd::Zero(system.size()), grid, {x},
                              forced(AcMethod::pole_residue));
-  ASSERT_TRUE(ac.status.ok) << ac.status.message;
+  ASSERT_TRUE(ac.status.ok()) << ac.status.message;
   EXPECT_EQ(ac.method, "pole-residue");
   EXPECT_LE(ac.check_deviation, kPoleResidueAgreement);
   double peak = 0.0;
@@ -65,11 +65,11 @@ TEST_P(AcPoleResidueFin, MatchesADenseSolveToRounding) {
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok);
+  ASSERT_TRUE(rest.status.ok());
   std::vector<Probe> probes(model.probes.begin(), model.probes.end());
   const auto grid = frequency_grid(scene.ac.from, scene.ac.to, scene.ac.points, scene.ac.log);
   const AcResult ac = run_ac(system, rest.operating_point, grid, probes);
-  ASSERT_TRUE(ac.status.ok) << ac.status.message;
+  ASSERT_TRUE(ac.status.ok()) << ac.status.message;
   ASSERT_EQ(ac.method, "pole-residue") << ac.note;  // chosen automatically at this size
   EXPECT_GE(ac.check_points, 3);
   EXPECT_LE(ac.check_deviation, kPoleResidueAgreement);
@@ -114,7 +114,7 @@ TEST(AcPoleResidue, AutomaticFallsBackToTheDirectSolveWithTheReason) {
   const AcResult automatic = run_ac(system, rest.operating_point, grid, probes);
   const AcResult direct =
       run_ac(system, rest.operating_point, grid, probes, forced(AcMethod::direct));
-  ASSERT_TRUE(automatic.status.ok && direct.status.ok);
+  ASSERT_TRUE(automatic.status.ok() && direct.status.ok());
   if (automatic.method == "pole-residue") {
     EXPECT_LE(automatic.check_deviation, kPoleResidueAgreement);
   } else {
@@ -125,7 +125,7 @@ TEST(AcPoleResidue, AutomaticFallsBackToTheDirectSolveWithTheReason) {
   // Forced, the failed check is a failed Status, not a result.
   const AcResult strict =
       run_ac(system, rest.operating_point, grid, probes, forced(AcMethod::pole_residue));
-  EXPECT_EQ(strict.status.ok, automatic.method == "pole-residue") << strict.status.message;
+  EXPECT_EQ(strict.status.ok(), automatic.method == "pole-residue") << strict.status.message;
 }
 
 // Large networks are solved directly: the dense decomposition would cost more than the sweep.
@@ -138,7 +138,7 @@ TEST(AcPoleResidue, LargeNetworksUseTheDirectSolve) {
   std::vector<Probe> probes(model.probes.begin(), model.probes.end());
   const AcResult ac =
       run_ac(system, rest.operating_point, frequency_grid(0.0, 10.0, 100, false), probes);
-  ASSERT_TRUE(ac.status.ok) << ac.status.message;
+  ASSERT_TRUE(ac.status.ok()) << ac.status.message;
   EXPECT_EQ(ac.method, "direct");
   EXPECT_TRUE(ac.note.empty()) << ac.note;
 }

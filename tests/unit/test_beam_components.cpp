@@ -41,7 +41,7 @@ double static_probe(const std::string& text, const std::string& name) {
   const Model model = prepare_model(scene);
   const System system = model.network.assemble();
   const StaticResult result = solve_static(system);
-  EXPECT_TRUE(result.status.ok) << result.status.message;
+  EXPECT_TRUE(result.status.ok()) << result.status.message;
   for (const Probe& probe : model.probes)
     if (probe.name == name) return static_probe_value(system, result, probe);
   ADD_FAILURE() << "no probe " << name;
@@ -188,7 +188,7 @@ TEST(Timoshenko, SimplySupportedFrequenciesConvergeToTheShearBeam) {
     ModalOptions options;
     options.count = 3;
     const ModalResult modes = run_modes(system, Eigen::VectorXd::Zero(system.size()), options);
-    ASSERT_TRUE(modes.status.ok) << modes.status.message;
+    ASSERT_TRUE(modes.status.ok()) << modes.status.message;
     ASSERT_GE(modes.modes.size(), 3u);
     std::vector<double> error;
     for (int n = 1; n <= 3; ++n)
@@ -213,7 +213,7 @@ std::vector<double> network_frequencies(const std::string& text, int count) {
   options.count = count;
   options.keep_vectors = false;
   const ModalResult modes = run_modes(system, Eigen::VectorXd::Zero(system.size()), options);
-  EXPECT_TRUE(modes.status.ok) << modes.status.message;
+  EXPECT_TRUE(modes.status.ok()) << modes.status.message;
   std::vector<double> frequencies;
   for (const Mode& mode : modes.modes) frequencies.push_back(mode.frequency_hz);
   frequencies.resize(static_cast<size_t>(count), 0.0);

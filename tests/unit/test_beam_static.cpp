@@ -7,8 +7,8 @@
 //     w = 0 (x ≤ a), T(x − a)²/(2EI) (a ≤ x ≤ b), T(b − a)²/(2EI) + T(b − a)(x − b)/EI (x ≥ b)
 // The segment network has exactly the Hermite element's flexibility (docs/model.md, The beam
 // segment) and the mesher puts a node under every load (unequal segments where a load falls
-// inside the uniform grid), so nodal values are exact for every N: the only error is rounding in a sparse LU of a well-conditioned system, hence 1e-10
-// relative.
+// inside the uniform grid), so nodal values are exact for every N: the only error is rounding in a
+// sparse LU of a well-conditioned system, hence 1e-10 relative.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -40,7 +40,7 @@ void expect_nodes_match(int segments, const std::vector<LoadSpec>& loads,
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult result = solve_static(system);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   const ClosedForm tip = exact(length);
   for (int k = 0; k <= segments; ++k) {
     const double x = length * k / segments;
@@ -110,7 +110,7 @@ void expect_central_load_matches(EndCondition end, int segments,
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult result = solve_static(system);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   const double scale = std::abs(exact(length / 2));
   for (int k = 0; k <= segments; ++k) {
     double x = length * k / segments;
@@ -144,7 +144,7 @@ TEST(BeamStatics, FreeBodyIsReportedNotSolved) {
   scene.loads = {testing::load(LoadKind::force, 0.5, 1.0)};
   const System system = build_model(scene).network.assemble();
   const StaticResult result = solve_static(system);
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("no unique static state"), std::string::npos);
 }
 

@@ -115,7 +115,7 @@ TEST(Circuit, SourceBehindAResistorChargesADeaAsTheClosedFormExponential) {
   for (int k = 0; k <= 400; ++k) options.output_times.push_back(options.end_time * k / 400);
   options.relative_tolerance = 1e-10;
   const TransientResult result = run_transient_ida(system, model.probes, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   ASSERT_EQ(result.times.size(), options.output_times.size());
   double worst = 0.0;
   for (std::size_t k = 0; k < result.times.size(); ++k) {
@@ -156,7 +156,7 @@ TEST(Circuit, PureRcCircuitOnTheExactMethodMatchesTheClosedForm) {
   options.end_time = delay + 10 * tau;
   for (int k = 0; k <= 400; ++k) options.output_times.push_back(options.end_time * k / 400);
   const TransientResult result = run_transient_exact(system, {capacitor_voltage}, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   double worst = 0.0;
   for (std::size_t k = 0; k < result.times.size(); ++k) {
     const double t = result.times[k];

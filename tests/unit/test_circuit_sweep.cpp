@@ -81,7 +81,7 @@ TEST(CircuitSweep, TransientSwitchingSetsTheCircuitSources) {
       run_transient_study(tweezer({"drive.frequency=20 Hz", "circuit.src_A.frequency=20 Hz",
                                    "circuit.src_B.frequency=20 Hz"}),
                           options);
-  ASSERT_TRUE(switched.status.ok && set.status.ok);
+  ASSERT_TRUE(switched.status.ok() && set.status.ok());
   ASSERT_EQ(switched.result.values.size(), set.result.values.size());
   for (size_t p = 0; p < set.result.values.size(); ++p)
     for (size_t k = 0; k < set.result.values[p].size(); ++k)
@@ -106,7 +106,7 @@ TEST(CircuitSweep, ShootingSweepMatchesThePeriodicStateOfTheSetScene) {
   sweep.outputs = switching_sweep_outputs(swept.model, {"tip"});
   sweep.first_mode = false;
   const SwitchingSweepResult result = run_switching_sweep(swept.model, swept.scene, sweep);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   EXPECT_EQ(result.method, "shooting");  // the automatic choice: a circuit-driven DEA network
 
   const Model set =
@@ -114,7 +114,7 @@ TEST(CircuitSweep, ShootingSweepMatchesThePeriodicStateOfTheSetScene) {
                              "circuit.src_B.frequency=12 Hz"}));
   const PeriodicResult reference =
       run_periodic_shooting(set.network.assemble(), sweep.outputs, 1.0 / 12.0, sweep.rtol, 256);
-  ASSERT_TRUE(reference.status.ok) << reference.status.message;
+  ASSERT_TRUE(reference.status.ok()) << reference.status.message;
   const double swing = reference.maximum[0] - reference.minimum[0];
   ASSERT_GT(swing, 0.0);
   EXPECT_NEAR(result.outputs[0].left[0], reference.minimum[0], 1e-9 * swing);

@@ -109,7 +109,7 @@ TEST(CircuitValidity, TransientJudgesTheComputedVoltageWhereNoBoundIsKnown) {
   options.points_per_period = 20000;
   options.rtol = 1e-8;
   const TransientStudyResult run = run_transient_study(scene, options);
-  ASSERT_TRUE(run.status.ok) << run.status.message;
+  ASSERT_TRUE(run.status.ok()) << run.status.message;
   const DeaLayout& dea = run.model.deas[0];
   ASSERT_EQ(dea.name, "A");
   const double r = 1e3 + dea.electrode_resistance, c = dea.capacitance, l = 1000.0;

@@ -93,7 +93,7 @@ TEST(Crosscheck, PerturbedNgspiceVectorFailsTheReport) {
   CrosscheckOptions options;
   options.analyses = {CrosscheckAnalysis::op, CrosscheckAnalysis::ac};
   const CrosscheckReport clean = run_crosscheck(model, options);
-  ASSERT_TRUE(clean.status.ok) << clean.status.message;
+  ASSERT_TRUE(clean.status.ok()) << clean.status.message;
   EXPECT_TRUE(clean.all_pass());
   options.inspect_ngspice_result = [](CrosscheckAnalysis analysis, NgspiceResult& result) {
     if (analysis != CrosscheckAnalysis::ac) return;
@@ -102,7 +102,7 @@ TEST(Crosscheck, PerturbedNgspiceVectorFailsTheReport) {
         for (auto& value : vector.complex_values) value *= 1.0 + 1e-5;
   };
   const CrosscheckReport perturbed = run_crosscheck(model, options);
-  ASSERT_TRUE(perturbed.status.ok) << perturbed.status.message;
+  ASSERT_TRUE(perturbed.status.ok()) << perturbed.status.message;
   EXPECT_FALSE(perturbed.all_pass());
   bool ac_magnitude_failed = false;
   for (const auto& row : perturbed.rows) {

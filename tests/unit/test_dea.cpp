@@ -58,7 +58,7 @@ TEST(DeaForce, StaticMomentPairOnTheBeam) {
     const Model model = build_model(scene);
     const System system = model.network.assemble();
     const StaticResult rest = solve_static(system);
-    ASSERT_TRUE(rest.status.ok) << rest.status.message;
+    ASSERT_TRUE(rest.status.ok()) << rest.status.message;
     const double force = dea_force_constant(2.8, 51e-6, 51e-6, 25e-3) * 3000.0 * 3000.0;
     const double torque = (face == Face::top ? -1.0 : 1.0) * 1.5e-3 * force;
     const double span = dea.to - dea.from, ei = scene.beam.bending_stiffness;
@@ -76,9 +76,9 @@ TEST(FishFin, FirstResonanceAtSevenSegments) {
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  ASSERT_TRUE(rest.status.ok()) << rest.status.message;
   const ModalResult modes = run_modes(system, rest.operating_point);
-  ASSERT_TRUE(modes.status.ok) << modes.status.message;
+  ASSERT_TRUE(modes.status.ok()) << modes.status.message;
   ASSERT_FALSE(modes.modes.empty());
   EXPECT_NEAR(modes.modes[0].frequency_hz, 6.385, 0.005);
 }
@@ -104,10 +104,10 @@ TEST(DeaBackCoupling, FirstModeShiftMatchesPerturbationTheory) {
   auto first_mode = [](const Model& model, Eigen::VectorXd& rest) {
     const System system = model.network.assemble();
     const StaticResult at_rest = solve_static(system);
-    EXPECT_TRUE(at_rest.status.ok) << at_rest.status.message;
+    EXPECT_TRUE(at_rest.status.ok()) << at_rest.status.message;
     rest = at_rest.operating_point;
     const ModalResult modes = run_modes(system, rest);
-    EXPECT_TRUE(modes.status.ok) << modes.status.message;
+    EXPECT_TRUE(modes.status.ok()) << modes.status.message;
     return modes.modes.at(0);
   };
   Eigen::VectorXd rest;

@@ -149,7 +149,7 @@ TEST(DesignStudy, RowsAreTheAnalysesOfEachVariantWhateverTheThreads) {
                                                    "zeta2", "f2_error_hz", "static.tip_m"}));
   ASSERT_EQ(one.rows.size(), 24u);
   for (size_t i = 0; i < one.rows.size(); ++i) {
-    ASSERT_TRUE(one.rows[i].status.ok) << one.rows[i].status.message;
+    ASSERT_TRUE(one.rows[i].status.ok()) << one.rows[i].status.message;
     EXPECT_EQ(one.rows[i].values, three.rows[i].values);  // bit for bit
     const double stiffness = table.rows[i][0];
     EXPECT_NEAR(one.rows[i].values[6], 0.125 / (3 * stiffness), 1e-14);
@@ -177,7 +177,7 @@ TEST(DesignStudy, AVariantOutsideTheModelsValidityIsFlagged) {
   DesignStudyOptions options;
   options.analyses = {StudyAnalysis::static_state};
   const DesignStudyResult result = run_design_study(scene, table, options);
-  ASSERT_TRUE(result.rows[0].status.ok && result.rows[1].status.ok);
+  ASSERT_TRUE(result.rows[0].status.ok() && result.rows[1].status.ok());
   EXPECT_TRUE(result.rows[0].validity.within());
   EXPECT_FALSE(result.rows[1].validity.within());
   EXPECT_EQ(result.outside_validity, 1u);
@@ -195,15 +195,15 @@ TEST_F(DesignStudyFiles, AFailingVariantIsARowWithItsReason) {
   DesignStudyOptions options;
   const DesignStudyResult result = run_design_study(scene, table, options);
   ASSERT_EQ(result.rows.size(), 3u);
-  EXPECT_TRUE(result.rows[0].status.ok);
-  EXPECT_FALSE(result.rows[1].status.ok);
+  EXPECT_TRUE(result.rows[0].status.ok());
+  EXPECT_FALSE(result.rows[1].status.ok());
   EXPECT_NE(result.rows[1].status.message.find("beam.bending_stiffness"), std::string::npos);
   EXPECT_TRUE(result.rows[1].values.empty());
-  EXPECT_TRUE(result.rows[2].status.ok);
+  EXPECT_TRUE(result.rows[2].status.ok());
   EXPECT_EQ(result.failed, 1u);
   // The CSV: the failed row's results empty, its reason quoted when it holds a comma.
   const std::string file = path("study.csv");
-  ASSERT_TRUE(write_design_study_csv(file, result).ok);
+  ASSERT_TRUE(write_design_study_csv(file, result).ok());
   std::ifstream in(file);
   std::string header, first, second;
   std::getline(in, header);

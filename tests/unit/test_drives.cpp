@@ -51,7 +51,7 @@ TEST(SwitchedDrive, StaticIsTheOnStateMomentPair) {
     const Model model = build_model(scene);
     const System system = model.network.assemble();
     const StaticResult rest = solve_static(system);
-    ASSERT_TRUE(rest.status.ok) << rest.status.message;
+    ASSERT_TRUE(rest.status.ok()) << rest.status.message;
     const double force = dea_force_constant(2.8, 51e-6, 51e-6, 25e-3) * 4000.0 * 4000.0;
     const double torque = -1.55e-3 * force, x1 = 0.070, length = 0.1225;
     const double ei = scene.beam.bending_stiffness;
@@ -76,12 +76,12 @@ TEST(SwitchedDrive, AcIsHalfThePairsResponseAndHalfTheOnStateAtZero) {
     const System pair_system = pair.network.assemble();
     const StaticResult switched_rest = solve_static(switched_system);
     const StaticResult pair_rest = solve_static(pair_system);
-    ASSERT_TRUE(switched_rest.status.ok && pair_rest.status.ok);
+    ASSERT_TRUE(switched_rest.status.ok() && pair_rest.status.ok());
     const std::vector<double> grid = frequency_grid(0.0, 10.0, 201, false);
     const auto probes = deflections(switched);
     const AcResult a = run_ac(switched_system, switched_rest.operating_point, grid, probes);
     const AcResult b = run_ac(pair_system, pair_rest.operating_point, grid, deflections(pair));
-    ASSERT_TRUE(a.status.ok && b.status.ok);
+    ASSERT_TRUE(a.status.ok() && b.status.ok());
     for (size_t k = 0; k < probes.size(); ++k) {
       double peak = 0.0;
       for (const auto& v : b.values[k]) peak = std::max(peak, std::abs(v));
@@ -109,7 +109,7 @@ TEST(SwitchedDrive, TransientIsHalfThePairPlusHalfTheHeldOnState) {
     options.end_time = 4 * 0.2;
     for (int k = 0; k <= 400; ++k) options.output_times.push_back(options.end_time * k / 400);
     runs.push_back(run_transient_exact(system, deflections(model), options));
-    ASSERT_TRUE(runs.back().status.ok) << runs.back().status.message;
+    ASSERT_TRUE(runs.back().status.ok()) << runs.back().status.message;
   }
   for (size_t k = 0; k < runs[0].values.size(); ++k) {
     double peak = 0.0;
@@ -135,7 +135,7 @@ TEST(SwitchedDrive, PeriodicExtremesAreHalfThePairsPlusHalfTheHeldOnState) {
       const System system = model.network.assemble();
       const PeriodicSolver solver(system);
       results.push_back(solver.solve(system, deflections(model), 1.0 / frequency, 64));
-      ASSERT_TRUE(results.back().status.ok) << results.back().status.message;
+      ASSERT_TRUE(results.back().status.ok()) << results.back().status.message;
     }
     for (size_t k = 0; k < results[0].minimum.size(); ++k) {
       const double held = results[2].maximum[k];
@@ -168,9 +168,9 @@ TEST(AntagonisticDrive, AcInputBypassesTheRcLoopsAndTheNotesSaySo) {
     const Model model = build_model(fin({}, ideal));
     const System system = model.network.assemble();
     const StaticResult rest = solve_static(system);
-    ASSERT_TRUE(rest.status.ok);
+    ASSERT_TRUE(rest.status.ok());
     results.push_back(run_ac(system, rest.operating_point, grid, deflections(model), direct));
-    ASSERT_TRUE(results.back().status.ok);
+    ASSERT_TRUE(results.back().status.ok());
   }
   for (size_t k = 0; k < results[0].values.size(); ++k) {
     double peak = 0.0;

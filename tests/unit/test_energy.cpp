@@ -249,7 +249,7 @@ TEST(Energy, UndampedCantileverWorkEqualsStoredEnergy) {
   };
   for (const Case& c : {Case{"exact", exact_bound}, Case{"ida", ida_bound}}) {
     const TransientResult result = run(c.method, driven.system, energy.probes, schedule, end_time);
-    ASSERT_TRUE(result.status.ok) << c.method << ": " << result.status.message;
+    ASSERT_TRUE(result.status.ok()) << c.method << ": " << result.status.message;
     ASSERT_EQ(result.times.size(), schedule.times.size()) << c.method;
     const Balance balance = energy_balance(energy, schedule, result);
     report(std::string("cantilever, ") + c.method, balance);
@@ -284,7 +284,7 @@ TEST(Energy, UndampedFishFinWorkEqualsStoredEnergy) {
   };
   for (const Case& c : {Case{"exact", exact_bound}, Case{"ida", ida_bound}}) {
     const TransientResult result = run(c.method, system, energy.probes, schedule, end_time);
-    ASSERT_TRUE(result.status.ok) << c.method << ": " << result.status.message;
+    ASSERT_TRUE(result.status.ok()) << c.method << ": " << result.status.message;
     ASSERT_EQ(result.times.size(), schedule.times.size()) << c.method;
     const Balance balance = energy_balance(energy, schedule, result);
     report(std::string("fish fin, ") + c.method, balance);
@@ -307,7 +307,7 @@ TEST(Energy, DampedCantileverDissipatesWork) {
   ASSERT_GT(energy.dissipators, 0);
   const Schedule schedule = make_schedule(driven.system, end_time, 40);
   const TransientResult result = run("exact", driven.system, energy.probes, schedule, end_time);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   const Balance balance = energy_balance(energy, schedule, result);
   std::printf("[energy] damped cantilever: W - E at the end = %.3e J = %.3e max E\n",
               balance.final_gap, balance.final_gap / balance.max_energy);

@@ -124,7 +124,7 @@ Scene cantilever_in_water(std::optional<double> frequency) {
 std::vector<Mode> modes_of(const Model& model) {
   const System system = model.network.assemble();
   const ModalResult result = run_modes(system, Eigen::VectorXd::Zero(system.size()));
-  EXPECT_TRUE(result.status.ok) << result.status.message;
+  EXPECT_TRUE(result.status.ok()) << result.status.message;
   return result.modes;
 }
 

@@ -40,7 +40,7 @@ TEST(MismatchStudy, NoMismatchNoAsymmetryAndTheSignFollowsTheStrongerDea) {
   emnet::MismatchOptions options;
   options.change = 0.05;
   const emnet::MismatchResult result = emnet::run_mismatch(measured_fin(), options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   EXPECT_EQ(result.output, "dx4");  // the model's default deflection output
   EXPECT_EQ(result.periodic_solves, 7);
   ASSERT_EQ(result.rows.size(), 6u);
@@ -68,7 +68,7 @@ TEST(MismatchStudy, SmallChangesScaleLinearly) {
   const emnet::Scene scene = measured_fin();
   const emnet::MismatchResult a = emnet::run_mismatch(scene, single);
   const emnet::MismatchResult b = emnet::run_mismatch(scene, twice);
-  ASSERT_TRUE(a.status.ok && b.status.ok) << a.status.message << b.status.message;
+  ASSERT_TRUE(a.status.ok() && b.status.ok()) << a.status.message << b.status.message;
   for (const std::string key : {"dea.A.electrode_width", "dea.A.dielectric_thickness"})
     for (const double sign : {-1.0, 1.0}) {
       const auto* at_x = row_of(a, key, sign * change);

@@ -28,11 +28,11 @@ std::vector<double> network_frequencies(int segments) {
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
-  EXPECT_TRUE(rest.status.ok) << rest.status.message;
+  EXPECT_TRUE(rest.status.ok()) << rest.status.message;
   ModalOptions every_pole;  // the dense method, whatever the size: every pole of the chain
   every_pole.dense_limit = 100000;
   const ModalResult modes = run_modes(system, rest.operating_point, every_pole);
-  EXPECT_TRUE(modes.status.ok) << modes.status.message;
+  EXPECT_TRUE(modes.status.ok()) << modes.status.message;
   EXPECT_TRUE(modes.complete);
   std::vector<double> f;
   for (const Mode& mode : modes.modes) {
@@ -102,9 +102,9 @@ TEST(SupportedBeamModes, PinnedPinnedMatchesClosedForm) {
   scene.beam.left = scene.beam.right = EndCondition::pinned;
   const System system = build_model(scene).network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok);
+  ASSERT_TRUE(rest.status.ok());
   const ModalResult modes = run_modes(system, rest.operating_point);
-  ASSERT_TRUE(modes.status.ok);
+  ASSERT_TRUE(modes.status.ok());
   for (int n = 1; n <= 3; ++n) {
     const double exact = n * n * M_PI / (2 * 0.25) * std::sqrt(2.0 / 0.3);
     EXPECT_NEAR(modes.modes[static_cast<size_t>(n - 1)].frequency_hz / exact, 1.0, 1e-4) << n;
@@ -116,7 +116,7 @@ TEST(SupportedBeamModes, FreeFreeHasRigidBodyPolesAndElasticModes) {
   scene.beam.left = scene.beam.right = EndCondition::free;
   const System system = build_model(scene).network.assemble();
   const ModalResult modes = run_modes(system, Eigen::VectorXd::Zero(system.size()));
-  ASSERT_TRUE(modes.status.ok) << modes.status.message;
+  ASSERT_TRUE(modes.status.ok()) << modes.status.message;
   const double exact = 4.730040745 * 4.730040745 / (2 * M_PI * 0.25) * std::sqrt(2.0 / 0.3);
   ASSERT_FALSE(modes.modes.empty());
   EXPECT_NEAR(modes.modes[0].frequency_hz / exact, 1.0, 5e-3);
@@ -142,9 +142,9 @@ TEST(FishFinModes, RepeatedKelvinVoigtPolesAreRealPoles) {
                                  {"damping.loss_factor=1e-5", "drive.electrical_dynamics=false"});
   const System system = build_model(scene).network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  ASSERT_TRUE(rest.status.ok()) << rest.status.message;
   const ModalResult modes = run_modes(system, rest.operating_point);
-  ASSERT_TRUE(modes.status.ok) << modes.status.message;
+  ASSERT_TRUE(modes.status.ok()) << modes.status.message;
   EXPECT_EQ(modes.modes.size(), 7u);
   for (const Mode& mode : modes.modes) EXPECT_LT(mode.natural_frequency_hz, 1e3);
   const double relaxation_rate = 2 * M_PI * 6.385 / 1e-5;
@@ -177,11 +177,11 @@ TEST(FishFinModes, DampedFirstModeAtLargeNMatchesTheContinuum) {
     const Model model = build_model(scene);  // the System refers to its elements
     const System system = model.network.assemble();
     const StaticResult rest = solve_static(system);
-    ASSERT_TRUE(rest.status.ok) << rest.status.message;
+    ASSERT_TRUE(rest.status.ok()) << rest.status.message;
     ModalOptions options;
     options.count = 2;
     const ModalResult modes = run_modes(system, rest.operating_point, options);
-    ASSERT_TRUE(modes.status.ok) << modes.status.message;
+    ASSERT_TRUE(modes.status.ok()) << modes.status.message;
     ASSERT_FALSE(modes.modes.empty());
     const double tau = scene.damping.effective_kelvin_voigt_time();
     const double f = continuum_frequency(0, scene.beam.length, scene.beam.bending_stiffness,

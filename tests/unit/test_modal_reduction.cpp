@@ -38,7 +38,7 @@ Built build(const std::string& name, int segments, std::vector<std::string> over
   Built b{build_model(read_scene(scene_path(name), overrides)), {}, {}};
   b.system = b.model.network.assemble();
   const StaticResult rest = solve_static(b.system);
-  EXPECT_TRUE(rest.status.ok) << rest.status.message;
+  EXPECT_TRUE(rest.status.ok()) << rest.status.message;
   b.operating_point = rest.operating_point;
   return b;
 }
@@ -70,7 +70,7 @@ TEST(ModalReduction, MassSpringDamperClosedForm) {
   options.band = 10.0;  // f_c = 100 Hz at tol 1e-2, above the 2.5 Hz pole
   options.tolerance = 1e-2;
   const ModalReduction kept = reduce_modal(system, rest, {system.b_ac()}, options);
-  ASSERT_TRUE(kept.status.ok) << kept.status.message;
+  ASSERT_TRUE(kept.status.ok()) << kept.status.message;
   EXPECT_EQ(kept.kept_modes, 1);
   for (double f : {0.0, 0.1, 1.0, 2.5, 5.0, 20.0}) {
     const Complex s(0.0, two_pi * f);
@@ -82,7 +82,7 @@ TEST(ModalReduction, MassSpringDamperClosedForm) {
   }
   options.band = 0.01;  // f_c = 0.1 Hz: the pole is truncated
   const ModalReduction truncated = reduce_modal(system, rest, {system.b_ac()}, options);
-  ASSERT_TRUE(truncated.status.ok) << truncated.status.message;
+  ASSERT_TRUE(truncated.status.ok()) << truncated.status.message;
   EXPECT_EQ(truncated.kept_modes, 0);
   EXPECT_EQ(truncated.truncated_poles, 1);
   for (double f : {0.0, 1.0, 20.0})
@@ -100,10 +100,10 @@ TEST(ModalReduction, StaticCorrectionIsExactAtZeroFrequency) {
     options.tolerance = 1e-2;
     const ModalReduction reduced =
         reduce_modal(b.system, b.operating_point, {b.system.b_ac()}, options);
-    ASSERT_TRUE(reduced.status.ok) << reduced.status.message;
+    ASSERT_TRUE(reduced.status.ok()) << reduced.status.message;
     ASSERT_GT(reduced.kept.size(), 0u);
     const AcResult full = run_ac(b.system, b.operating_point, {0.0}, b.model.probes);
-    ASSERT_TRUE(full.status.ok) << full.status.message;
+    ASSERT_TRUE(full.status.ok()) << full.status.message;
     for (size_t p = 0; p < b.model.probes.size(); ++p) {
       const Complex exact = full.values[p][0];
       if (exact == 0.0) continue;  // P1 at the clamp
@@ -129,13 +129,13 @@ TEST(ModalReduction, KeepingAllModesReproducesTheFullModel) {
     options.keep_all = true;
     const ModalReduction reduced =
         reduce_modal(b.system, b.operating_point, {b.system.b_ac()}, options);
-    ASSERT_TRUE(reduced.status.ok) << reduced.status.message;
+    ASSERT_TRUE(reduced.status.ok()) << reduced.status.message;
     EXPECT_EQ(reduced.modal_method, "dense");
     std::vector<std::vector<Complex>> values(b.model.probes.size());
     for (size_t p = 0; p < values.size(); ++p)
       for (double f : grid) values[p].push_back(reduced.response(b.model.probes[p], two_pi * f));
     const AcResult full = run_ac(b.system, b.operating_point, grid, b.model.probes);
-    ASSERT_TRUE(full.status.ok);
+    ASSERT_TRUE(full.status.ok());
     EXPECT_LT(worst_relative(values, full.values), 1e-8)
         << name << ": kept " << reduced.kept_modes << " modes, " << reduced.kept_real_poles
         << " real poles, " << reduced.clustered_poles << " clustered";
@@ -169,9 +169,9 @@ TEST_P(ReductionTolerance, MeetsTheRequestedToleranceAgainstTheFullModel) {
   options.tolerance = c.tolerance;
   const AcReductionResult reduced =
       run_ac_reduced(b.system, b.operating_point, grid, b.model.probes, options);
-  ASSERT_TRUE(reduced.status.ok) << reduced.status.message;
+  ASSERT_TRUE(reduced.status.ok()) << reduced.status.message;
   const AcResult full = run_ac(b.system, b.operating_point, grid, b.model.probes);
-  ASSERT_TRUE(full.status.ok);
+  ASSERT_TRUE(full.status.ok());
   const double error = worst_relative(reduced.ac.values, full.values);
   EXPECT_LE(error, c.tolerance) << "kept " << reduced.model.kept_modes << " modes below "
                                 << reduced.model.cutoff_hz << " Hz (" << reduced.model.modal_method
@@ -218,7 +218,7 @@ TEST(ModalReduction, PeriodicReducedMatchesTheExactSolution) {
       options.band = 7.0;
       options.tolerance = tolerance;
       const ReducedPeriodicSolver reduced(b.system, options);
-      ASSERT_TRUE(reduced.reduction().status.ok) << reduced.reduction().status.message;
+      ASSERT_TRUE(reduced.reduction().status.ok()) << reduced.reduction().status.message;
       const PeriodicSolver full(b.system);
       for (double f : {2.0, 5.0, 6.4}) {
         Scene scene = b.model.scene;
@@ -227,8 +227,8 @@ TEST(ModalReduction, PeriodicReducedMatchesTheExactSolution) {
         const System system = model.network.assemble();
         const PeriodicResult r = reduced.solve(system, model.probes, 1.0 / f);
         const PeriodicResult e = full.solve(system, model.probes, 1.0 / f);
-        ASSERT_TRUE(r.status.ok) << r.status.message;
-        ASSERT_TRUE(e.status.ok) << e.status.message;
+        ASSERT_TRUE(r.status.ok()) << r.status.message;
+        ASSERT_TRUE(e.status.ok()) << e.status.message;
         EXPECT_LE(periodic_difference(r, e), tolerance)
             << "N = " << segments << ", " << f << " Hz, kept " << reduced.reduction().kept_modes;
         for (size_t p = 0; p < model.probes.size(); ++p) {

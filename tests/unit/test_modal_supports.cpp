@@ -70,7 +70,7 @@ TEST(SupportedBeamModes, EveryEndPairAtTwoThousandSegments) {
     ModalOptions options;
     options.count = 3;
     const ModalResult modes = run_modes(system, Eigen::VectorXd::Zero(system.size()), options);
-    ASSERT_TRUE(modes.status.ok) << name_of(pair) << ": " << modes.status.message;
+    ASSERT_TRUE(modes.status.ok()) << name_of(pair) << ": " << modes.status.message;
     EXPECT_EQ(modes.method, "arnoldi") << name_of(pair);
     EXPECT_EQ(modes.rigid_body_modes.size(), pair.rigid) << name_of(pair);
     EXPECT_TRUE(modes.real_poles.empty()) << name_of(pair) << ": " << modes.real_poles.size();
@@ -94,7 +94,7 @@ TEST(SupportedBeamModes, RigidBodyMotionsAreTheKinematicOnes) {
     const Model model = build_model(scene);
     const System system = model.network.assemble();
     const ModalResult modes = run_modes(system, Eigen::VectorXd::Zero(system.size()));
-    ASSERT_TRUE(modes.status.ok) << modes.status.message;
+    ASSERT_TRUE(modes.status.ok()) << modes.status.message;
     ASSERT_EQ(modes.rigid_body_modes.size(), 1u) << name_of(pair);
     const Eigen::VectorXd& motion = modes.rigid_body_modes[0];
     auto value = [&](const LinearTerms& terms) {
@@ -173,7 +173,7 @@ TEST(PoleErrorBound, CoversTheErrorOfACancellingFormulation) {
       ModalOptions options;
       options.count = 2;
       const ModalResult modes = run_modes(system, Eigen::VectorXd::Zero(system.size()), options);
-      ASSERT_TRUE(modes.status.ok) << modes.status.message;
+      ASSERT_TRUE(modes.status.ok()) << modes.status.message;
       ASSERT_FALSE(modes.modes.empty()) << (as_conductances ? "conductances" : "rate") << ": "
                                         << modes.real_poles.size() << " real poles, " << modes.note;
       const Mode& first = modes.modes[0];
@@ -207,10 +207,10 @@ TEST(SupportedBeamModes, OperatingPointOfTheWrongSizeIsRefused) {
   const Model model = build_model(testing::cantilever_scene(7));
   const System system = model.network.assemble();
   const ModalResult empty = run_modes(system, Eigen::VectorXd());
-  ASSERT_TRUE(empty.status.ok) << empty.status.message;
+  ASSERT_TRUE(empty.status.ok()) << empty.status.message;
   EXPECT_EQ(empty.modes.size(), 7u);
   const ModalResult wrong = run_modes(system, Eigen::VectorXd::Zero(3));
-  EXPECT_FALSE(wrong.status.ok);
+  EXPECT_FALSE(wrong.status.ok());
   EXPECT_NE(wrong.status.message.find("operating point"), std::string::npos);
 }
 

@@ -42,7 +42,7 @@ ModalResult oscillator_poles(int dense_limit) {
   options.dense_limit = dense_limit;
   options.count = 1;
   const ModalResult result = run_modes(system, Eigen::VectorXd::Zero(system.size()), options);
-  EXPECT_TRUE(result.status.ok) << result.status.message;
+  EXPECT_TRUE(result.status.ok()) << result.status.message;
   return result;
 }
 
@@ -77,7 +77,7 @@ TEST(ModeNumbering, ArnoldiRequestGrowsPastOverdampedPairsToTheWantedModes) {
     return run_modes(system, Eigen::VectorXd::Zero(system.size()), options);
   };
   const ModalResult dense = solve(100000), arnoldi = solve(0);
-  ASSERT_TRUE(dense.status.ok && arnoldi.status.ok) << arnoldi.status.message;
+  ASSERT_TRUE(dense.status.ok() && arnoldi.status.ok()) << arnoldi.status.message;
   EXPECT_EQ(arnoldi.method, "arnoldi");
   ASSERT_EQ(dense.modes.size(), 3u);
   ASSERT_GE(arnoldi.modes.size(), 3u);
@@ -94,13 +94,13 @@ ModalResult scene_modes(const std::string& name, bool dense, int refinement = 1)
   const Model model = prepare_model(scene);
   const System system = model.network.assemble();
   const OperatingPoint point = operating_point(system);
-  EXPECT_TRUE(point.status.ok) << name << ": " << point.status.message;
+  EXPECT_TRUE(point.status.ok()) << name << ": " << point.status.message;
   ModalOptions options;
   options.count = 3;
   options.dense_limit = dense ? 100000 : 0;
   options.keep_vectors = false;
   const ModalResult result = run_modes(system, point.rest.operating_point, options);
-  EXPECT_TRUE(result.status.ok) << name << ": " << result.status.message;
+  EXPECT_TRUE(result.status.ok()) << name << ": " << result.status.message;
   return result;
 }
 

@@ -31,7 +31,7 @@ ModesStudyResult study_of(const Scene& scene, bool shapes = false) {
   options.count = 3;
   options.shapes = shapes;
   ModesStudyResult result = run_modes_study(scene, options);
-  EXPECT_TRUE(result.status.ok) << result.status.message;
+  EXPECT_TRUE(result.status.ok()) << result.status.message;
   return result;
 }
 
@@ -65,7 +65,7 @@ TEST(ModesStudy, NoEstimateWhenNotAsked) {
   ModesStudyOptions options;
   options.error_estimate = false;
   const ModesStudyResult result = run_modes_study(testing::cantilever_scene(6), options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   EXPECT_FALSE(result.error_estimate_computed);
   ASSERT_FALSE(result.modes.empty());
   EXPECT_FALSE(result.modes[0].discretisation_error_estimated);

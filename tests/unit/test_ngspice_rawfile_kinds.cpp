@@ -51,7 +51,7 @@ TEST(NgspiceRawfileKinds, AFifoAtTheRawfilePathIsRefusedWithoutBlocking) {
     FAIL() << "reading a FIFO left as the rawfile blocked past the time limit";
   }
   const NgspiceResult result = run.get();
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("not a regular file"), std::string::npos)
       << result.status.message;
   ::unlink(witness.c_str());
@@ -70,7 +70,7 @@ TEST(NgspiceRawfileKinds, ASymbolicLinkAtTheRawfilePathIsNotFollowed) {
   options.program = fake_program("link", "ln -s '" + target + "' \"$3\"\nexit 0\n", witness);
   options.timeout_seconds = 5.0;
   const NgspiceResult result = run_ngspice(kDeck, options);
-  EXPECT_FALSE(result.status.ok) << "the link was followed";
+  EXPECT_FALSE(result.status.ok()) << "the link was followed";
   ::unlink(witness.c_str());
   ::unlink(target.c_str());
 }

@@ -103,7 +103,7 @@ class NgspiceRunnerBackends : public ::testing::TestWithParam<BackendCase> {};
 
 TEST_P(NgspiceRunnerBackends, OperatingPointOfDividerIsExact) {
   const NgspiceResult result = run_ngspice(kDividerDeck, GetParam().options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   EXPECT_EQ(result.backend_used, GetParam().options.backend);
   ASSERT_EQ(result.plot_names, std::vector<std::string>{"Operating Point"});
   const NgspiceVector& out = vector_named(result, "v(out)");
@@ -121,7 +121,7 @@ TEST_P(NgspiceRunnerBackends, OperatingPointOfDividerIsExact) {
 
 TEST_P(NgspiceRunnerBackends, AcOfRcLowPassMatchesClosedForm) {
   const NgspiceResult result = run_ngspice(kLowPassAcDeck, GetParam().options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   ASSERT_EQ(result.plot_names, std::vector<std::string>{"AC Analysis"});
   const NgspiceVector* frequency = result.scale();
   ASSERT_NE(frequency, nullptr);
@@ -149,7 +149,7 @@ TEST_P(NgspiceRunnerBackends, AcOfRcLowPassMatchesClosedForm) {
 
 TEST_P(NgspiceRunnerBackends, TransientStepOfRcLowPassWithinIntegrationError) {
   const NgspiceResult result = run_ngspice(kLowPassStepDeck, GetParam().options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   const NgspiceVector* time = result.scale();
   ASSERT_NE(time, nullptr);
   EXPECT_EQ(time->name, "time");
@@ -177,7 +177,7 @@ TEST_P(NgspiceRunnerBackends, TransientStepOfRcLowPassWithinIntegrationError) {
 TEST_P(NgspiceRunnerBackends, SyntaxErrorIsAFailureWithNgspicesMessage) {
   const NgspiceResult result = run_ngspice(
       "bad deck\nV1 in 0 DC 1\nR1 in out 1k zzz\nC1 out 0 1u\n.op\n.end\n", GetParam().options);
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("unknown parameter (zzz)"), std::string::npos)
       << result.status.message;
   EXPECT_TRUE(result.vectors.empty());
@@ -189,12 +189,12 @@ TEST_P(NgspiceRunnerBackends, DeckThatMakesLibngspiceAskToBeDetachedIsAFailure) 
   const NgspiceResult result =
       run_ngspice("unbalanced subcircuit\nV1 in 0 1\n.subckt foo a b\nR1 a b 1\n.op\n.end\n",
                   GetParam().options);
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("Mismatch of .subckt ... .ends"), std::string::npos)
       << result.status.message;
   // The next deck runs normally (in this process: on a freshly loaded library).
   const NgspiceResult next = run_ngspice(kDividerDeck, GetParam().options);
-  ASSERT_TRUE(next.status.ok) << next.status.message;
+  ASSERT_TRUE(next.status.ok()) << next.status.message;
   EXPECT_NEAR(vector_named(next, "out").real_values.at(0), 0.75, 1e-12);
 }
 
@@ -208,12 +208,12 @@ TEST_P(NgspiceRunnerBackends, RunPastTheTimeLimitIsStoppedAndReported) {
       options);
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("timed out"), std::string::npos) << result.status.message;
   EXPECT_LT(elapsed, 30.0);  // a hang guard only
   // The runner (and, in this process, the library) is usable afterwards.
   const NgspiceResult next = run_ngspice(kDividerDeck, GetParam().options);
-  ASSERT_TRUE(next.status.ok) << next.status.message;
+  ASSERT_TRUE(next.status.ok()) << next.status.message;
 }
 
 INSTANTIATE_TEST_SUITE_P(Ngspice, NgspiceRunnerBackends, ::testing::ValuesIn(backend_cases()),
@@ -229,7 +229,7 @@ TEST(NgspiceRunner, BackendsGiveTheSameVectors) {
     std::vector<NgspiceResult> results;
     for (const BackendCase& backend : backend_cases()) {
       results.push_back(run_ngspice(deck, backend.options));
-      ASSERT_TRUE(results.back().status.ok)
+      ASSERT_TRUE(results.back().status.ok())
           << backend.name << ": " << results.back().status.message;
     }
     const NgspiceResult& reference = results.front();
@@ -258,7 +258,7 @@ TEST(NgspiceRunner, MissingLibraryFallsBackToTheProgramAndSaysSo) {
   NgspiceOptions options;
   options.library_names = {"/nonexistent/libngspice.so.0"};
   const NgspiceResult result = run_ngspice(kDividerDeck, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   EXPECT_EQ(result.backend_used, NgspiceBackend::program);
   EXPECT_NE(result.backend_description.find("libngspice not available"), std::string::npos)
       << result.backend_description;
@@ -268,7 +268,7 @@ TEST(NgspiceRunner, MissingLibraryFallsBackToTheProgramAndSaysSo) {
 
   options.library_in_this_process = true;
   const NgspiceResult here = run_ngspice(kDividerDeck, options);
-  ASSERT_TRUE(here.status.ok) << here.status.message;
+  ASSERT_TRUE(here.status.ok()) << here.status.message;
   EXPECT_EQ(here.backend_used, NgspiceBackend::program);
 }
 
@@ -276,7 +276,7 @@ TEST(NgspiceRunner, LibraryWithoutTheNgspiceApiFallsBack) {
   NgspiceOptions options;
   options.library_names = {"libm.so.6"};  // loads, but is not ngspice
   const NgspiceResult result = run_ngspice(kDividerDeck, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   EXPECT_EQ(result.backend_used, NgspiceBackend::program);
   EXPECT_NE(result.backend_description.find("has no ngSpice_Init"), std::string::npos)
       << result.backend_description;
@@ -287,19 +287,19 @@ TEST(NgspiceRunner, MissingLibraryOrProgramSaysWhatToInstall) {
   options.library_names = {"/nonexistent/libngspice.so.0"};
   options.backend = NgspiceBackend::library;
   NgspiceResult result = run_ngspice(kDividerDeck, options);
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("libngspice0"), std::string::npos) << result.status.message;
 
   options.backend = NgspiceBackend::program;
   options.program = "/nonexistent/ngspice";
   result = run_ngspice(kDividerDeck, options);
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("install the Debian package ngspice"), std::string::npos)
       << result.status.message;
 
   options.backend = NgspiceBackend::automatic;
   result = run_ngspice(kDividerDeck, options);
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("libngspice0 and ngspice"), std::string::npos)
       << result.status.message;
 }
@@ -307,7 +307,7 @@ TEST(NgspiceRunner, MissingLibraryOrProgramSaysWhatToInstall) {
 TEST(NgspiceRunner, ControlBlockIsRefused) {
   const NgspiceResult result = run_ngspice(
       "title\nV1 in 0 1\n.op\n.control\nshell touch /tmp/emnet-should-not-exist\n.endc\n.end\n");
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find(".control"), std::string::npos) << result.status.message;
   EXPECT_TRUE(result.messages.empty());  // ngspice never saw it
 }
@@ -316,7 +316,7 @@ TEST(NgspiceRunner, DeckWithoutAnalysisIsAFailure) {
   for (const BackendCase& backend : backend_cases()) {
     const NgspiceResult result =
         run_ngspice("no analysis\nV1 in 0 1\nR1 in 0 1k\n.end\n", backend.options);
-    EXPECT_FALSE(result.status.ok) << backend.name;
+    EXPECT_FALSE(result.status.ok()) << backend.name;
     EXPECT_NE(result.status.message.find("analysis"), std::string::npos)
         << backend.name << ": " << result.status.message;
   }
@@ -350,7 +350,7 @@ TEST(NgspiceRunner, CrashInsideTheLibraryIsReportedNotSuffered) {
   options.library_names = {library};
   options.backend = NgspiceBackend::library;
   const NgspiceResult result = run_ngspice(kDividerDeck, options);
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("ngspice crashed (signal 11"), std::string::npos)
       << result.status.message;
 
@@ -359,7 +359,7 @@ TEST(NgspiceRunner, CrashInsideTheLibraryIsReportedNotSuffered) {
   options.backend = NgspiceBackend::automatic;
   const NgspiceResult fallback = run_ngspice(kDividerDeck, options);
   ::unsetenv("FAKE_NGSPICE_CRASH_IN_INIT");
-  ASSERT_TRUE(fallback.status.ok) << fallback.status.message;
+  ASSERT_TRUE(fallback.status.ok()) << fallback.status.message;
   EXPECT_EQ(fallback.backend_used, NgspiceBackend::program);
   EXPECT_NE(fallback.backend_description.find("while loading libngspice"), std::string::npos)
       << fallback.backend_description;
@@ -372,8 +372,8 @@ TEST(NgspiceRunner, AsciiRawfileGivesTheSameValues) {
   ::setenv("SPICE_ASCIIRAWFILE", "1", 1);
   const NgspiceResult ascii = run_ngspice(kLowPassAcDeck, options);
   ::unsetenv("SPICE_ASCIIRAWFILE");
-  ASSERT_TRUE(binary.status.ok) << binary.status.message;
-  ASSERT_TRUE(ascii.status.ok) << ascii.status.message;
+  ASSERT_TRUE(binary.status.ok()) << binary.status.message;
+  ASSERT_TRUE(ascii.status.ok()) << ascii.status.message;
   const NgspiceVector& a = vector_named(binary, "out");
   const NgspiceVector& b = vector_named(ascii, "out");
   ASSERT_EQ(a.size(), b.size());
@@ -470,7 +470,7 @@ TEST(NgspiceRunnerBounds, FloodOfProgramOutputIsCappedAndTheResultsStillRead) {
                                                      std::string(kWriteDividerRawfile));
   const NgspiceOptions options = program_options(program, 20);
   const NgspiceResult result = run_ngspice(kDividerDeck, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   EXPECT_EQ(vector_named(result, "out").real_values.at(0), 0.75);
   EXPECT_LE(message_bytes(result), options.max_message_bytes + kMessageLogSlackBytes);
   ASSERT_FALSE(result.messages.empty());
@@ -487,7 +487,7 @@ TEST(NgspiceRunnerBounds, EndlessFloodOfProgramOutputIsStoppedAtTheTimeLimit) {
   const NgspiceOptions options =
       program_options(write_fake_program("endless_flood", "exec yes"), 1);
   const NgspiceResult result = run_ngspice(kDividerDeck, options);
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("timed out: still running after 1 s"), std::string::npos)
       << result.status.message;
   EXPECT_LE(message_bytes(result), options.max_message_bytes + kMessageLogSlackBytes);
@@ -530,7 +530,7 @@ GrandchildRun run_program_with_grandchild(const std::string& name, const std::st
 TEST(NgspiceRunnerBounds, TimeoutKillsAGrandchildThatLeftTheProcessGroup) {
   const GrandchildRun run =
       run_program_with_grandchild("grandchild_timeout", "exec sleep 100\n", 2);
-  EXPECT_FALSE(run.result.status.ok);
+  EXPECT_FALSE(run.result.status.ok());
   EXPECT_NE(run.result.status.message.find("timed out"), std::string::npos)
       << run.result.status.message;
   ASSERT_GT(run.grandchild, 0) << "the grandchild did not start";
@@ -543,7 +543,7 @@ TEST(NgspiceRunnerBounds, TimeoutKillsAGrandchildThatLeftTheProcessGroup) {
 TEST(NgspiceRunnerBounds, NothingTheProgramStartedOutlivesIt) {
   const GrandchildRun run = run_program_with_grandchild(
       "grandchild_left_behind", std::string(kWriteDividerRawfile) + "exit 0\n", 10);
-  ASSERT_TRUE(run.result.status.ok) << run.result.status.message;
+  ASSERT_TRUE(run.result.status.ok()) << run.result.status.message;
   ASSERT_GT(run.grandchild, 0) << "the grandchild did not start";
   const bool survived = process_runs(run.grandchild, "sleep 1234");
   EXPECT_FALSE(survived) << "grandchild " << run.grandchild << " outlived the run";
@@ -619,7 +619,7 @@ TEST_P(NgspiceRunnerBackends, ControlCharactersInNgspicesMessagesAreEscaped) {
   const NgspiceResult result =
       run_ngspice("escape\nV1 in 0 DC 1\nR1 in out 1k zzz\x1b[2J\a\nC1 out 0 1u\n.op\n.end\n",
                   GetParam().options);
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   // A control character other than tab; the status message's own line breaks aside.
   const auto has_control = [](const std::string& text, bool newline_allowed) {
     return std::any_of(text.begin(), text.end(), [&](char c) {
@@ -641,7 +641,7 @@ TEST(NgspiceRunnerBounds, LoaderMessagesAreEscaped) {
     NgspiceOptions options = backend.options;
     options.library_names = {"/nonexistent/\x1b[2Jlibngspice.so.0"};
     const NgspiceResult result = run_ngspice(kDividerDeck, options);
-    EXPECT_FALSE(result.status.ok) << backend.name;
+    EXPECT_FALSE(result.status.ok()) << backend.name;
     EXPECT_EQ(result.status.message.find('\x1b'), std::string::npos)
         << backend.name << ": " << result.status.message;
   }
@@ -671,7 +671,7 @@ TEST(NgspiceRunnerBounds, ResultsLargerThanTheLimitAreRefused) {
     options.max_result_bytes =
         500;  // the AC deck's results: 26 points of 2 complex vectors, 832 bytes
     const NgspiceResult result = run_ngspice(kLowPassAcDeck, options);
-    EXPECT_FALSE(result.status.ok) << backend.name;
+    EXPECT_FALSE(result.status.ok()) << backend.name;
     EXPECT_NE(result.status.message.find("max_result_bytes"), std::string::npos)
         << backend.name << ": " << result.status.message;
     EXPECT_TRUE(result.vectors.empty()) << backend.name;
@@ -719,7 +719,7 @@ TEST(NgspiceRunnerBounds, LibraryMessagesInTheWorkerAreCappedAndEscaped) {
   options.library_names = {library};
   options.backend = NgspiceBackend::library;
   const NgspiceResult result = run_ngspice(kDividerDeck, options);
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("Error: chatty \\e]0;title\\x07 \\e[2J end"),
             std::string::npos)
       << result.status.message;
@@ -752,7 +752,7 @@ TEST(NgspiceRunner, WorkerRunsFromAProcessWithAnotherThreadBusy) {
   options.timeout_seconds = 20;
   for (int run = 0; run < 10; ++run) {
     const NgspiceResult result = run_ngspice(kDividerDeck, options);
-    EXPECT_TRUE(result.status.ok) << "run " << run << ": " << result.status.message;
+    EXPECT_TRUE(result.status.ok()) << "run " << run << ": " << result.status.message;
     EXPECT_EQ(result.backend_used, NgspiceBackend::library);
     if (const NgspiceVector* out = result.find("out"))
       EXPECT_NEAR(out->real_values.at(0), 0.75, 0.75 * 1e-12);
@@ -776,7 +776,7 @@ TEST(NgspiceRunner, WorkerIsNoForkOfTheCaller) {
   NgspiceOptions options;
   options.backend = NgspiceBackend::library;
   const NgspiceResult result = run_ngspice(kDividerDeck, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   EXPECT_EQ(result.backend_used, NgspiceBackend::library);
   EXPECT_EQ(fork_handler_calls.load(), before);
 }
@@ -790,7 +790,7 @@ TEST(NgspiceRunner, MissingWorkerProgramIsAClearFailure) {
   options.backend = NgspiceBackend::library;
   options.worker_program = missing;
   NgspiceResult result = run_ngspice(kDividerDeck, options);
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("NgspiceOptions::worker_program, '" + missing +
                                        "', is not an executable file"),
             std::string::npos)
@@ -801,7 +801,7 @@ TEST(NgspiceRunner, MissingWorkerProgramIsAClearFailure) {
   ::setenv("EMNET_NGSPICE_WORKER", missing.c_str(), 1);
   result = run_ngspice(kDividerDeck, options);
   ::unsetenv("EMNET_NGSPICE_WORKER");
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("the environment variable EMNET_NGSPICE_WORKER, '" +
                                        missing + "'"),
             std::string::npos)
@@ -810,7 +810,7 @@ TEST(NgspiceRunner, MissingWorkerProgramIsAClearFailure) {
   options.worker_program = missing;
   options.backend = NgspiceBackend::automatic;
   result = run_ngspice(kDividerDeck, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   EXPECT_EQ(result.backend_used, NgspiceBackend::program);
   EXPECT_NE(result.backend_description.find(missing), std::string::npos)
       << result.backend_description;
@@ -841,7 +841,7 @@ TEST(NgspiceRunner, WorkerOfAnotherProtocolIsRefused) {
   options.backend = NgspiceBackend::library;
   options.worker_program = worker;
   const NgspiceResult result = run_ngspice(kDividerDeck, options);
-  EXPECT_FALSE(result.status.ok);
+  EXPECT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("exit status 2"), std::string::npos)
       << result.status.message;
   EXPECT_NE(result.status.message.find("this worker speaks protocol 0"), std::string::npos)

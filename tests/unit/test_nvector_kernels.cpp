@@ -188,7 +188,7 @@ TEST(SundialsFlags, RefusedToleranceNamesTheCallAndItsFlag) {
   options.relative_tolerance = -1.0;
   options.absolute_tolerance = 1e-9;
   const TransientResult result = run_transient_ida(system, {x}, options);
-  ASSERT_FALSE(result.status.ok);
+  ASSERT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("IDASVtolerances: IDA_ILL_INPUT (-22)"), std::string::npos)
       << result.status.message;
 }

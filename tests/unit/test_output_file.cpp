@@ -37,7 +37,7 @@ TEST_F(OutputFileTest, WritesTheWholeTextAndReplacesAnOldFileKeepingItsMode) {
   ASSERT_EQ(chmod(file.c_str(), 0640), 0);
   std::string text;
   for (int k = 0; k < 100000; ++k) text += std::to_string(k) + ",";  // several buffers
-  ASSERT_TRUE(emnet::write_output_file(file, text).ok);
+  ASSERT_TRUE(emnet::write_output_file(file, text).ok());
   EXPECT_EQ(contents(file), text);
   struct stat info {};
   ASSERT_EQ(stat(file.c_str(), &info), 0);
@@ -49,7 +49,7 @@ TEST_F(OutputFileTest, FollowsASymbolicLink) {
   const std::string target = path("real.cir"), link = path("link.cir");
   std::ofstream(target) << "old";
   fs::create_symlink(target, link);
-  ASSERT_TRUE(emnet::write_output_file(link, "new deck").ok);
+  ASSERT_TRUE(emnet::write_output_file(link, "new deck").ok());
   EXPECT_TRUE(fs::is_symlink(link));
   EXPECT_EQ(contents(target), "new deck");
 }
@@ -57,7 +57,7 @@ TEST_F(OutputFileTest, FollowsASymbolicLink) {
 TEST_F(OutputFileTest, MissingDirectoryIsAFailedStatusNamingTheFile) {
   const std::string file = path("no/such/dir/table.csv");
   const emnet::Status status = emnet::write_output_file(file, "x");
-  EXPECT_FALSE(status.ok);
+  EXPECT_FALSE(status.ok());
   EXPECT_NE(status.message.find(file), std::string::npos) << status.message;
   EXPECT_NE(status.message.find("No such file or directory"), std::string::npos) << status.message;
 }
@@ -65,10 +65,10 @@ TEST_F(OutputFileTest, MissingDirectoryIsAFailedStatusNamingTheFile) {
 TEST_F(OutputFileTest, AFullDeviceIsAFailureAndStaysADevice) {
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
   const emnet::Status status = emnet::write_output_file("/dev/full", std::string(100000, 'x'));
-  EXPECT_FALSE(status.ok);
+  EXPECT_FALSE(status.ok());
   EXPECT_NE(status.message.find("No space left on device"), std::string::npos) << status.message;
   EXPECT_TRUE(fs::is_character_file("/dev/full"));
-  EXPECT_TRUE(emnet::write_output_file("/dev/null", "x").ok);
+  EXPECT_TRUE(emnet::write_output_file("/dev/null", "x").ok());
   EXPECT_TRUE(fs::is_character_file("/dev/null"));
 }
 
@@ -84,7 +84,7 @@ TEST_F(OutputFileTest, AWriteFailingPartWayKeepsThePreviousFile) {
     const rlimit limit{4096, 4096};
     setrlimit(RLIMIT_FSIZE, &limit);
     const emnet::Status status = emnet::write_output_file(file, std::string(1 << 20, 'x'));
-    _exit(status.ok ? 0 : status.message.find("File too large") != std::string::npos ? 1 : 2);
+    _exit(status.ok() ? 0 : status.message.find("File too large") != std::string::npos ? 1 : 2);
   }
   int raw = 0;
   ASSERT_EQ(waitpid(child, &raw, 0), child);
@@ -97,8 +97,8 @@ TEST_F(OutputFileTest, AWriteFailingPartWayKeepsThePreviousFile) {
 TEST_F(OutputFileTest, CommitOnceOnly) {
   emnet::OutputFile file(path("once.txt"));
   file.write("a");
-  EXPECT_TRUE(file.commit().ok);
-  EXPECT_FALSE(file.commit().ok);
+  EXPECT_TRUE(file.commit().ok());
+  EXPECT_FALSE(file.commit().ok());
   EXPECT_EQ(contents(path("once.txt")), "a");
 }
 

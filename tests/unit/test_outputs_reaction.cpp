@@ -39,7 +39,7 @@ Built build(const std::string& text, const std::vector<std::string>& overrides =
   Built built{prepare_model(read_scene_text(text, "test.toml", overrides)), {}, {}};
   built.system = built.model.network.assemble();
   built.rest = solve_static(built.system);
-  EXPECT_TRUE(built.rest.status.ok) << built.rest.status.message;
+  EXPECT_TRUE(built.rest.status.ok()) << built.rest.status.message;
   return built;
 }
 
@@ -190,7 +190,7 @@ TEST(Reaction, AcOfATipMassOnASegmentWithAndWithoutMaterialDamping) {
                                        built.model.parse_probe("reaction_moment@0")};
     const std::vector<double> frequencies = {1.0, 3.0, 7.5, 20.0};
     const AcResult ac = run_ac(built.system, built.rest.operating_point, frequencies, probes);
-    ASSERT_TRUE(ac.status.ok) << ac.status.message;
+    ASSERT_TRUE(ac.status.ok()) << ac.status.message;
     for (size_t i = 0; i < frequencies.size(); ++i) {
       const double omega = 2 * pi * frequencies[i];
       const std::complex<double> stiffness = k * std::complex<double>(1.0, omega * tau);
@@ -231,10 +231,10 @@ TEST(Reaction, TransientEquilibriumAndExactAgainstIda) {
   for (double t : {0.01, 0.023, 0.05, 0.077})
     for (double offset : {-h, 0.0, h}) options.output_times.push_back(t + offset);
   const TransientResult exact = run_transient_exact(built.system, probes, options);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
   options.relative_tolerance = 1e-9;
   const TransientResult ida = run_transient_ida(built.system, probes, options);
-  ASSERT_TRUE(ida.status.ok) << ida.status.message;
+  ASSERT_TRUE(ida.status.ok()) << ida.status.message;
   auto momentum = [&](size_t i) {
     double p = 0.0;
     for (size_t k = 0; k < masses.size(); ++k) p += masses[k] * exact.values[k + 2][i];
@@ -260,7 +260,7 @@ TEST(DeaForce, FishFinAtRest) {
   const Model model = prepare_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  ASSERT_TRUE(rest.status.ok()) << rest.status.message;
   const double k_force = dea_force_constant(2.8, 51e-6, 51e-6, 25e-3);
   const double expected = k_force * 4000.0 * 4000.0;
   EXPECT_NEAR(expected, 0.097, 0.0005);

@@ -36,13 +36,13 @@ void expect_periodic_equals_settled_transient(const FinAt& fin, double period) {
   const int samples = 64;
   PeriodicSolver solver(fin.system);
   const PeriodicResult periodic = solver.solve(fin.system, fin.probes, period, samples);
-  ASSERT_TRUE(periodic.status.ok) << periodic.status.message;
+  ASSERT_TRUE(periodic.status.ok()) << periodic.status.message;
   TransientOptions options;
   options.end_time = 300 * period;
   for (int s = 0; s < samples; ++s)
     options.output_times.push_back(299 * period + s * period / samples);
   const TransientResult transient = run_transient_exact(fin.system, fin.probes, options);
-  ASSERT_TRUE(transient.status.ok) << transient.status.message;
+  ASSERT_TRUE(transient.status.ok()) << transient.status.message;
   for (size_t p = 0; p < fin.probes.size(); ++p) {
     const double peak = std::max(std::abs(periodic.minimum[p]), std::abs(periodic.maximum[p]));
     ASSERT_GT(peak, 0.0);
@@ -71,15 +71,14 @@ TEST(Periodic, ExactEqualsTheSettledExactTransient) {
 // At 1 Hz, the sweep's first frequency, whose time unit gave the equilibration that showed it.
 TEST(Periodic, RepeatedRelaxationPolesKeepTheExactMethod) {
   const double frequency = 1.0, period = 1.0 / frequency;
-  FinAt fin = linear_fin(frequency, {"beam.bending_stiffness=0.002084102875965707",
-                                     "dea.A.dielectric_thickness=4.890260738549016e-05",
-                                     "dea.A.force_thickness=4.890260738549016e-05",
-                                     "dea.A.electrode_width=0.025763177328793286",
-                                     "dea.A.lever_arm=0.001473462098540365",
-                                     "dea.B.dielectric_thickness=5.0697193046471426e-05",
-                                     "dea.B.force_thickness=5.0697193046471426e-05",
-                                     "dea.B.electrode_width=0.02607335016791307",
-                                     "dea.B.lever_arm=0.0015026039695781894"});
+  FinAt fin = linear_fin(
+      frequency,
+      {"beam.bending_stiffness=0.002084102875965707",
+       "dea.A.dielectric_thickness=4.890260738549016e-05",
+       "dea.A.force_thickness=4.890260738549016e-05", "dea.A.electrode_width=0.025763177328793286",
+       "dea.A.lever_arm=0.001473462098540365", "dea.B.dielectric_thickness=5.0697193046471426e-05",
+       "dea.B.force_thickness=5.0697193046471426e-05", "dea.B.electrode_width=0.02607335016791307",
+       "dea.B.lever_arm=0.0015026039695781894"});
   expect_periodic_equals_settled_transient(fin, period);
 }
 
@@ -94,8 +93,8 @@ TEST(Periodic, ExactAndShootingAgreeOnALinearScene) {
     const PeriodicResult exact = solver.solve(fin.system, fin.probes, 1.0 / frequency);
     const PeriodicResult shooting =
         run_periodic_shooting(fin.system, fin.probes, 1.0 / frequency, 1e-10, 2048);
-    ASSERT_TRUE(exact.status.ok) << exact.status.message;
-    ASSERT_TRUE(shooting.status.ok) << shooting.status.message;
+    ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+    ASSERT_TRUE(shooting.status.ok()) << shooting.status.message;
     for (size_t p = 0; p < fin.probes.size(); ++p) {
       const double peak = exact.maximum[p] - exact.minimum[p];
       EXPECT_NEAR(shooting.maximum[p], exact.maximum[p], 1e-6 * peak)
@@ -117,8 +116,8 @@ TEST(Periodic, ExactMethodWhereTheSvdNullSpaceWasUnsound) {
   const PeriodicResult exact = solver.solve(fin.system, fin.probes, 1.0 / frequency);
   const PeriodicResult shooting =
       run_periodic_shooting(fin.system, fin.probes, 1.0 / frequency, 1e-10, 2048);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
-  ASSERT_TRUE(shooting.status.ok) << shooting.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+  ASSERT_TRUE(shooting.status.ok()) << shooting.status.message;
   for (size_t p = 0; p < fin.probes.size(); ++p) {
     const double peak = exact.maximum[p] - exact.minimum[p];
     EXPECT_NEAR(shooting.maximum[p], exact.maximum[p], 1e-6 * peak) << fin.probes[p].name;
@@ -136,10 +135,10 @@ TEST(Periodic, ExtremesDoNotDependOnTheSampleCount) {
     FinAt fin = linear_fin(frequency);
     PeriodicSolver solver(fin.system);
     const PeriodicResult fine = solver.solve(fin.system, fin.probes, 1.0 / frequency, 4096);
-    ASSERT_TRUE(fine.status.ok);
+    ASSERT_TRUE(fine.status.ok());
     for (int samples : {16, 64}) {
       const PeriodicResult coarse = solver.solve(fin.system, fin.probes, 1.0 / frequency, samples);
-      ASSERT_TRUE(coarse.status.ok);
+      ASSERT_TRUE(coarse.status.ok());
       for (size_t p = 0; p < fin.probes.size(); ++p) {
         const double peak = std::max(std::abs(fine.minimum[p]), std::abs(fine.maximum[p]));
         EXPECT_NEAR(coarse.maximum[p], fine.maximum[p], 1e-11 * peak)
@@ -157,7 +156,7 @@ TEST(Periodic, SymmetricDriveGivesSymmetricSwing) {
   FinAt fin = linear_fin(3.3);
   PeriodicSolver solver(fin.system);
   const PeriodicResult exact = solver.solve(fin.system, fin.probes, 1.0 / 3.3);
-  ASSERT_TRUE(exact.status.ok);
+  ASSERT_TRUE(exact.status.ok());
   for (size_t p = 0; p < fin.probes.size(); ++p)
     EXPECT_NEAR(exact.minimum[p], -exact.maximum[p], 1e-12 * exact.maximum[p]);
 }

@@ -65,7 +65,7 @@ TEST(PiecewiseLinear, RcUnderARampAndHoldMatchesClosedForm) {
   options.end_time = 10 * tau;
   options.output_times = uniform_times(options.end_time, 500);
   const TransientResult exact = run_transient_exact(system, {voltage, current}, options);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
   ASSERT_EQ(exact.times.size(), options.output_times.size());
   const double peak_voltage = slope * ramp_end, peak_current = slope * capacitance;
   double worst_voltage = 0.0, worst_current = 0.0;
@@ -133,7 +133,7 @@ TEST(PiecewiseLinear, MassSpringDamperUnderATrapezoidalPulseMatchesClosedForm) {
   options.end_time = 4.0;
   options.output_times = uniform_times(options.end_time, 800);
   const TransientResult exact = run_transient_exact(system, {x}, options);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
   ASSERT_EQ(exact.times.size(), options.output_times.size());
   const double corners[] = {delay, delay + rise, delay + rise + width, delay + rise + width + fall};
   double peak = 0.0, worst = 0.0;
@@ -191,8 +191,8 @@ TEST(PiecewiseLinear, ExactMatchesIdaOnACantileverUnderTrapezoidalDrive) {
   options.relative_tolerance = 1e-10;
   const TransientResult exact = run_transient_exact(fin.system, fin.probes, options);
   const TransientResult ida = run_transient_ida(fin.system, fin.probes, options);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
-  ASSERT_TRUE(ida.status.ok) << ida.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+  ASSERT_TRUE(ida.status.ok()) << ida.status.message;
   ASSERT_EQ(exact.times.size(), ida.times.size());
   for (size_t p = 0; p < fin.probes.size(); ++p) {
     double peak = 0.0, worst = 0.0;
@@ -222,11 +222,11 @@ TEST(PiecewiseLinear, PeriodicStateWithRiseTimeMatchesShootingAndTheSettledTrans
   const int samples = 64;
   const PeriodicSolver solver(fin.system);
   const PeriodicResult periodic = solver.solve(fin.system, fin.probes, period, samples);
-  ASSERT_TRUE(periodic.status.ok) << periodic.status.message;
+  ASSERT_TRUE(periodic.status.ok()) << periodic.status.message;
 
   const PeriodicResult shooting =
       run_periodic_shooting(fin.system, fin.probes, period, 1e-10, 2048);
-  ASSERT_TRUE(shooting.status.ok) << shooting.status.message;
+  ASSERT_TRUE(shooting.status.ok()) << shooting.status.message;
   for (size_t p = 0; p < fin.probes.size(); ++p) {
     const double peak_to_peak = periodic.maximum[p] - periodic.minimum[p];
     ASSERT_GT(peak_to_peak, 0.0) << fin.probes[p].name;
@@ -245,7 +245,7 @@ TEST(PiecewiseLinear, PeriodicStateWithRiseTimeMatchesShootingAndTheSettledTrans
   for (int s = 0; s < samples; ++s)
     options.output_times.push_back(299 * period + s * period / samples);
   const TransientResult transient = run_transient_exact(fin.system, fin.probes, options);
-  ASSERT_TRUE(transient.status.ok) << transient.status.message;
+  ASSERT_TRUE(transient.status.ok()) << transient.status.message;
   for (size_t p = 0; p < fin.probes.size(); ++p) {
     const double peak = std::max(std::abs(periodic.minimum[p]), std::abs(periodic.maximum[p]));
     double worst = 0.0;
@@ -268,13 +268,13 @@ TEST(PiecewiseLinear, ReducedPeriodicStateWithRiseTimeMatchesTheExactOne) {
     if (probe.quantity == ProbeQuantity::deflection) deflections.push_back(probe);
   const PeriodicSolver exact_solver(fin.system);
   const PeriodicResult exact = exact_solver.solve(fin.system, deflections, 0.2, 256);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
   ReductionOptions options;
   options.band = 7.0;
   options.tolerance = 1e-3;
   const ReducedPeriodicSolver reduced_solver(fin.system, options);
   const PeriodicResult reduced = reduced_solver.solve(fin.system, deflections, 0.2, 256);
-  ASSERT_TRUE(reduced.status.ok) << reduced.status.message;
+  ASSERT_TRUE(reduced.status.ok()) << reduced.status.message;
   const double difference = periodic_difference(reduced, exact);
   EXPECT_GE(difference, 0.0);
   EXPECT_LT(difference, 1e-12);
@@ -298,14 +298,14 @@ TEST(PiecewiseLinear, SineSourceIsRefusedWithItsReason) {
   options.end_time = 1.0;
   options.output_times = {0.5, 1.0};
   const TransientResult transient = run_transient_exact(system, {x}, options);
-  EXPECT_FALSE(transient.status.ok);
+  EXPECT_FALSE(transient.status.ok());
   EXPECT_NE(
       transient.status.message.find("sine sources are not piecewise linear; use --method ida"),
       std::string::npos)
       << transient.status.message;
   const PeriodicSolver solver(system);
   const PeriodicResult periodic = solver.solve(system, {x}, 0.5);
-  EXPECT_FALSE(periodic.status.ok);
+  EXPECT_FALSE(periodic.status.ok());
   EXPECT_NE(periodic.status.message.find("sine sources are not piecewise linear; use --method ida"),
             std::string::npos)
       << periodic.status.message;

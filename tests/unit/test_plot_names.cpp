@@ -38,7 +38,7 @@ TEST_F(PlotNames, ANewlineInTheNameRunsNoCommand) {
   emnet::LinePlotOptions options;
   options.output.data_and_script = true;
   const auto status = emnet::write_line_plot(image, "t", "x", kLine, options);
-  EXPECT_FALSE(status.ok);
+  EXPECT_FALSE(status.ok());
   EXPECT_NE(status.message.find("control character"), std::string::npos) << status.message;
   EXPECT_FALSE(fs::exists(path("X")));
   EXPECT_EQ(entries(), 0u);  // no image, no side files, no hidden temporary
@@ -49,19 +49,19 @@ TEST_F(PlotNames, EveryControlCharacterIsRefusedBeforeAnythingIsWritten) {
   for (const char control : {'\t', '\r', '\x01', '\x1b', '\x7f'}) {
     const std::string image = path(std::string("a") + control + "b.png");
     const auto status = emnet::write_line_plot(image, "t", "x", kLine);
-    EXPECT_FALSE(status.ok) << static_cast<int>(control);
+    EXPECT_FALSE(status.ok()) << static_cast<int>(control);
     EXPECT_EQ(entries(), 0u) << static_cast<int>(control);
   }
   // Also in the directory part of the path.
   const std::string nested = path("d\ne/line.png");
-  EXPECT_FALSE(emnet::write_line_plot(nested, "t", "x", kLine).ok);
+  EXPECT_FALSE(emnet::write_line_plot(nested, "t", "x", kLine).ok());
 }
 
 TEST_F(PlotNames, OrdinaryNamesWithSpacesAndQuotesStillDraw) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   const std::string image = path("it's a \"plot\" #1.png");
   const auto status = emnet::write_line_plot(image, "t", "x", kLine);
-  ASSERT_TRUE(status.ok) << status.message;
+  ASSERT_TRUE(status.ok()) << status.message;
   EXPECT_TRUE(fs::exists(image));
 }
 

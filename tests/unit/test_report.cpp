@@ -37,7 +37,7 @@ TEST(Csv, FieldsAreQuotedOnlyWhenRfc4180AsksForIt) {
 TEST_F(ReportTest, CsvIsTheQuotedHeaderThenRowsAtTwelveSignificantDigits) {
   const Status status =
       write_csv(path("table.csv"), {"mode", "x,y"}, {{1.0, 1.0 / 3.0}, {2.0, -2.5e-300}});
-  ASSERT_TRUE(status.ok) << status.message;
+  ASSERT_TRUE(status.ok()) << status.message;
   // 1/3 at %.12g is 0.333333333333 (12 significant digits).
   EXPECT_EQ(contents("table.csv"), "mode,\"x,y\"\n1,0.333333333333\n2,-2.5e-300\n");
 }
@@ -48,14 +48,14 @@ TEST_F(ReportTest, CsvRowsAreFilledOneByOne) {
         EXPECT_TRUE(row.empty());  // cleared for each row
         row = {double(i), double(i * i)};
       });
-  ASSERT_TRUE(status.ok) << status.message;
+  ASSERT_TRUE(status.ok()) << status.message;
   EXPECT_EQ(contents("rows.csv"), "i,square\n0,0\n1,1\n2,4\n");
 }
 
 TEST_F(ReportTest, CsvToAnUnwritablePathIsAFailedStatusNamingItAndLeavesNoFile) {
   const std::string missing = path("no_such_directory/table.csv");
   const Status status = write_csv(missing, {"a"}, {{1.0}});
-  EXPECT_FALSE(status.ok);
+  EXPECT_FALSE(status.ok());
   EXPECT_NE(status.message.find(missing), std::string::npos) << status.message;
   EXPECT_FALSE(std::filesystem::exists(missing));
 }
@@ -77,7 +77,7 @@ TEST(Json, ModesStudyHasTheProgramsKeysAndFiniteNumbers) {
   options.count = 2;
   options.shapes = true;
   const ModesStudyResult result = run_modes_study(testing::cantilever_scene(6), options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   const Json json = to_json(result, {}, 0.25);
   std::vector<std::string> keys;
   for (auto it = json.begin(); it != json.end(); ++it) keys.push_back(it.key());
@@ -129,7 +129,7 @@ TEST(Json, SensitivityHasTheProgramsKeysAndFiniteNumbers) {
   options.check = true;
   const Scene scene = testing::cantilever_scene(6);
   const SensitivityResult result = run_sensitivity(scene, {"beam.bending_stiffness"}, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   const Json json = to_json(result, scene, true, 0.5);
   std::vector<std::string> keys;
   for (auto it = json.begin(); it != json.end(); ++it) keys.push_back(it.key());
@@ -154,7 +154,7 @@ TEST(Json, StaticHasTheProgramsKeysAndTheTipDeflection) {
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  ASSERT_TRUE(rest.status.ok()) << rest.status.message;
   std::vector<std::vector<double>> nodes;
   for (double x : model.beam.x) {
     const Probe w = model.make_probe({"w", ProbeQuantity::deflection, x, ""});

@@ -46,12 +46,12 @@ TEST(AcNonFinite, OverflowingDisplacementIsAFailedStatusNamingProbeAndFrequency)
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(system.size());
 
   const AcResult finite = run_ac(system, zero, {1.0}, {displacement_of(v, "free_x")});
-  ASSERT_TRUE(finite.status.ok) << finite.status.message;
+  ASSERT_TRUE(finite.status.ok()) << finite.status.message;
   const double exact = 1.0 / (m * two_pi * two_pi);
   EXPECT_NEAR(std::abs(finite.values[0][0]), exact, 1e-12 * exact);
 
   const AcResult overflow = run_ac(system, zero, {1.0, 1e-160}, {displacement_of(v, "free_x")});
-  ASSERT_FALSE(overflow.status.ok);
+  ASSERT_FALSE(overflow.status.ok());
   EXPECT_NE(overflow.status.message.find("non-finite"), std::string::npos)
       << overflow.status.message;
   EXPECT_NE(overflow.status.message.find("'free_x'"), std::string::npos) << overflow.status.message;
@@ -65,12 +65,12 @@ TEST(AcNonFinite, NanProbeCoefficientIsAFailedStatusAtZeroAndAboveZero) {
   const testing::OneMass one = testing::one_mass_spring_damper(0.2, 50.0, 0.3);
   const System system = one.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  ASSERT_TRUE(rest.status.ok()) << rest.status.message;
   Probe probe = displacement_of(one.velocity, "bad");
   probe.terms = {{one.velocity, std::nan("")}};
   for (double f : {0.0, 2.5}) {
     const AcResult ac = run_ac(system, rest.operating_point, {f}, {probe});
-    ASSERT_FALSE(ac.status.ok) << f << " Hz";
+    ASSERT_FALSE(ac.status.ok()) << f << " Hz";
     EXPECT_NE(ac.status.message.find("'bad'"), std::string::npos) << ac.status.message;
   }
 }
@@ -83,11 +83,11 @@ TEST(AcJson, KeysInOrderAndValuesMatchTheClosedForm) {
   const testing::OneMass one = testing::one_mass_spring_damper(m, k, c);
   const System system = one.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  ASSERT_TRUE(rest.status.ok()) << rest.status.message;
   const std::vector<Probe> probes{displacement_of(one.velocity)};
   AcStudyResult study;
   study.ac = run_ac(system, rest.operating_point, frequency_grid(0.5, 5.0, 7, true), probes);
-  ASSERT_TRUE(study.ac.status.ok) << study.ac.status.message;
+  ASSERT_TRUE(study.ac.status.ok()) << study.ac.status.message;
   study.resonances_hz = {std::sqrt(k / m) / two_pi};
   Model model;
   model.scene.name = "one mass";
@@ -176,7 +176,7 @@ TEST(AcStudy, ResonancesInBandAreTheModesAndPeaksTheLargestResponse) {
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  ASSERT_TRUE(rest.status.ok()) << rest.status.message;
   AcStudyOptions options;
   options.probes = model.probes;
   options.sweep.from = 1.0;
@@ -184,11 +184,11 @@ TEST(AcStudy, ResonancesInBandAreTheModesAndPeaksTheLargestResponse) {
   options.sweep.points = 50;
   options.sweep.log = true;
   const AcStudyResult result = run_ac_study(model, system, rest.operating_point, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   ModalOptions modal_options;
   modal_options.keep_vectors = false;
   const ModalResult modes = run_modes(system, rest.operating_point, modal_options);
-  ASSERT_TRUE(modes.status.ok) << modes.status.message;
+  ASSERT_TRUE(modes.status.ok()) << modes.status.message;
   std::vector<double> expected;
   for (const auto& mode : modes.modes)
     if (mode.frequency_hz >= 1.0 && mode.frequency_hz <= 100.0)

@@ -54,7 +54,7 @@ TEST(TransientJson, KeysInOrderAndValuesOfTheRcStepResponse) {
   const System system = rc_cell(capacitance, conductance, current);
   const std::vector<Probe> probes{cell_voltage()};
   const TransientResult result = run_transient_exact(system, probes, uniform_outputs(10e-3, 50));
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
 
   TransientRunDescription run;
   run.scene = "rc";
@@ -115,7 +115,7 @@ TEST(TransientNonFinite, ExactMethodFailsNamingTheOutputAndTime) {
   const System system = overflowing_rc_cell();
   const std::vector<Probe> probes{cell_voltage()};
   const TransientResult result = run_transient_exact(system, probes, uniform_outputs(100.0, 4));
-  ASSERT_FALSE(result.status.ok);
+  ASSERT_FALSE(result.status.ok());
   EXPECT_NE(result.status.message.find("non-finite value of output 'v' at t = 25 s"),
             std::string::npos)
       << result.status.message;
@@ -125,14 +125,14 @@ TEST(TransientNonFinite, IdaFailsRatherThanReturningAnInfiniteValue) {
   const System system = overflowing_rc_cell();
   const std::vector<Probe> probes{cell_voltage()};
   const TransientResult result = run_transient_ida(system, probes, uniform_outputs(100.0, 4));
-  ASSERT_FALSE(result.status.ok);
+  ASSERT_FALSE(result.status.ok());
   EXPECT_FALSE(result.status.message.empty());
 }
 
 TEST(StaticNonFinite, SolveStaticFailsNamingTheUnknown) {
   const System system = overflowing_rc_cell();
   const StaticResult rest = solve_static(system);
-  ASSERT_FALSE(rest.status.ok);
+  ASSERT_FALSE(rest.status.ok());
   EXPECT_NE(rest.status.message.find("non-finite"), std::string::npos) << rest.status.message;
   EXPECT_NE(rest.status.message.find("'v'"), std::string::npos) << rest.status.message;
 }

@@ -129,9 +129,9 @@ TEST(SegmentSelection, FishfinAutoWithinToleranceOfConvergedAnswer) {
     ModalOptions options;
     options.keep_vectors = false;
     const StaticResult rest = solve_static(system);
-    ASSERT_TRUE(rest.status.ok) << rest.status.message;
+    ASSERT_TRUE(rest.status.ok()) << rest.status.message;
     const ModalResult modes = run_modes(system, rest.operating_point, options);
-    ASSERT_TRUE(modes.status.ok) << modes.status.message;
+    ASSERT_TRUE(modes.status.ok()) << modes.status.message;
     EXPECT_NEAR(modes.modes.front().natural_frequency_hz, converged[0], tolerance * converged[0]);
   }
 }
@@ -223,8 +223,8 @@ TEST(ElectricalDynamicsAuto, IdealDifferenceWithinTheStatedEstimate) {
   PeriodicSolver solver(ideal_system);
   const PeriodicResult a = solver.solve(ideal_system, ideal_probes, period);
   const PeriodicResult b = run_periodic_shooting(full_system, full_probes, period, 1e-10);
-  ASSERT_TRUE(a.status.ok) << a.status.message;
-  ASSERT_TRUE(b.status.ok) << b.status.message;
+  ASSERT_TRUE(a.status.ok()) << a.status.message;
+  ASSERT_TRUE(b.status.ok()) << b.status.message;
   for (size_t p = 0; p < ideal_probes.size(); ++p) {
     const double peak = std::max(std::abs(b.maximum[p]), std::abs(b.minimum[p]));
     const double difference =

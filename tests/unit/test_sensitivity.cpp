@@ -43,7 +43,7 @@ TEST(Sensitivity, UndampedCantileverScalesExactlyLikeTheContinuum) {
   options.modes = 7;
   const SensitivityResult result = run_sensitivity(
       scene, {"beam.bending_stiffness", "beam.mass_per_length", "beam.length"}, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   ASSERT_EQ(result.modes.size(), 7u);
   EXPECT_LT(result.left_vector_residual, 1e-12);
   const double expected[] = {0.5, -0.5, -2.0};
@@ -64,7 +64,7 @@ TEST(Sensitivity, FishFinAnalyticMatchesFiniteDifferencesForEveryParameter) {
   options.modes = 3;
   options.check = true;
   const SensitivityResult result = run_sensitivity(scene, {}, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   ASSERT_EQ(result.modes.size(), 3u);
   EXPECT_LT(result.left_vector_residual, 1e-12);
   // Beam, damping and the two DEAs' six parameters each, and the drive voltage.
@@ -91,8 +91,8 @@ TEST(Sensitivity, UnknownAndZeroParametersAreInputErrors) {
 }
 
 // The parameters come from the parameter table's sensitivity keys; on the fish fin they are the
-// list `emnet sensitivity` printed before there was a table (docs/commands.md, sensitivity), in its order
-// and with its units: the beam, the loss factor pair, six per DEA and the drive voltage.
+// list `emnet sensitivity` printed before there was a table (docs/commands.md, sensitivity), in its
+// order and with its units: the beam, the loss factor pair, six per DEA and the drive voltage.
 TEST(Sensitivity, FishFinParametersAreTheListPrintedBeforeTheTable) {
   const Scene scene = read_scene(fishfin_path);
   std::vector<std::string> expected = {"beam.length m", "beam.bending_stiffness N*m^2",
@@ -122,11 +122,11 @@ double first_mode_hz(const Scene& scene) {
   const Model model = prepare_model(scene);
   const System system = model.network.assemble();
   const OperatingPoint point = operating_point(system);
-  EXPECT_TRUE(point.status.ok) << point.status.message;
+  EXPECT_TRUE(point.status.ok()) << point.status.message;
   ModalOptions options;
   options.keep_vectors = false;
   const ModalResult modes = run_modes(system, point.rest.operating_point, options);
-  EXPECT_TRUE(modes.status.ok && !modes.modes.empty()) << modes.status.message;
+  EXPECT_TRUE(modes.status.ok() && !modes.modes.empty()) << modes.status.message;
   return modes.modes.empty() ? 0.0 : modes.modes[0].frequency_hz;
 }
 
@@ -135,7 +135,7 @@ void expect_first_mode_derivative_matches_differences(const Scene& scene, const 
   SensitivityOptions options;
   options.modes = 1;
   const SensitivityResult result = run_sensitivity(scene, {key}, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   ASSERT_EQ(result.parameters.size(), 1u);
   const double analytic = result.parameters[0].modes[0].frequency_derivative;
   const double p = get_parameter(scene, key);
@@ -203,7 +203,7 @@ TEST(Sensitivity, EveryComponentParameterMatchesFiniteDifferences) {
   options.modes = 3;
   options.check = true;
   const SensitivityResult result = run_sensitivity(scene, {}, options);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   ASSERT_EQ(result.parameters.size(), keys.size());
   for (const auto& parameter : result.parameters)
     for (size_t k = 0; k < parameter.modes.size(); ++k) {

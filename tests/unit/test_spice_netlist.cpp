@@ -296,7 +296,7 @@ TEST(SpiceNetlist, StaticStartTakesTheCallersStaticState) {
   EXPECT_THROW(write_spice_deck(model, options), std::invalid_argument);
   const System system = model.network.assemble();
   options.static_state = solve_static(system);
-  ASSERT_TRUE(options.static_state->status.ok);
+  ASSERT_TRUE(options.static_state->status.ok());
   const SpiceDeck deck = write_spice_deck(model, options);
   const Probe tip = model.parse_probe("tip");
   char expected[96];
@@ -437,7 +437,7 @@ TEST(SpiceNetlist, NgspiceOpDeckOfTheCantileverGivesTheClosedFormAndEmnetsStatic
   // the largest value of its domain (a node near the clamp has a small value of its own).
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  ASSERT_TRUE(rest.status.ok()) << rest.status.message;
   std::map<Domain, double> scale;
   const auto& nodes = model.network.nodes();
   for (size_t k = 0; k < nodes.size(); ++k)
@@ -462,7 +462,7 @@ TEST(SpiceNetlist, NgspiceOpDeckOfTheFishFinGivesEmnetsStaticProbes) {
   const RawFile raw = run_ngspice(deck.text, "fishfin_op");
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
-  ASSERT_TRUE(rest.status.ok) << rest.status.message;
+  ASSERT_TRUE(rest.status.ok()) << rest.status.message;
   const auto probes = spice_output_probes(model);
   ASSERT_EQ(probes.size(), deck.outputs.size());
   const double tip = std::abs(static_probe_value(system, rest, model.parse_probe("tip")));
@@ -493,7 +493,7 @@ TEST(SpiceNetlist, NgspiceAcDeckOfTheFishFinGivesEmnetsResponseAndResonance) {
   const StaticResult rest = solve_static(system);
   const auto probes = spice_output_probes(model);
   const AcResult result = run_ac(system, rest.operating_point, grid, probes);
-  ASSERT_TRUE(result.status.ok) << result.status.message;
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
   for (size_t p = 0; p < probes.size(); ++p) {
     if (probes[p].unit != "m") continue;  // the deflections; u and i of the DEAs have no AC
     const auto& spice = raw.vectors.at(deck.outputs[p].vector);

@@ -40,7 +40,7 @@ double lowest_mode_hz(const Model& model) {
   ModalOptions modal;
   modal.keep_vectors = false;
   const ModalResult modes = run_modes(system, solve_static(system).operating_point, modal);
-  EXPECT_TRUE(modes.status.ok) << modes.status.message;
+  EXPECT_TRUE(modes.status.ok()) << modes.status.message;
   return modes.modes.empty() ? 0.0 : modes.modes[0].frequency_hz;
 }
 
@@ -58,7 +58,7 @@ TEST(SwitchingSweep, ExcitationSwapEqualsAModelBuiltAtEachFrequency) {
   options.outputs = moving_probes(model);
   options.first_mode = false;
   const SwitchingSweepResult sweep = run_switching_sweep(model, scene, options);
-  ASSERT_TRUE(sweep.status.ok) << sweep.status.message;
+  ASSERT_TRUE(sweep.status.ok()) << sweep.status.message;
   ASSERT_EQ(sweep.frequencies.size(), 3u);
   EXPECT_EQ(sweep.solves, 3);
   for (size_t k = 0; k < sweep.frequencies.size(); ++k) {
@@ -69,7 +69,7 @@ TEST(SwitchingSweep, ExcitationSwapEqualsAModelBuiltAtEachFrequency) {
     const PeriodicSolver solver(system);
     const PeriodicResult reference =
         solver.solve(system, options.outputs, 1.0 / sweep.frequencies[k], 64);
-    ASSERT_TRUE(reference.status.ok) << reference.status.message;
+    ASSERT_TRUE(reference.status.ok()) << reference.status.message;
     for (size_t p = 0; p < options.outputs.size(); ++p) {
       const double swing = reference.maximum[p] - reference.minimum[p];
       ASSERT_GT(swing, 0.0);
@@ -102,7 +102,7 @@ TEST(SwitchingSweep, SweepPeakAtTheFirstModeAndAtAThirdOfIt) {
     options.step = 0.002 * centre;
     options.outputs = moving_probes(model);
     const SwitchingSweepResult sweep = run_switching_sweep(model, scene, options);
-    ASSERT_TRUE(sweep.status.ok) << sweep.status.message;
+    ASSERT_TRUE(sweep.status.ok()) << sweep.status.message;
     EXPECT_NEAR(sweep.peak_frequency, centre, 0.005 * f1 / divisor) << "f1/" << divisor;
     EXPECT_EQ(sweep.peak_output, options.outputs.size() - 1);
     // f1 as a marker is the same mode (same network, same operating point): to rounding.
@@ -126,12 +126,12 @@ TEST(SwitchingSweep, ReducedSweepAgreesWithTheFullOneWithinItsTolerance) {
   options.outputs = moving_probes(model);
   options.first_mode = false;
   const SwitchingSweepResult full = run_switching_sweep(model, scene, options);
-  ASSERT_TRUE(full.status.ok) << full.status.message;
+  ASSERT_TRUE(full.status.ok()) << full.status.message;
   options.reduce = true;
   options.reduction.band = 7.0;
   options.reduction.tolerance = 1e-3;
   const SwitchingSweepResult reduced = run_switching_sweep(model, scene, options);
-  ASSERT_TRUE(reduced.status.ok) << reduced.status.message;
+  ASSERT_TRUE(reduced.status.ok()) << reduced.status.message;
   EXPECT_EQ(reduced.method, "reduced");
   ASSERT_TRUE(reduced.reduction.has_value());
   EXPECT_TRUE(reduced.reduction->tolerance_met) << reduced.reduction->measured_error;
@@ -167,7 +167,7 @@ TEST(SwitchingSweep, AutomaticMethodReducesAboveTheDenseLimitAndEstimatesItsErro
   options.reduce = true;
   options.method = SwitchingSweepMethod::exact;
   const SwitchingSweepResult against_full = run_switching_sweep(model, scene, options);
-  ASSERT_TRUE(against_full.status.ok) << against_full.status.message;
+  ASSERT_TRUE(against_full.status.ok()) << against_full.status.message;
   ASSERT_TRUE(against_full.reduction && against_full.reduction->against_full);
   const double true_error = against_full.reduction->measured_error;
 
@@ -175,7 +175,7 @@ TEST(SwitchingSweep, AutomaticMethodReducesAboveTheDenseLimitAndEstimatesItsErro
   options.method = SwitchingSweepMethod::automatic;
   options.dense_limit = 10;
   const SwitchingSweepResult automatic = run_switching_sweep(model, scene, options);
-  ASSERT_TRUE(automatic.status.ok) << automatic.status.message;
+  ASSERT_TRUE(automatic.status.ok()) << automatic.status.message;
   EXPECT_EQ(automatic.method, "reduced");
   ASSERT_FALSE(automatic.notes.empty());
   EXPECT_NE(automatic.notes.front().find("method: reduced"), std::string::npos);
@@ -206,11 +206,11 @@ TEST(SwitchingSweep, EdgeEstimateFindsWhatAStoppedPoleSearchMisses) {
   options.reduction.tolerance = 1e-3;
   options.method = SwitchingSweepMethod::exact;
   const SwitchingSweepResult against_full = run_switching_sweep(model, scene, options);
-  ASSERT_TRUE(against_full.status.ok) << against_full.status.message;
+  ASSERT_TRUE(against_full.status.ok()) << against_full.status.message;
   ASSERT_TRUE(against_full.reduction && against_full.reduction->against_full);
   options.dense_limit = 10;
   const SwitchingSweepResult estimated = run_switching_sweep(model, scene, options);
-  ASSERT_TRUE(estimated.status.ok) << estimated.status.message;
+  ASSERT_TRUE(estimated.status.ok()) << estimated.status.message;
   ASSERT_TRUE(estimated.reduction && !estimated.reduction->against_full);
   const auto& truth = against_full.reduction->errors;
   const auto& estimate = estimated.reduction->errors;
@@ -253,8 +253,8 @@ TEST(SwitchingSweep, ShootingAgreesWithExact) {
   options.samples = 2048;
   options.rtol = 1e-10;
   const SwitchingSweepResult shooting = run_switching_sweep(model, scene, options);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
-  ASSERT_TRUE(shooting.status.ok) << shooting.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+  ASSERT_TRUE(shooting.status.ok()) << shooting.status.message;
   EXPECT_EQ(shooting.method, "shooting");
   for (size_t p = 0; p < options.outputs.size(); ++p)
     for (size_t k = 0; k < exact.frequencies.size(); ++k) {
@@ -288,9 +288,9 @@ TEST(SwitchingSweep, CancelledProgressIsAFailureWithoutNaN) {
   options.outputs = moving_probes(model);
   options.progress = &progress;
   const SwitchingSweepResult sweep = run_switching_sweep(model, scene, options);
-  EXPECT_FALSE(sweep.status.ok);
+  EXPECT_FALSE(sweep.status.ok());
   EXPECT_TRUE(sweep.cancelled);
-  EXPECT_EQ(sweep.status.message, std::string(kCancelledMessage));
+  EXPECT_TRUE(sweep.status.cancelled());
   EXPECT_EQ(sweep.frequencies.size(), 2u);
   for (const auto& output : sweep.outputs) {
     EXPECT_EQ(output.left.size(), sweep.frequencies.size());

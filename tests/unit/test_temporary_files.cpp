@@ -25,7 +25,7 @@ TEST_F(TemporaryFiles, DirectoryIsPrivateAndRemovedWithItsContents) {
   std::string made;
   {
     emnet::TemporaryDirectory directory;
-    ASSERT_TRUE(directory.create(directory_.string(), ".emnet-test-").ok);
+    ASSERT_TRUE(directory.create(directory_.string(), ".emnet-test-").ok());
     made = directory.path();
     EXPECT_EQ(fs::path(made).parent_path(), directory_);
     EXPECT_EQ(fs::path(made).filename().string().rfind(".emnet-test-", 0), 0u);
@@ -42,16 +42,16 @@ TEST_F(TemporaryFiles, DirectoryIsPrivateAndRemovedWithItsContents) {
 
 TEST_F(TemporaryFiles, TwoDirectoriesNeverShareAName) {
   emnet::TemporaryDirectory first, second;
-  ASSERT_TRUE(first.create(directory_.string(), "d-").ok);
-  ASSERT_TRUE(second.create(directory_.string(), "d-").ok);
+  ASSERT_TRUE(first.create(directory_.string(), "d-").ok());
+  ASSERT_TRUE(second.create(directory_.string(), "d-").ok());
   EXPECT_NE(first.path(), second.path());
-  EXPECT_FALSE(first.create(directory_.string(), "d-").ok);  // once only
+  EXPECT_FALSE(first.create(directory_.string(), "d-").ok());  // once only
 }
 
 TEST_F(TemporaryFiles, AMissingParentIsAFailureNamingIt) {
   emnet::TemporaryDirectory directory;
   const emnet::Status status = directory.create(path("absent"), "d-");
-  EXPECT_FALSE(status.ok);
+  EXPECT_FALSE(status.ok());
   EXPECT_NE(status.message.find("absent"), std::string::npos) << status.message;
   EXPECT_NE(status.message.find("No such file"), std::string::npos) << status.message;
 }
@@ -61,11 +61,11 @@ TEST_F(TemporaryFiles, AMissingParentIsAFailureNamingIt) {
 // the registry stays.
 TEST_F(TemporaryFiles, RemovingTheRegisteredOnesRemovesEachOfThem) {
   emnet::TemporaryDirectory directory;
-  ASSERT_TRUE(directory.create(directory_.string(), "d-").ok);
+  ASSERT_TRUE(directory.create(directory_.string(), "d-").ok());
   std::ofstream(directory.path() + "/data") << "1 2\n";
   emnet::OutputFile file(path("result.csv"));
   file.write("a,b\n");
-  ASSERT_TRUE(file.status().ok);
+  ASSERT_TRUE(file.status().ok());
   const std::string kept = path("kept");
   std::ofstream(kept) << "k";
   emnet::register_temporary_path(kept);

@@ -47,8 +47,8 @@ TEST(Transient, StepResponseOfOneMassMatchesClosedForm) {
   options.relative_tolerance = 1e-9;
   const TransientResult exact = run_transient_exact(system, {x}, options);
   const TransientResult ida = run_transient_ida(system, {x}, options);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
-  ASSERT_TRUE(ida.status.ok) << ida.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+  ASSERT_TRUE(ida.status.ok()) << ida.status.message;
   ASSERT_EQ(exact.times.size(), options.output_times.size());
   ASSERT_EQ(ida.times.size(), options.output_times.size());
   for (size_t i = 0; i < exact.times.size(); ++i) {
@@ -78,8 +78,8 @@ TEST(Transient, IdaMatchesExactOnTheFishFinOverFiftyPeriods) {
   options.relative_tolerance = 1e-8;
   const TransientResult exact = run_transient_exact(system, model.probes, options);
   const TransientResult ida = run_transient_ida(system, model.probes, options);
-  ASSERT_TRUE(exact.status.ok) << exact.status.message;
-  ASSERT_TRUE(ida.status.ok) << ida.status.message;
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+  ASSERT_TRUE(ida.status.ok()) << ida.status.message;
   ASSERT_EQ(exact.times.size(), ida.times.size());
   for (size_t p = 0; p < model.probes.size(); ++p) {
     if (model.probes[p].name == "P1") continue;  // at the clamp: zero by construction
@@ -118,7 +118,7 @@ TEST(Transient, ExactOutputsSteppedMatchOutputsTakenAlone) {
   std::sort(times.begin(), times.end());
   options.output_times = times;
   const TransientResult all = run_transient_exact(system, model.probes, options);
-  ASSERT_TRUE(all.status.ok) << all.status.message;
+  ASSERT_TRUE(all.status.ok()) << all.status.message;
   ASSERT_EQ(all.times.size(), times.size());
   std::vector<double> peak(model.probes.size(), 0.0);
   for (size_t p = 0; p < model.probes.size(); ++p)
@@ -127,7 +127,7 @@ TEST(Transient, ExactOutputsSteppedMatchOutputsTakenAlone) {
     TransientOptions alone = options;
     alone.output_times = {times[i]};
     const TransientResult one = run_transient_exact(system, model.probes, alone);
-    ASSERT_TRUE(one.status.ok) << one.status.message;
+    ASSERT_TRUE(one.status.ok()) << one.status.message;
     for (size_t p = 0; p < model.probes.size(); ++p)
       EXPECT_NEAR(all.values[p][i], one.values[p][0], 1e-12 * std::max(peak[p], 1e-300))
           << model.probes[p].name << " at t = " << times[i];
@@ -145,7 +145,7 @@ TEST(Transient, ZeroDriveStaysExactlyAtRest) {
   options.end_time = 5 / scene.drive.frequency;
   options.output_times = uniform_times(options.end_time, 100);
   const TransientResult ida = run_transient_ida(system, model.probes, options);
-  ASSERT_TRUE(ida.status.ok) << ida.status.message;
+  ASSERT_TRUE(ida.status.ok()) << ida.status.message;
   for (const auto& series : ida.values)
     for (double v : series) EXPECT_EQ(v, 0.0);
 }

@@ -100,7 +100,7 @@ Section ac_section(const Settings& settings, std::vector<ParetoPoint>& pareto) {
           return seconds_since(start);
         },
         10, 3.0);
-    if (result.status.ok && result.scale()) {
+    if (result.status.ok() && result.scale()) {
       std::vector<double> frequencies;
       for (const auto& v : result.scale()->complex_values) frequencies.push_back(v.real());
       if (frequencies.empty()) frequencies = result.scale()->real_values;

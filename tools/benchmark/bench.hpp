@@ -74,7 +74,7 @@ Timing measure(const std::function<double()>& run, int repetitions, double budge
 // ---- processes -----------------------------------------------------------------------------
 
 struct ProcessRun {
-  bool ok = false;
+  bool succeeded = false;
   double seconds = 0.0;
   std::string output;  // standard output, when captured
 };

@@ -95,7 +95,7 @@ ProcessRun run_process(const std::vector<std::string>& arguments, bool capture,
   // resonance swings past 10 % of its length); the result is there and is timed like any other.
   const bool emnet_run =
       arguments[0].size() >= 5 && arguments[0].compare(arguments[0].size() - 5, 5, "emnet") == 0;
-  run.ok = end.exited_with(0) || (emnet_run && end.exited_with(emnet::kExitOutsideValidity));
+  run.succeeded = end.exited_with(0) || (emnet_run && end.exited_with(emnet::kExitOutsideValidity));
   run.output = end.standard_output;
   return run;
 }
@@ -106,7 +106,7 @@ Timing measure_process(const std::vector<std::string>& arguments, int repetition
   return measure(
       [&] {
         const ProcessRun run = run_process(arguments);
-        if (!run.ok) ok = false;
+        if (!run.succeeded) ok = false;
         return run.seconds;
       },
       repetitions, budget_seconds);

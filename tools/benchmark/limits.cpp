@@ -95,7 +95,7 @@ double ngspice_in_process(const std::string& deck, emnet::NgspiceResult* result 
       },
       10, 3.0);
   if (result) *result = last;
-  return last.status.ok ? t.median : NAN;
+  return last.status.ok() ? t.median : NAN;
 }
 
 // The fin's .tran deck as tools/bench runs ngspice by default: output step T/100, ngspice's own
@@ -157,8 +157,9 @@ std::string ida_against_ngspice(const Settings& settings) {
           return result.seconds;
         },
         7, 3.0);
-    const double error =
-        result.status.ok && reference.status.ok ? run_error(result.values, reference.values) : NAN;
+    const double error = result.status.ok() && reference.status.ok()
+                             ? run_error(result.values, reference.values)
+                             : NAN;
     runs.push_back({rtol, error, t.median});
     const auto& st = result.statistics;
     md << "| emnet IDA | rtol " << format("%.0e", rtol) << " | " << error_text(error) << " | "
@@ -170,7 +171,7 @@ std::string ida_against_ngspice(const Settings& settings) {
   emnet::NgspiceResult result;
   const double spice_seconds = ngspice_in_process(text, &result);
   double spice_error = NAN;
-  if (result.status.ok && result.scale()) {
+  if (result.status.ok() && result.scale()) {
     const SpicePoints points = spice_points_away_from_edges(
         result, deck, probes.size(), period, emnet::SpiceDeckOptions().edge_fraction * 0.5 * period,
         options.end_time);
@@ -178,7 +179,7 @@ std::string ida_against_ngspice(const Settings& settings) {
     at.output_times = points.kept;
     const emnet::TransientResult there = emnet::run_transient_ida(system, probes, at);
     const std::vector<std::vector<double>>& values = points.values;
-    if (there.status.ok) spice_error = run_error(values, there.values);
+    if (there.status.ok()) spice_error = run_error(values, there.values);
   }
   md << "| ngspice | default | " << error_text(spice_error) << " | " << time_text(spice_seconds)
      << " | | | | |\n\n";

@@ -21,24 +21,24 @@ int scale_point(const Settings& settings, const std::string& analysis, int segme
   bool ok = true;
   std::string extra;  // further fields of the report line
   if (analysis == "static") {
-    ok = emnet::solve_static(system).status.ok;
+    ok = emnet::solve_static(system).status.ok();
   } else if (analysis == "modes") {
     const emnet::StaticResult rest = emnet::solve_static(system);
     emnet::ModalOptions options;
     options.count = 3;
     options.keep_vectors = false;
-    ok = emnet::run_modes(system, rest.operating_point, options).status.ok;
+    ok = emnet::run_modes(system, rest.operating_point, options).status.ok();
   } else if (analysis == "ac") {
     const emnet::StaticResult rest = emnet::solve_static(system);
     ok = emnet::run_ac(system, rest.operating_point, emnet::frequency_grid(0.0, 10.0, 1000, false),
                        probes)
-             .status.ok;
+             .status.ok();
   } else if (analysis == "tran") {
     emnet::TransientOptions options;
     options.end_time = 2.0 / model.scene.drive.frequency;
     options.relative_tolerance = 1e-5;
     for (int k = 0; k <= 200; ++k) options.output_times.push_back(k * options.end_time / 200.0);
-    ok = emnet::run_transient_ida(system, probes, options).status.ok;
+    ok = emnet::run_transient_ida(system, probes, options).status.ok();
   } else if (analysis == "sweep") {
     // Through the modal reduction (band 7 Hz, tolerance 1e-3; ReducedPeriodicSolver), one
     // reduction for the 61 switching frequencies; its a-priori truncation factor (the bound's
@@ -47,7 +47,7 @@ int scale_point(const Settings& settings, const std::string& analysis, int segme
     reduction.band = 7.0;
     reduction.tolerance = 1e-3;
     const emnet::ReducedPeriodicSolver solver(system, reduction);
-    ok = solver.reduction().status.ok;
+    ok = solver.reduction().status.ok();
     extra = " truncation=" + format("%.3g", solver.reduction().truncation_factor) +
             " kept=" + std::to_string(solver.reduction().kept_modes);
     for (int k = 0; ok && k <= 60; ++k) {
@@ -55,7 +55,7 @@ int scale_point(const Settings& settings, const std::string& analysis, int segme
       at.drive.frequency = 1.0 + 0.1 * k;
       const emnet::Model variant = emnet::build_model(at);
       const emnet::System driven = variant.network.assemble();
-      ok = solver.solve(driven, probes, 1.0 / at.drive.frequency, 64).status.ok;
+      ok = solver.solve(driven, probes, 1.0 / at.drive.frequency, 64).status.ok();
     }
   } else {
     return 2;
@@ -201,7 +201,7 @@ std::string scale_section(const Settings& settings, std::map<std::string, double
         if (field.rfind("peak_kib=", 0) == 0) point.max_rss_kib = std::stol(field.substr(9));
         if (field.rfind("truncation=", 0) == 0) point.note = "ρ " + field.substr(11);
       }
-      if (!run.ok) {
+      if (!run.succeeded) {
         point.skipped = "failed or timed out after " + time_text(run.seconds);
         point.seconds = NAN;
         skipping = true;

@@ -78,7 +78,7 @@ std::string reduction_section(const Settings& settings) {
           },
           5, 3.0);
       double error = NAN;
-      if (reduced.status.ok && full.status.ok) {
+      if (reduced.status.ok() && full.status.ok()) {
         const std::vector<double> errors =
             emnet::errors_relative_to_peak(reduced.ac.values, full.values);
         error = *std::max_element(errors.begin(), errors.end());
@@ -96,7 +96,7 @@ std::string reduction_section(const Settings& settings) {
          << ") | " << full_time.text() << " | " << reduced_time.text() << " | "
          << ratio_text(full_time.median / reduced_time.median) << " | " << error_text(error)
          << " | "
-         << (!reduced.status.ok   ? "failed: " + reduced.status.message
+         << (!reduced.status.ok() ? "failed: " + reduced.status.message
              : error <= tolerance ? "met"
                                   : "**not met**")
          << " |\n";
@@ -152,8 +152,8 @@ std::string reduction_section(const Settings& settings) {
           5, 5.0);
       double error = 0.0;
       for (size_t k = 0; k < systems.size(); ++k) {
-        if (!reduced[k].status.ok || !full[k].status.ok) {
-          failure = (reduced[k].status.ok ? full[k] : reduced[k]).status.message;
+        if (!reduced[k].status.ok() || !full[k].status.ok()) {
+          failure = (reduced[k].status.ok() ? full[k] : reduced[k]).status.message;
           error = NAN;
           break;
         }

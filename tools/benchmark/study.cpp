@@ -110,7 +110,7 @@ std::string study_section(const Settings& settings) {
       arguments.insert(arguments.end(), {"--json", "--quiet"});
       const ProcessRun run = run_process(arguments);
       emnet_processes += run.seconds;
-      emnet_ok = emnet_ok && run.ok;
+      emnet_ok = emnet_ok && run.succeeded;
     }
     emnet::Scene variant = scene;
     for (std::size_t k = 0; k < table.keys.size(); ++k)
@@ -150,9 +150,9 @@ std::string study_section(const Settings& settings) {
                    settings.root + "/tools/benchmark/python_study.py", "--scene",
                    settings.fishfin(), "--variants", std::to_string(settings.quick ? 40 : 1000)},
                   true, 1200.0);
-  out << (python.ok ? python.output
-                    : std::string("The Python measurement (tools/benchmark/python_study.py) "
-                                  "failed; run it alone to see why.\n"))
+  out << (python.succeeded ? python.output
+                           : std::string("The Python measurement (tools/benchmark/python_study.py) "
+                                         "failed; run it alone to see why.\n"))
       << "\n";
   return out.str();
 }

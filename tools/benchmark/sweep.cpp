@@ -36,7 +36,7 @@ std::vector<Peaks> direct_sweep(const SweepContext& context, int samples, Direct
   options.first_mode = false;
   const emnet::SwitchingSweepResult result =
       emnet::run_switching_sweep(model, context.scene, options);
-  if (!result.status.ok) throw std::runtime_error("switching sweep: " + result.status.message);
+  if (!result.status.ok()) throw std::runtime_error("switching sweep: " + result.status.message);
   std::vector<Peaks> peaks(result.frequencies.size());
   for (size_t k = 0; k < peaks.size(); ++k)
     for (const auto& output : result.outputs) {
@@ -73,7 +73,7 @@ std::vector<Peaks> settled_sweep(const SweepContext& context, double threshold,
         options.output_times.push_back(k * period / samples_per_period);
       const emnet::TransientResult run =
           emnet::run_transient_exact(system, context.probes, options);
-      if (!run.status.ok) break;
+      if (!run.status.ok()) break;
       Peaks previous;
       for (int q = 0; q < periods; ++q) {
         const size_t begin = static_cast<size_t>(q) * samples_per_period;
@@ -184,7 +184,7 @@ Section sweep_section(const Settings& settings, std::vector<ParetoPoint>& pareto
     const auto start = Clock::now();
     for (size_t k = 0; k < decks.size(); ++k) {
       const emnet::NgspiceResult result = emnet::run_ngspice(decks[k], in_process_ngspice());
-      if (!result.status.ok || !result.scale()) {
+      if (!result.status.ok() || !result.scale()) {
         failed = true;
         break;
       }

@@ -87,7 +87,7 @@ Section tran_section(const Settings& settings, std::vector<ParetoPoint>& pareto)
           return seconds_since(start);
         },
         3, 2.0);
-    row.error = result.status.ok ? run_error(result.values, exact.values) : NAN;
+    row.error = result.status.ok() ? run_error(result.values, exact.values) : NAN;
     row.note = std::to_string(result.statistics.steps) + " steps";
     bool ok = true;
     row.whole_process = measure_process(
@@ -134,7 +134,7 @@ Section tran_section(const Settings& settings, std::vector<ParetoPoint>& pareto)
           return seconds_since(start);
         },
         3, 3.0);
-    if (result.status.ok && result.scale()) {
+    if (result.status.ok() && result.scale()) {
       const std::vector<double>& times = result.scale()->real_values;
       const SpicePoints points = spice_points_away_from_edges(
           result, deck, context.probes.size(), context.period, edge_width, context.end_time);

@@ -54,7 +54,7 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options) {
                                                 p.model.scene.model.tolerance);
   const emnet::AcStudyResult result =
       emnet::run_ac_study(p.model, p.system, p.rest.operating_point, study_options);
-  if (!result.status.ok)
+  if (!result.status.ok())
     throw NumericalFailure(
         (result.failed_stage == emnet::AcStudyStage::reduction ? "ac --reduce: " : "ac: ") +
         result.status.message);

@@ -208,7 +208,7 @@ void print_header(const emnet::Model& model, const emnet::System& system) {
 }
 
 void check_csv(const emnet::Status& status, const std::string& option) {
-  if (!status.ok) throw FileError(option + ": " + status.message);
+  if (!status.ok()) throw FileError(option + ": " + status.message);
 }
 
 void write_csv(const std::string& path, const std::vector<std::string>& header,
@@ -219,8 +219,8 @@ void write_csv(const std::string& path, const std::vector<std::string>& header,
 
 // A plot's Status as a FileError (gnuplot missing or failing is no numerical failure).
 void check_plot(const emnet::Status& status) {
-  if (status.ok) return;
-  if (status.message == emnet::kCancelledMessage) throw Interrupted("interrupted");
+  if (status.ok()) return;
+  if (status.cancelled()) throw Interrupted("interrupted");
   throw FileError("--plot: " + status.message);
 }
 
@@ -310,7 +310,7 @@ Prepared prepare(const CommonOptions& options, bool require_static,
   prepare.electrical_probe_requested = electrical_probe_requested(options);
   emnet::PreparedModel prepared = emnet::prepare_at_rest(*scene, prepare, point_options);
   stop_if_interrupted();
-  if (!prepared.status.ok) throw NumericalFailure(prepared.status.message);
+  if (!prepared.status.ok()) throw NumericalFailure(prepared.status.message);
   return {std::move(prepared.model), std::move(prepared.system), std::move(prepared.rest)};
 }
 

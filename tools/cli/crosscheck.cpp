@@ -93,8 +93,8 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
     out["scene"] = model.scene.name;
     out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
     out["backend"] = report.backend;
-    out["status"] = report.status.ok ? "ok" : "failure";
-    if (!report.status.ok) out["failure"] = report.status.message;
+    out["status"] = report.status.ok() ? "ok" : "failure";
+    if (!report.status.ok()) out["failure"] = report.status.message;
     out["pass"] = pass;
     out["rows"] = Json::array();
     for (const auto& row : report.rows)
@@ -145,7 +145,7 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
     for (const auto& note : report.notes) std::cout << "note: " << shown(note) << "\n";
     std::cout << "total " << milliseconds(total) << "\n";
   }
-  if (!report.status.ok) {
+  if (!report.status.ok()) {
     std::cerr << "emnet: crosscheck failed: " << emnet::terminal_lines(report.status.message)
               << "\n";
     return 3;

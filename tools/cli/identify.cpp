@@ -111,8 +111,8 @@ int run_identify(const CommonOptions& options, const IdentifyCommandOptions& com
   if (!command_options.peak_text.empty()) study.peak = parse_peak_target(command_options.peak_text);
   study.progress = progress_of(options);
   const emnet::IdentifyResult result = emnet::identify(scene, study);
-  if (!result.status.ok) {
-    if (result.status.message == emnet::kCancelledMessage) throw Interrupted("interrupted");
+  if (!result.status.ok()) {
+    if (result.status.cancelled()) throw Interrupted("interrupted");
     throw NumericalFailure(result.status.message);
   }
   const bool peak = study.peak.has_value();

@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
                                          add_crosscheck_command(app, options),
                                          add_study_command(app, options),
                                          add_schema_command(app)};
-  const CLI::App* crosscheck_command = commands[9].app;
+  const CLI::App* crosscheck_command = app.get_subcommand("crosscheck");
 
   // Each command's help ends with one example and the scene keys it reads (their units,
   // defaults and meanings: docs/scene-reference.md, `emnet schema`), before the exit statuses.

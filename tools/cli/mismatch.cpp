@@ -40,8 +40,8 @@ int run_mismatch_command(const CommonOptions& options, const MismatchCommandOpti
   study.change = cmd.change;
   study.progress = progress_of(options);
   const emnet::MismatchResult result = emnet::run_mismatch(scene, study);
-  if (!result.status.ok) {
-    if (result.status.message == emnet::kCancelledMessage) throw Interrupted("interrupted");
+  if (!result.status.ok()) {
+    if (result.status.cancelled()) throw Interrupted("interrupted");
     throw NumericalFailure(result.status.message);
   }
   const double total = stopwatch.seconds();

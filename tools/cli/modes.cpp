@@ -22,7 +22,7 @@ int run_modes_command(const CommonOptions& options, const emnet::ModesStudyOptio
   study_options.progress = progress_of(options);
   const emnet::ModesStudyResult study = emnet::run_modes_study(scene, study_options);
   stop_if_interrupted();
-  if (!study.status.ok) throw NumericalFailure(study.status.message);
+  if (!study.status.ok()) throw NumericalFailure(study.status.message);
   const double total = stopwatch.seconds();
   const emnet::Model& model = study.model;
   const emnet::ModalResult& result = study.modal;

@@ -135,7 +135,8 @@ int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
     return 0;
   }
   stop_if_interrupted();
-  if (const emnet::Status status = emnet::write_output_file(netlist.output, deck.text); !status.ok)
+  if (const emnet::Status status = emnet::write_output_file(netlist.output, deck.text);
+      !status.ok())
     throw FileError("-o: " + status.message);
   if (options.json) {
     const emnet::System system = model.network.assemble();

@@ -69,7 +69,7 @@ int run_sensitivity_command(const CommonOptions& options, const SensitivityComma
   sensitivity_options.progress = progress_of(options);
   const emnet::SensitivityResult result =
       emnet::run_sensitivity(scene, cmd.parameters, sensitivity_options);
-  if (!result.status.ok) throw NumericalFailure("sensitivity: " + result.status.message);
+  if (!result.status.ok()) throw NumericalFailure("sensitivity: " + result.status.message);
   for (const auto& parameter : result.parameters)
     for (const auto& mode : parameter.modes) {
       finite(mode.frequency_derivative, "df/d" + parameter.parameter.key);

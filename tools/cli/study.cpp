@@ -130,7 +130,7 @@ int run_study_command(const CommonOptions& options, const StudyCommandOptions& c
       double low = INFINITY, high = -INFINITY, sum = 0.0, squares = 0.0;
       std::size_t count = 0;
       for (const auto& row : result.rows)
-        if (row.status.ok) {
+        if (row.status.ok()) {
           const double v = row.values[k];
           low = std::min(low, v);
           high = std::max(high, v);
@@ -140,14 +140,14 @@ int run_study_command(const CommonOptions& options, const StudyCommandOptions& c
       if (count == 0) continue;
       const double mean = sum / static_cast<double>(count);
       for (const auto& row : result.rows)
-        if (row.status.ok) squares += (row.values[k] - mean) * (row.values[k] - mean);
+        if (row.status.ok()) squares += (row.values[k] - mean) * (row.values[k] - mean);
       const double sd = count > 1 ? std::sqrt(squares / static_cast<double>(count - 1)) : 0.0;
       std::printf("%-40s %-6s %14.7g %14.7g %14.7g %14.3g\n", shown(result.columns[k]).c_str(),
                   shown(result.units[k]).c_str(), low, mean, high, sd);
     }
     std::size_t shown_failures = 0;
     for (std::size_t i = 0; i < result.rows.size() && shown_failures < 5; ++i)
-      if (!result.rows[i].status.ok) {
+      if (!result.rows[i].status.ok()) {
         std::cout << "variant " << i << " failed: " << shown(result.rows[i].status.message) << "\n";
         ++shown_failures;
       }
@@ -155,7 +155,7 @@ int run_study_command(const CommonOptions& options, const StudyCommandOptions& c
       std::cout << "(" << result.failed - shown_failures << " more failed; see the table)\n";
     if (result.outside_validity > 0) {
       std::size_t first = 0;
-      while (result.rows[first].validity.within() || !result.rows[first].status.ok) ++first;
+      while (result.rows[first].validity.within() || !result.rows[first].status.ok()) ++first;
       const std::string warning = "WARNING: " + std::to_string(result.outside_validity) +
                                   " variant(s) outside the model's validity (column validity), "
                                   "the first, variant " +

@@ -75,7 +75,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   // The scene read once; only the drive frequency varies.
   const emnet::SwitchingSweepResult result = emnet::run_switching_sweep(model, swept.scene, study);
   if (result.cancelled) throw Interrupted("interrupted");
-  if (!result.status.ok) throw NumericalFailure(result.status.message);
+  if (!result.status.ok()) throw NumericalFailure(result.status.message);
   notes.insert(notes.end(), result.notes.begin(), result.notes.end());
   SweepReportInput report{options, model, result, notes};
   report.plot = sweep.plot;

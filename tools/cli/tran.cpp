@@ -95,7 +95,7 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   study_options.progress = progress_of(options);
   show_phase(options, "building the network");
   emnet::TransientStudyResult study = emnet::run_transient_study(std::move(scene), study_options);
-  if (!study.status.ok) throw NumericalFailure(study.status.message);
+  if (!study.status.ok()) throw NumericalFailure(study.status.message);
   // The table, --csv and --json show the outputs asked for; the plot also the plot-only ones,
   // whose values are moved out of the result (not copied).
   const size_t shown = study.outputs.size() - plot_only.size();

@@ -32,12 +32,33 @@ class InputError : public std::runtime_error {
   std::string key_;
 };
 
-// Outcome of an analysis. Numerical failure is reported here, never thrown.
+/// What an outcome is, for a caller to act on without reading the message.
+enum class StatusCode {
+  ok,         ///< computed
+  numerical,  ///< the method could not compute it (no convergence, a singular system, a file
+              ///< that cannot be written): the message says why and what to change
+  cancelled,  ///< stopped by its Progress's cancellation (emnet/core/progress.hpp)
+};
+
+/// Outcome of an analysis: a code and, when it is not ok, the reason. Numerical failure and
+/// cancellation are reported here, never thrown.
 struct Status {
-  bool ok = true;
-  std::string message;
+  StatusCode code = StatusCode::ok;
+  std::string message;  ///< empty when ok
+
+  bool ok() const { return code == StatusCode::ok; }
+  bool cancelled() const { return code == StatusCode::cancelled; }
+
   static Status success() { return {}; }
-  static Status failure(std::string why) { return {false, std::move(why)}; }
+  /// A numerical failure, `why` saying what failed and what to change.
+  static Status failure(std::string why) { return {StatusCode::numerical, std::move(why)}; }
+  /// Stopped by a cancellation; the message is "cancelled".
+  static Status stopped() { return {StatusCode::cancelled, "cancelled"}; }
+
+  /// The same outcome, its message after `context` ("static operating point: ") when not ok.
+  Status with_context(const std::string& context) const {
+    return ok() ? *this : Status{code, context + message};
+  }
 };
 
 }  // namespace emnet

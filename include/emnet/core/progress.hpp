@@ -3,8 +3,8 @@
 // An analysis that loops (the AC sweep over its frequencies, a transient over its output times,
 // the sensitivity over its parameters) takes an optional Progress* in its options: after each
 // step it calls report(done, total, what), and when cancelled() is true it stops at the next
-// step and returns the failed Status cancelled_status(). A null pointer means no reports and no
-// cancellation. report() is called on the analysis's own thread once per step, so an
+// step and returns cancelled_status() (its code StatusCode::cancelled). A null pointer means no
+// reports and no cancellation. report() is called on the analysis's own thread once per step, so an
 // implementation only records the state (a program prints it at its own rate); cancelled() is a
 // flag read, e.g. one that a SIGINT handler sets.
 #pragma once
@@ -34,9 +34,9 @@ inline bool keep_going(Progress* progress, long done, long total, std::string_vi
   return !progress->cancelled();
 }
 
-inline constexpr std::string_view kCancelledMessage = "cancelled";
+// The Status of an analysis stopped by its Progress (code StatusCode::cancelled).
 inline Status cancelled_status() {
-  return Status::failure(std::string(kCancelledMessage));
+  return Status::stopped();
 }
 
 // Forwards the cancellation of `outer` but drops reports: for analyses run inside one step of
