@@ -253,7 +253,7 @@ py::dict run_sweep(const SceneHandle& handle, std::vector<double> frequencies, d
   });
   py::dict out;
   out["scene"] = swept.model.scene.name;
-  out["method"] = result.method;
+  out["method"] = emnet::method_name(result.method);
   out["frequencies_hz"] = to_array(result.frequencies);
   py::dict series;
   for (const auto& output : result.outputs) {

@@ -222,7 +222,7 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
       result.check_deviation = deviation;
       result.basis_condition = sweep.basis_condition;
       if (deviation <= kPoleResidueAgreement) {
-        result.method = "pole-residue";
+        result.method = Method::pole_residue;
         result.values = std::move(sweep.values);
         result.poles = std::move(sweep.poles);
         return finish(Status::success());
@@ -236,7 +236,7 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
     if (options.method == AcMethod::pole_residue) return finish(Status::failure(result.note));
   }
 
-  result.method = "direct";
+  result.method = Method::direct;
   result.check_points = 0;
   result.check_deviation = 0.0;
   result.max_relative_residual = 0.0;

@@ -225,7 +225,7 @@ ModalResult compute_modes(const System& system, const Eigen::VectorXd& operating
   const bool dense = system.size() <= options.dense_limit || options.count >= n - 2;
   std::string why;
   if (dense) {
-    result.method = "dense";
+    result.method = Method::dense;
     Eigen::MatrixXd t = lu.solve(Eigen::MatrixXd(e_hat));
     if (rigid.right.cols() > 0) t -= rigid.right * (rigid.projector_left.transpose() * t);
     if (!t.allFinite()) return finish(Status::failure("shift-invert operator is not finite"));
@@ -240,7 +240,7 @@ ModalResult compute_modes(const System& system, const Eigen::VectorXd& operating
     }
     result.complete = true;
   } else {
-    result.method = "arnoldi";
+    result.method = Method::arnoldi;
     // The poles nearest σ come first (|μ| = 1/|s − σ|). Ask for exactly the conjugate pairs
     // of the wanted modes: a request that ends inside a cluster (the overdamped relaxation poles
     // of Kelvin–Voigt damping near −1/τ, more of them the finer the beam) does not converge and

@@ -195,7 +195,7 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& given, const std::vect
   const System& system = steady ? *steady : given;
   Timed<PeriodicResult> timed;
   PeriodicResult& result = timed.result;
-  result.method = "reduced";
+  result.method = Method::reduced;
   result.period = period;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   if (!reduction_.status.ok()) return finish(reduction_.status);

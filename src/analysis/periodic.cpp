@@ -399,7 +399,7 @@ PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Prob
   const System& system = steady ? *steady : given;
   Timed<PeriodicResult> timed;
   PeriodicResult& result = timed.result;
-  result.method = "exact";
+  result.method = Method::exact;
   result.period = period;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   if (!impl_) return finish(status_);
@@ -544,7 +544,7 @@ PeriodicResult run_periodic_shooting(const System& given, const std::vector<Prob
   const System& system = steady ? *steady : given;
   Timed<PeriodicResult> timed;
   PeriodicResult& result = timed.result;
-  result.method = "shooting";
+  result.method = Method::shooting;
   result.period = period;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   try {

@@ -62,7 +62,7 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
                                     const TransientOptions& options) {
   Timed<TransientResult> timed;
   TransientResult& result = timed.result;
-  result.method = "exact";
+  result.method = Method::exact;
   result.values.assign(probes.size(), {});
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   if (Status pieces = require_piecewise_linear(system); !pieces.ok()) return finish(pieces);

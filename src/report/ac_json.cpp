@@ -34,8 +34,8 @@ Json to_json(const AcStudyResult& result, const Model& model, const std::vector<
   }
   out["resonances_hz"] = result.resonances_hz;
   out["accuracy"] = {{"max_relative_residual", result.ac.max_relative_residual},
-                     {"method", result.ac.method}};
-  if (result.ac.method == "pole-residue")
+                     {"method", method_name(result.ac.method)}};
+  if (result.ac.method == Method::pole_residue)
     out["accuracy"].update({{"check_points", result.ac.check_points},
                             {"check_deviation", result.ac.check_deviation},
                             {"eigenvector_condition", result.ac.basis_condition}});

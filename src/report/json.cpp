@@ -56,7 +56,7 @@ Json to_json(const ModalReduction& m, bool tolerance_met) {
           {"kept_real_poles", m.kept_real_poles},
           {"truncated_poles", m.truncated_poles},
           {"full_unknowns", m.full_unknowns},
-          {"modal_method", m.modal_method}};
+          {"modal_method", method_name(m.modal_method)}};
 }
 
 Json to_json(const ModesStudyResult& result, const std::vector<Probe>& probes,
@@ -133,7 +133,7 @@ Json to_json(const ModesStudyResult& result, const std::vector<Probe>& probes,
   }
   out["rigid_body_modes"] = Json::array();
   for (const auto& name : result.rigid_body_motions) out["rigid_body_modes"].push_back(name);
-  out["method"] = result.modal.method;
+  out["method"] = method_name(result.modal.method);
   out["complete"] = result.modal.complete;
   out["pencil_size"] = result.modal.pencil_size;
   out["cost"] = {{"modal_seconds", result.modal.seconds},

@@ -8,7 +8,7 @@ Json to_json(const TransientResult& result, const std::vector<Probe>& probes,
   Json out;
   out["scene"] = run.scene;
   out["automatic_choices"] = to_json(run.automatic_choices);
-  out["method"] = result.method;
+  out["method"] = result.method_text();
   out["start_state"] = run.start_state;
   out["switching_frequency_hz"] = run.switching_frequency_hz;
   out["periods"] = run.periods;

@@ -152,7 +152,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   };
 
   SwitchingSweepResult result;
-  result.method = options.reduce ? "reduced" : exact ? "exact" : "shooting";
+  result.method = options.reduce ? Method::reduced : exact ? Method::exact : Method::shooting;
   result.notes = method_notes;
   auto stop = [&](const Status& status) {
     result.status = status;

@@ -102,9 +102,10 @@ void CrosscheckSession::modal() {
   if (count < options_.modal_count)
     report_.notes.push_back("modal: emnet found " + std::to_string(modes.modes.size()) +
                             " oscillatory mode(s)");
-  report_.timings.push_back(
-      {CrosscheckAnalysis::modal, ngspice_seconds, ngspice_total, emnet_seconds,
-       "run_modes (" + modes.method + ", " + std::to_string(modes.unknowns) + " unknowns)"});
+  report_.timings.push_back({CrosscheckAnalysis::modal, ngspice_seconds, ngspice_total,
+                             emnet_seconds,
+                             "run_modes (" + method_name(modes.method) + ", " +
+                                 std::to_string(modes.unknowns) + " unknowns)"});
 }
 
 }  // namespace emnet::crosscheck_detail

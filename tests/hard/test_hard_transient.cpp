@@ -71,7 +71,7 @@ void report(const char* what, const TransientResult& r) {
   std::printf(
       "[measured] %s: %s ok=%d %.3f s, %ld steps, %ld res, %ld jac, %ld etf, %ld ncf, "
       "%ld restarts%s%s\n",
-      what, r.method.c_str(), r.status.ok() ? 1 : 0, r.seconds, r.statistics.steps,
+      what, r.method_text().c_str(), r.status.ok() ? 1 : 0, r.seconds, r.statistics.steps,
       r.statistics.residual_evaluations, r.statistics.jacobian_evaluations,
       r.statistics.error_test_failures, r.statistics.convergence_failures, r.statistics.restarts,
       r.status.ok() ? "" : ": ", r.status.message.c_str());
@@ -339,10 +339,10 @@ TEST(HardSwitching, RestartsEqualEdgesAndDeflectionIsContinuous) {
     for (const TransientResult& r : results) {
       report(electrical ? "edges, electrical dynamics" : "edges, ideal drive", r);
       ASSERT_TRUE(r.status.ok()) << r.status.message;
-      EXPECT_EQ(r.statistics.restarts, 5) << r.method;
-      ASSERT_EQ(r.times.size(), options.output_times.size()) << r.method;
+      EXPECT_EQ(r.statistics.restarts, 5) << r.method_text();
+      ASSERT_EQ(r.times.size(), options.output_times.size()) << r.method_text();
       for (size_t i = 0; i < r.times.size(); ++i)
-        EXPECT_NEAR(r.times[i], options.output_times[i], 1e-15) << r.method;
+        EXPECT_NEAR(r.times[i], options.output_times[i], 1e-15) << r.method_text();
       for (size_t p = 0; p < model.probes.size(); ++p) {
         if (model.probes[p].name == "P1") continue;
         const auto& y = r.values[p];
@@ -352,13 +352,14 @@ TEST(HardSwitching, RestartsEqualEdgesAndDeflectionIsContinuous) {
         const double bound = model.probes[p].name == "VA" ? 2e-6 * scale : 1e-7 * scale;
         double jump = 0.0;
         for (size_t k = 0; k < 4; ++k) {
-          EXPECT_NEAR(y[3 * k + 1], y[3 * k], bound) << r.method << " " << model.probes[p].name;
+          EXPECT_NEAR(y[3 * k + 1], y[3 * k], bound)
+              << r.method_text() << " " << model.probes[p].name;
           EXPECT_NEAR(y[3 * k + 2], y[3 * k + 1], bound)
-              << r.method << " " << model.probes[p].name << " edge " << k + 1;
+              << r.method_text() << " " << model.probes[p].name << " edge " << k + 1;
           jump = std::max(jump, std::abs(y[3 * k + 2] - y[3 * k + 1]));
         }
         std::printf("[measured]   %s %s: largest change over an edge (1 ns) %.2e of %.0e\n",
-                    r.method.c_str(), model.probes[p].name.c_str(), jump / scale, scale);
+                    r.method_text().c_str(), model.probes[p].name.c_str(), jump / scale, scale);
       }
     }
   }
@@ -644,12 +645,12 @@ TEST(HardZero, ZeroDriveStaysExactlyAtRestWithEveryMethodAndModel) {
       std::vector<TransientResult> results = {run_transient_ida(system, model.probes, options)};
       if (!electrical) results.push_back(run_transient_exact(system, model.probes, options));
       for (const TransientResult& r : results) {
-        ASSERT_TRUE(r.status.ok()) << r.method << ": " << r.status.message;
+        ASSERT_TRUE(r.status.ok()) << r.method_text() << ": " << r.status.message;
         ASSERT_EQ(r.times.size(), options.output_times.size());
         size_t nonzero = 0;
         for (const auto& series : r.values)
           for (double value : series) nonzero += value != 0.0;
-        EXPECT_EQ(nonzero, 0u) << r.method << (electrical ? " electrical" : " ideal")
+        EXPECT_EQ(nonzero, 0u) << r.method_text() << (electrical ? " electrical" : " ideal")
                                << (start == StartState::rest ? " from rest" : " from static");
       }
     }

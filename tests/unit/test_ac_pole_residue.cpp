@@ -35,7 +35,7 @@ TEST(AcPoleResidue, OneMassMatchesTheClosedFormFromZeroFrequency) {
   const AcResult ac = run_ac(system, Eigen::VectorXd::Zero(system.size()), grid, {x},
                              forced(AcMethod::pole_residue));
   ASSERT_TRUE(ac.status.ok()) << ac.status.message;
-  EXPECT_EQ(ac.method, "pole-residue");
+  EXPECT_EQ(ac.method, Method::pole_residue);
   EXPECT_LE(ac.check_deviation, kPoleResidueAgreement);
   double peak = 0.0;
   for (double f : grid) {
@@ -70,7 +70,7 @@ TEST_P(AcPoleResidueFin, MatchesADenseSolveToRounding) {
   const auto grid = frequency_grid(scene.ac.from, scene.ac.to, scene.ac.points, scene.ac.log);
   const AcResult ac = run_ac(system, rest.operating_point, grid, probes);
   ASSERT_TRUE(ac.status.ok()) << ac.status.message;
-  ASSERT_EQ(ac.method, "pole-residue") << ac.note;  // chosen automatically at this size
+  ASSERT_EQ(ac.method, Method::pole_residue) << ac.note;  // chosen automatically at this size
   EXPECT_GE(ac.check_points, 3);
   EXPECT_LE(ac.check_deviation, kPoleResidueAgreement);
   const Eigen::MatrixXcd g =
@@ -115,7 +115,7 @@ TEST(AcPoleResidue, AutomaticFallsBackToTheDirectSolveWithTheReason) {
   const AcResult direct =
       run_ac(system, rest.operating_point, grid, probes, forced(AcMethod::direct));
   ASSERT_TRUE(automatic.status.ok() && direct.status.ok());
-  if (automatic.method == "pole-residue") {
+  if (automatic.method == Method::pole_residue) {
     EXPECT_LE(automatic.check_deviation, kPoleResidueAgreement);
   } else {
     EXPECT_NE(automatic.note.find("differed from the direct solve"), std::string::npos)
@@ -125,7 +125,7 @@ TEST(AcPoleResidue, AutomaticFallsBackToTheDirectSolveWithTheReason) {
   // Forced, the failed check is a failed Status, not a result.
   const AcResult strict =
       run_ac(system, rest.operating_point, grid, probes, forced(AcMethod::pole_residue));
-  EXPECT_EQ(strict.status.ok(), automatic.method == "pole-residue") << strict.status.message;
+  EXPECT_EQ(strict.status.ok(), automatic.method == Method::pole_residue) << strict.status.message;
 }
 
 // Large networks are solved directly: the dense decomposition would cost more than the sweep.
@@ -139,7 +139,7 @@ TEST(AcPoleResidue, LargeNetworksUseTheDirectSolve) {
   const AcResult ac =
       run_ac(system, rest.operating_point, frequency_grid(0.0, 10.0, 100, false), probes);
   ASSERT_TRUE(ac.status.ok()) << ac.status.message;
-  EXPECT_EQ(ac.method, "direct");
+  EXPECT_EQ(ac.method, Method::direct);
   EXPECT_TRUE(ac.note.empty()) << ac.note;
 }
 

@@ -107,7 +107,7 @@ TEST(CircuitSweep, ShootingSweepMatchesThePeriodicStateOfTheSetScene) {
   sweep.first_mode = false;
   const SwitchingSweepResult result = run_switching_sweep(swept.model, swept.scene, sweep);
   ASSERT_TRUE(result.status.ok()) << result.status.message;
-  EXPECT_EQ(result.method, "shooting");  // the automatic choice: a circuit-driven DEA network
+  EXPECT_EQ(result.method, Method::shooting);  // the automatic choice: a circuit-driven DEA network
 
   const Model set =
       prepare_model(tweezer({kCoarse, "drive.frequency=12 Hz", "circuit.src_A.frequency=12 Hz",

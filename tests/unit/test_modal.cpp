@@ -80,8 +80,8 @@ TEST(CantileverModes, ArnoldiAgreesWithDense) {
   arnoldi_options.dense_limit = 0;
   const ModalResult dense = run_modes(system, rest.operating_point, dense_options);
   const ModalResult arnoldi = run_modes(system, rest.operating_point, arnoldi_options);
-  ASSERT_EQ(dense.method, "dense");
-  ASSERT_EQ(arnoldi.method, "arnoldi");
+  ASSERT_EQ(dense.method, Method::dense);
+  ASSERT_EQ(arnoldi.method, Method::arnoldi);
   ASSERT_GE(arnoldi.modes.size(), 5u);
   for (size_t k = 0; k < 5; ++k)
     EXPECT_NEAR(arnoldi.modes[k].frequency_hz / dense.modes[k].frequency_hz, 1.0, 1e-9);

@@ -130,7 +130,7 @@ TEST(ModalReduction, KeepingAllModesReproducesTheFullModel) {
     const ModalReduction reduced =
         reduce_modal(b.system, b.operating_point, {b.system.b_ac()}, options);
     ASSERT_TRUE(reduced.status.ok()) << reduced.status.message;
-    EXPECT_EQ(reduced.modal_method, "dense");
+    EXPECT_EQ(reduced.modal_method, Method::dense);
     std::vector<std::vector<Complex>> values(b.model.probes.size());
     for (size_t p = 0; p < values.size(); ++p)
       for (double f : grid) values[p].push_back(reduced.response(b.model.probes[p], two_pi * f));
@@ -174,14 +174,14 @@ TEST_P(ReductionTolerance, MeetsTheRequestedToleranceAgainstTheFullModel) {
   ASSERT_TRUE(full.status.ok());
   const double error = worst_relative(reduced.ac.values, full.values);
   EXPECT_LE(error, c.tolerance) << "kept " << reduced.model.kept_modes << " modes below "
-                                << reduced.model.cutoff_hz << " Hz (" << reduced.model.modal_method
-                                << ")";
+                                << reduced.model.cutoff_hz << " Hz ("
+                                << method_name(reduced.model.modal_method) << ")";
   // The check sees part of the grid, solved by a run_ac of its own (another pivot history):
   // the two full solves agree to 1e-9 of the peak (AcAccuracy test), hence the slack.
   EXPECT_LE(reduced.measured_error, error + 1e-9);
   EXPECT_TRUE(reduced.tolerance_met);
   if (c.segments >= 100) {  // a reduction indeed (at N = 7 the fin keeps 14 of 48 poles)
-    EXPECT_EQ(reduced.model.modal_method, "arnoldi");
+    EXPECT_EQ(reduced.model.modal_method, Method::arnoldi);
     // The series correction is used exactly when poles below f_c were not found.
     EXPECT_EQ(reduced.model.correction_order > 0, !reduced.model.all_found);
     EXPECT_LT(reduced.model.kept.size(), static_cast<size_t>(b.system.size()) / 20);

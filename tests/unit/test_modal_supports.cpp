@@ -71,7 +71,7 @@ TEST(SupportedBeamModes, EveryEndPairAtTwoThousandSegments) {
     options.count = 3;
     const ModalResult modes = run_modes(system, Eigen::VectorXd::Zero(system.size()), options);
     ASSERT_TRUE(modes.status.ok()) << name_of(pair) << ": " << modes.status.message;
-    EXPECT_EQ(modes.method, "arnoldi") << name_of(pair);
+    EXPECT_EQ(modes.method, Method::arnoldi) << name_of(pair);
     EXPECT_EQ(modes.rigid_body_modes.size(), pair.rigid) << name_of(pair);
     EXPECT_TRUE(modes.real_poles.empty()) << name_of(pair) << ": " << modes.real_poles.size();
     ASSERT_GE(modes.modes.size(), 3u) << name_of(pair);

@@ -78,7 +78,7 @@ TEST(ModeNumbering, ArnoldiRequestGrowsPastOverdampedPairsToTheWantedModes) {
   };
   const ModalResult dense = solve(100000), arnoldi = solve(0);
   ASSERT_TRUE(dense.status.ok() && arnoldi.status.ok()) << arnoldi.status.message;
-  EXPECT_EQ(arnoldi.method, "arnoldi");
+  EXPECT_EQ(arnoldi.method, Method::arnoldi);
   ASSERT_EQ(dense.modes.size(), 3u);
   ASSERT_GE(arnoldi.modes.size(), 3u);
   for (size_t k = 0; k < 3; ++k)

@@ -74,7 +74,7 @@ TEST(ProgressHooks, AcReportsEveryFrequencyAndStopsWhenCancelled) {
   options.progress = &modal;
   const AcResult fast = run_ac(system, Eigen::VectorXd::Zero(system.size()), grid, {x}, options);
   ASSERT_TRUE(fast.status.ok()) << fast.status.message;
-  EXPECT_EQ(fast.method, "pole-residue");
+  EXPECT_EQ(fast.method, Method::pole_residue);
   ASSERT_EQ(modal.reports.size(), 2u);
   EXPECT_EQ(modal.reports[1].what, "AC: poles and residues");
   RecordingProgress stop_at_poles(2);

@@ -132,7 +132,7 @@ TEST(SwitchingSweep, ReducedSweepAgreesWithTheFullOneWithinItsTolerance) {
   options.reduction.tolerance = 1e-3;
   const SwitchingSweepResult reduced = run_switching_sweep(model, scene, options);
   ASSERT_TRUE(reduced.status.ok()) << reduced.status.message;
-  EXPECT_EQ(reduced.method, "reduced");
+  EXPECT_EQ(reduced.method, Method::reduced);
   ASSERT_TRUE(reduced.reduction.has_value());
   EXPECT_TRUE(reduced.reduction->tolerance_met) << reduced.reduction->measured_error;
   EXPECT_LE(reduced.reduction->measured_error, 1e-3);
@@ -176,7 +176,7 @@ TEST(SwitchingSweep, AutomaticMethodReducesAboveTheDenseLimitAndEstimatesItsErro
   options.dense_limit = 10;
   const SwitchingSweepResult automatic = run_switching_sweep(model, scene, options);
   ASSERT_TRUE(automatic.status.ok()) << automatic.status.message;
-  EXPECT_EQ(automatic.method, "reduced");
+  EXPECT_EQ(automatic.method, Method::reduced);
   ASSERT_FALSE(automatic.notes.empty());
   EXPECT_NE(automatic.notes.front().find("method: reduced"), std::string::npos);
   ASSERT_TRUE(automatic.reduction.has_value());
@@ -255,7 +255,7 @@ TEST(SwitchingSweep, ShootingAgreesWithExact) {
   const SwitchingSweepResult shooting = run_switching_sweep(model, scene, options);
   ASSERT_TRUE(exact.status.ok()) << exact.status.message;
   ASSERT_TRUE(shooting.status.ok()) << shooting.status.message;
-  EXPECT_EQ(shooting.method, "shooting");
+  EXPECT_EQ(shooting.method, Method::shooting);
   for (size_t p = 0; p < options.outputs.size(); ++p)
     for (size_t k = 0; k < exact.frequencies.size(); ++k) {
       const double swing = exact.outputs[p].right[k] - exact.outputs[p].left[k];

@@ -58,7 +58,7 @@ Section ac_section(const Settings& settings, std::vector<ParetoPoint>& pareto) {
   std::vector<MethodRow> rows;
   {
     const emnet::AcResult result = emnet::run_ac(system, rest.operating_point, grid, probes);
-    MethodRow row{"emnet", "run_ac (" + result.method + ")",
+    MethodRow row{"emnet", "run_ac (" + emnet::method_name(result.method) + ")",
                   std::to_string(grid.size()) + " points"};
     row.error = ac_error(result.values, reference_at(grid));
     // In-process: from the scene file to the result, as `emnet ac` does it.

@@ -51,7 +51,7 @@ std::string discretisation_section(const Settings& settings, std::vector<ParetoP
           return modes.seconds;
         },
         5, 2.0);
-    row.modal_method = modes.method;
+    row.modal_method = emnet::method_name(modes.method);
     for (int k = 0; k < 3 && k < static_cast<int>(modes.modes.size()); ++k)
       row.frequency_error[k] =
           std::abs(modes.modes[k].natural_frequency_hz - continuum[k]) / continuum[k];

@@ -258,7 +258,7 @@ std::string limits_section(const Settings& settings) {
   {
     LimitRow row;
     row.analysis = "AC, " + std::to_string(grid.size()) + " points, N = 7";
-    row.method = ac.method + ", run_ac alone";
+    row.method = emnet::method_name(ac.method) + ", run_ac alone";
     const double flops = decomposition + grid.size() * (8.0 * poles + 16.0 * poles * outputs);
     row.limit = flops / rate;
     row.limit_text = format("%.2g flop", flops) + ", " + std::to_string(ac.poles.size()) + " poles";
@@ -275,7 +275,7 @@ std::string limits_section(const Settings& settings) {
     rows.push_back(row);
     LimitRow scene = row;
     scene.analysis = "AC from the scene file";
-    scene.method = ac.method + ", read, build, static, run_ac";
+    scene.method = emnet::method_name(ac.method) + ", read, build, static, run_ac";
     scene.emnet = measure(
                       [&] {
                         const auto start = Clock::now();
@@ -319,7 +319,7 @@ std::string limits_section(const Settings& settings) {
           const emnet::AcResult rc_ac =
               emnet::run_ac(rc_system, emnet::solve_static(rc_system).operating_point, grid,
                             deflection_probes(rc_model));
-          return time_text(rc.median) + " (" + rc_ac.method +
+          return time_text(rc.median) + " (" + emnet::method_name(rc_ac.method) +
                  (rc_ac.note.empty() ? "" : ": " + rc_ac.note) + ")";
         }();
     rows.push_back(row);

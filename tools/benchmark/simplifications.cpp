@@ -89,7 +89,7 @@ std::string reduction_section(const Settings& settings) {
           std::max(ac_summary.back().fastest, full_time.median / reduced_time.median);
       md << "| " << n << " | " << system.size() << " | " << format("%.0e", tolerance) << " | "
          << format("%.4g Hz", reduced.model.cutoff_hz) << " | " << reduced.model.kept_modes << " ("
-         << reduced.model.modal_method
+         << emnet::method_name(reduced.model.modal_method)
          << (reduced.model.correction_order > 0
                  ? ", s^" + std::to_string(reduced.model.correction_order)
                  : std::string())

@@ -62,8 +62,8 @@ void print_reduction(const AcReportInput& in) {
             << ", tolerance " << format("%.3g", m.tolerance)
             << " -> cut-off f_c = band/sqrt(tol) = " << si(m.cutoff_hz, "Hz") << "\n"
             << "  kept " << m.kept_modes << " mode(s) and " << m.kept_real_poles
-            << " real pole(s) of a " << m.full_unknowns << "-unknown network (" << m.modal_method
-            << "); " << m.truncated_poles
+            << " real pole(s) of a " << m.full_unknowns << "-unknown network ("
+            << emnet::method_name(m.modal_method) << "); " << m.truncated_poles
             << " computed pole(s) truncated into the static correction"
             << (m.clustered_poles ? " (" + std::to_string(m.clustered_poles) +
                                         " of them in groups repeated to rounding)"
@@ -160,7 +160,7 @@ int report_ac(const AcReportInput& in) {
     print_reduction(in);
   } else {
     const emnet::AcResult& ac = result.ac;
-    if (ac.method == "pole-residue")
+    if (ac.method == emnet::Method::pole_residue)
       std::cout << "method: pole-residue form (every pole, O(poles) per frequency), checked "
                    "against the direct solve at "
                 << ac.check_points << " frequencies\n"

@@ -57,7 +57,7 @@ int run_modes_command(const CommonOptions& options, const emnet::ModesStudyOptio
     std::cout << json_text(emnet::to_json(study, probes, total)) << "\n";
   } else {
     print_header(model, study.system);
-    std::cout << "modes: " << result.method
+    std::cout << "modes: " << emnet::method_name(result.method)
               << (result.complete ? " (every finite pole of the pencil)"
                                   : " shift-invert Arnoldi (the poles nearest 0)")
               << ", " << study.modes.size() << " oscillatory shown, " << result.real_poles.size()
@@ -70,7 +70,7 @@ int run_modes_command(const CommonOptions& options, const emnet::ModesStudyOptio
               << (result.note.empty()
                       ? ""
                       : "note: " + result.note +
-                            (result.method == "arnoldi"
+                            (result.method == emnet::Method::arnoldi
                                  ? " (poles beyond a cluster of nearly equal real poles, such "
                                    "as Kelvin-Voigt relaxations near -1/tau, are not reached; "
                                    "--dense computes every pole)"

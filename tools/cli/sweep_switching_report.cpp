@@ -99,7 +99,7 @@ int report_switching_sweep(const SweepReportInput& input) {
     }
     if (!input.plot.empty()) write_sweep_plot(input, markers);
   };
-  const std::string& method = result.method;  // "exact", "shooting" or "reduced"
+  const std::string method = emnet::method_name(result.method);  // exact, shooting, reduced
   const double n = static_cast<double>(count);
   if (options.json) {
     Json out;

@@ -95,7 +95,7 @@ void write_tran_plot(const TranReportInput& input) {
   options.output = plot_output(input.tran.plot_script);
   stop_if_interrupted();
   check_plot(emnet::write_line_plot(
-      input.tran.plot, scene.name + ": " + drive_summary(scene) + ", " + input.result.method,
+      input.tran.plot, scene.name + ": " + drive_summary(scene) + ", " + input.result.method_text(),
       "time [s]", series, options));
 }
 
@@ -133,10 +133,10 @@ int report_tran(const TranReportInput& input) {
     return validity_exit(input.validity);
   }
   print_header(model, input.system);
-  std::cout << "transient: " << shown(result.method) << ", " << format("%.6g", tran.periods)
+  std::cout << "transient: " << shown(result.method_text()) << ", " << format("%.6g", tran.periods)
             << " periods of " << si(frequency, "Hz") << " (" << si(input.end_time, "s")
             << "), start " << input.start_text << "\n";
-  if (result.method.rfind("ida", 0) == 0)
+  if (result.method == emnet::Method::ida)
     std::cout << "accuracy: IDA (BDF) rtol " << format("%.1e", tran.rtol)
               << (tran.atol > 0 ? ", atol " + format("%.1e", tran.atol)
                                 : ", atol scaled per unknown")

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "emnet/analysis/method.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/network/network.hpp"
@@ -125,7 +126,7 @@ struct AcResult {
   double max_relative_residual = 0.0;  // worst ‖A·Y − B‖/‖B‖ over the sweep
   int pivot_searches = 0;  // factorisations with a pivot search (the first, and where reused
                            // pivots gave 4× the residual of the last search)
-  std::string method;      // "direct" or "pole-residue"
+  Method method = Method::direct;  // direct, pole_residue (or reduced: run_ac_reduced)
   // pole-residue: the frequencies where it was compared with the direct solve (whose residuals
   // are max_relative_residual), the largest difference there relative to each probe's peak, and
   // the condition κ₁ of the eigenvector basis.
@@ -243,9 +244,9 @@ struct ModalResult {
   // Rigid-body motions (pole s = 0): displacement fields on the system's unknowns (m and rad on
   // mechanical across unknowns, 0 elsewhere), an orthonormal basis, largest entry positive.
   std::vector<Eigen::VectorXd> rigid_body_modes;
-  std::string method;   // "dense" or "arnoldi"
-  int unknowns = 0;     // of the system
-  int pencil_size = 0;  // of the displacement-form pencil
+  Method method = Method::dense;  // dense or arnoldi
+  int unknowns = 0;               // of the system
+  int pencil_size = 0;            // of the displacement-form pencil
   double shift = 0.0;
   double seconds = 0.0;
   double bound_seconds = 0.0;  // of that, the error bounds

@@ -128,7 +128,7 @@ struct ModalReduction {
   Status status;
   double band_hz = 0.0, tolerance = 0.0, cutoff_hz = 0.0;
   int full_unknowns = 0;
-  std::string modal_method;  // "dense" or "arnoldi"
+  Method modal_method = Method::dense;  // dense or arnoldi
   std::vector<KeptPole> kept;
   int kept_modes = 0, kept_real_poles = 0;  // oscillatory pairs; real poles
   int truncated_poles = 0;                  // computed but not kept (above f_c or inseparable)

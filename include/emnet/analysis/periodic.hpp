@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "emnet/analysis/method.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/network/network.hpp"
@@ -33,7 +34,7 @@ namespace emnet {
 
 struct PeriodicResult {
   Status status;
-  std::string method;  // "exact" or "shooting"
+  Method method = Method::exact;  // exact or shooting
   double period = 0.0;
   std::vector<double> minimum, maximum;            // per probe, over one period
   std::vector<double> minimum_time, maximum_time;  // where, in [0, T)

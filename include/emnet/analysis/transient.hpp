@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "emnet/analysis/method.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/network/network.hpp"
@@ -62,7 +63,14 @@ struct IntegratorStatistics {
 
 struct TransientResult {
   Status status;
-  std::string method;                       // "ida" or "exact"
+  Method method = Method::ida;  // ida or exact
+  // IDA: how it had to change its error test to get through, when it did ("algebraic
+  // unknowns out of the error test after: ..."); empty otherwise.
+  std::string method_note;
+  // The method as reports print it: its name, and the note in parentheses when there is one.
+  std::string method_text() const {
+    return method_name(method) + (method_note.empty() ? std::string() : " (" + method_note + ")");
+  }
   std::vector<double> times;                // output times reached
   std::vector<std::vector<double>> values;  // [probe][time]
   IntegratorStatistics statistics;

@@ -107,8 +107,8 @@ struct SwitchingSweepReductionCheck {
 
 struct SwitchingSweepResult {
   Status status;
-  bool cancelled = false;  // stopped by options.progress (status "cancelled")
-  std::string method;      // "exact", "shooting" or "reduced"
+  bool cancelled = false;         // stopped by options.progress (status "cancelled")
+  Method method = Method::exact;  // exact, shooting or reduced
   std::vector<double> frequencies;
   std::vector<SwitchingSweepOutput> outputs;
   // The sweep peak: the largest peak-to-peak of the last output.
