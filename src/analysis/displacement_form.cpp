@@ -55,7 +55,7 @@ DisplacementForm::DisplacementForm(const System& system, Use use) : system_(syst
       a_entries.emplace_back(velocity_of(col), velocity_of(col), 1.0);
       e_entries.emplace_back(velocity_of(col), col, -1.0);
     }
-  for (const auto& term : system.excitation.source_terms)
+  for (const auto& term : system.excitation().source_terms)
     if (use == Use::time_integration && divided_[static_cast<size_t>(term.row)])
       throw std::runtime_error("an across source drives the mechanical unknown '" +
                                system.unknowns[static_cast<size_t>(term.row)].name +

@@ -131,7 +131,7 @@ ReducedPeriodicSolver::ReducedPeriodicSolver(const System& system,
     return;
   }
   std::vector<Eigen::VectorXcd> inputs;
-  for (const auto& term : system.excitation.source_terms) {
+  for (const auto& term : system.excitation().source_terms) {
     auto found = std::find(waveforms_.begin(), waveforms_.end(), term.waveform);
     size_t j = static_cast<size_t>(found - waveforms_.begin());
     if (found == waveforms_.end()) {
@@ -183,7 +183,7 @@ double ReducedPeriodicSolver::edge_error_estimate(const System& system,
     double error = 0.0;
     for (size_t j = 0; j < waveforms_.size(); ++j)
       error += std::abs(reduction_.correction_response(probes[p], 0.0, static_cast<int>(j))) *
-               largest_step(system.excitation.waveforms[static_cast<size_t>(waveforms_[j])]);
+               largest_step(system.excitation().waveforms[static_cast<size_t>(waveforms_[j])]);
     if (scale[p] > 0.0) worst = std::max(worst, error / scale[p]);
   }
   return worst;
@@ -209,7 +209,7 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& given, const std::vect
                                       ": the reduced periodic method takes displacement-like "
                                       "probes only (deflection, rotation)"));
   for (int w : waveforms_)
-    if (w >= static_cast<int>(system.excitation.waveforms.size()))
+    if (w >= static_cast<int>(system.excitation().waveforms.size()))
       return finish(Status::failure("the network's sources differ from the reduced one's"));
 
   const std::vector<KeptPole>& kept = reduction_.kept;
@@ -229,7 +229,7 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& given, const std::vect
   for (size_t i = 0; i < intervals; ++i) {
     const double middle = 0.5 * (edges[i] + edges[i + 1]);
     for (size_t j = 0; j < inputs; ++j) {
-      const Waveform& waveform = system.excitation.waveforms[static_cast<size_t>(waveforms_[j])];
+      const Waveform& waveform = system.excitation().waveforms[static_cast<size_t>(waveforms_[j])];
       u[i][j] = waveform.value(middle);
       u_slope[i][j] = waveform.slope(middle);
       if (u_slope[i][j] != 0.0) {

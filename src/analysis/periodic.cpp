@@ -53,7 +53,7 @@ void fill_extremes(PeriodicResult& result, const Refine& refine) {
 std::optional<System> steady_period_system(const System& system, double period) {
   double latest_delay = 0.0;
   bool shift = false;
-  for (const Waveform& w : system.excitation.waveforms) {
+  for (const Waveform& w : system.excitation().waveforms) {
     if (w.shape != Waveform::Shape::pulse || !(w.period > 0.0) || !(w.delay > 0.0)) continue;
     latest_delay = std::max(latest_delay, w.delay);
     // The pulse of the period before the delay reaches over t = 0 (beyond rounding), or the
@@ -63,7 +63,7 @@ std::optional<System> steady_period_system(const System& system, double period) 
   }
   if (!shift) return std::nullopt;
   const double offset = std::ceil(latest_delay / period) * period;
-  Excitation excitation = system.excitation;
+  Excitation excitation = system.excitation();
   for (Waveform& w : excitation.waveforms)
     if (w.shape == Waveform::Shape::pulse && w.period > 0.0) w.delay -= offset;
   return system.with_excitation(std::move(excitation));

@@ -115,7 +115,7 @@ AffinePiece affine_piece(const System& system, int size, double t0, double t1) {
 
 double characteristic_angular_frequency(const System& system, double end_time) {
   double frequency = end_time > 0.0 ? 1.0 / end_time : 0.0;
-  for (const auto& w : system.excitation.waveforms)
+  for (const auto& w : system.excitation().waveforms)
     if (w.period > 0.0) frequency = std::max(frequency, 1.0 / w.period);
   return 2 * M_PI * frequency;
 }

@@ -20,7 +20,7 @@
 namespace emnet {
 
 Status require_piecewise_linear(const System& system) {
-  for (const auto& w : system.excitation.waveforms)
+  for (const auto& w : system.excitation().waveforms)
     if (!w.piecewise_linear())
       return Status::failure(
           "the exact method needs piecewise-linear sources (dc, pulse, pwl): sine sources are "

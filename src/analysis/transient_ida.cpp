@@ -251,7 +251,7 @@ TransientResult integrate(const System& system, const std::vector<Probe>& probes
     }
     const double frequency = 1.0 / options.end_time;
     double drive_frequency = frequency;
-    for (const auto& w : system.excitation.waveforms)
+    for (const auto& w : system.excitation().waveforms)
       if (w.period > 0.0) drive_frequency = std::max(drive_frequency, 1.0 / w.period);
     const Eigen::VectorXd atol_values =
         options.absolute_tolerance > 0.0

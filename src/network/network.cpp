@@ -65,34 +65,6 @@ int Network::branch_unknown_index(std::size_t element, int k) const {
 
 namespace {
 
-// Stamps every element of `elements` into `system` (whose unknowns are set): its excitation
-// always, G and C when `matrices` is true, with the waveforms' owning elements recorded.
-void stamp_elements(const std::vector<std::shared_ptr<Element>>& elements,
-                    const std::vector<int>& offsets, System& system, bool matrices) {
-  const int n = system.size();
-  system.excitation.ac = Eigen::VectorXcd::Zero(n);
-  std::vector<Eigen::Triplet<double>> g_entries, c_entries;
-  for (size_t k = 0; k < elements.size(); ++k) {
-    Stamper stamper(system, offsets[k]);
-    elements[k]->stamp(stamper);
-    system.excitation.waveform_element.resize(system.excitation.waveforms.size(),
-                                              static_cast<int>(k));
-    if (!matrices) continue;
-    g_entries.insert(g_entries.end(), stamper.g_entries.begin(), stamper.g_entries.end());
-    c_entries.insert(c_entries.end(), stamper.c_entries.begin(), stamper.c_entries.end());
-    if (elements[k]->is_nonlinear()) system.nonlinear_elements.push_back(elements[k]);
-  }
-  if (!matrices) return;
-  system.G.resize(n, n);
-  system.C.resize(n, n);
-  system.G.setFromTriplets(g_entries.begin(), g_entries.end());
-  system.C.setFromTriplets(c_entries.begin(), c_entries.end());
-  system.G.prune(0.0);
-  system.C.prune(0.0);
-  system.G.makeCompressed();
-  system.C.makeCompressed();
-}
-
 // The unknowns of `nodes` and `elements` into `system`; the first branch unknown of each
 // element (its offset) returned.
 std::vector<int> number_unknowns(const std::vector<Node>& nodes,
@@ -111,18 +83,46 @@ std::vector<int> number_unknowns(const std::vector<Node>& nodes,
 
 }  // namespace
 
+// Stamps every element into `system` (whose unknowns are set): its excitation
+// always, G and C when `matrices` is true, with the waveforms' owning elements recorded.
+void Network::stamp_elements(const std::vector<int>& offsets, System& system, bool matrices) const {
+  const auto& elements = elements_;
+  const int n = system.size();
+  system.excitation_.ac = Eigen::VectorXcd::Zero(n);
+  std::vector<Eigen::Triplet<double>> g_entries, c_entries;
+  for (size_t k = 0; k < elements.size(); ++k) {
+    Stamper stamper(system, offsets[k]);
+    elements[k]->stamp(stamper);
+    system.excitation_.waveform_element.resize(system.excitation_.waveforms.size(),
+                                               static_cast<int>(k));
+    if (!matrices) continue;
+    g_entries.insert(g_entries.end(), stamper.g_entries.begin(), stamper.g_entries.end());
+    c_entries.insert(c_entries.end(), stamper.c_entries.begin(), stamper.c_entries.end());
+    if (elements[k]->is_nonlinear()) system.nonlinear_elements.push_back(elements[k]);
+  }
+  if (!matrices) return;
+  system.G.resize(n, n);
+  system.C.resize(n, n);
+  system.G.setFromTriplets(g_entries.begin(), g_entries.end());
+  system.C.setFromTriplets(c_entries.begin(), c_entries.end());
+  system.G.prune(0.0);
+  system.C.prune(0.0);
+  system.G.makeCompressed();
+  system.C.makeCompressed();
+}
+
 System Network::assemble() const {
   System system;
   const std::vector<int> offsets = number_unknowns(nodes_, elements_, system);
-  stamp_elements(elements_, offsets, system, true);
+  stamp_elements(offsets, system, true);
   return system;
 }
 
 Excitation Network::assemble_excitation() const {
   System system;
   const std::vector<int> offsets = number_unknowns(nodes_, elements_, system);
-  stamp_elements(elements_, offsets, system, false);
-  return std::move(system.excitation);
+  stamp_elements(offsets, system, false);
+  return std::move(system.excitation_);
 }
 
 void System::set_excitation(Excitation replacement) {
@@ -136,7 +136,7 @@ void System::set_excitation(Excitation replacement) {
       throw std::invalid_argument("excitation: a source term outside the system (row " +
                                   std::to_string(term.row) + ", waveform " +
                                   std::to_string(term.waveform) + ")");
-  excitation = std::move(replacement);
+  excitation_ = std::move(replacement);
 }
 
 System System::with_excitation(Excitation replacement) const {
@@ -146,29 +146,29 @@ System System::with_excitation(Excitation replacement) const {
 }
 
 Eigen::VectorXd System::b(double t) const {
-  const auto& waveforms = excitation.waveforms;
+  const auto& waveforms = excitation_.waveforms;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size());
   std::vector<double> values(waveforms.size());
   for (size_t w = 0; w < waveforms.size(); ++w) values[w] = waveforms[w].value(t);
-  for (const auto& term : excitation.source_terms)
+  for (const auto& term : excitation_.source_terms)
     rhs[term.row] += term.coefficient * values[term.waveform];
   return rhs;
 }
 
 Eigen::VectorXd System::b_slope(double t) const {
-  const auto& waveforms = excitation.waveforms;
+  const auto& waveforms = excitation_.waveforms;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size());
   std::vector<double> slopes(waveforms.size());
   for (size_t w = 0; w < waveforms.size(); ++w) slopes[w] = waveforms[w].slope(t);
-  for (const auto& term : excitation.source_terms)
+  for (const auto& term : excitation_.source_terms)
     rhs[term.row] += term.coefficient * slopes[term.waveform];
   return rhs;
 }
 
 Eigen::VectorXcd System::b_ac() const {
-  Eigen::VectorXcd rhs = excitation.ac;
-  for (const auto& term : excitation.source_terms)
-    rhs[term.row] += term.coefficient * excitation.waveforms[term.waveform].ac_phasor();
+  Eigen::VectorXcd rhs = excitation_.ac;
+  for (const auto& term : excitation_.source_terms)
+    rhs[term.row] += term.coefficient * excitation_.waveforms[term.waveform].ac_phasor();
   return rhs;
 }
 
@@ -186,7 +186,7 @@ void System::nonlinear(const Eigen::VectorXd& y, Eigen::VectorXd& g,
 
 std::vector<double> System::breakpoints(double t_begin, double t_end) const {
   std::vector<double> out;
-  for (const auto& waveform : excitation.waveforms) waveform.breakpoints(t_begin, t_end, out);
+  for (const auto& waveform : excitation_.waveforms) waveform.breakpoints(t_begin, t_end, out);
   std::sort(out.begin(), out.end());
   // Edges of different sources meant to coincide (A off, B on) may differ by rounding:
   // they are one breakpoint, not an interval of a few ulps.
@@ -228,22 +228,22 @@ void Stamper::c_between(NodeId a, NodeId b, double value) {
 }
 
 int Stamper::source(int row, double coefficient, const Waveform& waveform) {
-  system_.excitation.waveforms.push_back(waveform);
-  const int index = static_cast<int>(system_.excitation.waveforms.size()) - 1;
+  system_.excitation_.waveforms.push_back(waveform);
+  const int index = static_cast<int>(system_.excitation_.waveforms.size()) - 1;
   source(row, coefficient, index);
   return index;
 }
 
 void Stamper::source(int row, double coefficient, int waveform_index) {
   assert(waveform_index >= 0 &&
-         waveform_index < static_cast<int>(system_.excitation.waveforms.size()));
+         waveform_index < static_cast<int>(system_.excitation_.waveforms.size()));
   if (row == ground || coefficient == 0.0) return;
-  system_.excitation.source_terms.push_back({row, coefficient, waveform_index});
+  system_.excitation_.source_terms.push_back({row, coefficient, waveform_index});
 }
 
 void Stamper::ac(int row, std::complex<double> value) {
   if (row == ground) return;
-  system_.excitation.ac[row] += value;
+  system_.excitation_.ac[row] += value;
 }
 
 }  // namespace emnet

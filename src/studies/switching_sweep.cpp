@@ -199,7 +199,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   auto system_at = [&](double f) -> const System& {
     if (excitation_only) {
       const Stopwatch excitation_stopwatch;
-      swept.set_excitation(drive_excitation(model, swept.excitation, f));
+      swept.set_excitation(drive_excitation(model, swept.excitation(), f));
       result.excitation_seconds += excitation_stopwatch.seconds();
     } else {
       const Stopwatch model_stopwatch;

@@ -38,8 +38,8 @@ void expect_same_excitation(const System& swept, const System& full, double freq
   EXPECT_EQ(swept.breakpoints(0.0, span), full.breakpoints(0.0, span));
   for (double t : times) EXPECT_TRUE(swept.b(t) == full.b(t)) << "b(t) at t = " << t;
   EXPECT_TRUE(swept.b_ac() == full.b_ac());
-  ASSERT_EQ(swept.excitation.waveforms.size(), full.excitation.waveforms.size());
-  ASSERT_EQ(swept.excitation.source_terms.size(), full.excitation.source_terms.size());
+  ASSERT_EQ(swept.excitation().waveforms.size(), full.excitation().waveforms.size());
+  ASSERT_EQ(swept.excitation().source_terms.size(), full.excitation().source_terms.size());
 }
 
 void expect_excitation_rebuild_exact(const Scene& scene, const std::vector<double>& frequencies) {
@@ -54,7 +54,7 @@ void expect_excitation_rebuild_exact(const Scene& scene, const std::vector<doubl
     EXPECT_TRUE(same_matrix(system.G, full.G));
     EXPECT_TRUE(same_matrix(system.C, full.C));
     EXPECT_EQ(system.is_nonlinear(), full.is_nonlinear());
-    const System swept = system.with_excitation(drive_excitation(base, system.excitation, f));
+    const System swept = system.with_excitation(drive_excitation(base, system.excitation(), f));
     expect_same_excitation(swept, full, f);
     // And from the excitation alone, without G and C.
     const System again =
@@ -88,7 +88,7 @@ TEST(DriveExcitation, RefusesAnExcitationOfAnotherNetwork) {
   const Model ideal = build_model(read_scene(kFishfin, {"drive.electrical_dynamics=false"}));
   EXPECT_THROW(drive_excitation(fin, ideal.network.assemble_excitation(), 3.0), std::logic_error);
   System system = fin.network.assemble();
-  Excitation wrong = system.excitation;
+  Excitation wrong = system.excitation();
   wrong.ac = Eigen::VectorXcd::Zero(system.size() + 1);
   EXPECT_THROW(system.set_excitation(wrong), std::invalid_argument);
 }

@@ -218,7 +218,7 @@ class ReducedPeriodicSolver {
 
  private:
   ModalReduction reduction_;
-  std::vector<int> waveforms_;  // input j ↔ system.excitation.waveforms[waveforms_[j]]
+  std::vector<int> waveforms_;  // input j ↔ system.excitation().waveforms[waveforms_[j]]
 };
 
 // max over probes of max over samples |reduced − full| / max over samples |full|; both solved

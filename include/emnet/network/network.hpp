@@ -104,6 +104,10 @@ class Network {
   Excitation assemble_excitation() const;
 
  private:
+  // Stamps every element into `system` (its unknowns numbered): the excitation always, G and C
+  // when `matrices` is true.
+  void stamp_elements(const std::vector<int>& offsets, System& system, bool matrices) const;
+
   std::vector<Node> nodes_;
   std::vector<std::shared_ptr<Element>> elements_;
 };
@@ -135,7 +139,8 @@ class System {
   std::vector<std::shared_ptr<const Element>> nonlinear_elements;
 
   using SourceTerm = Excitation::SourceTerm;
-  Excitation excitation;
+  // The sources: stamped by assemble(), replaced only through set_excitation, which checks it.
+  const Excitation& excitation() const { return excitation_; }
 
   // A new excitation for the same G, C and nonlinear elements (a sweep's next frequency).
   // Throws std::invalid_argument when it does not fit the system (size, rows, waveforms).
@@ -158,6 +163,11 @@ class System {
   // Index of the first unknown belonging to each element's branch list, by element name.
   int branch_index(const std::string& element_name, int k = 0) const;
   std::vector<std::pair<std::string, int>> branch_offsets;
+
+ private:
+  friend class Network;  // assembles it
+  friend class Stamper;  // stamps the elements' sources into it
+  Excitation excitation_;
 };
 
 // Handed to Element::stamp. Rows/columns equal to `ground` are dropped.
