@@ -45,11 +45,11 @@ void write_ac_files(const AcReportInput& in, const std::vector<emnet::PlotMarker
       series.push_back({probes[k].name + ": " + probes[k].description, probes[k].unit, values[k]});
     const std::string input = emnet::ac_input_summary(in.prepared.model.scene);
     stop_if_interrupted();
-    check_plot(
-        emnet::write_bode_plot(in.plot,
-                               in.prepared.model.scene.name + ": small-signal response" +
-                                   (input.empty() ? std::string(" (no AC input)") : " to " + input),
-                               grid, series, markers, in.spec.log, plot_output(in.plot_script)));
+    check_plot(emnet::write_bode_plot(
+        in.plot,
+        in.prepared.model.scene.name + ": small-signal response" +
+            (input.empty() ? std::string(" (no AC input)") : " to " + input),
+        grid, series, markers, in.spec.log, plot_output(in.options, in.plot_script)));
   }
 }
 

@@ -224,22 +224,10 @@ void check_plot(const emnet::Status& status) {
   throw FileError("--plot: " + status.message);
 }
 
-namespace {
-
-// Ctrl-C as a Progress that reports nothing: for the plots, whose gnuplot runs are stopped by it.
-class InterruptOnly : public emnet::Progress {
- public:
-  void report(long, long, std::string_view) override {}
-  bool cancelled() const override { return InterruptHandler::interrupted(); }
-};
-
-}  // namespace
-
-emnet::PlotOutput plot_output(bool plot_script) {
-  static const InterruptOnly interrupt;
+emnet::PlotOutput plot_output(const CommonOptions& options, bool plot_script) {
   emnet::PlotOutput output;
   output.data_and_script = plot_script;
-  output.progress = &interrupt;
+  output.progress = options.reporter;  // only asked whether Ctrl-C came
   return output;
 }
 
@@ -259,8 +247,10 @@ PlotUnit plot_unit(const std::string& si_unit) {
   return {si_unit, 1.0};
 }
 
-std::vector<emnet::ReferenceLine> deflection_limit_lines(const emnet::Validity& validity,
-                                                         const std::string& unit, double scale) {
+std::vector<emnet::ReferenceLine> deflection_limit_lines(const emnet::Validity& validity) {
+  const PlotUnit shown = plot_unit("m");
+  const std::string& unit = shown.unit;
+  const double scale = shown.scale;
   std::vector<emnet::ReferenceLine> lines;
   for (const emnet::ValidityViolation& violation : validity.violations)
     if (violation.check == emnet::ValidityCheck::deflection) {

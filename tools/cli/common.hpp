@@ -148,10 +148,10 @@ struct PlotUnit {
 };
 PlotUnit plot_unit(const std::string& si_unit);
 
-// Outside the deflection limit, the limit's lines at ±limit·scale in the panel of `unit` (the
-// plot shows where the result left the model's validity); none when it is inside.
-std::vector<emnet::ReferenceLine> deflection_limit_lines(const emnet::Validity& validity,
-                                                         const std::string& unit, double scale);
+// Outside the deflection limit, the limit's lines at ±limit in the deflections' panel, in its
+// plot unit (plot_unit): the plot shows where the result left the model's validity; none when it
+// is inside.
+std::vector<emnet::ReferenceLine> deflection_limit_lines(const emnet::Validity& validity);
 
 // A CSV file of `count` rows, row i filled by fill_row(i, row), written completely or not at
 // all (emnet/report/csv.hpp); FileError when it cannot be. The rows are formatted as they are
@@ -169,9 +169,9 @@ void write_csv(const std::string& path, const std::vector<std::string>& header,
 
 // A plot's Status as a FileError (gnuplot missing or failing is no numerical failure).
 void check_plot(const emnet::Status& status);
-// What a plot writes besides its image (--plot-script) and its cancellation by Ctrl-C: gnuplot
-// is stopped and no file written.
-emnet::PlotOutput plot_output(bool plot_script);
+// What a plot writes besides its image (--plot-script), cancelled by Ctrl-C through the
+// command's progress reporter: gnuplot is stopped and no file written.
+emnet::PlotOutput plot_output(const CommonOptions& options, bool plot_script);
 
 struct Prepared {
   emnet::Model model;

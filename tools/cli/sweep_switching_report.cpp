@@ -47,9 +47,8 @@ void write_sweep_plot(const SweepReportInput& input,
   options.legend_note =
       "solid: peak to the left (negative side); dashed: peak to the right (positive side)";
   options.axis_labels = axis_labels("peak ");
-  options.reference_lines =
-      deflection_limit_lines(input.result.validity, plot_unit("m").unit, plot_unit("m").scale);
-  options.output = plot_output(input.plot_script);
+  options.reference_lines = deflection_limit_lines(input.result.validity);
+  options.output = plot_output(input.options, input.plot_script);
   stop_if_interrupted();
   check_plot(emnet::write_line_plot(input.plot,
                                     input.model.scene.name + ": periodic steady-state peak " +

@@ -90,9 +90,8 @@ void write_tran_plot(const TranReportInput& input) {
   }
   emnet::LinePlotOptions options;
   options.axis_labels = axis_labels("");
-  options.reference_lines =
-      deflection_limit_lines(input.validity, plot_unit("m").unit, plot_unit("m").scale);
-  options.output = plot_output(input.tran.plot_script);
+  options.reference_lines = deflection_limit_lines(input.validity);
+  options.output = plot_output(input.options, input.tran.plot_script);
   stop_if_interrupted();
   check_plot(emnet::write_line_plot(
       input.tran.plot, scene.name + ": " + drive_summary(scene) + ", " + input.result.method_text(),
