@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 
 #include "posix_handles.hpp"
 #include "process_supervisor.hpp"
@@ -226,176 +227,252 @@ std::string ProcessResult::description() const {
   return "could not be run: " + problem;
 }
 
-ProcessResult run_process(const ProcessOptions& options) {
-  ProcessResult result;
-  const std::int64_t call_start = monotonic_nanoseconds();
-  const auto finish = [&]() -> ProcessResult {
-    result.total_seconds = seconds_between(call_start, monotonic_nanoseconds());
-    return std::move(result);
-  };
-  const auto failed = [&](std::string why, int error_number = 0) {
-    result.how = ProcessResult::How::failed;
-    result.problem = std::move(why);
-    result.error_number = error_number;
+namespace {
+
+// One call of run_process, phase by phase: find the program, open its pipes, fork the
+// supervisor, then exchange data with the program until its pipes and the supervisor's socket
+// are closed, the time is up or a callback says stop.
+class ProcessRun {
+ public:
+  explicit ProcessRun(const ProcessOptions& options)
+      : options_(options),
+        call_start_(monotonic_nanoseconds()),
+        outputs_{{&options.standard_output,
+                  &result_.standard_output,
+                  &result_.standard_output_bytes_left_out,
+                  {}},
+                 {&options.standard_error,
+                  &result_.standard_error,
+                  &result_.standard_error_bytes_left_out,
+                  {}}} {}
+
+  ProcessResult run() {
+    if (options_.arguments.empty()) return failed("no program given");
+    if (!locate_program()) return finish();
+    if (!open_pipes()) return finish();
+    if (!start_supervisor()) return finish();
+    const Ending ending = exchange_until_the_end();
+    if (ending == Ending::failed) return finish();
+    const std::int64_t kill_time = monotonic_nanoseconds();
+    supervisor_->stop();  // at the time limit or a stop: kills the tree; else it has ended
+    if (ending != Ending::ended) {
+      result_.how =
+          ending == Ending::timed_out ? ProcessResult::How::timed_out : ProcessResult::How::stopped;
+      result_.exit_status = result_.signal_number = 0;
+      result_.seconds =
+          seconds_between(program_start_ > 0 ? program_start_ : call_start_, kill_time);
+      return finish();
+    }
+    if (!reported_end_) return failed("the supervisor of the program ended without a report");
+    result_.seconds = seconds_between(program_start_, program_end_);
     return finish();
-  };
-  if (options.arguments.empty()) return failed("no program given");
-  std::string path;
-  if (!find_program(options.arguments.front(), program_environment_value(options, "PATH"), path,
-                    result.error_number)) {
-    result.how = ProcessResult::How::not_started;
+  }
+
+ private:
+  enum class Ending { ended, timed_out, stopped, failed };
+
+  ProcessResult finish() {
+    result_.total_seconds = seconds_between(call_start_, monotonic_nanoseconds());
+    return std::move(result_);
+  }
+  ProcessResult failed(std::string why, int error_number = 0) {
+    record_failure(std::move(why), error_number);
     return finish();
   }
-  if (!options.working_directory.empty() && path.front() != '/') {
-    // Found relative to this process's working directory, not the program's.
-    char* here = ::getcwd(nullptr, 0);
-    if (!here) return failed("cannot read the working directory: " + errno_text(errno), errno);
-    path = std::string(here) + "/" + path;
-    std::free(here);
-  }
-  std::vector<std::string> arguments = options.arguments;
-  std::vector<char*> argument_pointers = pointers_to(arguments);
-  std::vector<std::string> environment = program_environment(options);
-  std::vector<char*> environment_pointers = pointers_to(environment);
-
-  Pipe input;
-  OutputPipe outputs[2] = {
-      {&options.standard_output,
-       &result.standard_output,
-       &result.standard_output_bytes_left_out,
-       {}},
-      {&options.standard_error, &result.standard_error, &result.standard_error_bytes_left_out, {}}};
-  std::string why;
-  if (options.standard_input && !open_pipe(input, why)) return failed(why, errno);
-  for (OutputPipe& output : outputs)
-    if (output.handling->kind != ProcessOutput::Kind::discard && !open_pipe(output.pipe, why))
-      return failed(why, errno);
-  int control_ends[2];
-  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, control_ends) != 0)
-    return failed("cannot create a socket pair: " + errno_text(errno), errno);
-  FileDescriptor control(control_ends[0]), supervisor_control(control_ends[1]);
-
-  SupervisorPlan plan;
-  plan.path = path.c_str();
-  plan.arguments = argument_pointers.data();
-  plan.environment = environment_pointers.data();
-  plan.working_directory =
-      options.working_directory.empty() ? nullptr : options.working_directory.c_str();
-  plan.input = input.read_end.get();
-  plan.output = outputs[0].pipe.write_end.get();
-  plan.error = outputs[1].pipe.write_end.get();
-  plan.control = supervisor_control.get();
-  plan.file_size_limit = options.file_size_limit >= RLIM_INFINITY
-                             ? RLIM_INFINITY
-                             : static_cast<rlim_t>(options.file_size_limit);
-
-  // The supervisor never flushes this process's stdio buffers (it ends with _exit or exec).
-  const pid_t process_id = fork_without_handlers();
-  if (process_id < 0) return failed("cannot start the supervisor: " + errno_text(errno), errno);
-  if (process_id == 0) run_supervisor(plan);
-  Supervisor supervisor(process_id, std::move(control));
-  input.read_end.reset();
-  for (OutputPipe& output : outputs) output.pipe.write_end.reset();
-  supervisor_control.reset();
-  const std::string empty;
-  const std::string& input_bytes = options.standard_input ? *options.standard_input : empty;
-  std::size_t input_written = 0;
-  if (input.write_end.is_open()) {
-    if (input_bytes.empty())
-      input.write_end.reset();
-    else
-      ::fcntl(input.write_end.get(), F_SETFL, O_NONBLOCK);
+  void record_failure(std::string why, int error_number) {
+    result_.how = ProcessResult::How::failed;
+    result_.problem = std::move(why);
+    result_.error_number = error_number;
   }
 
-  // Until the program's pipes and the supervisor's socket are closed, the time is up or a
-  // callback says stop.
-  const double timeout = std::min(std::max(0.0, options.timeout_seconds), 1e9);
-  const std::int64_t deadline = call_start + static_cast<std::int64_t>(timeout * 1e9);
-  std::string chunk(kChunkBytes, '\0');
-  SupervisorReport report;
-  std::size_t report_bytes = 0;
-  bool reported_end = false, timed_out = false, stopped = false;
-  std::int64_t program_start = 0, program_end = 0;
-  while (outputs[0].pipe.read_end.is_open() || outputs[1].pipe.read_end.is_open() ||
-         supervisor.control() >= 0) {
-    const std::int64_t now = monotonic_nanoseconds();
-    if (now >= deadline) {
-      timed_out = true;
-      break;
+  // The program's path as the supervisor will exec it; false (not started) when not found.
+  bool locate_program() {
+    if (!find_program(options_.arguments.front(), program_environment_value(options_, "PATH"),
+                      path_, result_.error_number)) {
+      result_.how = ProcessResult::How::not_started;
+      return false;
     }
-    if (options.stop_requested && options.stop_requested()) {
-      stopped = true;
-      break;
+    if (!options_.working_directory.empty() && path_.front() != '/') {
+      // Found relative to this process's working directory, not the program's.
+      char* here = ::getcwd(nullptr, 0);
+      if (!here) {
+        record_failure("cannot read the working directory: " + errno_text(errno), errno);
+        return false;
+      }
+      path_ = std::string(here) + "/" + path_;
+      std::free(here);
     }
-    pollfd descriptors[4] = {{outputs[0].pipe.read_end.get(), POLLIN, 0},
-                             {outputs[1].pipe.read_end.get(), POLLIN, 0},
-                             {supervisor.control(), POLLIN, 0},
-                             {input.write_end.get(), POLLOUT, 0}};
-    const double remaining = seconds_between(now, deadline);
-    const double wait = std::min(remaining, options.stop_requested ? 0.1 : 1.0);
-    const int ready = ::poll(descriptors, 4, static_cast<int>(std::ceil(wait * 1000)));
-    if (ready < 0 && errno != EINTR) return failed("poll failed: " + errno_text(errno), errno);
-    if (ready <= 0) continue;
-    if (descriptors[3].revents) {
-      const ssize_t written = write_without_broken_pipe_signal(
-          input.write_end.get(), input_bytes.data() + input_written,
-          std::min(kChunkBytes, input_bytes.size() - input_written));
-      if (written > 0) input_written += static_cast<std::size_t>(written);
-      // Done, or the program closed its end (EPIPE): end of file for it, or nothing to do.
-      if (input_written == input_bytes.size() || (written < 0 && errno != EAGAIN))
-        input.write_end.reset();
+    return true;
+  }
+
+  bool open_pipes() {
+    std::string why;
+    if (options_.standard_input && !open_pipe(input_, why)) {
+      record_failure(why, errno);
+      return false;
     }
-    for (int stream = 0; stream < 2 && !stopped; ++stream) {
+    for (OutputPipe& output : outputs_)
+      if (output.handling->kind != ProcessOutput::Kind::discard && !open_pipe(output.pipe, why)) {
+        record_failure(why, errno);
+        return false;
+      }
+    return true;
+  }
+
+  // Forks the supervisor with everything it needs as plain C data, then closes this side's
+  // copies of the ends it took.
+  bool start_supervisor() {
+    int control_ends[2];
+    if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, control_ends) != 0) {
+      record_failure("cannot create a socket pair: " + errno_text(errno), errno);
+      return false;
+    }
+    FileDescriptor control(control_ends[0]), supervisor_control(control_ends[1]);
+    std::vector<std::string> arguments = options_.arguments;
+    std::vector<char*> argument_pointers = pointers_to(arguments);
+    std::vector<std::string> environment = program_environment(options_);
+    std::vector<char*> environment_pointers = pointers_to(environment);
+    SupervisorPlan plan;
+    plan.path = path_.c_str();
+    plan.arguments = argument_pointers.data();
+    plan.environment = environment_pointers.data();
+    plan.working_directory =
+        options_.working_directory.empty() ? nullptr : options_.working_directory.c_str();
+    plan.input = input_.read_end.get();
+    plan.output = outputs_[0].pipe.write_end.get();
+    plan.error = outputs_[1].pipe.write_end.get();
+    plan.control = supervisor_control.get();
+    plan.file_size_limit = options_.file_size_limit >= RLIM_INFINITY
+                               ? RLIM_INFINITY
+                               : static_cast<rlim_t>(options_.file_size_limit);
+    // The supervisor never flushes this process's stdio buffers (it ends with _exit or exec).
+    const pid_t process_id = fork_without_handlers();
+    if (process_id < 0) {
+      record_failure("cannot start the supervisor: " + errno_text(errno), errno);
+      return false;
+    }
+    if (process_id == 0) run_supervisor(plan);
+    supervisor_.emplace(process_id, std::move(control));
+    input_.read_end.reset();
+    for (OutputPipe& output : outputs_) output.pipe.write_end.reset();
+    supervisor_control.reset();
+    if (input_.write_end.is_open()) {
+      if (input_bytes().empty())
+        input_.write_end.reset();
+      else
+        ::fcntl(input_.write_end.get(), F_SETFL, O_NONBLOCK);
+    }
+    return true;
+  }
+
+  const std::string& input_bytes() const {
+    static const std::string empty;
+    return options_.standard_input ? *options_.standard_input : empty;
+  }
+
+  // The poll loop: bounded reads and writes, the clock and the stop callback between them.
+  Ending exchange_until_the_end() {
+    const double timeout = std::min(std::max(0.0, options_.timeout_seconds), 1e9);
+    const std::int64_t deadline = call_start_ + static_cast<std::int64_t>(timeout * 1e9);
+    while (outputs_[0].pipe.read_end.is_open() || outputs_[1].pipe.read_end.is_open() ||
+           supervisor_->control() >= 0) {
+      const std::int64_t now = monotonic_nanoseconds();
+      if (now >= deadline) return Ending::timed_out;
+      if (options_.stop_requested && options_.stop_requested()) return Ending::stopped;
+      pollfd descriptors[4] = {{outputs_[0].pipe.read_end.get(), POLLIN, 0},
+                               {outputs_[1].pipe.read_end.get(), POLLIN, 0},
+                               {supervisor_->control(), POLLIN, 0},
+                               {input_.write_end.get(), POLLOUT, 0}};
+      const double wait =
+          std::min(seconds_between(now, deadline), options_.stop_requested ? 0.1 : 1.0);
+      const int ready = ::poll(descriptors, 4, static_cast<int>(std::ceil(wait * 1000)));
+      if (ready < 0 && errno != EINTR) {
+        record_failure("poll failed: " + errno_text(errno), errno);
+        return Ending::failed;
+      }
+      if (ready <= 0) continue;
+      if (descriptors[3].revents) write_some_input();
+      if (!read_outputs(descriptors)) return Ending::stopped;
+      if (descriptors[2].revents & (POLLIN | POLLHUP | POLLERR)) read_supervisor_report();
+    }
+    return Ending::ended;
+  }
+
+  void write_some_input() {
+    const std::string& bytes = input_bytes();
+    const ssize_t written =
+        write_without_broken_pipe_signal(input_.write_end.get(), bytes.data() + input_written_,
+                                         std::min(kChunkBytes, bytes.size() - input_written_));
+    if (written > 0) input_written_ += static_cast<std::size_t>(written);
+    // Done, or the program closed its end (EPIPE): end of file for it, or nothing to do.
+    if (input_written_ == bytes.size() || (written < 0 && errno != EAGAIN))
+      input_.write_end.reset();
+  }
+
+  // One chunk from each ready output; false when a callback asks to stop.
+  bool read_outputs(const pollfd* descriptors) {
+    for (int stream = 0; stream < 2; ++stream) {
       if (!(descriptors[stream].revents & (POLLIN | POLLHUP | POLLERR))) continue;
-      FileDescriptor& read_end = outputs[stream].pipe.read_end;
-      const std::size_t count = read_chunk(read_end.get(), chunk.data(), chunk.size());
+      FileDescriptor& read_end = outputs_[stream].pipe.read_end;
+      const std::size_t count = read_chunk(read_end.get(), chunk_.data(), chunk_.size());
       if (count == 0)
         read_end.reset();
-      else if (!outputs[stream].take(chunk.data(), count))
-        stopped = true;
+      else if (!outputs_[stream].take(chunk_.data(), count))
+        return false;
     }
-    if (stopped) break;
-    if (descriptors[2].revents & (POLLIN | POLLHUP | POLLERR)) {
-      char* bytes = reinterpret_cast<char*>(&report);
-      const std::size_t count =
-          read_chunk(supervisor.control(), bytes + report_bytes, sizeof report - report_bytes);
-      if (count == 0) {
-        supervisor.supervisor_closed_control();
-        continue;
-      }
-      report_bytes += count;
-      if (report_bytes < sizeof report) continue;
-      report_bytes = 0;
-      if (report.kind == SupervisorReportKind::started) {
-        supervisor.set_program(report.value);
-        program_start = report.monotonic_nanoseconds;
-      } else if (report.kind == SupervisorReportKind::not_executed) {
-        result.how = ProcessResult::How::not_started;
-        result.error_number = report.value;
-        program_start = program_end = report.monotonic_nanoseconds;
-        reported_end = true;
-      } else if (report.kind == SupervisorReportKind::ended) {
-        const int status = report.value;
-        result.how =
-            WIFSIGNALED(status) ? ProcessResult::How::signalled : ProcessResult::How::exited;
-        result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : 0;
-        result.signal_number = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-        program_end = report.monotonic_nanoseconds;
-        reported_end = true;
-      }
+    return true;
+  }
+
+  // Reads (part of) the supervisor's next fixed-size report and records what it says.
+  void read_supervisor_report() {
+    char* bytes = reinterpret_cast<char*>(&report_);
+    const std::size_t count =
+        read_chunk(supervisor_->control(), bytes + report_bytes_, sizeof report_ - report_bytes_);
+    if (count == 0) {
+      supervisor_->supervisor_closed_control();
+      return;
+    }
+    report_bytes_ += count;
+    if (report_bytes_ < sizeof report_) return;
+    report_bytes_ = 0;
+    if (report_.kind == SupervisorReportKind::started) {
+      supervisor_->set_program(report_.value);
+      program_start_ = report_.monotonic_nanoseconds;
+    } else if (report_.kind == SupervisorReportKind::not_executed) {
+      result_.how = ProcessResult::How::not_started;
+      result_.error_number = report_.value;
+      program_start_ = program_end_ = report_.monotonic_nanoseconds;
+      reported_end_ = true;
+    } else if (report_.kind == SupervisorReportKind::ended) {
+      const int status = report_.value;
+      result_.how =
+          WIFSIGNALED(status) ? ProcessResult::How::signalled : ProcessResult::How::exited;
+      result_.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : 0;
+      result_.signal_number = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+      program_end_ = report_.monotonic_nanoseconds;
+      reported_end_ = true;
     }
   }
-  const std::int64_t kill_time = monotonic_nanoseconds();
-  supervisor.stop();  // at the time limit or a stop: kills the tree; else it has ended already
-  if (timed_out || stopped) {
-    result.how = timed_out ? ProcessResult::How::timed_out : ProcessResult::How::stopped;
-    result.exit_status = result.signal_number = 0;
-    result.seconds = seconds_between(program_start > 0 ? program_start : call_start, kill_time);
-    return finish();
-  }
-  if (!reported_end) return failed("the supervisor of the program ended without a report");
-  result.seconds = seconds_between(program_start, program_end);
-  return finish();
+
+  const ProcessOptions& options_;
+  ProcessResult result_;
+  const std::int64_t call_start_;
+  std::string path_;
+  Pipe input_;
+  OutputPipe outputs_[2];
+  std::optional<Supervisor> supervisor_;
+  std::size_t input_written_ = 0;
+  std::string chunk_ = std::string(kChunkBytes, '\0');
+  SupervisorReport report_{};
+  std::size_t report_bytes_ = 0;
+  bool reported_end_ = false;
+  std::int64_t program_start_ = 0, program_end_ = 0;
+};
+
+}  // namespace
+
+ProcessResult run_process(const ProcessOptions& options) {
+  return ProcessRun(options).run();
 }
 
 }  // namespace emnet

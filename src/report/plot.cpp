@@ -350,13 +350,10 @@ bool resonance_shows_peak(double damping_ratio) {
   return damping_ratio < kResonanceDampingLimit;  // the mode rule's limit (kModeRule)
 }
 
-Status write_bode_plot(const std::string& path, const std::string& title,
-                       const std::vector<double>& frequencies_hz,
-                       const std::vector<BodeSeries>& series,
-                       const std::vector<PlotMarker>& markers, bool log_frequency,
-                       const PlotOutput& output) {
-  PlotFiles files;
-  if (Status status = plot_files_for(path, files); !status.ok()) return status;
+namespace {
+
+Status check_bode_input(const std::string& path, const std::vector<double>& frequencies_hz,
+                        const std::vector<BodeSeries>& series) {
   if (series.empty()) return Status::failure("Bode plot '" + path + "': no series to plot");
   if (frequencies_hz.empty()) return Status::failure("Bode plot '" + path + "': no frequencies");
   for (const auto& one : series) {
@@ -366,61 +363,84 @@ Status write_bode_plot(const std::string& path, const std::string& title,
                              std::to_string(frequencies_hz.size()) + " frequencies");
     }
   }
+  return Status::success();
+}
 
-  // Rows kept: finite frequencies (positive ones on a log axis).
+// The Bode plot's curves over the rows kept, magnitudes grouped into one panel per unit.
+struct BodeCurves {
+  std::vector<size_t> rows;  ///< finite frequencies (positive ones on a log axis)
+  std::vector<std::string> units;
+  std::vector<size_t> group_of;  ///< the panel of each series
+  std::vector<double> group_lo, group_hi;
+  std::vector<std::vector<double>> magnitude, phase_deg;  ///< NaN: a missing point
+  double phase_min = std::numeric_limits<double>::infinity();
+  double phase_max = -std::numeric_limits<double>::infinity();
+  bool any_magnitude = false;
+  double x_lo = std::numeric_limits<double>::infinity();
+  double x_hi = -std::numeric_limits<double>::infinity();
+};
+
+std::vector<size_t> plotted_rows(const std::vector<double>& frequencies_hz, bool log_frequency) {
   std::vector<size_t> rows;
   for (size_t f = 0; f < frequencies_hz.size(); ++f) {
     const double frequency = frequencies_hz[f];
     if (std::isfinite(frequency) && (!log_frequency || frequency > 0.0)) rows.push_back(f);
   }
-  if (rows.empty()) {
-    return Status::failure("Bode plot '" + path + "': no " +
-                           std::string(log_frequency ? "positive finite" : "finite") +
-                           " frequency to plot");
-  }
+  return rows;
+}
 
-  // The magnitude panels: one per unit.
+// Magnitude and unwrapped phase of series k; zero or non-finite values are missing (NaN) points.
+void add_bode_curve(const BodeSeries& series, size_t k, BodeCurves& curves) {
+  bool have_previous = false;
+  double previous_phase = 0.0;
+  const size_t group = curves.group_of[k];
+  for (size_t f : curves.rows) {
+    const std::complex<double> value = series.values[f];
+    const double size = std::abs(value);
+    if (!(size > 0.0) || !std::isfinite(size)) {
+      curves.magnitude[k].push_back(std::nan(""));
+      curves.phase_deg[k].push_back(std::nan(""));
+      continue;
+    }
+    double phase = std::arg(value) * 180.0 / kPi;
+    if (have_previous) phase += 360.0 * std::round((previous_phase - phase) / 360.0);
+    previous_phase = phase;
+    have_previous = true;
+    curves.any_magnitude = true;
+    curves.group_lo[group] = std::min(curves.group_lo[group], size);
+    curves.group_hi[group] = std::max(curves.group_hi[group], size);
+    curves.magnitude[k].push_back(size);
+    curves.phase_deg[k].push_back(phase);
+  }
+  normalise_phase(curves.phase_deg[k]);
+  for (double phase : curves.phase_deg[k]) {
+    if (!std::isfinite(phase)) continue;
+    curves.phase_min = std::min(curves.phase_min, phase);
+    curves.phase_max = std::max(curves.phase_max, phase);
+  }
+}
+
+BodeCurves bode_curves(const std::vector<double>& frequencies_hz,
+                       const std::vector<BodeSeries>& series, std::vector<size_t> rows) {
+  BodeCurves curves;
+  curves.rows = std::move(rows);
   std::vector<std::string> series_units;
   for (const auto& one : series) series_units.push_back(one.unit);
-  std::vector<size_t> group_of;
-  const std::vector<std::string> units = unit_groups(series_units, group_of);
-  std::vector<double> group_lo(units.size(), std::numeric_limits<double>::infinity()),
-      group_hi(units.size(), 0.0);
-
-  // Magnitude and unwrapped phase; zero or non-finite values are missing (NaN) points.
-  const size_t series_count = series.size();
-  std::vector<std::vector<double>> magnitude(series_count), phase_deg(series_count);
-  double phase_min = std::numeric_limits<double>::infinity(), phase_max = -phase_min;
-  bool any_magnitude = false;
-  for (size_t k = 0; k < series_count; ++k) {
-    bool have_previous = false;
-    double previous_phase = 0.0;
-    for (size_t f : rows) {
-      const std::complex<double> value = series[k].values[f];
-      const double size = std::abs(value);
-      if (!(size > 0.0) || !std::isfinite(size)) {
-        magnitude[k].push_back(std::nan(""));
-        phase_deg[k].push_back(std::nan(""));
-        continue;
-      }
-      double phase = std::arg(value) * 180.0 / kPi;
-      if (have_previous) phase += 360.0 * std::round((previous_phase - phase) / 360.0);
-      previous_phase = phase;
-      have_previous = true;
-      any_magnitude = true;
-      group_lo[group_of[k]] = std::min(group_lo[group_of[k]], size);
-      group_hi[group_of[k]] = std::max(group_hi[group_of[k]], size);
-      magnitude[k].push_back(size);
-      phase_deg[k].push_back(phase);
-    }
-    normalise_phase(phase_deg[k]);
-    for (double phase : phase_deg[k]) {
-      if (!std::isfinite(phase)) continue;
-      phase_min = std::min(phase_min, phase);
-      phase_max = std::max(phase_max, phase);
-    }
+  curves.units = unit_groups(series_units, curves.group_of);
+  curves.group_lo.assign(curves.units.size(), std::numeric_limits<double>::infinity());
+  curves.group_hi.assign(curves.units.size(), 0.0);
+  curves.magnitude.resize(series.size());
+  curves.phase_deg.resize(series.size());
+  for (size_t k = 0; k < series.size(); ++k) add_bode_curve(series[k], k, curves);
+  for (size_t f : curves.rows) {
+    curves.x_lo = std::min(curves.x_lo, frequencies_hz[f]);
+    curves.x_hi = std::max(curves.x_hi, frequencies_hz[f]);
   }
+  return curves;
+}
 
+std::string bode_data_text(const std::string& title, const std::vector<double>& frequencies_hz,
+                           const std::vector<BodeSeries>& series, const BodeCurves& curves) {
   std::ostringstream data = classic_stream();
   data << "# " << one_line(title) << "\n# frequency [Hz]";
   for (const auto& one : series) {
@@ -428,112 +448,158 @@ Status write_bode_plot(const std::string& path, const std::string& title,
          << one_line(one.label) << " [deg]";
   }
   data << "\n# NaN: zero or non-finite value (no point on the log axis)\n";
-  for (size_t row = 0; row < rows.size(); ++row) {
-    data << number_text(frequencies_hz[rows[row]]);
-    for (size_t k = 0; k < series_count; ++k) {
-      data << ' ' << number_text(magnitude[k][row]) << ' ' << number_text(phase_deg[k][row]);
+  for (size_t row = 0; row < curves.rows.size(); ++row) {
+    data << number_text(frequencies_hz[curves.rows[row]]);
+    for (size_t k = 0; k < series.size(); ++k) {
+      data << ' ' << number_text(curves.magnitude[k][row]) << ' '
+           << number_text(curves.phase_deg[k][row]);
     }
     data << '\n';
   }
+  return data.str();
+}
 
-  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
-  for (size_t f : rows) {
-    x_lo = std::min(x_lo, frequencies_hz[f]);
-    x_hi = std::max(x_hi, frequencies_hz[f]);
-  }
-  const std::vector<MarkerGroup> groups = marker_groups(markers, x_lo, x_hi, log_frequency);
-
+// Where the Bode plot's parts go: marker labels, legend, panels (magnitudes, then the phase).
+struct BodeLayout {
+  std::vector<MarkerGroup> groups;
+  MarkerLabelLayout marker_labels;
   std::vector<std::string> legend_entries;
+  LegendLayout legend;
+  std::string title_expression;
+  std::vector<std::pair<double, double>> panels;
+  int height_px = 0;
+};
+constexpr int kBodeWidthPx = 1000;
+
+BodeLayout bode_layout(const std::string& title, const std::vector<BodeSeries>& series,
+                       const std::vector<PlotMarker>& markers, bool log_frequency,
+                       const BodeCurves& curves) {
+  BodeLayout layout;
+  layout.groups = marker_groups(markers, curves.x_lo, curves.x_hi, log_frequency);
   for (const auto& one : series) {
-    legend_entries.push_back(
+    layout.legend_entries.push_back(
         legend_label(one.label + (one.unit.empty() ? "" : " [" + one.unit + "]")));
   }
-  constexpr int kWidthPx = 1000;
-  MarkerLabelLayout marker_labels =
-      marker_label_layout(groups, x_lo, x_hi, log_frequency, kWidthPx);
-  const int height_px = 750 + 230 * static_cast<int>(units.size() - 1) +
-                        static_cast<int>(std::lround(marker_labels.strip_px));
+  layout.marker_labels =
+      marker_label_layout(layout.groups, curves.x_lo, curves.x_hi, log_frequency, kBodeWidthPx);
+  layout.height_px = 750 + 230 * static_cast<int>(curves.units.size() - 1) +
+                     static_cast<int>(std::lround(layout.marker_labels.strip_px));
   int title_lines = 1;
-  const std::string title_expression = title_text(title, 110, title_lines);
-  const LegendLayout legend = legend_layout(legend_entries, "", kWidthPx, height_px, title_lines);
+  layout.title_expression = title_text(title, 110, title_lines);
+  layout.legend =
+      legend_layout(layout.legend_entries, "", kBodeWidthPx, layout.height_px, title_lines);
   // Panels from under the marker labels down to the bottom: the magnitudes, then the phase.
-  const double top = legend.panel_top - marker_labels.strip_px / height_px;
-  place_rows(marker_labels, top, height_px);
-  const double bottom = 70.0 / height_px, gap = 45.0 / height_px;
-  std::vector<double> weights(units.size(), 1.0);
-  weights.push_back(units.size() > 1 ? 0.8 : 1.0);
-  const auto panels = stacked_panels(top, bottom, gap, weights);
+  const double top = layout.legend.panel_top - layout.marker_labels.strip_px / layout.height_px;
+  place_rows(layout.marker_labels, top, layout.height_px);
+  const double bottom = 70.0 / layout.height_px, gap = 45.0 / layout.height_px;
+  std::vector<double> weights(curves.units.size(), 1.0);
+  weights.push_back(curves.units.size() > 1 ? 0.8 : 1.0);
+  layout.panels = stacked_panels(top, bottom, gap, weights);
+  return layout;
+}
 
-  const std::string preamble =
-      script_header(files, "Bode plot", title) + gnuplot_terminal_line(files, kWidthPx, height_px);
+// The magnitude panel of unit group g; the first also carries the figure's one key.
+std::string bode_magnitude_panel(size_t g, const std::string& data_name, const BodeCurves& curves,
+                                 BodeLayout& layout) {
+  std::ostringstream script = classic_stream();
+  const std::string& unit = curves.units[g];
+  const std::string label = unit.empty() ? "magnitude" : "magnitude [" + one_line(unit) + "]";
+  script << "\n# Magnitude" << (unit.empty() ? "" : " [" + one_line(unit) + "]") << "\n"
+         << (g ? unset_markers() : "") << "set tmargin at screen "
+         << number_text(layout.panels[g].first) << "\nset bmargin at screen "
+         << number_text(layout.panels[g].second) << "\n"
+         << "set format x ''\nunset xlabel\n"
+         << "set ytics autofreq\nset ylabel " << gnuplot_string(label) << " noenhanced\n"
+         << (curves.any_magnitude ? magnitude_axis(curves.group_lo[g], curves.group_hi[g])
+                                  : "set logscale y\nset format y '%h'\nset yrange [0.1:10]\nset "
+                                    "label 99 'no non-zero values to plot' at graph 0.5, graph "
+                                    "0.5 center\n")
+         << (g == 0 ? layout.legend.key_line : "unset key\n")
+         << marker_lines(layout.groups, g == 0 ? &layout.marker_labels : nullptr) << "plot ";
+  const size_t series_count = curves.group_of.size();
+  bool first = true;
+  for (size_t k = 0; k < series_count; ++k) {
+    if (curves.group_of[k] != g) continue;
+    script << (first ? "" : ", \\\n     ") << gnuplot_string(data_name) << " using 1:" << 2 + 2 * k
+           << " with lines lw 2 " << colour_of(static_cast<int>(k)) << " title "
+           << gnuplot_string(layout.legend_entries[k]);
+    first = false;
+  }
+  // With one key for the figure, the other panels' series join it from the first panel.
+  if (g == 0) {
+    for (size_t k = 0; k < series_count; ++k) {
+      if (curves.group_of[k] == 0) continue;
+      script << ", \\\n     NaN with lines lw 2 " << colour_of(static_cast<int>(k)) << " title "
+             << gnuplot_string(layout.legend_entries[k]);
+    }
+  }
+  script << "\n";
+  return script.str();
+}
+
+// The bottom panel: the unwrapped phase of every series.
+std::string bode_phase_panel(const std::string& data_name, const BodeCurves& curves,
+                             const BodeLayout& layout) {
+  std::ostringstream script = classic_stream();
+  const auto& phase_panel = layout.panels.back();
+  const double step =
+      curves.any_magnitude ? phase_tic_step(curves.phase_max - curves.phase_min) : 45.0;
+  script << "\n# Phase (unwrapped along frequency)\n"
+         << unset_markers() << "set tmargin at screen " << number_text(phase_panel.first)
+         << "\nset bmargin at screen " << number_text(phase_panel.second) << "\n"
+         << "set format x '% h'\nset xlabel 'frequency [Hz]'\n"
+         << "unset logscale y\nset format y '% h'\nset yrange [*:*]\nset ytics autofreq\n"
+         << "set ylabel 'phase [deg]'\n"
+         << (curves.any_magnitude ? "" : "set yrange [-180:180]\n")
+         << (step > 0.0 ? "set ytics " + number_text(step) + "\n" : "") << "unset key\n"
+         << marker_lines(layout.groups, nullptr) << "plot ";
+  for (size_t k = 0; k < curves.group_of.size(); ++k) {
+    script << (k ? ", \\\n     " : "") << gnuplot_string(data_name) << " using 1:" << 3 + 2 * k
+           << " with lines lw 2 " << colour_of(static_cast<int>(k)) << " notitle";
+  }
+  script << "\n\nunset multiplot\n";
+  return script.str();
+}
+
+}  // namespace
+
+Status write_bode_plot(const std::string& path, const std::string& title,
+                       const std::vector<double>& frequencies_hz,
+                       const std::vector<BodeSeries>& series,
+                       const std::vector<PlotMarker>& markers, bool log_frequency,
+                       const PlotOutput& output) {
+  PlotFiles files;
+  if (Status status = plot_files_for(path, files); !status.ok()) return status;
+  if (Status status = check_bode_input(path, frequencies_hz, series); !status.ok()) return status;
+  std::vector<size_t> rows = plotted_rows(frequencies_hz, log_frequency);
+  if (rows.empty()) {
+    return Status::failure("Bode plot '" + path + "': no " +
+                           std::string(log_frequency ? "positive finite" : "finite") +
+                           " frequency to plot");
+  }
+  const BodeCurves curves = bode_curves(frequencies_hz, series, std::move(rows));
+  BodeLayout layout = bode_layout(title, series, markers, log_frequency, curves);
+  const std::string preamble = script_header(files, "Bode plot", title) +
+                               gnuplot_terminal_line(files, kBodeWidthPx, layout.height_px);
   const ScriptBody body = [&](const std::string& data_name) {
     std::ostringstream script = classic_stream();
-    script << multiplot_start(title_expression) << "set xrange " << range_text(x_lo, x_hi) << "\n"
+    script << multiplot_start(layout.title_expression) << "set xrange "
+           << range_text(curves.x_lo, curves.x_hi) << "\n"
            << (log_frequency ? "set logscale x\n" : "") << "set grid xtics ytics\n"
            << "set border lw 1\n"
            << kMarkerLabelStyle;
-
-    for (size_t g = 0; g < units.size(); ++g) {
-      const std::string label =
-          units[g].empty() ? "magnitude" : "magnitude [" + one_line(units[g]) + "]";
-      script << "\n# Magnitude" << (units[g].empty() ? "" : " [" + one_line(units[g]) + "]") << "\n"
-             << (g ? unset_markers() : "") << "set tmargin at screen "
-             << number_text(panels[g].first) << "\nset bmargin at screen "
-             << number_text(panels[g].second) << "\n"
-             << "set format x ''\nunset xlabel\n"
-             << "set ytics autofreq\nset ylabel " << gnuplot_string(label) << " noenhanced\n"
-             << (any_magnitude ? magnitude_axis(group_lo[g], group_hi[g])
-                               : "set logscale y\nset format y '%h'\nset yrange [0.1:10]\nset "
-                                 "label 99 'no non-zero values to plot' at graph 0.5, graph 0.5 "
-                                 "center\n")
-             << (g == 0 ? legend.key_line : "unset key\n")
-             << marker_lines(groups, g == 0 ? &marker_labels : nullptr) << "plot ";
-      bool first = true;
-      for (size_t k = 0; k < series_count; ++k) {
-        if (group_of[k] != g) continue;
-        script << (first ? "" : ", \\\n     ") << gnuplot_string(data_name)
-               << " using 1:" << 2 + 2 * k << " with lines lw 2 " << colour_of(static_cast<int>(k))
-               << " title " << gnuplot_string(legend_entries[k]);
-        first = false;
-      }
-      // With one key for the figure, the other panels' series join it from the first panel.
-      if (g == 0) {
-        for (size_t k = 0; k < series_count; ++k) {
-          if (group_of[k] == 0) continue;
-          script << ", \\\n     NaN with lines lw 2 " << colour_of(static_cast<int>(k)) << " title "
-                 << gnuplot_string(legend_entries[k]);
-        }
-      }
-      script << "\n";
-    }
-
-    // Bottom panel: unwrapped phase.
-    const auto& phase_panel = panels.back();
-    const double step = any_magnitude ? phase_tic_step(phase_max - phase_min) : 45.0;
-    script << "\n# Phase (unwrapped along frequency)\n"
-           << unset_markers() << "set tmargin at screen " << number_text(phase_panel.first)
-           << "\nset bmargin at screen " << number_text(phase_panel.second) << "\n"
-           << "set format x '% h'\nset xlabel 'frequency [Hz]'\n"
-           << "unset logscale y\nset format y '% h'\nset yrange [*:*]\nset ytics autofreq\n"
-           << "set ylabel 'phase [deg]'\n"
-           << (any_magnitude ? "" : "set yrange [-180:180]\n")
-           << (step > 0.0 ? "set ytics " + number_text(step) + "\n" : "") << "unset key\n"
-           << marker_lines(groups, nullptr) << "plot ";
-    for (size_t k = 0; k < series_count; ++k) {
-      script << (k ? ", \\\n     " : "") << gnuplot_string(data_name) << " using 1:" << 3 + 2 * k
-             << " with lines lw 2 " << colour_of(static_cast<int>(k)) << " notitle";
-    }
-    script << "\n\nunset multiplot\n";
+    for (size_t g = 0; g < curves.units.size(); ++g)
+      script << bode_magnitude_panel(g, data_name, curves, layout);
+    script << bode_phase_panel(data_name, curves, layout);
     return script.str();
   };
-  return write_script_and_run(files, preamble, body, data.str(), path, output);
+  return write_script_and_run(files, preamble, body,
+                              bode_data_text(title, frequencies_hz, series, curves), path, output);
 }
 
-Status write_line_plot(const std::string& path, const std::string& title,
-                       const std::string& x_label, const std::vector<LineSeries>& series,
-                       const LinePlotOptions& options) {
-  PlotFiles files;
-  if (Status status = plot_files_for(path, files); !status.ok()) return status;
+namespace {
+
+Status check_line_input(const std::string& path, const std::vector<LineSeries>& series) {
   if (series.empty()) return Status::failure("line plot '" + path + "': no series to plot");
   for (const auto& one : series) {
     if (one.x.size() != one.y.size()) {
@@ -542,115 +608,167 @@ Status write_line_plot(const std::string& path, const std::string& title,
                              std::to_string(one.y.size()) + " y values");
     }
   }
+  return Status::success();
+}
+
+// The line plot's data: one block per series (gnuplot `index k`), separated by two blank lines,
+// and the ranges and panels they fill.
+struct LineData {
+  std::string text;
+  std::vector<std::string> units;
+  std::vector<size_t> group_of;  ///< the panel of each series
+  std::vector<bool> group_has_point;
+  bool any_point = false;
+  double x_lo = std::numeric_limits<double>::infinity();
+  double x_hi = -std::numeric_limits<double>::infinity();
+};
+
+LineData line_data(const std::string& title, const std::string& x_label,
+                   const std::vector<LineSeries>& series) {
+  LineData data;
   std::vector<std::string> series_units;
   for (const auto& one : series) series_units.push_back(one.unit);
-  std::vector<size_t> group_of;
-  const std::vector<std::string> units = unit_groups(series_units, group_of);
-  auto axis_label = [&](const std::string& unit) {
-    const auto named = options.axis_labels.find(unit);
-    if (named != options.axis_labels.end()) return named->second;
-    return unit.empty() ? std::string("value") : "value [" + unit + "]";
-  };
-
-  // One data block per series (gnuplot `index k`), separated by two blank lines.
-  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
-  bool any_point = false;
-  std::vector<bool> group_has_point(units.size(), false);
-  std::ostringstream data = classic_stream();
-  data << "# " << one_line(title) << "\n# columns: " << one_line(x_label)
+  data.units = unit_groups(series_units, data.group_of);
+  data.group_has_point.assign(data.units.size(), false);
+  std::ostringstream text = classic_stream();
+  text << "# " << one_line(title) << "\n# columns: " << one_line(x_label)
        << " | the series' value in its unit"
        << "; one block per series (gnuplot index 0, 1, ...); NaN: missing point\n";
   for (size_t k = 0; k < series.size(); ++k) {
     const auto& one = series[k];
-    data << (k ? "\n\n" : "") << "# index " << k << ": " << one_line(one.label) << " ["
+    text << (k ? "\n\n" : "") << "# index " << k << ": " << one_line(one.label) << " ["
          << one_line(one.unit) << "]\n";
     for (size_t i = 0; i < one.x.size(); ++i) {
       const bool finite = std::isfinite(one.x[i]) && std::isfinite(one.y[i]);
-      data << number_text(finite ? one.x[i] : std::nan("")) << ' '
+      text << number_text(finite ? one.x[i] : std::nan("")) << ' '
            << number_text(finite ? one.y[i] : std::nan("")) << '\n';
       if (finite) {
-        any_point = true;
-        group_has_point[group_of[k]] = true;
-        x_lo = std::min(x_lo, one.x[i]);
-        x_hi = std::max(x_hi, one.x[i]);
+        data.any_point = true;
+        data.group_has_point[data.group_of[k]] = true;
+        data.x_lo = std::min(data.x_lo, one.x[i]);
+        data.x_hi = std::max(data.x_hi, one.x[i]);
       }
     }
-    if (one.x.empty()) data << "NaN NaN\n";  // keeps the block, so the indices stay in step
+    if (one.x.empty()) text << "NaN NaN\n";  // keeps the block, so the indices stay in step
   }
+  data.text = text.str();
+  return data;
+}
 
+// Where the line plot's parts go: marker labels, legend and the panels, one per unit.
+struct LineLayout {
+  std::vector<MarkerGroup> groups;
+  MarkerLabelLayout marker_labels;
+  LegendLayout legend;
+  std::string title_expression;
+  std::vector<std::pair<double, double>> panels;
+  int height_px = 0;
+};
+constexpr int kLineWidthPx = 1000;
+
+LineLayout line_layout(const std::string& title, const std::vector<LineSeries>& series,
+                       const LinePlotOptions& options, const LineData& data) {
+  LineLayout layout;
   std::vector<std::string> legend_entries;
   for (const auto& one : series)
     if (one.in_legend) legend_entries.push_back(legend_label(one.label));
-  constexpr int kWidthPx = 1000;
-  const std::vector<MarkerGroup> groups =
-      any_point ? marker_groups(options.markers, x_lo, x_hi, false) : std::vector<MarkerGroup>{};
-  MarkerLabelLayout marker_labels = marker_label_layout(groups, x_lo, x_hi, false, kWidthPx);
-  const int height_px = 650 + 260 * static_cast<int>(units.size() - 1) +
-                        static_cast<int>(std::lround(marker_labels.strip_px));
+  layout.groups = data.any_point ? marker_groups(options.markers, data.x_lo, data.x_hi, false)
+                                 : std::vector<MarkerGroup>{};
+  layout.marker_labels =
+      marker_label_layout(layout.groups, data.x_lo, data.x_hi, false, kLineWidthPx);
+  layout.height_px = 650 + 260 * static_cast<int>(data.units.size() - 1) +
+                     static_cast<int>(std::lround(layout.marker_labels.strip_px));
   int title_lines = 1;
-  const std::string title_expression = title_text(title, 110, title_lines);
-  const LegendLayout legend =
-      legend_layout(legend_entries, options.legend_note, kWidthPx, height_px, title_lines);
+  layout.title_expression = title_text(title, 110, title_lines);
+  layout.legend = legend_layout(legend_entries, options.legend_note, kLineWidthPx, layout.height_px,
+                                title_lines);
   // Panels from under the marker labels down; the first (the response) a little taller than the
   // others (the drive, other units).
-  const double top = legend.panel_top - marker_labels.strip_px / height_px;
-  place_rows(marker_labels, top, height_px);
-  std::vector<double> weights(units.size(), 1.0);
-  if (units.size() > 1) weights.front() = 1.4;
-  const auto panels = stacked_panels(top, 72.0 / height_px, 40.0 / height_px, weights);
-  auto style_of = [&](size_t k) {
-    const LineSeries& one = series[k];
-    return "with lines lw 2 " + colour_of(one.colour >= 0 ? one.colour : static_cast<int>(k)) +
-           (one.dashed ? " dt (8,5)" : "");
-  };
+  const double top = layout.legend.panel_top - layout.marker_labels.strip_px / layout.height_px;
+  place_rows(layout.marker_labels, top, layout.height_px);
+  std::vector<double> weights(data.units.size(), 1.0);
+  if (data.units.size() > 1) weights.front() = 1.4;
+  layout.panels = stacked_panels(top, 72.0 / layout.height_px, 40.0 / layout.height_px, weights);
+  return layout;
+}
 
-  const std::string preamble =
-      script_header(files, "Line plot", title) + gnuplot_terminal_line(files, kWidthPx, height_px);
+std::string line_axis_label(const LinePlotOptions& options, const std::string& unit) {
+  const auto named = options.axis_labels.find(unit);
+  if (named != options.axis_labels.end()) return named->second;
+  return unit.empty() ? std::string("value") : "value [" + unit + "]";
+}
+
+std::string line_style(const LineSeries& one, size_t k) {
+  return "with lines lw 2 " + colour_of(one.colour >= 0 ? one.colour : static_cast<int>(k)) +
+         (one.dashed ? " dt (8,5)" : "");
+}
+
+// Panel g of the line plot; the first also carries the figure's one key.
+std::string line_panel(size_t g, const std::string& data_name, const std::string& x_label,
+                       const std::vector<LineSeries>& series, const LinePlotOptions& options,
+                       const LineData& data, LineLayout& layout) {
+  std::ostringstream script = classic_stream();
+  const bool last = g + 1 == data.units.size();
+  const std::string axis_label = line_axis_label(options, data.units[g]);
+  script << "\n# Panel " << g + 1 << ": " << one_line(axis_label) << "\n"
+         << (g ? unset_markers() : "") << "set tmargin at screen "
+         << number_text(layout.panels[g].first) << "\nset bmargin at screen "
+         << number_text(layout.panels[g].second) << "\n"
+         << (last ? "set format x '% h'\nset xlabel " + gnuplot_string(x_label) + " noenhanced\n"
+                  : std::string("set format x ''\nunset xlabel\n"))
+         << "set ylabel " << gnuplot_string(axis_label) << " noenhanced\n"
+         << (data.group_has_point[g] ? "set yrange [*:*]\n" : "set yrange [0:1]\n")
+         << (g == 0 ? layout.legend.key_line + layout.legend.note_line : std::string("unset key\n"))
+         << marker_lines(layout.groups, g == 0 ? &layout.marker_labels : nullptr)
+         << reference_lines(options.reference_lines, data.units[g]) << "plot ";
+  bool first = true;
+  for (size_t k = 0; k < series.size(); ++k) {
+    if (data.group_of[k] != g) continue;
+    script << (first ? "" : ", \\\n     ") << gnuplot_string(data_name) << " index " << k
+           << " using 1:2 " << line_style(series[k], k) << " "
+           << (series[k].in_legend && g == 0
+                   ? "title " + gnuplot_string(legend_label(series[k].label))
+                   : std::string("notitle"));
+    first = false;
+  }
+  // One key for the figure: the other panels' series join it from the first panel.
+  if (g == 0) {
+    for (size_t k = 0; k < series.size(); ++k) {
+      if (data.group_of[k] == 0 || !series[k].in_legend) continue;
+      script << ", \\\n     NaN " << line_style(series[k], k) << " title "
+             << gnuplot_string(legend_label(series[k].label));
+    }
+  }
+  script << "\n";
+  return script.str();
+}
+
+}  // namespace
+
+Status write_line_plot(const std::string& path, const std::string& title,
+                       const std::string& x_label, const std::vector<LineSeries>& series,
+                       const LinePlotOptions& options) {
+  PlotFiles files;
+  if (Status status = plot_files_for(path, files); !status.ok()) return status;
+  if (Status status = check_line_input(path, series); !status.ok()) return status;
+  const LineData data = line_data(title, x_label, series);
+  LineLayout layout = line_layout(title, series, options, data);
+  const std::string preamble = script_header(files, "Line plot", title) +
+                               gnuplot_terminal_line(files, kLineWidthPx, layout.height_px);
   const ScriptBody body = [&](const std::string& data_name) {
     std::ostringstream script = classic_stream();
-    script << multiplot_start(title_expression)
+    script << multiplot_start(layout.title_expression)
            << "set grid xtics ytics\nset border lw 1\nset format y '%g'\n"
            << "set offsets 0, 0, graph 0.06, graph 0.06\n"
            << kMarkerLabelStyle
-           << (any_point ? "set xrange " + range_text(x_lo, x_hi) + "\n" : "set xrange [0:1]\n");
-    for (size_t g = 0; g < units.size(); ++g) {
-      const bool last = g + 1 == units.size();
-      script << "\n# Panel " << g + 1 << ": " << one_line(axis_label(units[g])) << "\n"
-             << (g ? unset_markers() : "") << "set tmargin at screen "
-             << number_text(panels[g].first) << "\nset bmargin at screen "
-             << number_text(panels[g].second) << "\n"
-             << (last
-                     ? "set format x '% h'\nset xlabel " + gnuplot_string(x_label) + " noenhanced\n"
-                     : std::string("set format x ''\nunset xlabel\n"))
-             << "set ylabel " << gnuplot_string(axis_label(units[g])) << " noenhanced\n"
-             << (group_has_point[g] ? "set yrange [*:*]\n" : "set yrange [0:1]\n")
-             << (g == 0 ? legend.key_line + legend.note_line : std::string("unset key\n"))
-             << marker_lines(groups, g == 0 ? &marker_labels : nullptr)
-             << reference_lines(options.reference_lines, units[g]) << "plot ";
-      bool first = true;
-      for (size_t k = 0; k < series.size(); ++k) {
-        if (group_of[k] != g) continue;
-        script << (first ? "" : ", \\\n     ") << gnuplot_string(data_name) << " index " << k
-               << " using 1:2 " << style_of(k) << " "
-               << (series[k].in_legend && g == 0
-                       ? "title " + gnuplot_string(legend_label(series[k].label))
-                       : std::string("notitle"));
-        first = false;
-      }
-      // One key for the figure: the other panels' series join it from the first panel.
-      if (g == 0) {
-        for (size_t k = 0; k < series.size(); ++k) {
-          if (group_of[k] == 0 || !series[k].in_legend) continue;
-          script << ", \\\n     NaN " << style_of(k) << " title "
-                 << gnuplot_string(legend_label(series[k].label));
-        }
-      }
-      script << "\n";
-    }
+           << (data.any_point ? "set xrange " + range_text(data.x_lo, data.x_hi) + "\n"
+                              : "set xrange [0:1]\n");
+    for (size_t g = 0; g < data.units.size(); ++g)
+      script << line_panel(g, data_name, x_label, series, options, data, layout);
     script << "\nunset multiplot\n";
     return script.str();
   };
-  return write_script_and_run(files, preamble, body, data.str(), path, options.output);
+  return write_script_and_run(files, preamble, body, data.text, path, options.output);
 }
 
 }  // namespace emnet
