@@ -4,9 +4,9 @@
 // element ports and parameters, not a method of each element: the elements know nothing of it.
 //
 // A new element kind is one file, deck/<element>.cpp with its write_<element>, and one entry
-// here: its declaration and its line in the table. The list is explicit on purpose. A
-// self-registering static object in each deck/<element>.cpp would need no entry here, but
-// emnet is a static library (libemnet.a): the linker takes an object file from it only when
+// here: its header's include, its declaration and its line in the table. The list is explicit on
+// purpose. A self-registering static object in each deck/<element>.cpp would need no entry here,
+// but emnet is a static library (libemnet.a): the linker takes an object file from it only when
 // something references a symbol in it, so a file that only registers itself is silently left
 // out and its element has no SPICE form. One list in the file that the writer references
 // cannot be dropped, and reads in one place which kinds the writer knows.
