@@ -1,7 +1,8 @@
 // The SPICE deck writer's inner parts, shared by its sources: spice_netlist.cpp (the deck, its
-// header, outputs and analysis), deck_elements.cpp (the groups of elements and each element's
-// lines) and deck_sources.cpp (the sources' time functions). The mapping itself is described in
-// include/emnet/spice/spice_netlist.hpp.
+// header, outputs and analysis), deck_groups.cpp (the groups of elements and their titles, by
+// the component each element realises), deck/<element>.cpp (each element kind's lines, found
+// through the table of deck/element_writers.cpp) and deck_sources.cpp (the sources' time
+// functions). The mapping itself is described in include/emnet/spice/spice_netlist.hpp.
 #pragma once
 
 #include <algorithm>
@@ -80,6 +81,14 @@ struct Group {
   std::vector<const Element*> elements;
 };
 
+// A group's title as one element's component gives it (deck_groups.cpp): the group's key, its
+// title lines, and a line of its own for each element (the circuit's entries), if any.
+struct GroupTitle {
+  std::string key = "other";
+  std::vector<std::string> lines;
+  std::string element_line;
+};
+
 class DeckWriter {
  public:
   DeckWriter(const Model& model, const SpiceDeckOptions& options)
@@ -94,7 +103,10 @@ class DeckWriter {
 
   SpiceDeck write();
 
- private:
+  // ---- What an element's writer (deck/<element>.cpp) uses to write its lines.
+  bool op() const { return op_; }
+  bool ac() const { return ac_; }
+  const Network& network() const { return network_; }
   std::string where() const { return scene_.file.empty() ? std::string("scene") : scene_.file; }
   bool mechanical(NodeId node) const {
     return node != ground && is_mechanical(network_.node(node).domain);
@@ -112,6 +124,31 @@ class DeckWriter {
     if (!std::isfinite(x)) throw InputError(where(), what, "value is not finite");
     return number(x);
   }
+  // The deck's element lines, in order.
+  std::ostringstream& body() { return body_; }
+  // A comment line (wrapped) among the element lines.
+  void comment(const std::string& text) { comment(body_, text); }
+  std::string element_name(char letter, const std::string& name) {
+    return elements_.claim(std::string(1, letter) + "_" + name);
+  }
+  std::string internal_node(const std::string& name, const std::string& meaning) {
+    const std::string spice = nodes_.claim(name);
+    node_comments_.push_back(spice + ": " + meaning);
+    return spice;
+  }
+  // Where ngspice holds the k-th branch unknown of element `element`: the branch vector of
+  // `spice_element` (none if empty), times `sign`.
+  void branch(const std::string& element, int k, const std::string& spice_element, double sign) {
+    const int index = system_.branch_index(element, k);
+    deck_.unknowns.at(static_cast<size_t>(index)) = {
+        spice_element.empty() ? "" : lower(spice_element) + "#branch", sign};
+  }
+  // An element (or part) the op deck leaves out of the current group: no force at rest.
+  void leave_out(const std::string& name) { left_out_.push_back(name); }
+  // A source's SPICE value: its time function (tran), or its value at t = 0 and AC phasor.
+  std::string source(const Waveform& waveform, const std::string& what);
+
+ private:
   // A comment, wrapped at 100 columns on spaces; continuation lines are indented.
   void comment(std::ostringstream& out, const std::string& text) const {
     const std::string safe = spice_comment_text(text);
@@ -134,23 +171,22 @@ class DeckWriter {
     }
     out << "* " << line << "\n";
   }
-  std::string element_name(char letter, const std::string& name) {
-    return elements_.claim(std::string(1, letter) + "_" + name);
-  }
-  std::string internal_node(const std::string& name, const std::string& meaning) {
-    const std::string spice = nodes_.claim(name);
-    node_comments_.push_back(spice + ": " + meaning);
-    return spice;
-  }
 
   void check_names() const;
+  void check_options() const;
   void name_nodes();
   std::vector<Group> groups() const;
-  void write_header(std::ostringstream& out) const;
+  GroupTitle group_title(const ElementRecord* record) const;
+  void write_groups();
   void write_element(const Element& element);
+  void add_notes();
+  void write_header(std::ostringstream& out) const;
+  void write_conventions(std::ostringstream& out) const;
+  void write_beam(std::ostringstream& out) const;
+  void write_drive(std::ostringstream& out) const;
+  void write_ac_input(std::ostringstream& out) const;
   void write_outputs();
   void write_analysis(std::ostringstream& out);
-  std::string source(const Waveform& waveform, const std::string& what);
   std::string time_function(const Waveform& waveform, const std::string& what);
   std::string pwl(const std::vector<std::pair<double, double>>& points, const std::string& what);
   std::string node_meaning(const Node& node) const;

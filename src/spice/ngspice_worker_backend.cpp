@@ -108,27 +108,16 @@ std::string worker_lines(const std::vector<NgspiceMessage>& messages) {
   return text.empty() ? text : ":" + text;
 }
 
-}  // namespace
-
-BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
-                                     const NgspiceOptions& options) {
-  BackendAttempt attempt;
-  NgspiceResult& result = attempt.result;
-  const Clock::time_point start = Clock::now();
-  std::string worker_path;
-  if (!find_ngspice_worker(options, worker_path, attempt.unavailable_reason)) {
-    attempt.missing_worker = true;
-    return attempt;
-  }
-
-  // The records and the worker's own output (as standard-error lines) in one bounded log,
-  // in the order they come.
-  MessageLog log(options.max_message_bytes);
-  LineCollector output_lines(NgspiceStream::err, log);
-  RecordReader reader(options.max_result_bytes);
+// What the worker's records say, gathered as they come: its messages into the log, its
+// vectors, plot names, times and status into the attempt's result.
+struct WorkerRecords {
+  BackendAttempt& attempt;
+  MessageLog& log;
+  const std::string& worker_path;
   bool library_loaded = false, library_unavailable = false, have_status = false;
-  std::string record_problem;
-  const auto handle = [&](RecordTag tag, const std::string& payload) {
+
+  void handle(RecordTag tag, const std::string& payload) {
+    NgspiceResult& result = attempt.result;
     switch (tag) {
       case RecordTag::message_out:
       case RecordTag::message_err: {
@@ -163,6 +152,63 @@ BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
         have_status = decode_status(payload, result.status);
         break;
     }
+  }
+};
+
+// The run's status from how the worker ended, once the library was there: a failure, with no
+// vectors, unless the worker ended by itself after its status record.
+void set_worker_run_status(const ProcessResult& end, const WorkerRecords& records,
+                           const std::string& record_problem, const NgspiceOptions& options,
+                           NgspiceResult& result) {
+  using How = ProcessResult::How;
+  const double timeout = std::max(0.0, options.timeout_seconds);
+  if (end.how == How::failed) {
+    result.vectors.clear();
+    result.status = Status::failure("cannot run the ngspice worker: " + end.problem);
+  } else if (end.how == How::timed_out) {
+    result.vectors.clear();
+    result.status =
+        Status::failure("ngspice timed out: still running after " + ngspice_seconds_text(timeout) +
+                        " s (timeout_seconds); its worker process was killed");
+  } else if (end.how == How::stopped) {
+    result.vectors.clear();
+    result.status = Status::failure(record_problem + "; the worker process was killed");
+  } else if (end.how == How::signalled) {
+    result.vectors.clear();
+    result.status = Status::failure("ngspice crashed (" + ngspice_signal_text(end.signal_number) +
+                                    ") on the deck" + ngspice_error_excerpt(result.messages));
+  } else if (!records.have_status) {
+    result.vectors.clear();
+    result.status = Status::failure("the ngspice worker ended without a result (exit status " +
+                                    std::to_string(end.exit_status) + ")" +
+                                    (end.exit_status == kNgspiceWorkerUsageExitStatus
+                                         ? worker_lines(result.messages)
+                                         : ngspice_error_excerpt(result.messages)));
+  }
+}
+
+}  // namespace
+
+BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
+                                     const NgspiceOptions& options) {
+  BackendAttempt attempt;
+  NgspiceResult& result = attempt.result;
+  const Clock::time_point start = Clock::now();
+  std::string worker_path;
+  if (!find_ngspice_worker(options, worker_path, attempt.unavailable_reason)) {
+    attempt.missing_worker = true;
+    return attempt;
+  }
+
+  // The records and the worker's own output (as standard-error lines) in one bounded log,
+  // in the order they come.
+  MessageLog log(options.max_message_bytes);
+  LineCollector output_lines(NgspiceStream::err, log);
+  RecordReader reader(options.max_result_bytes);
+  WorkerRecords records{attempt, log, worker_path};
+  std::string record_problem;
+  const auto handle = [&](RecordTag tag, const std::string& payload) {
+    records.handle(tag, payload);
   };
 
   ProcessOptions process;
@@ -191,9 +237,8 @@ BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
                                  "' could not be started: " + errno_text(end.error_number);
     return attempt;
   }
-  if (library_unavailable && record_problem.empty()) return attempt;
-  const bool signalled = end.how == How::signalled;
-  if (!library_loaded && signalled) {
+  if (records.library_unavailable && record_problem.empty()) return attempt;
+  if (!records.library_loaded && end.how == How::signalled) {
     attempt.unavailable_reason = "the worker died of " + ngspice_signal_text(end.signal_number) +
                                  " while loading libngspice";
     return attempt;
@@ -203,30 +248,7 @@ BackendAttempt run_library_in_worker(const std::vector<std::string>& lines,
   if (result.backend_description.empty())
     result.backend_description =
         "libngspice in-process (in the worker process " + terminal_text(worker_path) + ")";
-  const double timeout = std::max(0.0, options.timeout_seconds);
-  if (end.how == How::failed) {
-    result.vectors.clear();
-    result.status = Status::failure("cannot run the ngspice worker: " + end.problem);
-  } else if (end.how == How::timed_out) {
-    result.vectors.clear();
-    result.status =
-        Status::failure("ngspice timed out: still running after " + ngspice_seconds_text(timeout) +
-                        " s (timeout_seconds); its worker process was killed");
-  } else if (end.how == How::stopped) {
-    result.vectors.clear();
-    result.status = Status::failure(record_problem + "; the worker process was killed");
-  } else if (signalled) {
-    result.vectors.clear();
-    result.status = Status::failure("ngspice crashed (" + ngspice_signal_text(end.signal_number) +
-                                    ") on the deck" + ngspice_error_excerpt(result.messages));
-  } else if (!have_status) {
-    result.vectors.clear();
-    result.status = Status::failure("the ngspice worker ended without a result (exit status " +
-                                    std::to_string(end.exit_status) + ")" +
-                                    (end.exit_status == kNgspiceWorkerUsageExitStatus
-                                         ? worker_lines(result.messages)
-                                         : ngspice_error_excerpt(result.messages)));
-  }
+  set_worker_run_status(end, records, record_problem, options, result);
   if (result.ngspice_seconds == 0.0) result.ngspice_seconds = result.seconds;
   return attempt;
 }

@@ -1,8 +1,9 @@
 // SPICE deck writer: see include/emnet/spice/spice_netlist.hpp for the mapping of every element
 // kind, the sign conventions, the op deck's static network and the safety rules. This file
-// writes the deck's header, outputs and analysis; the element lines are deck_elements.cpp's
-// (grouped by the model's record of its elements), the sources' time functions
-// deck_sources.cpp's; the outputs come from the model's output list (emnet/model/outputs.hpp).
+// writes the deck's header, outputs and analysis; the element lines are deck/<element>.cpp's
+// (grouped by the model's record of its elements in deck_groups.cpp), the sources' time
+// functions deck_sources.cpp's; the outputs come from the model's output list
+// (emnet/model/outputs.hpp).
 #include "emnet/spice/spice_netlist.hpp"
 
 #include "deck_writer.hpp"
@@ -118,6 +119,25 @@ void DeckWriter::write_header(std::ostringstream& out) const {
           "Plain SPICE3: runs unchanged with ngspice -b FILE.cir; only elements LTspice "
           "also reads (R L C V I E F G B, PULSE SIN PWL)");
   out << "*\n";
+  write_conventions(out);
+  out << "*\n";
+  write_beam(out);
+  write_drive(out);
+  if (ac_) write_ac_input(out);
+  if (op_)
+    comment(out, "sources at their value at t = 0 (emnet static: the first half-period's drive)");
+  out << "*\n";
+  comment(out, "nodes (" + std::to_string(node_comments_.size()) + "):");
+  for (const auto& line : node_comments_) comment(out, line);
+  if (!deck_.notes.empty()) {
+    out << "*\n";
+    comment(out, "notes:");
+    for (const auto& note : deck_.notes) comment(out, note);
+  }
+}
+
+// The analogy: what a node voltage and a current are in each domain, and each element kind.
+void DeckWriter::write_conventions(std::ostringstream& out) const {
   comment(out,
           "Firestone (mobility) analogy: across quantity = node voltage, through quantity "
           "= current; all values SI");
@@ -139,7 +159,10 @@ void DeckWriter::write_header(std::ostringstream& out) const {
   comment(out,
           "  lever / ideal transformer = 0 V sense source + E sources (across) + F sources "
           "(through); clamp = node 0");
-  out << "*\n";
+}
+
+// The beam: its segments and sections, and its damping.
+void DeckWriter::write_beam(std::ostringstream& out) const {
   const BeamSpec& beam = scene_.beam;
   if (beam.sections.empty()) {
     comment(out, "beam: " + std::to_string(beam.segments) + " segments, L = " +
@@ -164,6 +187,10 @@ void DeckWriter::write_header(std::ostringstream& out) const {
   const double tau = scene_.damping.effective_kelvin_voigt_time();
   comment(out, "damping: viscous " + number(scene_.damping.viscous_per_length) +
                    " N*s/m^2, Kelvin-Voigt tau = " + number(tau) + " s");
+}
+
+// The drive: its kind, DEAs, levels and switching, with the keys its kind uses.
+void DeckWriter::write_drive(std::ostringstream& out) const {
   const DriveSpec& drive = scene_.drive;
   std::string deas;
   for (const auto& d : drive.deas) deas += (deas.empty() ? "" : ", ") + d;
@@ -187,43 +214,35 @@ void DeckWriter::write_header(std::ostringstream& out) const {
                      ", frequency " + number(drive.frequency) + " Hz" + switching +
                      ", electrical dynamics " + (drive.electrical_dynamics ? "on" : "off"));
   }
-  if (ac_) {
-    switch (drive.kind) {
-      case DriveKind::antagonistic:
-        comment(out,
-                "AC input (as emnet ac): the alternating part of each DEA's force, "
-                "k_F*V^2/2, the two DEAs in antiphase; its square wave's fundamental is "
-                "4/pi times this; applied as the force itself, not through the RC loops");
-        break;
-      case DriveKind::switched:
-        comment(out,
-                "AC input (as emnet ac): the alternating part of the DEA's 0/k_F*V^2 square-wave "
-                "force, k_F*V^2/2; its square wave's fundamental is 4/pi times this; applied as "
-                "the force itself, not through the RC loop");
-        break;
-      case DriveKind::bias_differential:
-      case DriveKind::single:
-        comment(out,
-                "AC input (as emnet ac): the source amplitude v about the bias V0, the "
-                "network linearised at V0 (ngspice linearises the B sources at its "
-                "operating point)");
-        break;
-      case DriveKind::none:
-        comment(out,
-                "AC input (as emnet ac): the scene's loads, each with its value as "
-                "amplitude");
-        break;
-    }
-  }
-  if (op_)
-    comment(out, "sources at their value at t = 0 (emnet static: the first half-period's drive)");
-  out << "*\n";
-  comment(out, "nodes (" + std::to_string(node_comments_.size()) + "):");
-  for (const auto& line : node_comments_) comment(out, line);
-  if (!deck_.notes.empty()) {
-    out << "*\n";
-    comment(out, "notes:");
-    for (const auto& note : deck_.notes) comment(out, note);
+}
+
+// What the ac deck's input is, as emnet ac takes it for the drive kind.
+void DeckWriter::write_ac_input(std::ostringstream& out) const {
+  switch (scene_.drive.kind) {
+    case DriveKind::antagonistic:
+      comment(out,
+              "AC input (as emnet ac): the alternating part of each DEA's force, "
+              "k_F*V^2/2, the two DEAs in antiphase; its square wave's fundamental is "
+              "4/pi times this; applied as the force itself, not through the RC loops");
+      break;
+    case DriveKind::switched:
+      comment(out,
+              "AC input (as emnet ac): the alternating part of the DEA's 0/k_F*V^2 square-wave "
+              "force, k_F*V^2/2; its square wave's fundamental is 4/pi times this; applied as "
+              "the force itself, not through the RC loop");
+      break;
+    case DriveKind::bias_differential:
+    case DriveKind::single:
+      comment(out,
+              "AC input (as emnet ac): the source amplitude v about the bias V0, the "
+              "network linearised at V0 (ngspice linearises the B sources at its "
+              "operating point)");
+      break;
+    case DriveKind::none:
+      comment(out,
+              "AC input (as emnet ac): the scene's loads, each with its value as "
+              "amplitude");
+      break;
   }
 }
 
@@ -294,8 +313,7 @@ void DeckWriter::write_analysis(std::ostringstream& out) {
   out << ".end\n";
 }
 
-SpiceDeck DeckWriter::write() {
-  check_names();
+void DeckWriter::check_options() const {
   if (tran_ && !(options_.end_time > 0.0 && std::isfinite(options_.end_time)))
     throw InputError("tran", "end time", "must be a positive time");
   if (tran_ && !(options_.output_step > 0.0 && options_.output_step <= options_.end_time))
@@ -315,12 +333,10 @@ SpiceDeck DeckWriter::write() {
                        "needs 0 <= from < to and points >= 2, or points = 1 and from = to; "
                        "from > 0 when log");
   }
-  deck_.analysis = options_.analysis;
-  deck_.unknowns.assign(system_.unknowns.size(), {});
-  outputs_ = options_.outputs.empty() ? spice_output_probes(model_) : options_.outputs;
-  name_nodes();
-  for (size_t k = 0; k < node_names_.size(); ++k) deck_.unknowns[k] = {lower(node_names_[k]), 1.0};
+}
 
+// Each group under its title, then its elements' lines (and, in the op deck, what it left out).
+void DeckWriter::write_groups() {
   for (const Group& group : groups()) {
     body_ << "*\n";
     for (size_t k = 0; k < group.title.size(); ++k)
@@ -334,8 +350,10 @@ SpiceDeck DeckWriter::write() {
               "left out of the static network (masses, dampers: no force at rest): " + names);
     }
   }
-  write_outputs();
+}
 
+// The notes of the header: the resolve step's choices, what the analysis changes, the edges.
+void DeckWriter::add_notes() {
   // What the resolve step chose for the scene's "auto" keys ([model] band and tolerance).
   for (const auto& choice : model_.automatic_choices) {
     std::string note = choice.reason;  // plain comment text: '"auto"' as 'auto'
@@ -360,7 +378,19 @@ SpiceDeck DeckWriter::write() {
     deck_.notes.push_back(
         "a linear edge centred on a switching instant differs from the instant switch by a "
         "zero-mean pulse: its effect is of second order in the edge width");
+}
 
+SpiceDeck DeckWriter::write() {
+  check_names();
+  check_options();
+  deck_.analysis = options_.analysis;
+  deck_.unknowns.assign(system_.unknowns.size(), {});
+  outputs_ = options_.outputs.empty() ? spice_output_probes(model_) : options_.outputs;
+  name_nodes();
+  for (size_t k = 0; k < node_names_.size(); ++k) deck_.unknowns[k] = {lower(node_names_[k]), 1.0};
+  write_groups();
+  write_outputs();
+  add_notes();
   std::ostringstream out;
   write_header(out);
   out << body_.str();
