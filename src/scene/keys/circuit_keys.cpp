@@ -26,7 +26,7 @@ void add_element_keys(SceneTableKeys& keys) {
   keys.add(key("circuit", "name", ParameterKind::name, kCircuitUsers,
                "the element's name (it names the element in SPICE decks and messages)"))
       .required = true;
-  keys.back().constraint = "letters, digits and '_', at most 64 characters, unique";
+  keys.back().constraint = kEntryNameConstraint;
   keys.back().text = [](const Scene& scene, std::size_t entry) {
     return scene.circuit[entry].name;
   };

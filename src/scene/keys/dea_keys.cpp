@@ -12,7 +12,7 @@ SceneTableKeys dea_table_keys() {
   keys.add(key("dea", "name", ParameterKind::name, "DEA",
                "the DEA's name (drive.deas, probes and outputs name it)"))
       .required = true;
-  keys.back().constraint = "letters, digits and '_', at most 64 characters, unique";
+  keys.back().constraint = kEntryNameConstraint;
   keys.back().text = [](const Scene& scene, std::size_t entry) { return scene.deas[entry].name; };
   entry_field(keys.add(quantity("dea", "from", dim::length, unbounded(), true, "DEA",
                                 "x0, where the DEA's electrode starts along the beam")),

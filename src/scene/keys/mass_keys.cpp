@@ -11,7 +11,7 @@ SceneTableKeys mass_table_keys() {
       entries_table("mass", scene_limits::masses, "point masses on the beam, one [[mass]] each");
   keys.add(key("mass", "name", ParameterKind::name, "point masses",
                "the mass's name (optional; outputs name it)"));
-  keys.back().constraint = "letters, digits and '_', at most 64 characters, unique";
+  keys.back().constraint = kEntryNameConstraint;
   keys.back().default_note = "none (addressed by index: mass[0])";
   keys.back().text = [](const Scene& scene, std::size_t entry) {
     return scene.beam.masses[entry].name;

@@ -12,7 +12,7 @@ SceneTableKeys probe_table_keys() {
   keys.add(key("probe", "name", ParameterKind::name, "probes",
                "the probe's name (--probe NAME, outputs)"))
       .required = true;
-  keys.back().constraint = "letters, digits and '_', at most 64 characters, unique";
+  keys.back().constraint = kEntryNameConstraint;
   keys.back().text = [](const Scene& scene, std::size_t entry) { return scene.probes[entry].name; };
   keys
       .add(choice(

@@ -43,6 +43,10 @@ SceneTableKeys plain_table(const char* name, const char* meaning);
 // An array of tables of at most `maximum_entries` entries: [[dea]].
 SceneTableKeys entries_table(const char* name, std::size_t maximum_entries, const char* meaning);
 
+// The constraint of an entry's name key (dea[].name, mass[].name, ...), which the reader checks.
+inline constexpr const char* kEntryNameConstraint =
+    "letters, digits and '_', at most 64 characters, unique";
+
 // ---- ranges, with the reader's messages -------------------------------------------------
 
 ParameterRange unbounded();

@@ -12,7 +12,7 @@ SceneTableKeys spring_table_keys() {
                     "springs and dashpots to ground or between two points, one [[spring]] each");
   keys.add(key("spring", "name", ParameterKind::name, "springs",
                "the spring's name (optional; outputs name it)"));
-  keys.back().constraint = "letters, digits and '_', at most 64 characters, unique";
+  keys.back().constraint = kEntryNameConstraint;
   keys.back().default_note = "none (addressed by index: spring[0])";
   keys.back().text = [](const Scene& scene, std::size_t entry) {
     return scene.beam.springs[entry].name;
