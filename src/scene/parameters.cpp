@@ -4,7 +4,7 @@
 // lists the tables in order.
 #include "emnet/scene/parameters.hpp"
 
-#include "keys/scene_key_tables.hpp"
+#include "scene/keys/scene_key_tables.hpp"
 
 namespace emnet {
 
