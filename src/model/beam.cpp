@@ -131,19 +131,22 @@ int BeamLayout::node_at(double position) const {
 
 namespace {
 
-// Point masses and springs on the beam's nodes (see model.hpp).
-void add_attachments(Network& network, const BeamSpec& spec, const BeamLayout& beam,
-                     ModelStructure* structure) {
-  auto node_of = [&](double position, const std::string& what) {
-    const int node = beam.node_at(position);
-    if (node < 0)
-      throw std::logic_error("add_beam: no node at " + millimetres(position) + " for " + what);
-    return static_cast<size_t>(node);
-  };
+// The node at `position` that the mesh put there for `what` (a mass, a spring's end).
+size_t attachment_node(const BeamLayout& beam, double position, const std::string& what) {
+  const int node = beam.node_at(position);
+  if (node < 0)
+    throw std::logic_error("add_beam: no node at " + millimetres(position) + " for " + what);
+  return static_cast<size_t>(node);
+}
+
+// Point masses: a capacitor m to ground on the velocity node, J on the angular velocity node
+// (see model.hpp).
+void add_point_masses(Network& network, const BeamSpec& spec, const BeamLayout& beam,
+                      ModelStructure* structure) {
   for (size_t m = 0; m < spec.masses.size(); ++m) {
     const MassSpec& mass = spec.masses[m];
     const std::string id = mass.name.empty() ? std::to_string(m) : mass.name;
-    const size_t k = node_of(mass.at, "mass " + id);
+    const size_t k = attachment_node(beam, mass.at, "mass " + id);
     auto record = [&](ElementPart part, const std::string& what) {
       return ElementRecord{Component::point_mass,
                            part,
@@ -161,13 +164,19 @@ void add_attachments(Network& network, const BeamSpec& spec, const BeamLayout& b
           network, structure, record(ElementPart::point_rotary_inertia, "rotary inertia [kg*m^2]"),
           "pj" + std::to_string(m), beam.angular_velocity[k], ground, mass.rotary_inertia);
   }
+}
+
+// Springs: an inductor 1/k between their ends' nodes (ground for none), a dashpot c across it
+// (see model.hpp).
+void add_springs(Network& network, const BeamSpec& spec, const BeamLayout& beam,
+                 ModelStructure* structure) {
   for (size_t n = 0; n < spec.springs.size(); ++n) {
     const SpringSpec& spring = spec.springs[n];
     const std::string id = spring.name.empty() ? std::to_string(n) : spring.name;
     const bool rotational = spring.kind == SpringKind::rotational;
     const std::vector<NodeId>& nodes = rotational ? beam.angular_velocity : beam.velocity;
-    const NodeId a = nodes[node_of(spring.at, "spring " + id)];
-    const NodeId b = spring.to ? nodes[node_of(*spring.to, "spring " + id)] : ground;
+    const NodeId a = nodes[attachment_node(beam, spring.at, "spring " + id)];
+    const NodeId b = spring.to ? nodes[attachment_node(beam, *spring.to, "spring " + id)] : ground;
     if (a == b) continue;  // both ends held (or the same node): no force
     const Domain domain = rotational ? Domain::rotational : Domain::translational;
     const std::string where = "spring " + id + " (" +
@@ -187,13 +196,10 @@ void add_attachments(Network& network, const BeamSpec& spec, const BeamLayout& b
   }
 }
 
-}  // namespace
-
-BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& damping,
-                    const std::vector<double>& attachments, ModelStructure* structure) {
-  BeamLayout beam;
-  const BeamMesh mesh = mesh_beam(spec, attachments);
-  const std::vector<SectionSpec> sections = effective_sections(spec);
+// The layout's grid: node positions, each segment's length, section and shear parameter
+// Φ = 12·EI/(κGA·l²) (0 for Euler–Bernoulli).
+void lay_out_segments(const BeamSpec& spec, const BeamMesh& mesh,
+                      const std::vector<SectionSpec>& sections, BeamLayout& beam) {
   const int n = mesh.segments();
   beam.length = spec.length;
   beam.segment_length = spec.length / n;
@@ -202,7 +208,6 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
   beam.raised_from = mesh.raised_from;
   beam.segment_section = mesh.section;
   const bool timoshenko = spec.theory == BeamTheory::timoshenko;
-  const double default_tau = damping.effective_kelvin_voigt_time();
   for (int k = 0; k < n; ++k) {
     const size_t i = static_cast<size_t>(k);
     const SectionSpec& section = sections[static_cast<size_t>(mesh.section[i])];
@@ -212,7 +217,12 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
     beam.shear_parameter.push_back(
         timoshenko && shear > 0.0 ? 12.0 * section.bending_stiffness / (shear * l * l) : 0.0);
   }
+}
 
+// The velocity and angular velocity node of each grid point; ground where an end holds it.
+void add_beam_nodes(Network& network, const BeamSpec& spec, BeamLayout& beam,
+                    ModelStructure* structure) {
+  const int n = static_cast<int>(beam.x.size()) - 1;
   for (int k = 0; k <= n; ++k) {
     const double x = beam.x[static_cast<size_t>(k)];
     const bool left = k == 0, right = k == n;
@@ -232,8 +242,13 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
                                    "r" + std::to_string(k), Domain::rotational,
                                    "angular velocity at " + where + " [rad/s]"));
   }
+}
 
-  // Lumped mass, rotary inertia and viscous damping: half of each adjacent segment's share.
+// Lumped mass, rotary inertia and viscous damping: half of each adjacent segment's share.
+void add_lumped_node_elements(Network& network, const BeamMesh& mesh,
+                              const std::vector<SectionSpec>& sections, const DampingSpec& damping,
+                              const BeamLayout& beam, ModelStructure* structure) {
+  const int n = mesh.segments();
   for (int k = 0; k <= n; ++k) {
     const size_t i = static_cast<size_t>(k);
     double mass = 0.0, inertia = 0.0, viscous = 0.0;
@@ -264,8 +279,15 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
                               record(ElementPart::rotary_inertia, "rotary inertia [kg*m^2]"),
                               "inertia" + id, beam.angular_velocity[i], ground, inertia);
   }
+}
 
-  for (int k = 0; k < n; ++k) {
+// Each segment's rotational compliance l/EI, translational compliance l³/(12·EI) (+ l/(κGA) with
+// shear) to its middle node, and the lever (l/2)·(Ω_k + Ω_k+1) from there to the next node.
+void add_segment_elements(Network& network, const BeamSpec& spec, const BeamMesh& mesh,
+                          const std::vector<SectionSpec>& sections, const DampingSpec& damping,
+                          const BeamLayout& beam, ModelStructure* structure) {
+  const double default_tau = damping.effective_kelvin_voigt_time();
+  for (int k = 0; k < mesh.segments(); ++k) {
     const size_t a = static_cast<size_t>(k), b = a + 1;
     const SectionSpec& section = sections[static_cast<size_t>(mesh.section[a])];
     const double l = beam.segment_lengths[a];
@@ -304,7 +326,21 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
                                        {beam.angular_velocity[b], ground, 0.5 * l}},
         Domain::translational);
   }
-  add_attachments(network, spec, beam, structure);
+}
+
+}  // namespace
+
+BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& damping,
+                    const std::vector<double>& attachments, ModelStructure* structure) {
+  BeamLayout beam;
+  const BeamMesh mesh = mesh_beam(spec, attachments);
+  const std::vector<SectionSpec> sections = effective_sections(spec);
+  lay_out_segments(spec, mesh, sections, beam);
+  add_beam_nodes(network, spec, beam, structure);
+  add_lumped_node_elements(network, mesh, sections, damping, beam, structure);
+  add_segment_elements(network, spec, mesh, sections, damping, beam, structure);
+  add_point_masses(network, spec, beam, structure);
+  add_springs(network, spec, beam, structure);
   return beam;
 }
 

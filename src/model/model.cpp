@@ -175,28 +175,24 @@ void set_electrical_dynamics(Scene& scene, bool on) {
                 choices.end());
 }
 
-Model build_model(const Scene& scene) {
-  if (const std::vector<std::string> keys = unresolved_keys(scene); !keys.empty()) {
-    std::string list;
-    for (const auto& key : keys) list += (list.empty() ? "" : ", ") + key;
-    throw std::logic_error("build_model: the scene" +
-                           (scene.file.empty() ? std::string() : " " + scene.file) +
-                           " has unresolved \"auto\" keys (" + list +
-                           "); resolve them first (resolve_scene or prepare_model, "
-                           "emnet/studies/resolve.hpp)");
-  }
-  Model model;
-  model.scene = scene;
-  Network& network = model.network;
-  ModelStructure* structure = &model.structure;
-  BeamSpec beam_spec = scene.beam;
-  DampingSpec damping = scene.damping;
-  model.automatic_choices = scene.automatic_choices;
-  if (scene.environment.fluid != Fluid::none)
-    model.fluid = apply_fluid_loading(scene, beam_spec, damping, model.notes);
-  for (const AutomaticChoice& choice : model.automatic_choices)
-    model.notes.push_back(choice.reason);
-  model.beam = add_beam(network, beam_spec, damping, scene_attachment_points(scene), structure);
+namespace {
+
+// Throws std::logic_error when `scene` still has "auto" keys (a programming error: the front-ends
+// resolve a scene before they build its model).
+void require_resolved(const Scene& scene) {
+  const std::vector<std::string> keys = unresolved_keys(scene);
+  if (keys.empty()) return;
+  std::string list;
+  for (const auto& key : keys) list += (list.empty() ? "" : ", ") + key;
+  throw std::logic_error("build_model: the scene" +
+                         (scene.file.empty() ? std::string() : " " + scene.file) +
+                         " has unresolved \"auto\" keys (" + list +
+                         "); resolve them first (resolve_scene or prepare_model, "
+                         "emnet/studies/resolve.hpp)");
+}
+
+// The note on a mesh that is not N equal segments.
+void note_beam_mesh(Model& model) {
   const BeamLayout& beam = model.beam;
   if (beam.raised_from > 0)
     model.notes.push_back(
@@ -208,8 +204,12 @@ Model build_model(const Scene& scene) {
     model.notes.push_back("beam mesh: " + std::to_string(beam.x.size() - 1) +
                           " segments spread by length between the section boundaries, masses, "
                           "springs, DEA ends and loads");
+}
 
-  // Point loads: consistent nodal loads from the Hermite shape functions, exact at the nodes.
+// Point loads: consistent nodal loads from the Hermite shape functions, exact at the nodes.
+void add_point_loads(const Scene& scene, Model& model) {
+  Network& network = model.network;
+  const BeamLayout& beam = model.beam;
   int load_index = 0;
   for (const LoadSpec& load : scene.loads) {
     const LinearTerms terms =
@@ -225,88 +225,115 @@ Model build_model(const Scene& scene) {
                        network.node(node).name + " [" + through_unit(network.node(node).domain) +
                        "]";
       add_recorded<CurrentSource>(
-          network, structure, std::move(record),
+          network, &model.structure, std::move(record),
           "load" + std::to_string(load_index) + "_" + network.node(node).name, ground, node, w);
     }
     ++load_index;
   }
+}
 
+// Ideal voltage-driven force F(t) = k_F·V(t)² of DEA `spec`, entered as through sources along its
+// coupling: a linear network.
+void add_ideal_dea_force(const DriveSpec& drive, const DeaSpec& spec, const DeaLayout& layout,
+                         Model& model) {
+  Network& network = model.network;
+  const size_t parts = squared_force(dea_drive(drive, spec.name).voltage, 1.0, 0.0).size();
+  for (size_t part = 0; part < parts; ++part)
+    for (size_t c = 0; c < layout.coupling.size(); ++c) {
+      const NodeId node = layout.coupling[c].node;
+      ElementRecord record;
+      record.component = Component::drive_source;
+      record.part = ElementPart::ideal_force;
+      record.dea = spec.name;
+      record.force_part = static_cast<int>(part);
+      record.coupling = static_cast<int>(c);
+      record.meaning = "DEA " + spec.name + "'s ideal force k_F*V(t)^2" +
+                       (parts > 1 ? (part == 0 ? " (DC and f part)" : " (2f part)") : "") +
+                       " on node " + network.node(node).name + " [" +
+                       through_unit(network.node(node).domain) + "]";
+      const Waveform force = drive_source_waveform(drive, layout, record);
+      add_recorded<CurrentSource>(network, &model.structure, std::move(record),
+                                  "F_" + spec.name + "_" + network.node(node).name, ground, node,
+                                  force);
+    }
+}
+
+// DEA `spec`'s electrical loop: its source (unless the circuit drives its terminal), electrode
+// resistance and transducer; sets the layout's source and electrode nodes.
+void add_dea_electrical_loop(const Scene& scene, const DeaSpec& spec, DeaLayout& layout,
+                             Model& model) {
+  Network& network = model.network;
+  ModelStructure* structure = &model.structure;
+  const DriveSpec& drive = scene.drive;
+  NodeRecord source_node{NodeRole::dea_source, -1, spec.name};
+  NodeRecord electrode_node{NodeRole::dea_electrode, -1, spec.name};
+  layout.source_node =
+      add_recorded_node(network, structure, source_node, "s_" + spec.name, Domain::electrical,
+                        "DEA " + spec.name + " source terminal [V]");
+  layout.electrode_node =
+      add_recorded_node(network, structure, electrode_node, "e_" + spec.name, Domain::electrical,
+                        "DEA " + spec.name + " capacitor voltage [V]");
+  if (!circuit_drives_dea(scene, spec.name)) {
+    ElementRecord source{Component::drive_source,
+                         ElementPart::source_voltage,
+                         -1,
+                         spec.name,
+                         -1,
+                         -1,
+                         "DEA " + spec.name + "'s source voltage V(t) [V]"};
+    const Waveform voltage = drive_source_waveform(drive, layout, source);
+    add_recorded<VoltageSource>(network, structure, std::move(source), "V_" + spec.name,
+                                layout.source_node, ground, voltage, Domain::electrical);
+  }
+  add_recorded<Conductance>(network, structure,
+                            {Component::dea, ElementPart::electrode_resistance, -1, spec.name, -1,
+                             -1, "DEA " + spec.name + "'s electrode resistance R_e [Ohm]"},
+                            "Re_" + spec.name, layout.source_node, layout.electrode_node,
+                            1.0 / spec.electrode_resistance);
+  add_recorded<Dea>(network, structure,
+                    {Component::dea, ElementPart::transducer, -1, spec.name, -1, -1,
+                     "DEA " + spec.name + "'s capacitor C0 and force k_F*u^2 [F, N/V^2]"},
+                    "dea_" + spec.name, layout.electrode_node, ground, layout.capacitance,
+                    layout.force_constant, layout.coupling, spec.back_coupling,
+                    dea_ac_force(drive, layout));
+}
+
+// Every DEA: its layout on the beam, and its electrical loop or, without electrical dynamics,
+// its ideal force.
+void add_deas(const Scene& scene, Model& model) {
   const DriveSpec& drive = scene.drive;
   if (!scene.circuit.empty() && !drive.electrical_dynamics)
     throw InputError(scene.file, "drive.electrical_dynamics",
                      "is false, but the scene has [[circuit]] elements, which act through the "
                      "DEAs' electrical loops: a circuit needs drive.electrical_dynamics = true");
   for (const DeaSpec& spec : scene.deas) {
-    DeaLayout layout = dea_layout(spec, beam);
-    if (!drive.electrical_dynamics) {
-      // Ideal voltage-driven force F(t) = k_F·V(t)², entered as through sources along the
-      // coupling: a linear network.
-      const size_t parts = squared_force(dea_drive(drive, spec.name).voltage, 1.0, 0.0).size();
-      for (size_t part = 0; part < parts; ++part)
-        for (size_t c = 0; c < layout.coupling.size(); ++c) {
-          const NodeId node = layout.coupling[c].node;
-          ElementRecord record;
-          record.component = Component::drive_source;
-          record.part = ElementPart::ideal_force;
-          record.dea = spec.name;
-          record.force_part = static_cast<int>(part);
-          record.coupling = static_cast<int>(c);
-          record.meaning = "DEA " + spec.name + "'s ideal force k_F*V(t)^2" +
-                           (parts > 1 ? (part == 0 ? " (DC and f part)" : " (2f part)") : "") +
-                           " on node " + network.node(node).name + " [" +
-                           through_unit(network.node(node).domain) + "]";
-          const Waveform force = drive_source_waveform(drive, layout, record);
-          add_recorded<CurrentSource>(network, structure, std::move(record),
-                                      "F_" + spec.name + "_" + network.node(node).name, ground,
-                                      node, force);
-        }
-      model.deas.push_back(layout);
-      continue;
-    }
-    NodeRecord source_node{NodeRole::dea_source, -1, spec.name};
-    NodeRecord electrode_node{NodeRole::dea_electrode, -1, spec.name};
-    layout.source_node =
-        add_recorded_node(network, structure, source_node, "s_" + spec.name, Domain::electrical,
-                          "DEA " + spec.name + " source terminal [V]");
-    layout.electrode_node =
-        add_recorded_node(network, structure, electrode_node, "e_" + spec.name, Domain::electrical,
-                          "DEA " + spec.name + " capacitor voltage [V]");
-    if (!circuit_drives_dea(scene, spec.name)) {
-      ElementRecord source{Component::drive_source,
-                           ElementPart::source_voltage,
-                           -1,
-                           spec.name,
-                           -1,
-                           -1,
-                           "DEA " + spec.name + "'s source voltage V(t) [V]"};
-      const Waveform voltage = drive_source_waveform(drive, layout, source);
-      add_recorded<VoltageSource>(network, structure, std::move(source), "V_" + spec.name,
-                                  layout.source_node, ground, voltage, Domain::electrical);
-    }
-    add_recorded<Conductance>(network, structure,
-                              {Component::dea, ElementPart::electrode_resistance, -1, spec.name, -1,
-                               -1, "DEA " + spec.name + "'s electrode resistance R_e [Ohm]"},
-                              "Re_" + spec.name, layout.source_node, layout.electrode_node,
-                              1.0 / spec.electrode_resistance);
-    add_recorded<Dea>(network, structure,
-                      {Component::dea, ElementPart::transducer, -1, spec.name, -1, -1,
-                       "DEA " + spec.name + "'s capacitor C0 and force k_F*u^2 [F, N/V^2]"},
-                      "dea_" + spec.name, layout.electrode_node, ground, layout.capacitance,
-                      layout.force_constant, layout.coupling, spec.back_coupling,
-                      dea_ac_force(drive, layout));
+    DeaLayout layout = dea_layout(spec, model.beam);
+    if (drive.electrical_dynamics)
+      add_dea_electrical_loop(scene, spec, layout, model);
+    else
+      add_ideal_dea_force(drive, spec, layout, model);
     model.deas.push_back(layout);
   }
-  if (!scene.circuit.empty()) {
-    std::map<std::string, NodeId> terminals;
-    for (const DeaLayout& layout : model.deas) terminals.emplace(layout.name, layout.source_node);
-    model.circuit_nodes = add_circuit(network, structure, scene, terminals);
-    std::string driven;
-    for (const std::string& name : circuit_driven_deas(scene)) driven += " " + name;
-    model.notes.push_back("circuit: " + std::to_string(scene.circuit.size()) + " element(s), " +
-                          std::to_string(model.circuit_nodes.size()) + " node(s) of its own" +
-                          (driven.empty() ? std::string("; it drives no DEA")
-                                          : "; it drives DEA(s)" + driven + " at their terminals"));
-  }
+}
+
+// The [[circuit]] elements around the DEAs' terminals, and their note.
+void add_scene_circuit(const Scene& scene, Model& model) {
+  if (scene.circuit.empty()) return;
+  std::map<std::string, NodeId> terminals;
+  for (const DeaLayout& layout : model.deas) terminals.emplace(layout.name, layout.source_node);
+  model.circuit_nodes = add_circuit(model.network, &model.structure, scene, terminals);
+  std::string driven;
+  for (const std::string& name : circuit_driven_deas(scene)) driven += " " + name;
+  model.notes.push_back("circuit: " + std::to_string(scene.circuit.size()) + " element(s), " +
+                        std::to_string(model.circuit_nodes.size()) + " node(s) of its own" +
+                        (driven.empty() ? std::string("; it drives no DEA")
+                                        : "; it drives DEA(s)" + driven + " at their terminals"));
+}
+
+// The notes on what the DEAs' model leaves out: the electrical dynamics, the back-coupling, the
+// linear response of a single DEA at zero bias.
+void note_dea_simplifications(const Scene& scene, Model& model) {
+  const DriveSpec& drive = scene.drive;
   if (!drive.electrical_dynamics && !scene.deas.empty())
     model.notes.push_back(
         std::string("DEA electrical dynamics left out (drive.electrical_dynamics = ") +
@@ -330,7 +357,10 @@ Model build_model(const Scene& scene) {
     model.notes.push_back(
         "single DEA at zero bias: the linearised (AC) response is zero; a V² drive acts at 0 "
         "and 2f");
+}
 
+// The scene's probes, or the tip's deflection when it names none.
+void add_probes(const Scene& scene, Model& model) {
   // Each probe's DEA by name: one lookup per probe, not a scan of the DEAs.
   std::map<std::string, const DeaLayout*> dea_by_name;
   for (const DeaLayout& layout : model.deas) dea_by_name.emplace(layout.name, &layout);
@@ -346,6 +376,29 @@ Model build_model(const Scene& scene) {
     tip.at = scene.beam.length;
     model.probes.push_back(model.make_probe(tip));
   }
+}
+
+}  // namespace
+
+Model build_model(const Scene& scene) {
+  require_resolved(scene);
+  Model model;
+  model.scene = scene;
+  BeamSpec beam_spec = scene.beam;
+  DampingSpec damping = scene.damping;
+  model.automatic_choices = scene.automatic_choices;
+  if (scene.environment.fluid != Fluid::none)
+    model.fluid = apply_fluid_loading(scene, beam_spec, damping, model.notes);
+  for (const AutomaticChoice& choice : model.automatic_choices)
+    model.notes.push_back(choice.reason);
+  model.beam =
+      add_beam(model.network, beam_spec, damping, scene_attachment_points(scene), &model.structure);
+  note_beam_mesh(model);
+  add_point_loads(scene, model);
+  add_deas(scene, model);
+  add_scene_circuit(scene, model);
+  note_dea_simplifications(scene, model);
+  add_probes(scene, model);
   return model;
 }
 
@@ -514,6 +567,36 @@ void reaction_terms(const Model& model, const ProbeSpec& spec, Probe& probe) {
                       (moment ? "positive as +psi" : "positive along +w") + ")";
 }
 
+// A spring's force (a rotational spring: its moment) for probe[].spring: its compliance's branch
+// current plus its dashpot's c*(y_a - y_b).
+void spring_force_terms(const Model& model, const ProbeSpec& spec, Probe& probe) {
+  const int n = spring_index(model, spec);
+  const SpringSpec& spring = model.scene.beam.springs[static_cast<std::size_t>(n)];
+  const bool rotational = spring.kind == SpringKind::rotational;
+  probe.unit = rotational ? "N*m" : "N";
+  const std::string id = spring.name.empty() ? std::to_string(n) : spring.name;
+  const std::string what = rotational ? "moment" : "force";
+  const std::string to = spring.to ? position_text(*spring.to) : std::string("ground");
+  probe.description = "spring " + id + "'s " + what + " k*(" + (rotational ? "phi" : "w") + "(" +
+                      position_text(spring.at) + ") - " + (rotational ? "phi" : "w") + "(" + to +
+                      ")) + c*rate: positive stretched along +" + (rotational ? "psi" : "w") +
+                      " at its 'at' end, which it pulls back";
+  const int element = recorded_element(model, Component::spring, ElementPart::spring_compliance, n);
+  if (element < 0) {
+    probe.description += " (both ends held: it carries nothing)";
+    return;
+  }
+  probe.terms.emplace_back(model.network.branch_unknown_index(static_cast<std::size_t>(element)),
+                           1.0);
+  const int damper = recorded_element(model, Component::spring, ElementPart::spring_damper, n);
+  if (damper >= 0) {
+    const auto& inductor =
+        static_cast<const Inductor&>(*model.network.elements()[static_cast<std::size_t>(element)]);
+    if (inductor.a() != ground) probe.terms.emplace_back(inductor.a(), spring.damping);
+    if (inductor.b() != ground) probe.terms.emplace_back(inductor.b(), -spring.damping);
+  }
+}
+
 Probe make_probe_on(const Model& model, const ProbeSpec& spec, const DeaLayout* dea) {
   const BeamLayout& beam = model.beam;
   Probe probe;
@@ -570,35 +653,9 @@ Probe make_probe_on(const Model& model, const ProbeSpec& spec, const DeaLayout* 
     case ProbeQuantity::reaction_moment:
       reaction_terms(model, spec, probe);
       break;
-    case ProbeQuantity::spring_force: {
-      const int n = spring_index(model, spec);
-      const SpringSpec& spring = model.scene.beam.springs[static_cast<std::size_t>(n)];
-      const bool rotational = spring.kind == SpringKind::rotational;
-      probe.unit = rotational ? "N*m" : "N";
-      const std::string id = spring.name.empty() ? std::to_string(n) : spring.name;
-      const std::string what = rotational ? "moment" : "force";
-      const std::string to = spring.to ? position_text(*spring.to) : std::string("ground");
-      probe.description = "spring " + id + "'s " + what + " k*(" + (rotational ? "phi" : "w") +
-                          "(" + position_text(spring.at) + ") - " + (rotational ? "phi" : "w") +
-                          "(" + to + ")) + c*rate: positive stretched along +" +
-                          (rotational ? "psi" : "w") + " at its 'at' end, which it pulls back";
-      const int element =
-          recorded_element(model, Component::spring, ElementPart::spring_compliance, n);
-      if (element < 0) {
-        probe.description += " (both ends held: it carries nothing)";
-        break;
-      }
-      probe.terms.emplace_back(
-          model.network.branch_unknown_index(static_cast<std::size_t>(element)), 1.0);
-      const int damper = recorded_element(model, Component::spring, ElementPart::spring_damper, n);
-      if (damper >= 0) {
-        const auto& inductor = static_cast<const Inductor&>(
-            *model.network.elements()[static_cast<std::size_t>(element)]);
-        if (inductor.a() != ground) probe.terms.emplace_back(inductor.a(), spring.damping);
-        if (inductor.b() != ground) probe.terms.emplace_back(inductor.b(), -spring.damping);
-      }
+    case ProbeQuantity::spring_force:
+      spring_force_terms(model, spec, probe);
       break;
-    }
     case ProbeQuantity::strain: {
       // ε = ∓z·dψ/dx: −z on the top face (+w side), +z on the bottom; the time integral of the
       // curvature rate from the velocities.

@@ -1,5 +1,5 @@
 // Lookups, ranges, defaults and listing text of the scene's parameter table
-// (emnet/scene/parameters.hpp); the table itself is in parameters.cpp.
+// (emnet/scene/parameters.hpp); the table itself is in src/scene/keys/, one file per component.
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>

@@ -102,15 +102,30 @@ std::string SegmentSelection::summary() const {
          " ms";
 }
 
-SegmentSelection select_segments(const BeamSpec& beam, double band_from, double band_to,
-                                 double tolerance, int maximum_segments,
-                                 const std::vector<double>& attachments) {
-  const auto start = std::chrono::steady_clock::now();
-  SegmentSelection selection;
-  // By (N, refinement): the 2N of an estimate is N's mesh with every segment halved.
+namespace {
+
+// The worst Richardson error over the band's modes at N, and the modes it was taken over.
+struct BandError {
+  double worst = 0.0;
+  int modes_in_band = 0;
+  double top_mode_hz = 0.0;
+};
+
+// The state of select_segments' search: its inputs, the frequencies of every chain it has solved
+// (by (N, refinement): the 2N of an estimate is N's mesh with every segment halved), and the
+// selection whose steps and solves it counts.
+struct SegmentSearch {
+  const BeamSpec& beam;
+  double band_from;
+  double band_to;
+  double tolerance;
+  int maximum_segments;
+  const std::vector<double>& attachments;
+  SegmentSelection& selection;
   std::map<std::pair<int, int>, std::vector<double>> cache;
   int wanted = 0;  // modes requested from large (Arnoldi) solves
-  auto frequencies = [&](int segments, int refinement = 1) -> const std::vector<double>& {
+
+  const std::vector<double>& frequencies(int segments, int refinement = 1) {
     auto found = cache.find({segments, refinement});
     if (found != cache.end()) return found->second;
     ++selection.modal_solves;
@@ -120,26 +135,27 @@ SegmentSelection select_segments(const BeamSpec& beam, double band_from, double 
         .emplace(std::make_pair(segments, refinement),
                  beam_frequencies(refined, segments, wanted, attachments))
         .first->second;
-  };
-
-  // How many modes lie up to the band's top: count on a chain fine enough to have a mode
-  // above it (lumped-mass frequencies sit close below the continuum's).
-  int counting = kCountingSegments;
-  int modes_up_to_top = 0;
-  for (;;) {
-    wanted = counting;
-    const std::vector<double>& f = frequencies(counting);
-    modes_up_to_top = static_cast<int>(
-        std::count_if(f.begin(), f.end(), [&](double value) { return value <= band_to; }));
-    if (modes_up_to_top < static_cast<int>(f.size()) || counting > maximum_segments) break;
-    counting *= 2;
   }
-  const int k = std::max(1, modes_up_to_top);
-  wanted = k + 2;
+
+  // How many modes lie up to the band's top: counted on a chain fine enough to have a mode
+  // above it (lumped-mass frequencies sit close below the continuum's).
+  int modes_up_to_top() {
+    int counting = kCountingSegments;
+    int modes = 0;
+    for (;;) {
+      wanted = counting;
+      const std::vector<double>& f = frequencies(counting);
+      modes = static_cast<int>(
+          std::count_if(f.begin(), f.end(), [&](double value) { return value <= band_to; }));
+      if (modes < static_cast<int>(f.size()) || counting > maximum_segments) break;
+      counting *= 2;
+    }
+    return modes;
+  }
 
   // Worst Richardson error over the band's modes (classified at 2N); infinite when N has
-  // fewer modes than the band needs.
-  auto error_of = [&](int segments) {
+  // fewer modes than the band needs. Each call is a step of selection.tried.
+  BandError error_of(int segments) {
     if (2 * segments > 2 * maximum_segments)
       throw std::runtime_error("segment selection: the tolerance " +
                                format_number("%.3g", tolerance) + " needs more than " +
@@ -159,67 +175,97 @@ SegmentSelection select_segments(const BeamSpec& beam, double band_from, double 
       worst = std::max(worst, i < coarse.size() ? richardson_error(coarse[i], fine[i])
                                                 : std::numeric_limits<double>::infinity());
     selection.tried.emplace_back(segments, worst);
-    return std::make_pair(worst, std::make_pair(static_cast<int>(band.size()),
-                                                fine.empty() ? 0.0 : fine[band.back()]));
-  };
+    return {worst, static_cast<int>(band.size()), fine.empty() ? 0.0 : fine[band.back()]};
+  }
+};
 
-  const int floor_segments = kMinimumSegmentsPerMode * k;
-  int passing = 0, failing = 0;  // smallest N known to pass, largest known to fail
+// The smallest N known to pass the tolerance and the largest known to fail it, with its error.
+struct Bracket {
+  int passing = 0;
+  int failing = 0;
   double failing_error = 0.0;
-  int n = kStartSegmentsPerMode * k;
-  if (error_of(n).first <= tolerance) {
-    passing = n;
-    while (passing / 2 >= floor_segments) {
-      const int lower = passing / 2;
-      const double e = error_of(lower).first;
-      if (e <= tolerance) {
-        passing = lower;
+};
+
+// A bracket around the smallest passing N for `modes` modes up to the band's top: from four
+// segments per mode, halved while it passes (not below two per mode), doubled while it fails.
+Bracket bracket_segments(SegmentSearch& search, int modes) {
+  const int floor_segments = kMinimumSegmentsPerMode * modes;
+  Bracket bracket;
+  int n = kStartSegmentsPerMode * modes;
+  if (search.error_of(n).worst <= search.tolerance) {
+    bracket.passing = n;
+    while (bracket.passing / 2 >= floor_segments) {
+      const int lower = bracket.passing / 2;
+      const double e = search.error_of(lower).worst;
+      if (e <= search.tolerance) {
+        bracket.passing = lower;
       } else {
-        failing = lower;
-        failing_error = e;
+        bracket.failing = lower;
+        bracket.failing_error = e;
         break;
       }
     }
-    if (failing == 0) failing = floor_segments - 1;
+    if (bracket.failing == 0) bracket.failing = floor_segments - 1;
   } else {
-    failing = n;
-    failing_error = selection.tried.back().second;
+    bracket.failing = n;
+    bracket.failing_error = search.selection.tried.back().second;
     for (;;) {
       n *= 2;
-      const double e = error_of(n).first;
-      if (e <= tolerance) {
-        passing = n;
+      const double e = search.error_of(n).worst;
+      if (e <= search.tolerance) {
+        bracket.passing = n;
         break;
       }
-      failing = n;
-      failing_error = e;
+      bracket.failing = n;
+      bracket.failing_error = e;
     }
   }
-  // Refine inside (failing, passing]: predict N from the largest failing N's error by the N⁻²
-  // law (when it holds, the prediction passes and the next one, N − 1, fails: two steps), at
-  // most kPredictedSteps times, then bisect.
+  return bracket;
+}
+
+// Refines inside (failing, passing]: predicts N from the largest failing N's error by the N⁻²
+// law (when it holds, the prediction passes and the next one, N − 1, fails: two steps), at most
+// kPredictedSteps times, then bisects. Returns the smallest passing N.
+int narrow_bracket(SegmentSearch& search, Bracket bracket) {
   int predictions = 0;
-  while (passing - failing > 1) {
-    int probe = (failing + passing) / 2;
-    if (predictions < kPredictedSteps && std::isfinite(failing_error) && failing_error > 0.0) {
+  while (bracket.passing - bracket.failing > 1) {
+    int probe = (bracket.failing + bracket.passing) / 2;
+    if (predictions < kPredictedSteps && std::isfinite(bracket.failing_error) &&
+        bracket.failing_error > 0.0) {
       ++predictions;
-      probe = static_cast<int>(std::ceil(failing * std::sqrt(failing_error / tolerance)));
-      probe = std::clamp(probe, failing + 1, passing - 1);
+      probe = static_cast<int>(
+          std::ceil(bracket.failing * std::sqrt(bracket.failing_error / search.tolerance)));
+      probe = std::clamp(probe, bracket.failing + 1, bracket.passing - 1);
     }
-    const double e = error_of(probe).first;
-    if (e <= tolerance) {
-      passing = probe;
+    const double e = search.error_of(probe).worst;
+    if (e <= search.tolerance) {
+      bracket.passing = probe;
     } else {
-      failing = probe;
-      failing_error = e;
+      bracket.failing = probe;
+      bracket.failing_error = e;
     }
   }
-  const auto [error, band] = error_of(passing);
+  return bracket.passing;
+}
+
+}  // namespace
+
+SegmentSelection select_segments(const BeamSpec& beam, double band_from, double band_to,
+                                 double tolerance, int maximum_segments,
+                                 const std::vector<double>& attachments) {
+  const auto start = std::chrono::steady_clock::now();
+  SegmentSelection selection;
+  SegmentSearch search{beam,        band_from, band_to, tolerance, maximum_segments,
+                       attachments, selection, {},      0};
+  const int modes = std::max(1, search.modes_up_to_top());
+  search.wanted = modes + 2;
+  const int passing = narrow_bracket(search, bracket_segments(search, modes));
+  const BandError error = search.error_of(passing);
   selection.tried.pop_back();  // re-evaluated from the cache, not a new step
   selection.segments = passing;
-  selection.estimated_error = error;
-  selection.modes_in_band = band.first;
-  selection.top_mode_hz = band.second;
+  selection.estimated_error = error.worst;
+  selection.modes_in_band = error.modes_in_band;
+  selection.top_mode_hz = error.top_mode_hz;
   selection.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return selection;
