@@ -9,11 +9,17 @@
 namespace emnet {
 
 DisplacementForm::DisplacementForm(const System& system, Use use) : system_(system) {
-  const int n = system.size();
   const RowClassification rows = classify_rows(system, system.G);
   mechanical_ = rows.mechanical;
   divided_ = rows.divided;
+  assemble(use);
+  if (use == Use::eigenvalues) return;
+  differentiate_hidden_constraints();
+}
 
+void DisplacementForm::assemble(Use use) {
+  const System& system = system_;
+  const int n = system.size();
   // Velocity unknowns: mechanical columns that carry a capacitance (mass, inertia).
   velocity_of_.assign(static_cast<size_t>(n), -1);
   size_ = n;
@@ -69,7 +75,10 @@ DisplacementForm::DisplacementForm(const System& system, Use use) : system_(syst
   differential_.assign(static_cast<size_t>(size_), false);
   for (int col = 0; col < size_; ++col)
     differential_[static_cast<size_t>(col)] = e_.col(col).nonZeros() > 0;
+}
 
+void DisplacementForm::differentiate_hidden_constraints() {
+  const int n = system_.size();
   // Hidden constraints: an integrated row that ties differential unknowns together would make
   // the DAE index 2. It is replaced by its time derivative; the start states (rest, static)
   // satisfy the row itself, so the solution is the same. Such a row is
@@ -80,7 +89,6 @@ DisplacementForm::DisplacementForm(const System& system, Use use) : system_(syst
   //     the row fixes it from displacements.
   // Differentiating a row makes its unknowns differential, which can make another row hidden,
   // so this repeats until nothing changes.
-  if (use == Use::eigenvalues) return;
   const Eigen::SparseMatrix<double, Eigen::RowMajor> a_rows = a_, e_rows = e_;
   std::vector<bool> moved(static_cast<size_t>(size_), false);
   for (bool changed = true; changed;) {

@@ -74,6 +74,12 @@ class DisplacementForm {
   void probe_rows(const Probe& probe, Eigen::RowVectorXd& on_u, Eigen::RowVectorXd& on_up) const;
 
  private:
+  // E, A, the velocity unknowns and the differential ones from the row classification (the
+  // constructor's first phase); throws where the network has no displacement form for `use`.
+  void assemble(Use use);
+  // Integrated rows that tie differential unknowns together, replaced by their derivatives
+  // (the constructor's second phase, for time integration).
+  void differentiate_hidden_constraints();
   // visit(on_rate, index, coefficient) for each linear term of the probe: the coefficient
   // multiplies u[index] (on_rate false) or u'[index] (on_rate true). A deflection is z, a
   // velocity v (the node's velocity unknown) or z'; an electrical quantity is read as it is.

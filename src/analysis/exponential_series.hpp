@@ -5,7 +5,9 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <optional>
+#include <tuple>
 #include <vector>
 
 #include "emnet/analysis/periodic.hpp"
@@ -60,5 +62,24 @@ Status periodic_interval_starts(const Eigen::VectorXcd& lambda, const std::vecto
 void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
                             const std::vector<ExponentialSeries>& series, int samples,
                             PeriodicResult& result);
+
+// Extremes of every probe over one period from samples (times, values), with the sampled
+// extreme refined by `refine(probe, sample index, is_maximum)` → (time, value).
+template <class Refine>
+void fill_extremes(PeriodicResult& result, const Refine& refine) {
+  const size_t probes = result.values.size();
+  result.minimum.assign(probes, 0.0);
+  result.maximum.assign(probes, 0.0);
+  result.minimum_time.assign(probes, 0.0);
+  result.maximum_time.assign(probes, 0.0);
+  for (size_t p = 0; p < probes; ++p) {
+    const auto& v = result.values[p];
+    if (v.empty()) continue;
+    const size_t low = static_cast<size_t>(std::min_element(v.begin(), v.end()) - v.begin());
+    const size_t high = static_cast<size_t>(std::max_element(v.begin(), v.end()) - v.begin());
+    std::tie(result.minimum_time[p], result.minimum[p]) = refine(p, low, false);
+    std::tie(result.maximum_time[p], result.maximum[p]) = refine(p, high, true);
+  }
+}
 
 }  // namespace emnet

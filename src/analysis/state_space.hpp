@@ -50,6 +50,11 @@ AffinePiece affine_piece(const System& system, int size, double t0, double t1);
 // 2π × the highest drive frequency of the system's periodic sources, at least 2π/end_time.
 double characteristic_angular_frequency(const System& system, double end_time);
 
+// Osborne's balancing (as in LAPACK's dgebal, powers of two): D = diag(scale) such that every row
+// and column of balanced = D⁻¹·M·D, off the diagonal, has the same 1-norm. The exponential's
+// rounding error is relative to ‖M·h‖, which balancing makes as small as a diagonal similarity can.
+void balance(const Eigen::MatrixXd& m, Eigen::VectorXd& scale, Eigen::MatrixXd& balanced);
+
 class LinearStateSpace {
  public:
   struct Propagator {

@@ -58,6 +58,215 @@ Status check_finite_outputs(const TransientResult& result, const std::vector<Pro
   return Status::success();
 }
 
+namespace {
+
+// The sources on one interval [t, stop] and what the outputs and the state's advance over it
+// need: f₀ + (τ − t)·f₁ (f₁ = 0 on a constant interval), N·f₀ and N·f₁; in the modal form
+// r = V⁻¹·(M·x + N·f₀) and q = V⁻¹·N·f₁ on the half poles, and where outputs fall inside, each
+// probe's value at the start, c(f₁) and its weights on the poles.
+struct IntervalForcing {
+  AffinePiece f;
+  bool ramp = false;
+  Eigen::VectorXd nf, nf_slope;
+  Eigen::VectorXcd rate, ramp_rate;  // [half pole]: V⁻¹·(M·x + N·f₀), V⁻¹·N·f₁
+  Eigen::VectorXd start_values, ramp_values;  // [probe]
+  Eigen::MatrixXcd weights, ramp_weights;     // [probe][half pole]
+};
+
+// One exact transient (run_transient_exact): the state equation, the modal form of the outputs
+// where M's eigen-basis is well conditioned, and the state x between breakpoints. Its
+// construction throws where the network has no exact state equation.
+class ExactRun {
+ public:
+  ExactRun(const System& system, const std::vector<Probe>& probes, const TransientOptions& options,
+           TransientResult& result)
+      : system_(system),
+        probes_(probes),
+        options_(options),
+        result_(result),
+        form_(system),
+        space_(form_, characteristic_angular_frequency(system, options.end_time)),
+        cache_(space_, 1e-13 * std::max(options.end_time, 1e-300)),
+        x_(Eigen::VectorXd::Zero(space_.state_size())) {}
+
+  Status set_start() {
+    if (options_.start != StartState::static_) return Status::success();
+    const StaticResult rest = solve_static(system_);
+    if (!rest.status.ok()) return rest.status.with_context("static start state: ");
+    x_ = space_.state_of(form_.from_static(rest.state));
+    return Status::success();
+  }
+
+  Status run() {
+    const std::vector<double> stops = interval_ends(system_, options_.end_time);
+    outputs_ = options_.output_times;
+    std::sort(outputs_.begin(), outputs_.end());
+    result_.times.reserve(outputs_.size());
+    for (auto& series : result_.values) series.reserve(outputs_.size());
+    prepare_modal_outputs();
+    double t = 0.0;
+    for (double stop : stops) {
+      if (stop <= t) continue;
+      const IntervalForcing forcing = forcing_on(t, stop);
+      if (Status recorded = record_outputs(forcing, t, stop); !recorded.ok()) return recorded;
+      if (cancel_requested(options_.progress)) return cancelled_status();
+      advance_state(forcing, stop - t);
+      ++result_.statistics.restarts;
+      t = stop;
+    }
+    // Distinct exponentials of M (none in the modal form).
+    result_.statistics.steps = static_cast<long>(cache_.size());
+    if (Status finite = check_finite_outputs(result_, probes_, "the exact method"); !finite.ok())
+      return Status::failure(finite.message +
+                             " (values beyond double precision: check the scene's "
+                             "magnitudes)");
+    return Status::success();
+  }
+
+ private:
+  // Outputs: each probe is linear in (x, f, f'), p = gᵀ·x + c(f) + d(f'), so with M's
+  // eigen-basis an output inside an interval starting at x₀, where f = f₀ + s·f₁, is
+  //   p(t₀ + h) = p(x₀, f₀, f₁) + Re Σ_k (gᵀV)_k·(r_k·h·φ₁(λ_k h) + q_k·h²·φ₂(λ_k h)) + h·c(f₁),
+  //   r = V⁻¹·(M·x₀ + N·f₀),  q = V⁻¹·N·f₁ (the ramp terms only where f₁ ≠ 0),
+  // the sum over one pole of each conjugate pair (ModalBasis::half) and h·φ₁, h²·φ₂ stepped
+  // from output to output by ModalClock: a few products per pole and probe per output.
+  void prepare_modal_outputs() {
+    basis_ = space_.modal_basis();
+    if (!basis_) return;
+    const Eigen::Index half = static_cast<Eigen::Index>(basis_->half.size());
+    probe_modes_.resize(static_cast<Eigen::Index>(probes_.size()), half);
+    const Eigen::MatrixXd u_x = space_.u_of_state();
+    Eigen::RowVectorXd on_u, on_up;
+    // u' of a state under zero sources is u_x·M·x.
+    const Eigen::MatrixXd up_x = u_x * space_.m();
+    for (size_t k = 0; k < probes_.size(); ++k) {
+      form_.probe_rows(probes_[k], on_u, on_up);
+      const Eigen::RowVectorXd g = on_u * u_x + on_up * up_x;
+      const Eigen::RowVectorXcd modes = g.cast<std::complex<double>>() * basis_->vectors;
+      for (Eigen::Index j = 0; j < half; ++j)
+        probe_modes_(static_cast<Eigen::Index>(k), j) =
+            modes[basis_->half[static_cast<size_t>(j)]] * basis_->half_factor[j];
+    }
+    clock_ = std::make_unique<ModalClock>(*basis_);
+    half_vectors_.resize(basis_->vectors.rows(), half);
+    for (Eigen::Index j = 0; j < half; ++j)
+      half_vectors_.col(j) =
+          basis_->vectors.col(basis_->half[static_cast<size_t>(j)]) * basis_->half_factor[j];
+  }
+
+  Eigen::VectorXcd half_of(const Eigen::VectorXcd& full) const {
+    Eigen::VectorXcd out(static_cast<Eigen::Index>(basis_->half.size()));
+    for (size_t j = 0; j < basis_->half.size(); ++j)
+      out[static_cast<Eigen::Index>(j)] = full[basis_->half[j]];
+    return out;
+  }
+
+  // Every probe's value at (u, up_).
+  Eigen::VectorXd probe_values() const {
+    Eigen::VectorXd values(static_cast<Eigen::Index>(probes_.size()));
+    for (size_t k = 0; k < probes_.size(); ++k)
+      values[static_cast<Eigen::Index>(k)] = form_.probe(probes_[k], u_, up_);
+    return values;
+  }
+
+  IntervalForcing forcing_on(double t, double stop) {
+    IntervalForcing in;
+    in.f = affine_piece(system_, form_.size(), t, stop);
+    in.ramp = in.f.ramp();
+    in.nf = space_.forcing(in.f.start);
+    if (in.ramp) in.nf_slope = space_.forcing(in.f.slope);
+    if (!basis_) return in;
+    in.rate =
+        half_of(basis_->vectors_lu.solve((space_.m() * x_ + in.nf).cast<std::complex<double>>()));
+    if (in.ramp)
+      in.ramp_rate = half_of(basis_->vectors_lu.solve(in.nf_slope.cast<std::complex<double>>()));
+    clock_->restart(in.ramp);
+    const bool outputs_here = next_output_ < outputs_.size() && outputs_[next_output_] <= stop;
+    if (!outputs_here) return in;
+    if (in.ramp)
+      space_.full_state(x_, in.f.start, in.f.slope, u_, up_);
+    else
+      space_.full_state(x_, in.f.start, u_, up_);
+    in.start_values = probe_values();
+    in.weights = probe_modes_ * in.rate.asDiagonal();
+    if (in.ramp) {
+      space_.full_state(Eigen::VectorXd::Zero(space_.state_size()), in.f.slope, u_, up_);  // c(f₁)
+      in.ramp_values = probe_values();
+      in.ramp_weights = probe_modes_ * in.ramp_rate.asDiagonal();
+    }
+    return in;
+  }
+
+  // The outputs inside the interval starting at t, each at offset h.
+  Status record_outputs(const IntervalForcing& in, double t, double stop) {
+    Eigen::VectorXd values;
+    while (next_output_ < outputs_.size() && outputs_[next_output_] <= stop) {
+      const double h = outputs_[next_output_] - t;
+      if (h >= 0.0) {
+        result_.times.push_back(outputs_[next_output_]);
+        if (basis_) {
+          clock_->advance_to(h);
+          values = in.start_values + (in.weights * clock_->integral()).real();
+          if (in.ramp)
+            values += (in.ramp_weights * clock_->ramp_integral()).real() + h * in.ramp_values;
+        } else if (!in.ramp) {
+          space_.full_state(space_.project(space_.advance(cache_.get(h), x_, in.nf), in.f.start),
+                            in.f.start, u_, up_);
+          values = probe_values();
+        } else {
+          const Eigen::VectorXd f_h = in.f.at(h);
+          space_.full_state(
+              space_.project(space_.advance(cache_.get_ramp(h), x_, in.nf, in.nf_slope), f_h), f_h,
+              in.f.slope, u_, up_);
+          values = probe_values();
+        }
+        for (size_t k = 0; k < probes_.size(); ++k)
+          result_.values[k].push_back(values[static_cast<Eigen::Index>(k)]);
+      }
+      ++next_output_;
+      if (!keep_going(options_.progress, static_cast<long>(next_output_),
+                      static_cast<long>(outputs_.size()), "output times"))
+        return cancelled_status();
+    }
+    return Status::success();
+  }
+
+  // x to the interval's end, `length` after its start.
+  void advance_state(const IntervalForcing& in, double length) {
+    if (basis_) {
+      // The interval's end in the same modal form: x + Re V·(I(h)∘r + J(h)∘q), over one pole
+      // of each pair (factor 2 for a pair) — no exponential of M.
+      clock_->advance_to(length);
+      Eigen::VectorXcd modal = in.rate.cwiseProduct(clock_->integral());
+      if (in.ramp) modal += in.ramp_rate.cwiseProduct(clock_->ramp_integral());
+      x_ = space_.project(x_ + (half_vectors_ * modal).real(),
+                          in.ramp ? in.f.at(length) : in.f.start);
+    } else if (!in.ramp) {
+      x_ = space_.project(space_.advance(cache_.get(length), x_, in.nf), in.f.start);
+    } else {
+      x_ = space_.project(space_.advance(cache_.get_ramp(length), x_, in.nf, in.nf_slope),
+                          in.f.at(length));
+    }
+  }
+
+  const System& system_;
+  const std::vector<Probe>& probes_;
+  const TransientOptions& options_;
+  TransientResult& result_;
+  const DisplacementForm form_;
+  const LinearStateSpace space_;
+  PropagatorCache cache_;
+  Eigen::VectorXd x_, u_, up_;
+  std::vector<double> outputs_;
+  size_t next_output_ = 0;
+  const LinearStateSpace::ModalBasis* basis_ = nullptr;
+  Eigen::MatrixXcd probe_modes_;  // [probe][half pole]: (gᵀV)_k·factor_k
+  std::unique_ptr<ModalClock> clock_;
+  Eigen::MatrixXcd half_vectors_;  // V's columns of ModalBasis::half, times their factor
+};
+
+}  // namespace
+
 TransientResult run_transient_exact(const System& system, const std::vector<Probe>& probes,
                                     const TransientOptions& options) {
   Timed<TransientResult> timed;
@@ -71,149 +280,9 @@ TransientResult run_transient_exact(const System& system, const std::vector<Prob
       return finish(Status::failure("the exact method takes linear outputs; probe '" + probe.name +
                                     "' squares a voltage (use IDA)"));
   try {
-    const DisplacementForm form(system);
-    const LinearStateSpace space(form, characteristic_angular_frequency(system, options.end_time));
-    PropagatorCache cache(space, 1e-13 * std::max(options.end_time, 1e-300));
-
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(space.state_size());
-    if (options.start == StartState::static_) {
-      const StaticResult rest = solve_static(system);
-      if (!rest.status.ok()) return finish(rest.status.with_context("static start state: "));
-      x = space.state_of(form.from_static(rest.state));
-    }
-    const std::vector<double> stops = interval_ends(system, options.end_time);
-    std::vector<double> outputs = options.output_times;
-    std::sort(outputs.begin(), outputs.end());
-    size_t next_output = 0;
-    result.times.reserve(outputs.size());
-    for (auto& series : result.values) series.reserve(outputs.size());
-    double t = 0.0;
-    Eigen::VectorXd u, up;
-    // Outputs: each probe is linear in (x, f, f'), p = gᵀ·x + c(f) + d(f'), so with M's
-    // eigen-basis an output inside an interval starting at x₀, where f = f₀ + s·f₁, is
-    //   p(t₀ + h) = p(x₀, f₀, f₁) + Re Σ_k (gᵀV)_k·(r_k·h·φ₁(λ_k h) + q_k·h²·φ₂(λ_k h)) + h·c(f₁),
-    //   r = V⁻¹·(M·x₀ + N·f₀),  q = V⁻¹·N·f₁ (the ramp terms only where f₁ ≠ 0),
-    // the sum over one pole of each conjugate pair (ModalBasis::half) and h·φ₁, h²·φ₂ stepped
-    // from output to output by ModalClock: a few products per pole and probe per output.
-    const LinearStateSpace::ModalBasis* basis = space.modal_basis();
-    Eigen::MatrixXcd probe_modes;  // [probe][half pole]: (gᵀV)_k·factor_k
-    std::unique_ptr<ModalClock> clock;
-    Eigen::MatrixXcd half_vectors;  // V's columns of ModalBasis::half, times their factor
-    if (basis) {
-      const Eigen::Index half = static_cast<Eigen::Index>(basis->half.size());
-      probe_modes.resize(static_cast<Eigen::Index>(probes.size()), half);
-      const Eigen::MatrixXd u_x = space.u_of_state();
-      Eigen::RowVectorXd on_u, on_up;
-      // u' of a state under zero sources is u_x·M·x.
-      const Eigen::MatrixXd up_x = u_x * space.m();
-      for (size_t k = 0; k < probes.size(); ++k) {
-        form.probe_rows(probes[k], on_u, on_up);
-        const Eigen::RowVectorXd g = on_u * u_x + on_up * up_x;
-        const Eigen::RowVectorXcd modes = g.cast<std::complex<double>>() * basis->vectors;
-        for (Eigen::Index j = 0; j < half; ++j)
-          probe_modes(static_cast<Eigen::Index>(k), j) =
-              modes[basis->half[static_cast<size_t>(j)]] * basis->half_factor[j];
-      }
-      clock = std::make_unique<ModalClock>(*basis);
-      half_vectors.resize(basis->vectors.rows(), half);
-      for (Eigen::Index j = 0; j < half; ++j)
-        half_vectors.col(j) =
-            basis->vectors.col(basis->half[static_cast<size_t>(j)]) * basis->half_factor[j];
-    }
-    auto half_of = [&](const Eigen::VectorXcd& full) {
-      Eigen::VectorXcd out(static_cast<Eigen::Index>(basis->half.size()));
-      for (size_t j = 0; j < basis->half.size(); ++j)
-        out[static_cast<Eigen::Index>(j)] = full[basis->half[j]];
-      return out;
-    };
-    const Eigen::VectorXd no_state = Eigen::VectorXd::Zero(space.state_size());
-    for (double stop : stops) {
-      if (stop <= t) continue;
-      // The sources on [t, stop]: f₀ + (τ − t)·f₁, f₁ = 0 on a constant interval.
-      const AffinePiece f = affine_piece(system, form.size(), t, stop);
-      const bool ramp = f.ramp();
-      const Eigen::VectorXd nf = space.forcing(f.start);
-      const Eigen::VectorXd nf_slope = ramp ? space.forcing(f.slope) : Eigen::VectorXd();
-      Eigen::VectorXd start_values, ramp_values;
-      Eigen::VectorXcd rate, ramp_rate;  // [half pole]: V⁻¹·(M·x + N·f₀), V⁻¹·N·f₁
-      Eigen::MatrixXcd weights, ramp_weights;  // [probe][half pole]
-      const bool outputs_here = next_output < outputs.size() && outputs[next_output] <= stop;
-      if (basis) {
-        rate = half_of(basis->vectors_lu.solve((space.m() * x + nf).cast<std::complex<double>>()));
-        if (ramp)
-          ramp_rate = half_of(basis->vectors_lu.solve(nf_slope.cast<std::complex<double>>()));
-        clock->restart(ramp);
-      }
-      if (basis && outputs_here) {
-        if (ramp)
-          space.full_state(x, f.start, f.slope, u, up);
-        else
-          space.full_state(x, f.start, u, up);
-        start_values.resize(static_cast<Eigen::Index>(probes.size()));
-        for (size_t k = 0; k < probes.size(); ++k)
-          start_values[static_cast<Eigen::Index>(k)] = form.probe(probes[k], u, up);
-        weights = probe_modes * rate.asDiagonal();
-        if (ramp) {
-          space.full_state(no_state, f.slope, u, up);  // c(f₁)
-          ramp_values.resize(static_cast<Eigen::Index>(probes.size()));
-          for (size_t k = 0; k < probes.size(); ++k)
-            ramp_values[static_cast<Eigen::Index>(k)] = form.probe(probes[k], u, up);
-          ramp_weights = probe_modes * ramp_rate.asDiagonal();
-        }
-      }
-      Eigen::VectorXd values;
-      while (next_output < outputs.size() && outputs[next_output] <= stop) {
-        const double h = outputs[next_output] - t;
-        if (h >= 0.0) {
-          result.times.push_back(outputs[next_output]);
-          if (basis) {
-            clock->advance_to(h);
-            values = start_values + (weights * clock->integral()).real();
-            if (ramp) values += (ramp_weights * clock->ramp_integral()).real() + h * ramp_values;
-            for (size_t k = 0; k < probes.size(); ++k)
-              result.values[k].push_back(values[static_cast<Eigen::Index>(k)]);
-          } else if (!ramp) {
-            space.full_state(space.project(space.advance(cache.get(h), x, nf), f.start), f.start, u,
-                             up);
-            for (size_t k = 0; k < probes.size(); ++k)
-              result.values[k].push_back(form.probe(probes[k], u, up));
-          } else {
-            const Eigen::VectorXd f_h = f.at(h);
-            space.full_state(space.project(space.advance(cache.get_ramp(h), x, nf, nf_slope), f_h),
-                             f_h, f.slope, u, up);
-            for (size_t k = 0; k < probes.size(); ++k)
-              result.values[k].push_back(form.probe(probes[k], u, up));
-          }
-        }
-        ++next_output;
-        if (!keep_going(options.progress, static_cast<long>(next_output),
-                        static_cast<long>(outputs.size()), "output times"))
-          return finish(cancelled_status());
-      }
-      if (cancel_requested(options.progress)) return finish(cancelled_status());
-      const double length = stop - t;
-      if (basis) {
-        // The interval's end in the same modal form: x + Re V·(I(h)∘r + J(h)∘q), over one pole
-        // of each pair (factor 2 for a pair) — no exponential of M.
-        clock->advance_to(length);
-        Eigen::VectorXcd modal = rate.cwiseProduct(clock->integral());
-        if (ramp) modal += ramp_rate.cwiseProduct(clock->ramp_integral());
-        x = space.project(x + (half_vectors * modal).real(), ramp ? f.at(length) : f.start);
-      } else if (!ramp) {
-        x = space.project(space.advance(cache.get(length), x, nf), f.start);
-      } else {
-        x = space.project(space.advance(cache.get_ramp(length), x, nf, nf_slope), f.at(length));
-      }
-      ++result.statistics.restarts;
-      t = stop;
-    }
-    // Distinct exponentials of M (none in the modal form).
-    result.statistics.steps = static_cast<long>(cache.size());
-    if (Status finite = check_finite_outputs(result, probes, "the exact method"); !finite.ok())
-      return finish(Status::failure(finite.message +
-                                    " (values beyond double precision: check the scene's "
-                                    "magnitudes)"));
-    return finish(Status::success());
+    ExactRun run(system, probes, options, result);
+    if (Status started = run.set_start(); !started.ok()) return finish(started);
+    return finish(run.run());
   } catch (const std::exception& e) {
     return finish(Status::failure(std::string("exact transient: ") + e.what()));
   }
