@@ -29,7 +29,7 @@ import emnet
 
 def amplitude(scene, output, frequencies):
     sweep = emnet.sweep_switching(scene, frequencies=list(frequencies))
-    series = sweep.outputs[output]
+    series = sweep.outputs.row(output)
     return 0.5 * (series["right"] - series["left"])
 
 

@@ -73,7 +73,7 @@ def main():
     left.set_ylabel("variants")
     left.legend()
     right.hist(1e3 * peak, bins=40, color="#d62728")
-    nominal = emnet.sweep_switching(fin, frequencies=[5.0]).outputs["dx4"]
+    nominal = emnet.sweep_switching(fin, frequencies=[5.0]).outputs.row("dx4")
     right.axvline(1e3 * max(abs(nominal["left"][0]), abs(nominal["right"][0])), color="k",
                   linestyle="--", label="nominal")
     right.legend()

@@ -1,16 +1,23 @@
 // The analyses of one scene, for Python: each builds the scene's model as the command of the
-// same name does, runs the library's study with the GIL released, and returns a dict (numpy
-// arrays for numbers along a sweep, time or beam). Units are in the keys' names (x_m,
-// frequency_hz) or beside the values ("unit").
+// same name does, runs the library's study with the GIL released, and returns the result's JSON
+// (emnet/report/, the keys the command's --json prints) as a dict (to_python: numpy arrays for
+// numbers along a sweep, time or beam). Units are in the keys' names (x_m, frequency_hz) or
+// beside the values ("unit").
 #include <cmath>
 #include <optional>
 
 #include "convert.hpp"
 #include "emnet/core/stopwatch.hpp"
+#include "emnet/core/units.hpp"
 #include "emnet/model/outputs.hpp"
 #include "emnet/report/ac_json.hpp"
+#include "emnet/report/crosscheck_json.hpp"
 #include "emnet/report/describe.hpp"
+#include "emnet/report/identify_json.hpp"
 #include "emnet/report/json.hpp"
+#include "emnet/report/mismatch_json.hpp"
+#include "emnet/report/spice_deck_json.hpp"
+#include "emnet/report/switching_sweep_json.hpp"
 #include "emnet/report/transient_json.hpp"
 #include "emnet/spice/spice_netlist.hpp"
 #include "emnet/studies/ac_study.hpp"
@@ -32,26 +39,17 @@ namespace {
 using emnet::InputError;
 using emnet::Json;
 
-bool electrical(const std::vector<std::string>& probes) {
-  for (const auto& text : probes)
-    if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0) return true;
-  return false;
-}
-
-emnet::PrepareOptions prepare_for(const std::vector<std::string>& probes) {
-  emnet::PrepareOptions prepare;
-  prepare.electrical_probe_requested = electrical(probes);
-  return prepare;
-}
+using emnet::prepare_options_for_probes;
 
 // The scene with beam.segments = "auto" resolved once (as the command line does), so that every
 // model a study builds from it has the same N.
 emnet::Scene with_segments(const emnet::Scene& scene) {
-  if (!scene.beam.auto_segments) return scene;
-  emnet::ResolveOptions segments_only;
-  segments_only.fluid_resonance = false;
-  segments_only.electrical_dynamics = false;
-  return emnet::resolve_scene(scene, segments_only).scene;
+  return emnet::resolve_segments(scene);
+}
+
+// A result's JSON (emnet/report/) as the Python objects the functions return.
+py::dict to_dict(const Json& json) {
+  return to_python(json).cast<py::dict>();
 }
 
 std::vector<emnet::Probe> parse_probes(const emnet::Model& model,
@@ -68,13 +66,9 @@ emnet::PreparedModel prepare(const emnet::Scene& scene, const std::vector<std::s
   options.require_static = require_static;
   options.static_options.progress = progress;
   emnet::PreparedModel p =
-      emnet::prepare_at_rest(with_segments(scene), prepare_for(probes), options);
+      emnet::prepare_at_rest(with_segments(scene), prepare_options_for_probes(probes), options);
   require(p.status, "");
   return p;
-}
-
-py::dict validity_dict(const emnet::Validity& validity) {
-  return to_python(emnet::to_json(validity)).cast<py::dict>();
 }
 
 // ---- static -------------------------------------------------------------------------------
@@ -89,9 +83,8 @@ py::dict run_static(const SceneHandle& handle, const std::vector<std::string>& p
     probes = parse_probes(p.model, probe_texts);
     values = emnet::static_study_values(p.model, p.system, p.rest, probes);
   });
-  return to_python(emnet::to_json(p.model, p.rest, values.nodes, probes, values.probe_values,
-                                  values.validity, stopwatch.seconds()))
-      .cast<py::dict>();
+  return to_dict(emnet::to_json(p.model, p.rest, values.nodes, probes, values.probe_values,
+                                values.validity, stopwatch.seconds()));
 }
 
 // ---- modes --------------------------------------------------------------------------------
@@ -108,13 +101,13 @@ py::dict run_modes(const SceneHandle& handle, int count, bool dense, bool error_
     options.dense = dense;
     options.error_estimate = error_estimate;
     options.shapes = shapes;
-    options.prepare = prepare_for(probe_texts);
+    options.prepare = prepare_options_for_probes(probe_texts);
     options.progress = progress;
     study = emnet::run_modes_study(with_segments(handle.scene), options);
     require(study.status, "modes: ");
     probes = parse_probes(study.model, probe_texts);
   });
-  return to_python(emnet::to_json(study, probes, stopwatch.seconds())).cast<py::dict>();
+  return to_dict(emnet::to_json(study, probes, stopwatch.seconds()));
 }
 
 // ---- ac -----------------------------------------------------------------------------------
@@ -164,8 +157,7 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
     require(result.status, reduce ? "ac (reduced): " : "ac: ");
     input = emnet::ac_input_description(p.model.scene, spec.to);
   });
-  py::dict out = to_python(emnet::to_json(result, p.model, probes, input, stopwatch.seconds()))
-                     .cast<py::dict>();
+  py::dict out = to_dict(emnet::to_json(result, p.model, probes, input, stopwatch.seconds()));
   // The complex responses themselves, beside magnitude and phase: [probe][frequency].
   const auto rows = static_cast<py::ssize_t>(result.ac.values.size());
   const auto columns = static_cast<py::ssize_t>(result.ac.frequencies.size());
@@ -200,7 +192,7 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
     options.max_step = max_step;
     options.start = start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
     options.outputs = outputs;
-    options.prepare = prepare_for(outputs);
+    options.prepare = prepare_options_for_probes(outputs);
     options.option_prefix = "";
     options.progress = progress;
     study = emnet::run_transient_study(with_segments(handle.scene), options);
@@ -214,7 +206,7 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
                                            rtol,
                                            study.validity,
                                            study.seconds};
-  return to_python(emnet::to_json(study.result, study.outputs, run)).cast<py::dict>();
+  return to_dict(emnet::to_json(study.result, study.outputs, run));
 }
 
 // ---- sweep-switching ----------------------------------------------------------------------
@@ -244,69 +236,42 @@ py::dict run_sweep(const SceneHandle& handle, std::vector<double> frequencies, d
     emnet::check_switching_sweep_options(options);
     const auto grid = emnet::switching_frequencies(options);
     swept = emnet::prepare_swept_model(with_segments(handle.scene), options.method, outputs,
-                                       prepare_for(outputs),
+                                       prepare_options_for_probes(outputs),
                                        *std::max_element(grid.begin(), grid.end()), "outputs");
     options.outputs = emnet::switching_sweep_outputs(swept.model, outputs);
     options.progress = progress;
     result = emnet::run_switching_sweep(swept.model, swept.scene, options);
     require(result.status, "sweep_switching: ");
   });
-  py::dict out;
-  out["scene"] = swept.model.scene.name;
-  out["method"] = emnet::method_name(result.method);
-  out["frequencies_hz"] = to_array(result.frequencies);
-  py::dict series;
-  for (const auto& output : result.outputs) {
-    py::dict entry;
-    entry["description"] = output.probe.description;
-    entry["unit"] = output.probe.unit;
-    entry["left"] = to_array(output.left);
-    entry["right"] = to_array(output.right);
-    series[py::str(output.probe.name)] = entry;
-  }
-  out["outputs"] = series;
-  out["peak_hz"] = result.peak_frequency;
-  if (result.first_mode_hz) out["first_mode_hz"] = *result.first_mode_hz;
-  out["accuracy"] =
-      py::dict(py::arg("worst_periodicity_residual") = result.worst_periodicity_residual);
-  out["cost"] = py::dict(py::arg("solves") = result.solves, py::arg("unknowns") = result.unknowns,
-                         py::arg("decomposition_seconds") = result.decomposition_seconds,
-                         py::arg("solve_seconds") = result.solve_seconds,
-                         py::arg("total_seconds") = stopwatch.seconds());
   std::vector<std::string> notes = swept.notes;
   notes.insert(notes.end(), result.notes.begin(), result.notes.end());
-  out["notes"] = notes;
-  out["validity"] = validity_dict(result.validity);
-  return out;
+  return to_dict(emnet::to_json(result, swept.model, notes, stopwatch.seconds()));
 }
 
 // ---- identify, sensitivity, mismatch ------------------------------------------------------
 
 py::dict run_identify(const SceneHandle& handle, double target_hz, const std::string& parameter,
                       int mode) {
+  emnet::Stopwatch stopwatch;
   emnet::IdentifyResult result;
+  emnet::IdentifyOptions options;
+  emnet::Scene scene;
   run_interruptible([&](emnet::Progress* progress) {
-    emnet::IdentifyOptions options;
     options.target_hz = target_hz;
     options.parameter = parameter;
     options.mode_number = mode;
     options.progress = progress;
-    result = emnet::identify(with_segments(handle.scene), options);
+    scene = with_segments(handle.scene);
+    result = emnet::identify(scene, options);
     require(result.status, "identify: ");
   });
-  py::dict out;
-  out["parameter"] = result.parameter.key;
-  out["value"] = result.parameter.value;
-  out["unit"] = result.parameter.unit;
-  out["mode"] = mode;
-  out["target_hz"] = target_hz;
-  out["achieved_hz"] = result.achieved_hz;
-  out["accuracy"] = py::dict(py::arg("frequency_residual") = result.frequency_residual);
-  out["cost"] = py::dict(py::arg("modal_solves") = result.modal_solves,
-                         py::arg("iterations") = result.stiffness_iterations,
-                         py::arg("total_seconds") = result.seconds);
-  out["notes"] = result.notes;
-  return out;
+  // The call that re-identifies the values, for the scene's [provenance].
+  const std::string command = "emnet.identify(" + Json(handle.name).dump() + ", " +
+                              emnet::format_number("%.6g", target_hz) +
+                              ", parameter=" + Json(parameter).dump() +
+                              ", mode=" + std::to_string(mode) + ")";
+  const emnet::IdentifyReportContext context{scene.automatic_choices, command, stopwatch.seconds()};
+  return to_dict(emnet::to_json(result, options, context));
 }
 
 py::dict run_sensitivity(const SceneHandle& handle, int modes,
@@ -324,40 +289,25 @@ py::dict run_sensitivity(const SceneHandle& handle, int modes,
     result = emnet::run_sensitivity(scene, parameters, options);
     require(result.status, "sensitivity: ");
   });
-  return to_python(emnet::to_json(result, scene, check, stopwatch.seconds())).cast<py::dict>();
+  return to_dict(emnet::to_json(result, scene, check, stopwatch.seconds()));
 }
 
 py::dict run_mismatch(const SceneHandle& handle, std::optional<double> frequency_hz,
                       const std::string& output, double change) {
+  emnet::Stopwatch stopwatch;
   emnet::MismatchResult result;
+  emnet::Scene scene;
   run_interruptible([&](emnet::Progress* progress) {
     emnet::MismatchOptions options;
     options.frequency_hz = frequency_hz;
     options.output = output;
     options.change = change;
     options.progress = progress;
-    result = emnet::run_mismatch(with_segments(handle.scene), options);
+    scene = with_segments(handle.scene);
+    result = emnet::run_mismatch(scene, options);
     require(result.status, "mismatch: ");
   });
-  py::dict out;
-  out["output"] = result.output;
-  out["frequency_hz"] = result.frequency_hz;
-  out["nominal"] =
-      py::dict(py::arg("left") = result.nominal_left, py::arg("right") = result.nominal_right,
-               py::arg("asymmetry") = result.nominal_asymmetry);
-  Json cases = Json::array();
-  for (const auto& row : result.rows)
-    cases.push_back({{"label", row.label},
-                     {"key", row.key},
-                     {"change", row.change},
-                     {"left", row.left},
-                     {"right", row.right},
-                     {"asymmetry", row.asymmetry},
-                     {"asymmetry_per_unit_change", row.asymmetry_per_unit_change}});
-  out["cases"] = to_python(cases);
-  out["notes"] = result.notes;
-  out["validity"] = validity_dict(result.validity);
-  return out;
+  return to_dict(emnet::to_json(result, scene.automatic_choices, stopwatch.seconds()));
 }
 
 // ---- netlist and crosscheck -----------------------------------------------------------------
@@ -365,6 +315,7 @@ py::dict run_mismatch(const SceneHandle& handle, std::optional<double> frequency
 py::dict run_netlist(const SceneHandle& handle, const std::string& analysis, double periods,
                      int points_per_period, double rtol, bool control) {
   emnet::SpiceDeck deck;
+  emnet::Model model;
   {
     py::gil_scoped_release release;
     emnet::SpiceDeckOptions options;
@@ -378,7 +329,7 @@ py::dict run_netlist(const SceneHandle& handle, const std::string& analysis, dou
       throw InputError("analysis", "analysis",
                        "must be 'op', 'ac' or 'tran', got '" + analysis + "'");
     }
-    const emnet::Model model = emnet::prepare_model(with_segments(handle.scene));
+    model = emnet::prepare_model(with_segments(handle.scene));
     if (options.analysis == emnet::SpiceAnalysis::tran) {
       if (!(model.scene.drive.frequency > 0.0))
         throw InputError(model.scene.file, "drive.frequency",
@@ -398,16 +349,13 @@ py::dict run_netlist(const SceneHandle& handle, const std::string& analysis, dou
   }
   py::dict out;
   out["text"] = deck.text;
-  Json outputs = Json::array();
-  for (const auto& output : deck.outputs)
-    outputs.push_back({{"probe", output.probe}, {"vector", output.vector}, {"unit", output.unit}});
-  out["outputs"] = to_python(outputs);
-  out["notes"] = deck.notes;
+  for (auto item : to_dict(emnet::to_json(deck, model))) out[item.first] = item.second;
   return out;
 }
 
 py::dict run_crosscheck(const SceneHandle& handle, const std::string& analyses, double timeout) {
   emnet::CrosscheckReport report;
+  emnet::Model model;
   emnet::Stopwatch stopwatch;
   {
     py::gil_scoped_release release;
@@ -417,33 +365,11 @@ py::dict run_crosscheck(const SceneHandle& handle, const std::string& analyses, 
       throw InputError("timeout", "timeout", "must be > 0 s and at most 86400 s (inclusive)");
     options.ngspice.timeout_seconds = timeout;
     options.overrides = handle.overrides;
-    report = emnet::run_crosscheck(emnet::prepare_model(with_segments(handle.scene)), options);
+    model = emnet::prepare_model(with_segments(handle.scene));
+    report = emnet::run_crosscheck(model, options);
     require(report.status, "crosscheck: ");
   }
-  Json rows = Json::array();
-  for (const auto& row : report.rows)
-    rows.push_back({{"analysis", emnet::crosscheck_analysis_name(row.analysis)},
-                    {"quantity", row.quantity},
-                    {"largest_difference", row.largest_difference},
-                    {"where", row.where},
-                    {"tolerance", row.tolerance},
-                    {"pass", row.pass},
-                    {"basis", row.basis}});
-  Json timings = Json::array();
-  for (const auto& t : report.timings)
-    timings.push_back({{"analysis", emnet::crosscheck_analysis_name(t.analysis)},
-                       {"ngspice_seconds", t.ngspice_seconds},
-                       {"ngspice_total_seconds", t.ngspice_total_seconds},
-                       {"emnet_seconds", t.emnet_seconds},
-                       {"emnet_what", t.emnet_what}});
-  py::dict out;
-  out["backend"] = report.backend;
-  out["passed"] = report.all_pass();
-  out["rows"] = to_python(rows);
-  out["timings"] = to_python(timings);
-  out["notes"] = report.notes;
-  out["total_seconds"] = stopwatch.seconds();
-  return out;
+  return to_dict(emnet::to_json(report, model, stopwatch.seconds()));
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-"""The analyses of one scene. Each returns a Result (see emnet.Result)."""
+"""The analyses of one scene. Each returns a Result (see emnet.Result) with the keys of the
+command's --json: the same keys in both front-ends."""
 
 from . import _emnet
 from ._results import Result
@@ -85,10 +86,12 @@ def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1
     the [[circuit]] sources whose frequency is swept (default every periodic one), each keeping
     its levels, duty, rise/fall and its delay as a fraction of the period.
 
-    Returns a Result with frequencies_hz [Hz]; outputs {name: {unit, description, left, right}}:
-    the periodic minimum (left) and maximum (right) per frequency in the output's unit; peak_hz
-    (the largest peak-to-peak of the last output); accuracy (worst_periodicity_residual); cost;
-    notes; validity.
+    Returns a Result with scene, automatic_choices, method, notes, frequencies_hz [Hz]; outputs
+    (name, description, unit, left, right: the periodic minimum (left) and maximum (right) per
+    output and frequency in the output's unit, 2-D arrays [output, frequency];
+    outputs.row("dx4").right is one output's); sweep_peak_hz (the largest peak-to-peak of the
+    last output); accuracy (worst_periodicity_residual); cost (solve_seconds, total_seconds);
+    validity.
     """
     return Result(_emnet.sweep_switching(as_scene(scene)._handle, numbers(frequencies, "frequencies"),
                                          from_hz, to_hz, step_hz, method, samples, rtol,
@@ -98,8 +101,9 @@ def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1
 def identify(scene, target_hz, parameter="beam.bending_stiffness", mode=1):
     """The value of `parameter` that puts mode `mode` at target_hz [Hz] (as `emnet identify`).
 
-    Returns a Result with parameter (its canonical key), value and unit (SI), achieved_hz,
-    accuracy (frequency_residual: relative), cost (modal solves), notes.
+    Returns a Result with automatic_choices, parameter (its canonical key), value and unit (SI),
+    mode, target_hz and achieved_hz [Hz], iterations (modal solves of the fit), command (this
+    call, for the scene's [provenance]), total_seconds, notes (when there are any).
     """
     return Result(_emnet.identify(as_scene(scene)._handle, target_hz, parameter, mode))
 
@@ -120,8 +124,9 @@ def mismatch(scene, frequency_hz=None, output="", change=0.05):
     """Left/right asymmetry of the periodic peaks when one DEA differs by ±change (as `emnet
     mismatch`): electrode area, film thickness, overlap.
 
-    Returns a Result with output, frequency_hz, nominal (left, right [m], asymmetry [-]),
-    cases (label, key, change, left, right, asymmetry, asymmetry_per_unit_change), validity.
+    Returns a Result with automatic_choices, output, frequency_hz, nominal (left_m, right_m),
+    cases (key, change, left_m, right_m, asymmetry [-], asymmetry_per_unit_change),
+    total_seconds, validity, notes (when there are any).
     """
     return Result(_emnet.mismatch(as_scene(scene)._handle, frequency_hz, output, change))
 
@@ -129,8 +134,9 @@ def mismatch(scene, frequency_hz=None, output="", change=0.05):
 def netlist(scene, analysis="op", periods=2.0, points_per_period=2000, rtol=1e-6, control=False):
     """The scene's network as a SPICE deck (as `emnet netlist`): analysis "op", "ac" or "tran".
 
-    Returns a Result with text (the deck), outputs (probe, vector, unit: where ngspice holds
-    each output), notes.
+    Returns a Result with text (the deck; the command writes it to a file and names that
+    "deck" instead), automatic_choices, analysis, unknowns (name, vector, sign: where ngspice
+    holds each unknown), outputs (probe, vector, unit, description), notes.
     """
     return Result(_emnet.netlist(as_scene(scene)._handle, analysis, periods, points_per_period,
                                  rtol, control))
@@ -139,7 +145,9 @@ def netlist(scene, analysis="op", periods=2.0, points_per_period=2000, rtol=1e-6
 def crosscheck(scene, analyses="all", timeout=60.0):
     """emnet against ngspice on the same network (as `emnet crosscheck`): "op,ac,modal,tran".
 
-    ngspice runs in its own worker process (timeout [s]). Returns a Result with passed, rows
-    (analysis, quantity, largest_difference, where, tolerance, pass, basis), timings, backend.
+    ngspice runs in its own worker process (timeout [s]). Returns a Result with scene,
+    automatic_choices, backend, status, pass (every difference within its tolerance), rows
+    (analysis, quantity, largest_difference, where, tolerance, pass, basis), timings, notes,
+    total_seconds.
     """
     return Result(_emnet.crosscheck(as_scene(scene)._handle, analyses, timeout))

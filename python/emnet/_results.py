@@ -1,12 +1,19 @@
-"""Results: dicts whose keys are also attributes (result.modes, result.cost.total_seconds)."""
+"""Results: dicts whose keys are also attributes (result.modes, result.cost.total_seconds).
+
+A result is the JSON the command of the same name prints with --json (its keys, in its order),
+converted once: objects to Results, arrays of numbers to numpy arrays, arrays of records
+(outputs, probes, modes, ...) to a Result of columns, one per key.
+"""
 
 
 class Result(dict):
     """A result of an emnet analysis: a dict whose keys read as attributes too.
 
-    Nested dicts are Results as well. Arrays are numpy arrays; their units are in the keys'
-    names (frequency_hz, x_m, times_s) or in a "unit" entry beside them. A key that is also a
-    dict method (values, items, keys) reads with brackets: result.outputs["values"].
+    Its keys are those of the command's --json. Nested dicts are Results as well. Arrays are
+    numpy arrays; their units are in the keys' names (frequency_hz, x_m, times_s) or in a "unit"
+    entry beside them. A table of records is a Result of columns (result.outputs["name"],
+    result.outputs["right"][k]); row(name) picks one record. A key that is also a dict method
+    (values, items, keys) reads with brackets: result.outputs["values"].
     """
 
     def __init__(self, *args, **kwargs):
@@ -14,6 +21,19 @@ class Result(dict):
         for key, value in self.items():
             if isinstance(value, dict) and not isinstance(value, Result):
                 self[key] = Result(value)
+
+    def row(self, name, key="name"):
+        """One record of a table by its name: result.outputs.row("dx4").right.
+
+        A table (an array of records in the command's --json, such as outputs, probes, modes)
+        is a Result of columns, one per key; row gives the record whose `key` column equals
+        `name`, each column's entry for it.
+        """
+        names = list(self[key])
+        if name not in names:
+            raise KeyError(f"no {key} '{name}'; there are: {', '.join(map(str, names))}")
+        index = names.index(name)
+        return Result({column: values[index] for column, values in self.items()})
 
     def __getattr__(self, name):
         try:

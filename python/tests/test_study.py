@@ -73,7 +73,7 @@ def test_sweep_columns_and_the_command(fishfin, tmp_path):
     assert column in frame.columns
     scene = fishfin.with_values({"beam.bending_stiffness": frame["beam.bending_stiffness"][0]})
     single = emnet.sweep_switching(scene, frequencies=[4.0, 5.0, 6.0])
-    assert frame[column][0] == single.outputs["dx4"]["right"][1]
+    assert frame[column][0] == single.outputs.row("dx4").right[1]
     # The command writes the same table.
     out = tmp_path / "study.csv"
     run = subprocess.run([PROGRAM, "study", FISHFIN, "--vary", vary[0], "--analysis",

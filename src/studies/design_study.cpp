@@ -573,11 +573,7 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
   result.keys = table.keys;
   result.variants = table.rows;
   // The nominal scene, with the mesh resolved once for every variant.
-  ResolveOptions segments_only;
-  segments_only.fluid_resonance = false;
-  segments_only.electrical_dynamics = false;
-  const ResolvedScene resolved = resolve_scene(scene, segments_only);
-  const Scene nominal = resolved.scene;
+  const Scene nominal = resolve_segments(scene);
   if (scene.beam.auto_segments)
     result.notes.push_back("beam.segments = \"auto\" was resolved once, on the nominal scene: " +
                            std::to_string(nominal.beam.segments) + " segments for every variant");

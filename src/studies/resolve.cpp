@@ -225,6 +225,30 @@ ResolvedScene resolve_scene(const Scene& scene, const ResolveOptions& options) {
   return resolved;
 }
 
+Scene resolve_segments(const Scene& scene) {
+  if (!scene.beam.auto_segments) return scene;
+  ResolveOptions segments_only;
+  segments_only.fluid_resonance = false;
+  segments_only.electrical_dynamics = false;
+  return resolve_scene(scene, segments_only).scene;
+}
+
+bool asks_for_dea_electrics(const std::string& probe_text) {
+  return probe_text.rfind("dea_voltage", 0) == 0 || probe_text.rfind("dea_current", 0) == 0;
+}
+
+bool asks_for_dea_electrics(const std::vector<std::string>& probe_texts) {
+  for (const auto& text : probe_texts)
+    if (asks_for_dea_electrics(text)) return true;
+  return false;
+}
+
+PrepareOptions prepare_options_for_probes(const std::vector<std::string>& probe_texts) {
+  PrepareOptions prepare;
+  prepare.electrical_probe_requested = asks_for_dea_electrics(probe_texts);
+  return prepare;
+}
+
 Model prepare_model(const Scene& scene, const PrepareOptions& options) {
   ResolveOptions resolve;
   resolve.electrical_probe_requested = options.electrical_probe_requested;

@@ -435,7 +435,7 @@ SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
   if (method == SwitchingSweepMethod::shooting) return swept;
   const bool automatic = method == SwitchingSweepMethod::automatic;
   for (const auto& text : probe_texts)
-    if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0) {
+    if (asks_for_dea_electrics(text)) {
       if (automatic) return swept;  // the RC loop is asked for: shooting (run_switching_sweep)
       throw InputError(probe_option, text,
                        "the exact periodic method models the DEAs as ideal voltage-driven "

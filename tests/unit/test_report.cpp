@@ -12,7 +12,9 @@
 
 #include "emnet/report/csv.hpp"
 #include "emnet/report/describe.hpp"
+#include "emnet/report/identify_json.hpp"
 #include "emnet/report/json.hpp"
+#include "emnet/report/mismatch_json.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
 #include "test_directory.hpp"
@@ -118,6 +120,42 @@ TEST(Json, ValidityAndAutomaticChoicesHaveTheProgramsKeys) {
   EXPECT_EQ(choices[0]["band_hz"], Json::array({0.0, 60.0}));
   expect_finite_numbers(json, "validity");
   expect_finite_numbers(choices, "automatic_choices");
+}
+
+// The keys of `json`'s object in their order.
+std::vector<std::string> keys_of(const Json& json) {
+  std::vector<std::string> keys;
+  for (auto it = json.begin(); it != json.end(); ++it) keys.push_back(it.key());
+  return keys;
+}
+
+TEST(Json, IdentifyAndMismatchHaveTheProgramsKeysInOrder) {
+  IdentifyResult identified;
+  identified.parameter = {"beam.bending_stiffness", "N*m^2", 2.4e-3};
+  identified.achieved_hz = 5.0;
+  IdentifyOptions options;
+  options.target_hz = 5.0;
+  const Json fit = to_json(identified, options, {{}, "emnet identify fin.toml", 0.5});
+  EXPECT_EQ(keys_of(fit), (std::vector<std::string>{"automatic_choices", "parameter", "value",
+                                                    "unit", "mode", "target_hz", "achieved_hz",
+                                                    "iterations", "command", "total_seconds"}));
+  options.peak = PeakTarget{"P4", 9.3e-3, 4e3};
+  identified.validity = Validity{};
+  const std::vector<std::string> peak_keys = keys_of(to_json(identified, options, {}));
+  EXPECT_EQ(std::vector<std::string>(peak_keys.begin() + 10, peak_keys.end()),
+            (std::vector<std::string>{"loss_factor", "peak_probe", "target_peak_m",
+                                      "achieved_peak_m", "peak_rounds", "validity"}));
+  MismatchResult mismatch;
+  mismatch.rows.push_back(
+      {"electrode area of A", "dea.A.electrode_width", -0.05, -1e-3, 1e-3, 0.0, 0.0});
+  const Json table = to_json(mismatch, {}, 0.1);
+  EXPECT_EQ(keys_of(table),
+            (std::vector<std::string>{"automatic_choices", "output", "frequency_hz", "nominal",
+                                      "cases", "total_seconds", "validity"}));
+  EXPECT_EQ(keys_of(table["nominal"]), (std::vector<std::string>{"left_m", "right_m"}));
+  EXPECT_EQ(keys_of(table["cases"][0]),
+            (std::vector<std::string>{"key", "change", "left_m", "right_m", "asymmetry",
+                                      "asymmetry_per_unit_change"}));
 }
 
 // Sensitivity of a cantilever's f1 to EI: f ∝ √EI, so the normalised sensitivity is exactly

@@ -100,6 +100,33 @@ TEST(ResolveStep, SegmentsOnlyLeavesTheOtherKeysToChoose) {
   EXPECT_FALSE(resolved.scene.beam.auto_segments);
 }
 
+TEST(ResolveStep, ResolveSegmentsIsTheSegmentsOnlyStepAndLeavesAFixedMeshAlone) {
+  const Scene scene = read_scene(
+      kWater, {"beam.segments=auto", "drive.electrical_dynamics=auto", "model.band=\"10 Hz\""});
+  ResolveOptions segments_only;
+  segments_only.fluid_resonance = false;
+  segments_only.electrical_dynamics = false;
+  const Scene expected = resolve_scene(scene, segments_only).scene;
+  const Scene resolved = resolve_segments(scene);
+  EXPECT_EQ(resolved.beam.segments, expected.beam.segments);
+  EXPECT_FALSE(resolved.beam.auto_segments);
+  EXPECT_EQ(unresolved_keys(resolved), unresolved_keys(expected));
+  const Scene fixed = read_scene(kCantilever);
+  EXPECT_EQ(resolve_segments(fixed).beam.segments, fixed.beam.segments);
+  EXPECT_TRUE(resolve_segments(fixed).automatic_choices.empty());
+}
+
+TEST(ResolveStep, DeaVoltageAndCurrentProbesAskForTheRcDynamics) {
+  EXPECT_TRUE(asks_for_dea_electrics("dea_voltage:A"));
+  EXPECT_TRUE(asks_for_dea_electrics("dea_current:B"));
+  EXPECT_FALSE(asks_for_dea_electrics("deflection@70mm"));
+  EXPECT_FALSE(asks_for_dea_electrics("u_A"));  // an output name, not a probe text
+  EXPECT_TRUE(asks_for_dea_electrics(std::vector<std::string>{"P4", "dea_current:A"}));
+  EXPECT_FALSE(asks_for_dea_electrics(std::vector<std::string>{}));
+  EXPECT_TRUE(prepare_options_for_probes({"tip", "dea_voltage:A"}).electrical_probe_requested);
+  EXPECT_FALSE(prepare_options_for_probes({"tip"}).electrical_probe_requested);
+}
+
 // The notes of the shipped water scene exactly as the command line printed them before the
 // resolve step left the model builder (`emnet modes netlists/fishfin-water.toml` and `emnet
 // static ... --set beam.segments=auto --set 'model.band="10 Hz"'`): the fixed point, its steps

@@ -67,11 +67,6 @@ emnet::AcSpec checked_ac_spec(emnet::AcSpec spec, const std::string& from_text,
   return spec;
 }
 
-// The fields a reduced model reports in --json, for ac and sweep-switching alike.
-Json reduction_json(const emnet::ModalReduction& m, bool tolerance_met) {
-  return emnet::to_json(m, tolerance_met);
-}
-
 // --tolerance and --band of a modal reduction (ac, sweep-switching); band defaults to
 // `default_band` [Hz], tolerance to the scene's model.tolerance. Bad values are input errors
 // naming the option.

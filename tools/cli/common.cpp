@@ -126,38 +126,21 @@ std::vector<std::string> overrides_with_segments(const CommonOptions& options) {
 
 emnet::Scene load_scene(const CommonOptions& options) {
   const std::vector<std::string> overrides = overrides_with_segments(options);
-  emnet::Scene scene = emnet::read_scene(options.scene_path, overrides);
+  const emnet::Scene scene = emnet::read_scene(options.scene_path, overrides);
   // beam.segments = "auto": chosen once here, so that every model a command builds from the
-  // scene (sweeps, fits, finite differences) has the same N; the choice travels with the scene.
-  if (scene.beam.auto_segments) {
-    // N only: the fluid loading's resonance and drive.electrical_dynamics = "auto" stay to be
-    // chosen for each scene the command builds.
-    emnet::ResolveOptions segments_only;
-    segments_only.fluid_resonance = false;
-    segments_only.electrical_dynamics = false;
-    scene = emnet::resolve_scene(scene, segments_only).scene;
-  }
-  return scene;
+  // scene has the same N (emnet/studies/resolve.hpp).
+  return emnet::resolve_segments(scene);
 }
 
 // A --probe asking for an electrical quantity (drive.electrical_dynamics = "auto" keeps the
 // RC dynamics for it).
 bool electrical_probe_requested(const CommonOptions& options) {
-  for (const auto& text : options.probes)
-    if (text.rfind("dea_voltage", 0) == 0 || text.rfind("dea_current", 0) == 0) return true;
-  return false;
+  return emnet::asks_for_dea_electrics(options.probes);
 }
 
 // The model of `scene` with its remaining "auto" keys resolved for the command's probes.
 emnet::Model resolved_model(const emnet::Scene& scene, const CommonOptions& options) {
-  emnet::PrepareOptions prepare;
-  prepare.electrical_probe_requested = electrical_probe_requested(options);
-  return emnet::prepare_model(scene, prepare);
-}
-
-// "automatic_choices" of --json (emnet/report/json.hpp).
-Json automatic_choices_json(const std::vector<emnet::AutomaticChoice>& automatic_choices) {
-  return emnet::to_json(automatic_choices);
+  return emnet::prepare_model(scene, emnet::prepare_options_for_probes(options.probes));
 }
 
 std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const CommonOptions& options) {
@@ -165,12 +148,6 @@ std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const Commo
   std::vector<emnet::Probe> probes;
   for (const auto& text : options.probes) probes.push_back(model.parse_probe(text));
   return probes;
-}
-
-// The validity checks of a result (emnet/model/validity.hpp): "validity" of --json; in text a line
-// with the largest values against their limits and a WARNING line per violation.
-Json validity_json(const emnet::Validity& validity) {
-  return emnet::to_json(validity);
 }
 
 std::string validity_warning(const emnet::ValidityViolation& violation) {

@@ -118,8 +118,6 @@ emnet::Scene load_scene(const CommonOptions& options);
 bool electrical_probe_requested(const CommonOptions& options);
 // The model of `scene` with its remaining "auto" keys resolved for the command's probes.
 emnet::Model resolved_model(const emnet::Scene& scene, const CommonOptions& options);
-// "automatic_choices" of --json: what each "auto" key became, why, its error estimate, cost.
-Json automatic_choices_json(const std::vector<emnet::AutomaticChoice>& automatic_choices);
 std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const CommonOptions& options);
 
 // The drive in words (header line), what the AC input is (every AC result):
@@ -127,9 +125,9 @@ std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const Commo
 using emnet::ac_input_description;
 using emnet::drive_summary;
 
-// The validity checks of a result (emnet/model/validity.hpp): "validity" of --json; in text a
-// line with the largest values against their limits and a WARNING line per violation.
-Json validity_json(const emnet::Validity& validity);
+// The validity checks of a result (emnet/model/validity.hpp) in text: a line with the largest
+// values against their limits and a WARNING line per violation ("validity" of --json:
+// emnet/report/json.hpp).
 std::string validity_warning(const emnet::ValidityViolation& violation);
 void print_validity(const emnet::Validity& validity);
 // The exit status of a computed result: 0, or 5 with the warnings on standard error.
@@ -200,8 +198,6 @@ std::string tolerance_warning(double measured, double tolerance);
 // The --tolerance and --band options of --reduce (ac, sweep-switching), as text for
 // reduction_options.
 void add_reduction_tolerance_and_band(CLI::App* command, std::string& tolerance, std::string& band);
-// The reduced model of --reduce in --json (ac, sweep-switching).
-Json reduction_json(const emnet::ModalReduction& m, bool tolerance_met);
 
 // tran.cpp: the outputs of a transient (dx_k = P_k - P1, DEA voltages and currents); with
 // --probe those (tran, sweep-switching); the outputs a --plot draws: with --probe every probe,

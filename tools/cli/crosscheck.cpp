@@ -28,6 +28,7 @@
 #include "emnet/model/model.hpp"
 #include "emnet/model/outputs.hpp"
 #include "emnet/model/validity.hpp"
+#include "emnet/report/crosscheck_json.hpp"
 #include "emnet/report/plot.hpp"
 #include "emnet/scene/parameter_listing.hpp"
 #include "emnet/scene/parameters.hpp"
@@ -89,34 +90,7 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
   end_progress(options);
   const bool pass = report.all_pass();
   if (options.json) {
-    Json out;
-    out["scene"] = model.scene.name;
-    out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
-    out["backend"] = report.backend;
-    out["status"] = report.status.ok() ? "ok" : "failure";
-    if (!report.status.ok()) out["failure"] = report.status.message;
-    out["pass"] = pass;
-    out["rows"] = Json::array();
-    for (const auto& row : report.rows)
-      out["rows"].push_back(
-          {{"analysis", emnet::crosscheck_analysis_name(row.analysis)},
-           {"quantity", row.quantity},
-           {"largest_difference",
-            std::isfinite(row.largest_difference) ? Json(row.largest_difference) : Json(nullptr)},
-           {"where", row.where},
-           {"tolerance", row.tolerance},
-           {"pass", row.pass},
-           {"basis", row.basis}});
-    out["timings"] = Json::array();
-    for (const auto& t : report.timings)
-      out["timings"].push_back({{"analysis", emnet::crosscheck_analysis_name(t.analysis)},
-                                {"ngspice_seconds", t.ngspice_seconds},
-                                {"ngspice_total_seconds", t.ngspice_total_seconds},
-                                {"emnet_seconds", t.emnet_seconds},
-                                {"emnet_what", t.emnet_what}});
-    out["notes"] = report.notes;
-    out["total_seconds"] = total;
-    std::cout << json_text(out) << "\n";
+    std::cout << json_text(emnet::to_json(report, model, total)) << "\n";
   } else {
     const emnet::System system = model.network.assemble();
     print_header(model, system);

@@ -18,6 +18,7 @@
 #include "emnet/core/progress.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/core/units.hpp"
+#include "emnet/report/identify_json.hpp"
 #include "emnet/scene/parameters.hpp"
 
 namespace emnet_cli {
@@ -126,26 +127,8 @@ int run_identify(const CommonOptions& options, const IdentifyCommandOptions& com
   if (!command_options.fit_key.empty()) command += " --fit " + dotted_key(fitted.key);
   if (peak) command += " --peak " + command_options.peak_text;
   if (options.json) {
-    Json out = {{"automatic_choices", automatic_choices_json(scene.automatic_choices)},
-                {"parameter", fitted.key},
-                {"value", fitted.value},
-                {"unit", fitted.unit},
-                {"mode", mode_number},
-                {"target_hz", target_hz},
-                {"achieved_hz", result.achieved_hz},
-                {"iterations", result.stiffness_iterations},
-                {"command", command},
-                {"total_seconds", total}};
-    if (peak) {
-      out["loss_factor"] = result.loss_factor;
-      out["peak_probe"] = study.peak->output;
-      out["target_peak_m"] = study.peak->value;
-      out["achieved_peak_m"] = result.achieved_peak;
-      out["peak_rounds"] = result.peak_rounds;
-      out["validity"] = validity_json(*result.validity);
-    }
-    if (!result.notes.empty()) out["notes"] = result.notes;
-    std::cout << json_text(out) << "\n";
+    const emnet::IdentifyReportContext context{scene.automatic_choices, command, total};
+    std::cout << json_text(emnet::to_json(result, study, context)) << "\n";
     return result.validity ? validity_exit(*result.validity) : 0;
   }
   const std::string unit_text = fitted.unit.empty() ? "" : " " + fitted.unit;

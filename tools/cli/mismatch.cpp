@@ -14,10 +14,9 @@
 #include "cli/common.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/core/stopwatch.hpp"
+#include "emnet/report/mismatch_json.hpp"
 
 namespace emnet_cli {
-
-using Json = nlohmann::ordered_json;
 
 namespace {
 
@@ -47,22 +46,7 @@ int run_mismatch_command(const CommonOptions& options, const MismatchCommandOpti
   const double total = stopwatch.seconds();
   end_progress(options);
   if (options.json) {
-    Json out = {{"automatic_choices", automatic_choices_json(scene.automatic_choices)},
-                {"output", result.output},
-                {"frequency_hz", result.frequency_hz},
-                {"nominal", {{"left_m", result.nominal_left}, {"right_m", result.nominal_right}}},
-                {"cases", Json::array()},
-                {"total_seconds", total}};
-    for (const emnet::MismatchRow& row : result.rows)
-      out["cases"].push_back({{"key", row.key},
-                              {"change", row.change},
-                              {"left_m", row.left},
-                              {"right_m", row.right},
-                              {"asymmetry", row.asymmetry},
-                              {"asymmetry_per_unit_change", row.asymmetry_per_unit_change}});
-    out["validity"] = validity_json(result.validity);
-    if (!result.notes.empty()) out["notes"] = result.notes;
-    std::cout << json_text(out) << "\n";
+    std::cout << json_text(emnet::to_json(result, scene.automatic_choices, total)) << "\n";
     return validity_exit(result.validity);
   }
   std::printf(

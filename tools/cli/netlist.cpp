@@ -26,6 +26,7 @@
 #include "emnet/model/outputs.hpp"
 #include "emnet/model/validity.hpp"
 #include "emnet/report/plot.hpp"
+#include "emnet/report/spice_deck_json.hpp"
 #include "emnet/scene/parameter_listing.hpp"
 #include "emnet/scene/parameters.hpp"
 #include "emnet/scene/scene_reader.hpp"
@@ -139,23 +140,8 @@ int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
       !status.ok())
     throw FileError("-o: " + status.message);
   if (options.json) {
-    const emnet::System system = model.network.assemble();
-    Json out;
-    out["deck"] = netlist.output;
-    out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
-    out["analysis"] = emnet::spice_analysis_name(deck.analysis);
-    out["unknowns"] = Json::array();
-    for (size_t k = 0; k < deck.unknowns.size(); ++k)
-      out["unknowns"].push_back({{"name", system.unknowns[k].name},
-                                 {"vector", deck.unknowns[k].vector},
-                                 {"sign", deck.unknowns[k].sign}});
-    out["outputs"] = Json::array();
-    for (const auto& o : deck.outputs)
-      out["outputs"].push_back({{"probe", o.probe},
-                                {"vector", o.vector},
-                                {"unit", o.unit},
-                                {"description", o.description}});
-    out["notes"] = deck.notes;
+    Json out = {{"deck", netlist.output}};
+    out.update(emnet::to_json(deck, model));
     std::cout << json_text(out) << "\n";
     return 0;
   }

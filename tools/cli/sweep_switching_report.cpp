@@ -3,13 +3,13 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "cli/common.hpp"
 #include "cli/sweep_switching.hpp"
 #include "emnet/report/plot.hpp"
+#include "emnet/report/switching_sweep_json.hpp"
 
 namespace emnet_cli {
 
@@ -57,6 +57,113 @@ void write_sweep_plot(const SweepReportInput& input,
                                     "switching frequency [Hz]", series, options));
 }
 
+// The CSV table (one row per frequency: each output's left and right extreme) and the plot.
+void write_sweep_files(const SweepReportInput& input,
+                       const std::vector<emnet::PlotMarker>& markers) {
+  const CommonOptions& options = input.options;
+  const auto& outputs = input.result.outputs;
+  const auto& frequencies = input.result.frequencies;
+  if (!options.csv.empty()) {
+    std::vector<std::string> header{"switching_frequency_hz"};
+    for (const auto& output : outputs) {
+      header.push_back(output.probe.name + "_left_" + output.probe.unit);
+      header.push_back(output.probe.name + "_right_" + output.probe.unit);
+    }
+    write_csv_rows(options.csv, header, frequencies.size(), [&](size_t k, auto& row) {
+      row.push_back(frequencies[k]);
+      for (const auto& output : outputs) {
+        row.push_back(output.left[k]);
+        row.push_back(output.right[k]);
+      }
+    });
+  }
+  if (!input.plot.empty()) write_sweep_plot(input, markers);
+}
+
+// The reduced model, its check's errors against the reference and the costs, in text.
+void print_reduction_check(const emnet::SwitchingSweepReductionCheck& check,
+                           const emnet::SwitchingSweepResult& result) {
+  const auto& m = check.model;
+  const size_t count = result.frequencies.size();
+  const double reduced_sweep = check.build_seconds + result.solve_seconds;
+  const double full_sweep =
+      check.full_build_seconds + static_cast<double>(count) * check.full_solve_seconds;
+  std::cout << "reduced: modal coordinates of " << m.kept_modes << " mode(s) and "
+            << m.kept_real_poles << " real pole(s) below f_c = band/tol = " << si(m.cutoff_hz, "Hz")
+            << " (band " << si(m.band_hz, "Hz") << ", tolerance " << format("%.3g", m.tolerance)
+            << "), static correction as a direct feed-through; " << m.full_unknowns
+            << " unknowns in the full network\n"
+            << "  error against " << check.reference
+            << (check.against_full ? ""
+                                   : ", or the static correction's error at the switching "
+                                     "edges where larger (an estimate)")
+            << " (every sample, relative to each probe's largest |deflection|):";
+  for (size_t k = 0; k < check.frequencies.size(); ++k)
+    std::cout << " " << format("%.2e", check.errors[k]) << " at " << si(check.frequencies[k], "Hz")
+              << (k + 1 < check.frequencies.size() ? "," : "");
+  std::cout << "\n  tolerance " << format("%.3g", m.tolerance)
+            << (check.tolerance_met ? ": met" : ": NOT MET") << "\n";
+  if (!check.tolerance_met)
+    std::cout << tolerance_warning(check.measured_error, m.tolerance) << "\n";
+  std::cout << "  cost: reduced sweep " << milliseconds(reduced_sweep) << " (reduction "
+            << milliseconds(check.build_seconds) << " + " << count << " solves)";
+  if (!check.against_full) {
+    std::cout << "; the check's wider reduction " << milliseconds(check.full_build_seconds) << " + "
+              << milliseconds(check.full_solve_seconds) << " per frequency\n";
+    return;
+  }
+  std::cout << "; full exact sweep, estimated from the check ("
+            << milliseconds(check.full_build_seconds) << " decomposition + "
+            << milliseconds(check.full_solve_seconds)
+            << " per frequency): " << milliseconds(full_sweep) << " -> the reduced path is "
+            << (reduced_sweep <= full_sweep
+                    ? format("%.2g", full_sweep / reduced_sweep) + "x faster"
+                    : format("%.2g", reduced_sweep / full_sweep) +
+                          "x SLOWER (the full eigen-decomposition is small here)")
+            << "\n";
+}
+
+// The peaks per frequency, deflections in mm when every output is one (as the default outputs
+// are), else each output in its own unit, named in its column; then the largest swing.
+void print_sweep_table(const emnet::SwitchingSweepResult& result) {
+  const auto& outputs = result.outputs;
+  const auto& frequencies = result.frequencies;
+  bool all_deflections = true;
+  for (const auto& output : outputs) all_deflections &= output.probe.unit == "m";
+  auto column_unit = [&](const emnet::Probe& probe) {
+    return all_deflections ? std::string() : " [" + probe.unit + "]";
+  };
+  auto in_table = [&](double value) { return all_deflections ? value * 1e3 : value; };
+  std::printf("%10s", "f [Hz]");
+  for (const auto& output : outputs)
+    std::printf(" %12s %12s",
+                shown(output.probe.name + " left" + column_unit(output.probe)).c_str(),
+                shown(output.probe.name + " right" + column_unit(output.probe)).c_str());
+  std::printf(all_deflections ? "   [mm]\n" : "\n");
+  for (size_t k = 0; k < frequencies.size(); ++k) {
+    std::printf("%10.7g", frequencies[k]);
+    for (const auto& output : outputs)
+      std::printf(" %12.6g %12.6g", in_table(output.left[k]), in_table(output.right[k]));
+    std::printf("\n");
+  }
+  if (frequencies.empty()) return;
+  // The largest peak-to-peak among the outputs in the main output's unit (swings in other
+  // units do not compare), not the main output's own.
+  const size_t main_probe = result.peak_output;
+  size_t widest = main_probe, at = result.peak_index;
+  auto swing = [&](size_t p, size_t k) { return outputs[p].right[k] - outputs[p].left[k]; };
+  for (size_t p = 0; p < outputs.size(); ++p) {
+    if (outputs[p].probe.unit != outputs[main_probe].probe.unit) continue;
+    for (size_t k = 0; k < frequencies.size(); ++k)
+      if (swing(p, k) > swing(widest, at)) widest = p, at = k;
+  }
+  const std::string unit = all_deflections ? "mm" : outputs[widest].probe.unit;
+  std::printf("largest swing of %s at %.7g Hz: %.6g %s left, %.6g %s right\n",
+              shown(outputs[widest].probe.name).c_str(), frequencies[at],
+              in_table(outputs[widest].left[at]), shown(unit).c_str(),
+              in_table(outputs[widest].right[at]), shown(unit).c_str());
+}
+
 }  // namespace
 
 int report_switching_sweep(const SweepReportInput& input) {
@@ -64,82 +171,25 @@ int report_switching_sweep(const SweepReportInput& input) {
   const emnet::Model& model = input.model;
   const emnet::SwitchingSweepResult& result = input.result;
   const std::vector<double>& frequencies = result.frequencies;
-  const auto& outputs = result.outputs;
   const size_t count = frequencies.size();
-  const size_t main_probe = result.peak_output;
-  const size_t best = result.peak_index;
   const auto& check = result.reduction;
   std::vector<emnet::PlotMarker> markers;
   if (result.first_mode_hz)
     markers.push_back(
         {*result.first_mode_hz, "f1 = " + format("%.6g", *result.first_mode_hz) + " Hz"});
   if (count > 0)
-    markers.push_back(
-        {frequencies[best], "sweep peak " + format("%.6g", frequencies[best]) + " Hz"});
+    markers.push_back({frequencies[result.peak_index],
+                       "sweep peak " + format("%.6g", frequencies[result.peak_index]) + " Hz"});
   const double total = input.total_seconds;
   end_progress(options);
   if (check && !check->tolerance_met)
     std::cerr << tolerance_warning(check->measured_error, check->tolerance) << "\n";
-
-  auto write_files = [&] {
-    if (!options.csv.empty()) {
-      std::vector<std::string> header{"switching_frequency_hz"};
-      for (const auto& output : outputs) {
-        header.push_back(output.probe.name + "_left_" + output.probe.unit);
-        header.push_back(output.probe.name + "_right_" + output.probe.unit);
-      }
-      write_csv_rows(options.csv, header, count, [&](size_t k, auto& row) {
-        row.push_back(frequencies[k]);
-        for (const auto& output : outputs) {
-          row.push_back(output.left[k]);
-          row.push_back(output.right[k]);
-        }
-      });
-    }
-    if (!input.plot.empty()) write_sweep_plot(input, markers);
-  };
-  const std::string method = emnet::method_name(result.method);  // exact, shooting, reduced
-  const double n = static_cast<double>(count);
   if (options.json) {
-    Json out;
-    out["scene"] = model.scene.name;
-    out["automatic_choices"] = automatic_choices_json(model.automatic_choices);
-    out["method"] = method;
-    out["notes"] = input.notes;
-    out["frequencies_hz"] = frequencies;
-    out["outputs"] = Json::array();
-    for (const auto& output : outputs)
-      out["outputs"].push_back({{"name", output.probe.name},
-                                {"description", output.probe.description},
-                                {"unit", output.probe.unit},
-                                {"left", output.left},
-                                {"right", output.right}});
-    out["sweep_peak_hz"] = count == 0 ? 0.0 : frequencies[best];
-    out["accuracy"] = {{"worst_periodicity_residual", result.worst_periodicity_residual}};
-    out["cost"] = {{"solve_seconds", result.solve_seconds}, {"total_seconds", total}};
-    if (check) {
-      Json reduced = reduction_json(check->model, check->tolerance_met);
-      reduced.update({{"check_reference", check->against_full ? "full" : "wider reduction"},
-                      {"check_frequencies_hz", check->frequencies},
-                      {"edge_estimates", check->edge_estimates},
-                      {"errors", check->errors},
-                      {"measured_error", check->measured_error},
-                      {"cost",
-                       {{"reduce_seconds", check->build_seconds},
-                        {"reduced_seconds_per_frequency", check->reduced_solve_seconds},
-                        {"reference_build_seconds", check->full_build_seconds},
-                        {"reference_seconds_per_frequency", check->full_solve_seconds},
-                        {"reduced_sweep_seconds", check->build_seconds + result.solve_seconds}}}});
-      if (check->against_full)
-        reduced["cost"]["full_sweep_seconds_estimated"] =
-            check->full_build_seconds + n * check->full_solve_seconds;
-      out["reduction"] = reduced;
-    }
-    out["validity"] = validity_json(result.validity);
-    std::cout << json_text(out) << "\n";
-    write_files();
+    std::cout << json_text(emnet::to_json(result, model, input.notes, total)) << "\n";
+    write_sweep_files(input, markers);
     return validity_exit(result.validity);
   }
+  const std::string method = emnet::method_name(result.method);  // exact, shooting, reduced
   print_header(model, model.network.assemble());
   for (const auto& note : input.notes) std::cout << "note: " << shown(note) << "\n";
   std::cout << "periodic steady state, " << method
@@ -153,85 +203,11 @@ int report_switching_sweep(const SweepReportInput& input) {
             << "accuracy: worst periodicity residual "
             << format("%.2g", result.worst_periodicity_residual) << "\ncost: periodic solves "
             << milliseconds(result.solve_seconds) << ", total " << milliseconds(total) << "\n";
-  if (check) {
-    const auto& m = check->model;
-    const double reduced_sweep = check->build_seconds + result.solve_seconds;
-    const double full_sweep = check->full_build_seconds + n * check->full_solve_seconds;
-    std::cout << "reduced: modal coordinates of " << m.kept_modes << " mode(s) and "
-              << m.kept_real_poles
-              << " real pole(s) below f_c = band/tol = " << si(m.cutoff_hz, "Hz") << " (band "
-              << si(m.band_hz, "Hz") << ", tolerance " << format("%.3g", m.tolerance)
-              << "), static correction as a direct feed-through; " << m.full_unknowns
-              << " unknowns in the full network\n"
-              << "  error against " << check->reference
-              << (check->against_full ? ""
-                                      : ", or the static correction's error at the switching "
-                                        "edges where larger (an estimate)")
-              << " (every sample, relative to each probe's largest |deflection|):";
-    for (size_t k = 0; k < check->frequencies.size(); ++k)
-      std::cout << " " << format("%.2e", check->errors[k]) << " at "
-                << si(check->frequencies[k], "Hz")
-                << (k + 1 < check->frequencies.size() ? "," : "");
-    std::cout << "\n  tolerance " << format("%.3g", m.tolerance)
-              << (check->tolerance_met ? ": met" : ": NOT MET") << "\n";
-    if (!check->tolerance_met)
-      std::cout << tolerance_warning(check->measured_error, m.tolerance) << "\n";
-    std::cout << "  cost: reduced sweep " << milliseconds(reduced_sweep) << " (reduction "
-              << milliseconds(check->build_seconds) << " + " << count << " solves)";
-    if (!check->against_full) {
-      std::cout << "; the check's wider reduction " << milliseconds(check->full_build_seconds)
-                << " + " << milliseconds(check->full_solve_seconds) << " per frequency\n";
-    } else {
-      std::cout << "; full exact sweep, estimated from the check ("
-                << milliseconds(check->full_build_seconds) << " decomposition + "
-                << milliseconds(check->full_solve_seconds)
-                << " per frequency): " << milliseconds(full_sweep) << " -> the reduced path is "
-                << (reduced_sweep <= full_sweep
-                        ? format("%.2g", full_sweep / reduced_sweep) + "x faster"
-                        : format("%.2g", reduced_sweep / full_sweep) +
-                              "x SLOWER (the full eigen-decomposition is small here)")
-                << "\n";
-    }
-  }
+  if (check) print_reduction_check(*check, result);
   std::cout << "\n";
-  // Deflections in mm when every output is one (as the default outputs are); else each output in
-  // its own unit, named in its column.
-  bool all_deflections = true;
-  for (const auto& output : outputs) all_deflections &= output.probe.unit == "m";
-  auto column_unit = [&](const emnet::Probe& probe) {
-    return all_deflections ? std::string() : " [" + probe.unit + "]";
-  };
-  auto in_table = [&](double value) { return all_deflections ? value * 1e3 : value; };
-  std::printf("%10s", "f [Hz]");
-  for (const auto& output : outputs)
-    std::printf(" %12s %12s",
-                shown(output.probe.name + " left" + column_unit(output.probe)).c_str(),
-                shown(output.probe.name + " right" + column_unit(output.probe)).c_str());
-  std::printf(all_deflections ? "   [mm]\n" : "\n");
-  for (size_t k = 0; k < count; ++k) {
-    std::printf("%10.7g", frequencies[k]);
-    for (const auto& output : outputs)
-      std::printf(" %12.6g %12.6g", in_table(output.left[k]), in_table(output.right[k]));
-    std::printf("\n");
-  }
-  if (count > 0) {
-    // The largest peak-to-peak among the outputs in the main output's unit (swings in other
-    // units do not compare), not the main output's own.
-    size_t widest = main_probe, at = best;
-    auto swing = [&](size_t p, size_t k) { return outputs[p].right[k] - outputs[p].left[k]; };
-    for (size_t p = 0; p < outputs.size(); ++p) {
-      if (outputs[p].probe.unit != outputs[main_probe].probe.unit) continue;
-      for (size_t k = 0; k < count; ++k)
-        if (swing(p, k) > swing(widest, at)) widest = p, at = k;
-    }
-    const std::string unit = all_deflections ? "mm" : outputs[widest].probe.unit;
-    std::printf("largest swing of %s at %.7g Hz: %.6g %s left, %.6g %s right\n",
-                shown(outputs[widest].probe.name).c_str(), frequencies[at],
-                in_table(outputs[widest].left[at]), shown(unit).c_str(),
-                in_table(outputs[widest].right[at]), shown(unit).c_str());
-  }
+  print_sweep_table(result);
   for (const auto& m : markers) std::cout << "marker: " << m.label << "\n";
-  write_files();
+  write_sweep_files(input, markers);
   if (!input.plot.empty()) std::cout << "plot written to " << shown(input.plot) << "\n";
   print_validity(result.validity);
   return validity_exit(result.validity);

@@ -66,9 +66,27 @@ struct ResolvedScene {
 // solve that fails, the fluid's resonance not found).
 ResolvedScene resolve_scene(const Scene& scene, const ResolveOptions& options = {});
 
+/// The scene with beam.segments = "auto" chosen and nothing else resolved: what a front-end
+/// does once per run, so that every model it then builds from the scene (sweeps, fits, finite
+/// differences, variants) has the same N; the fluid loading's resonance and
+/// drive.electrical_dynamics = "auto" stay to be chosen for each scene built. A scene without
+/// "auto" segments is returned as it is.
+/// @throws InputError as resolve_scene, when N cannot be chosen
+Scene resolve_segments(const Scene& scene);
+
+/// Whether a probe text asks for a DEA's electrical quantity, "dea_voltage…" or "dea_current…"
+/// (emnet/model/model.hpp, Model::parse_probe): the RC loop of the DEA must then be modelled.
+bool asks_for_dea_electrics(const std::string& probe_text);
+/// Whether any of `probe_texts` does.
+bool asks_for_dea_electrics(const std::vector<std::string>& probe_texts);
+
 struct PrepareOptions {
   bool electrical_probe_requested = false;  // as ResolveOptions
 };
+
+/// The PrepareOptions of a run that asks for `probe_texts`: the RC dynamics kept when one of
+/// them asks for a DEA's electrical quantity (asks_for_dea_electrics).
+PrepareOptions prepare_options_for_probes(const std::vector<std::string>& probe_texts);
 
 // resolve_scene (everything) then build_model: the model of any read scene.
 Model prepare_model(const Scene& scene, const PrepareOptions& options = {});
