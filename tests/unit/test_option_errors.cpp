@@ -117,7 +117,7 @@ TEST(OptionErrorCli, TheCommandLineNamesTheFlags) {
   EXPECT_EQ(cli_error("sweep-switching " + kFishfin + " --step 0"),
             "emnet: error: --from/--to/--step: key '--step': need 0 < from <= to and step > 0 "
             "(frequencies in Hz)\n");
-  EXPECT_EQ(cli_error("study " + kFishfin + " --vary beam.bending_stiffness=uniform(90%,110%)"),
+  EXPECT_EQ(cli_error("study " + kFishfin + " --vary 'beam.bending_stiffness=uniform(90%,110%)'"),
             "emnet: error: --samples: key '--samples': a random variation (uniform, normal, "
             "lognormal) needs --samples N\n");
   EXPECT_EQ(cli_error("study " + kFishfin + " --vary beam.bending_stiffness=1,2 --threads 2000"),
