@@ -71,6 +71,14 @@ emnet::PreparedModel prepare(const emnet::Scene& scene, const std::vector<std::s
   return p;
 }
 
+// The keyword arguments that differ from the library's field names (convert.hpp's Keywords).
+const Keywords kProbesKeywords = {{"probe", "probes"}};
+const Keywords kAcKeywords = {{"probe", "probes"}, {"band", "band_hz"}};
+const Keywords kOutputsKeywords = {{"probe", "outputs"}};
+const Keywords kSweepKeywords = {
+    {"probe", "outputs"}, {"from", "from_hz"}, {"to", "to_hz"}, {"step", "step_hz"}};
+const Keywords kIdentifyKeywords = {{"mode_number", "mode"}};
+
 // ---- static -------------------------------------------------------------------------------
 
 py::dict run_static(const SceneHandle& handle, const std::vector<std::string>& probe_texts) {
@@ -78,7 +86,7 @@ py::dict run_static(const SceneHandle& handle, const std::vector<std::string>& p
   emnet::PreparedModel p;
   std::vector<emnet::Probe> probes;
   emnet::StaticStudyValues values;
-  run_interruptible([&](emnet::Progress* progress) {
+  run_interruptible(kProbesKeywords, [&](emnet::Progress* progress) {
     p = prepare(handle.scene, probe_texts, true, progress);
     probes = parse_probes(p.model, probe_texts);
     values = emnet::static_study_values(p.model, p.system, p.rest, probes);
@@ -94,9 +102,8 @@ py::dict run_modes(const SceneHandle& handle, int count, bool dense, bool error_
   emnet::Stopwatch stopwatch;
   emnet::ModesStudyResult study;
   std::vector<emnet::Probe> probes;
-  run_interruptible([&](emnet::Progress* progress) {
+  run_interruptible(kProbesKeywords, [&](emnet::Progress* progress) {
     emnet::ModesStudyOptions options;
-    if (count < 0) throw InputError("count", "count", "must be >= 0 (0: the default request)");
     options.count = count;
     options.dense = dense;
     options.error_estimate = error_estimate;
@@ -121,7 +128,7 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
   std::vector<emnet::Probe> probes;
   emnet::AcStudyResult result;
   std::string input;
-  run_interruptible([&](emnet::Progress* progress) {
+  run_interruptible(kAcKeywords, [&](emnet::Progress* progress) {
     emnet::AcSpec spec = handle.scene.ac;
     if (from_hz) spec.from = *from_hz;
     if (to_hz) spec.to = *to_hz;
@@ -177,7 +184,7 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
                   const std::vector<std::string>& outputs) {
   emnet::TransientStudyResult study;
   emnet::TransientStudyOptions options;
-  run_interruptible([&](emnet::Progress* progress) {
+  run_interruptible(kOutputsKeywords, [&](emnet::Progress* progress) {
     if (method != "ida" && method != "exact")
       throw InputError("method", "method", "must be 'ida' or 'exact', got '" + method + "'");
     if (start != "rest" && start != "static")
@@ -193,7 +200,6 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
     options.start = start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
     options.outputs = outputs;
     options.prepare = prepare_options_for_probes(outputs);
-    options.option_prefix = "";
     options.progress = progress;
     study = emnet::run_transient_study(with_segments(handle.scene), options);
     require(study.status, "");
@@ -218,7 +224,7 @@ py::dict run_sweep(const SceneHandle& handle, std::vector<double> frequencies, d
   emnet::Stopwatch stopwatch;
   emnet::SwitchingSweepResult result;
   emnet::SweptModel swept;
-  run_interruptible([&](emnet::Progress* progress) {
+  run_interruptible(kSweepKeywords, [&](emnet::Progress* progress) {
     if (method != "auto" && method != "exact" && method != "shooting")
       throw InputError("method", "method",
                        "must be 'auto', 'exact' or 'shooting', got '" + method + "'");
@@ -233,11 +239,11 @@ py::dict run_sweep(const SceneHandle& handle, std::vector<double> frequencies, d
     options.samples = samples;
     options.rtol = rtol;
     options.sources = sources;
-    emnet::check_switching_sweep_options(options);
+    options.validate();
     const auto grid = emnet::switching_frequencies(options);
     swept = emnet::prepare_swept_model(with_segments(handle.scene), options.method, outputs,
                                        prepare_options_for_probes(outputs),
-                                       *std::max_element(grid.begin(), grid.end()), "outputs");
+                                       *std::max_element(grid.begin(), grid.end()));
     options.outputs = emnet::switching_sweep_outputs(swept.model, outputs);
     options.progress = progress;
     result = emnet::run_switching_sweep(swept.model, swept.scene, options);
@@ -256,7 +262,7 @@ py::dict run_identify(const SceneHandle& handle, double target_hz, const std::st
   emnet::IdentifyResult result;
   emnet::IdentifyOptions options;
   emnet::Scene scene;
-  run_interruptible([&](emnet::Progress* progress) {
+  run_interruptible(kIdentifyKeywords, [&](emnet::Progress* progress) {
     options.target_hz = target_hz;
     options.parameter = parameter;
     options.mode_number = mode;
@@ -360,7 +366,7 @@ py::dict run_crosscheck(const SceneHandle& handle, const std::string& analyses, 
   {
     py::gil_scoped_release release;
     emnet::CrosscheckOptions options;
-    options.analyses = emnet::parse_crosscheck_analyses(analyses, "analyses");
+    options.analyses = emnet::parse_crosscheck_analyses(analyses);
     if (!(timeout > 0.0) || timeout > 86400.0)
       throw InputError("timeout", "timeout", "must be > 0 s and at most 86400 s (inclusive)");
     options.ngspice.timeout_seconds = timeout;

@@ -3,10 +3,21 @@
 
 #include <algorithm>
 
+#include "emnet/core/option_error.hpp"
+
 namespace emnet_python {
 
 void require(const emnet::Status& status, const std::string& prefix) {
   if (!status.ok()) throw NumericalFailure(prefix + status.message);
+}
+
+emnet::InputError with_keywords(const emnet::OptionError& error, const Keywords& keywords) {
+  const auto keyword = [&keywords](const std::string& field) {
+    const auto found = keywords.find(field);
+    return found == keywords.end() ? field : found->second;
+  };
+  return emnet::InputError(error.where_with(keyword), error.key_with(keyword),
+                           error.reason_with(keyword));
 }
 
 py::array_t<double> to_array(const std::vector<double>& values) {

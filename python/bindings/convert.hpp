@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "emnet/core/errors.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/report/json.hpp"
 #include "emnet/scene/scene.hpp"
@@ -77,6 +79,30 @@ void run_interruptible(Body&& body, emnet::Progress* forward = nullptr) {
     throw;
   }
   interrupts.raise_if_interrupted();
+}
+
+// The keyword arguments of a binding by the library Options fields they set ({"from", "from_hz"}):
+// an emnet::OptionError (which names fields) is raised as emnet.InputError naming the keyword
+// argument instead. A field not listed keeps its own name, the keyword of most.
+using Keywords = std::map<std::string, std::string>;
+
+// `error` worded with `keywords`: an InputError whose where and key are the keyword arguments.
+emnet::InputError with_keywords(const emnet::OptionError& error, const Keywords& keywords);
+
+// Runs `body()`; an OptionError it throws is thrown again worded with `keywords`.
+template <class Body>
+void naming_keywords(const Keywords& keywords, Body&& body) {
+  try {
+    body();
+  } catch (const emnet::OptionError& error) {
+    throw with_keywords(error, keywords);
+  }
+}
+
+// run_interruptible with the OptionErrors of `body` worded with `keywords`.
+template <class Body>
+void run_interruptible(const Keywords& keywords, Body&& body, emnet::Progress* forward = nullptr) {
+  naming_keywords(keywords, [&] { run_interruptible(std::forward<Body>(body), forward); });
 }
 
 // The scene a binding works on: the read (and possibly changed) Scene, with how it was made, so

@@ -1,13 +1,15 @@
 // emnet._emnet: the compiled part of the Python module (python/emnet/__init__.py is the public
 // face). Scenes, every analysis and the design study, over the library (include/emnet/).
 //
-// Errors: emnet::InputError → emnet.InputError (a ValueError, with .where and .key);
+// Errors: emnet::InputError → emnet.InputError (a ValueError, with .where and .key; an
+// OptionError names the keyword argument, convert.hpp's Keywords; an override's where is "set");
 // a failed analysis Status → emnet.NumericalError (a RuntimeError). Every solve runs with the GIL
 // released; the library keeps no global state, so calls from several threads run at once.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/scene/parameters.hpp"
 #include "emnet/scene/scene_reader.hpp"
 
@@ -45,9 +47,15 @@ PYBIND11_MODULE(_emnet, module) {
     try {
       if (pointer) std::rethrow_exception(pointer);
     } catch (const emnet::InputError& error) {
+      // A value an override wrote (the library's where "override") came from Scene's `set`.
+      const bool from_override = error.where() == "override";
+      const std::string where = from_override ? "set" : error.where();
       py::object type = py::reinterpret_borrow<py::object>(input_error.ptr());
-      py::object instance = type(error.what());
-      instance.attr("where") = error.where();
+      py::object instance =
+          type(from_override ? emnet::input_error_message(where, error.key(),
+                                                          emnet::input_error_reason(error))
+                             : std::string(error.what()));
+      instance.attr("where") = where;
       instance.attr("key") = error.key();
       PyErr_SetObject(input_error.ptr(), instance.ptr());
     } catch (const NumericalFailure& error) {

@@ -36,13 +36,12 @@ py::tuple variants_tuple(const emnet::VariantTable& table) {
 py::tuple make_variants(const SceneHandle& handle, const std::vector<std::string>& vary,
                         std::size_t samples, std::uint64_t seed) {
   emnet::VariantTable table;
-  {
+  naming_keywords({{"variations", "vary"}}, [&] {
     py::gil_scoped_release release;
     std::vector<emnet::Variation> variations;
-    for (const auto& text : vary)
-      variations.push_back(emnet::parse_variation(handle.scene, text, "vary"));
+    for (const auto& text : vary) variations.push_back(emnet::parse_variation(handle.scene, text));
     table = emnet::make_variants(variations, samples, seed);
-  }
+  });
   return variants_tuple(table);
 }
 
@@ -75,9 +74,10 @@ py::dict run_study(const SceneHandle& handle, const std::vector<std::string>& ke
   emnet::DesignStudyResult result;
   StderrProgress reporter;
   run_interruptible(
+      Keywords{{"mode_count", "modes"}, {"variations", "vary"}, {"report_frequencies", "at"}},
       [&](emnet::Progress* interrupts) {
         emnet::DesignStudyOptions options;
-        options.analyses = emnet::parse_study_analyses(analyses, "analyses");
+        options.analyses = emnet::parse_study_analyses(analyses);
         options.mode_count = modes;
         options.sweep_frequencies = sweep_frequencies;
         options.report_frequencies = report_frequencies;

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "core/timed.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/core/units.hpp"
 #include "exponential_series.hpp"
@@ -111,15 +112,14 @@ Complex power(Complex s, int e) {
 
 void validate(const ReductionOptions& options) {
   if (!(options.tolerance > 0.0 && options.tolerance < 1.0))
-    throw InputError(
-        "--tolerance", "tolerance",
-        "must be a relative error in (0, 1), got " + std::to_string(options.tolerance));
+    throw OptionError("tolerance", "must be a relative error in (0, 1), got " +
+                                       std::to_string(options.tolerance));
   if (!(options.band > 0.0) || !std::isfinite(options.band))
-    throw InputError("--band", "band",
-                     "must be a finite frequency > 0 Hz, got " + std::to_string(options.band));
-  if (options.dense_limit < 0) throw InputError("--dense-limit", "dense_limit", "must be >= 0");
+    throw OptionError("band",
+                      "must be a finite frequency > 0 Hz, got " + std::to_string(options.band));
+  if (options.dense_limit < 0) throw OptionError("dense_limit", "must be >= 0");
   if (!(options.cutoff_hz >= 0.0) || !std::isfinite(options.cutoff_hz))
-    throw InputError("cutoff", "cutoff_hz", "must be a finite frequency >= 0 Hz");
+    throw OptionError("cutoff_hz", "must be a finite frequency >= 0 Hz");
 }
 
 double cutoff_frequency(const ReductionOptions& options) {

@@ -17,6 +17,7 @@
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/transient.hpp"
 #include "emnet/core/errors.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/units.hpp"
 #include "exponential_series.hpp"
 #include "state_space.hpp"
@@ -441,17 +442,17 @@ PeriodicResult run_periodic_shooting(const System& given, const std::vector<Prob
   }
 }
 
-void check_periodic_memory(int unknowns, const std::string& option) {
+void check_periodic_memory(int unknowns, const std::string& field) {
   const double bytes = periodic_memory_bytes(unknowns);
   if (bytes <= kPeriodicDenseMemoryLimit) return;
-  throw InputError(option, option,
-                   "the exact periodic method decomposes a dense matrix of the network's " +
-                       std::to_string(unknowns) + " unknowns: about " +
-                       format_number("%.3g", bytes / 1e9) +
-                       " GB (256 bytes per unknown squared), where at most " +
-                       format_number("%.0f", kPeriodicDenseMemoryLimit / 1e9) +
-                       " GB is allowed (inclusive); use fewer --segments, the modal "
-                       "reduction or the shooting method where the command has them");
+  throw OptionError(field, "the exact periodic method decomposes a dense matrix of the network's " +
+                               std::to_string(unknowns) + " unknowns: about " +
+                               format_number("%.3g", bytes / 1e9) +
+                               " GB (256 bytes per unknown squared), where at most " +
+                               format_number("%.0f", kPeriodicDenseMemoryLimit / 1e9) +
+                               " GB is allowed (inclusive); use fewer {" + field +
+                               "}, the modal "
+                               "reduction or the shooting method where the command has them");
 }
 
 }  // namespace emnet

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "emnet/core/errors.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/elements/dea.hpp"
 #include "emnet/model/model.hpp"
@@ -148,16 +149,16 @@ double drive_time_constant(const Scene& scene, std::string* which) {
   return tau;
 }
 
-void check_overlap_fits(const Scene& scene, double frequency_hz, const std::string& where) {
+void check_overlap_fits(const Scene& scene, double frequency_hz, const std::string& field) {
   const auto& drive = scene.drive;
   if (drive.overlap == 0.0) return;
   const double period = 1.0 / frequency_hz, on_time = drive.duty * period + drive.overlap;
   if (!(on_time > 2.0 * drive.rise_time && on_time < period - 2.0 * drive.rise_time))
-    throw InputError(scene.file, "drive.overlap",
-                     format_number("%.6g s", drive.overlap) +
-                         " makes DEA A's on-time leave the period " +
-                         format_number("%.6g s", period) + " at " +
-                         format_number("%.6g Hz", frequency_hz) + " (" + where + ")");
+    throw OptionError::in_file(field, scene.file, "drive.overlap",
+                               format_number("%.6g s", drive.overlap) +
+                                   " makes DEA A's on-time leave the period " +
+                                   format_number("%.6g s", period) + " at " +
+                                   format_number("%.6g Hz", frequency_hz) + " ({" + field + "})");
 }
 
 namespace {

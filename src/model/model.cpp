@@ -22,6 +22,7 @@
 #include <stdexcept>
 
 #include "emnet/core/errors.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/elements/conductance.hpp"
 #include "emnet/elements/current_source.hpp"
@@ -698,12 +699,13 @@ Probe Model::parse_probe(const std::string& text) const {
       spec.quantity == ProbeQuantity::dea_force || spec.quantity == ProbeQuantity::spring_force;
   if (!known || (named ? colon == std::string::npos || colon + 1 == text.size()
                        : at_sign == std::string::npos))
-    throw InputError("--probe", text,
-                     "expected a probe name of the scene, QUANTITY@POSITION (e.g. "
-                     "deflection@70mm, velocity@0.1, reaction_force@0, reaction_moment@0), "
-                     "strain@POSITION,FACE,DISTANCE (e.g. strain@20mm,top,1.5mm), "
-                     "dea_voltage:NAME / dea_current:NAME / dea_force:NAME or "
-                     "spring_force:NAME (a spring's name or index)");
+    throw OptionError("probe",
+                      "expected a probe name of the scene, QUANTITY@POSITION (e.g. "
+                      "deflection@70mm, velocity@0.1, reaction_force@0, reaction_moment@0), "
+                      "strain@POSITION,FACE,DISTANCE (e.g. strain@20mm,top,1.5mm), "
+                      "dea_voltage:NAME / dea_current:NAME / dea_force:NAME or "
+                      "spring_force:NAME (a spring's name or index)",
+                      text);
   // A plain number is SI (metres); anything else must carry a length unit.
   auto length = [&](const std::string& written) {
     try {
@@ -717,7 +719,7 @@ Probe Model::parse_probe(const std::string& text) const {
       return used == written.size() && std::isfinite(plain) ? plain
                                                             : parse_quantity(written, dim::length);
     } catch (const std::exception& e) {
-      throw InputError("--probe", text, e.what());
+      throw OptionError("probe", e.what(), text);
     }
   };
   if (named) {
@@ -728,22 +730,23 @@ Probe Model::parse_probe(const std::string& text) const {
     if (spec.quantity == ProbeQuantity::strain) {
       const auto first = position.find(','), second = position.find(',', first + 1);
       if (first == std::string::npos || second == std::string::npos)
-        throw InputError("--probe", text,
-                         "a strain needs its face and its distance from the neutral plane: "
-                         "strain@POSITION,FACE,DISTANCE (e.g. strain@20mm,top,1.5mm)");
+        throw OptionError("probe",
+                          "a strain needs its face and its distance from the neutral plane: "
+                          "strain@POSITION,FACE,DISTANCE (e.g. strain@20mm,top,1.5mm)",
+                          text);
       const std::string face = position.substr(first + 1, second - first - 1);
       if (face != "top" && face != "bottom")
-        throw InputError("--probe", text, "the face must be top or bottom, got '" + face + "'");
+        throw OptionError("probe", "the face must be top or bottom, got '" + face + "'", text);
       spec.face = face == "top" ? Face::top : Face::bottom;
       spec.distance = length(position.substr(second + 1));
       if (!(spec.distance > 0.0))
-        throw InputError("--probe", text, "the distance from the neutral plane must be > 0");
+        throw OptionError("probe", "the distance from the neutral plane must be > 0", text);
       position = position.substr(0, first);
     }
     spec.at = length(position);
     if (!(spec.at >= 0.0 && spec.at <= beam.length))
-      throw InputError("--probe", text,
-                       "position outside the beam [0, " + std::to_string(beam.length) + " m]");
+      throw OptionError(
+          "probe", "position outside the beam [0, " + std::to_string(beam.length) + " m]", text);
   }
   return make_probe(spec);
 }

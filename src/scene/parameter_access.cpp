@@ -334,14 +334,10 @@ std::string canonical_key(const ParameterInfo& info,
 // The address of a key a caller already holds, checked for a number the scene uses.
 void check_numeric_use(const Scene& scene, const SceneParameterAddress& address,
                        const std::string& where) {
-  const ParameterInfo& info = *address.info;
-  if (!info.numeric()) {
-    throw InputError(where, address.key,
-                     std::string("is not a number but a ") + parameter_kind_name(info.kind) +
-                         " key; " + where + " takes numeric keys");
-  }
-  const std::string reason = parameter_unused_reason(info, scene, address.entry);
-  if (!reason.empty()) throw InputError(where, address.key, reason);
+  const NumericUse use = numeric_use(scene, address);
+  if (use.code == NumericUseCode::not_numeric)
+    throw InputError(where, address.key, use.reason + "; " + where + " takes numeric keys");
+  if (use.code == NumericUseCode::unused) throw InputError(where, address.key, use.reason);
 }
 
 // Positions within kBeamEndTolerance of an end are put on it, as the reader does.
@@ -362,6 +358,18 @@ void snap_positions_to_the_beam(Scene& scene) {
 }
 
 }  // namespace
+
+NumericUse numeric_use(const Scene& scene, const SceneParameterAddress& address) {
+  const ParameterInfo& info = *address.info;
+  if (!info.numeric())
+    return {NumericUseCode::not_numeric,
+            std::string("is not a number but a ") + parameter_kind_name(info.kind) + " key"};
+  std::string reason = parameter_unused_reason(info, scene, address.entry);
+  if (!reason.empty()) return {NumericUseCode::unused, std::move(reason)};
+  if (!info.get(scene, address.entry))
+    return {NumericUseCode::not_set, "is not set in scene '" + scene.name + "'"};
+  return {};
+}
 
 SceneParameterAddress find_scene_parameter_address(const Scene& scene, const std::string& key,
                                                    const std::string& where) {

@@ -11,9 +11,9 @@
 namespace emnet {
 
 // Writes one "dotted.key=value" into `root`: the key is checked against the parameter table
-// (an unknown key, a table, an entry of [[dea]] that does not exist are InputErrors saying
-// "--set"); the value is a TOML value if it parses as one (0.2, true, "70 mm", ["A", "B"]) and the
-// text as a string otherwise (70mm, 70 mm, log). `locator` names the scene in messages.
+// (an unknown key, a table, an entry of [[dea]] that does not exist are InputErrors whose where
+// is "override"); the value is a TOML value if it parses as one (0.2, true, "70 mm", ["A", "B"])
+// and the text as a string otherwise (70mm, 70 mm, log). `locator` names the scene in messages.
 void apply_override(toml::table& root, const std::string& assignment, const Locator& locator);
 
 }  // namespace emnet

@@ -2,7 +2,7 @@
 //
 // The file is parsed with toml++ into a document tree; overrides are written into that tree
 // (scene_overrides.cpp: a value from an override is checked exactly like one from the file, and
-// is recognised by having no source position: its errors say "--set"); then the tree is walked
+// is recognised by having no source position: its errors say "override"); then the tree is walked
 // table by table, rejecting unknown tables and keys, reading each value with its unit and
 // checking its range. Which tables and keys exist, and every key's unit, range and default, come
 // from the parameter table (emnet/scene/parameters.hpp); the conditions between keys from

@@ -1,6 +1,6 @@
 // Reading the values of one TOML table of a scene: the types, units and ranges of its keys
 // (from the parameter table, emnet/scene/parameters.hpp), and every problem as an InputError that
-// names the file and line (or "--set" for a value an override wrote), the dotted key and what
+// names the file and line (or "override" for a value an override wrote), the dotted key and what
 // was expected.
 #pragma once
 
@@ -19,7 +19,7 @@
 
 namespace emnet {
 
-inline constexpr const char* kOverrideWhere = "--set";
+inline constexpr const char* kOverrideWhere = "override";
 
 // "a string ('abc')", "an integer (3)", "a table": what a node is, for "got ..." messages.
 std::string describe_node(const toml::node& node);
@@ -38,7 +38,7 @@ class Locator {
 
   const std::string& display_name() const { return display_name_; }
 
-  // "file:line" for a node read from the file, "--set" for one written by an override, "file"
+  // "file:line" for a node read from the file, "override" for one written by an override, "file"
   // when there is no node (a missing key).
   std::string where(const toml::node* node) const;
 

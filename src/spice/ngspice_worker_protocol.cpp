@@ -12,9 +12,15 @@ namespace emnet {
 
 namespace {
 
-constexpr const char* kProtocolOption = "--protocol";
-constexpr const char* kMaxMessageBytesOption = "--max-message-bytes";
-constexpr const char* kLibraryOption = "--library";
+// The worker's arguments are words NAME=VALUE of the runner–worker protocol (no front-end's
+// options: the worker is started by the library only).
+constexpr const char* kProtocolWord = "protocol";
+constexpr const char* kMaxMessageBytesWord = "max_message_bytes";
+constexpr const char* kLibraryWord = "library";
+
+std::string word(const char* name, const std::string& value) {
+  return std::string(name) + "=" + value;
+}
 
 template <class T>
 void append_raw(std::string& bytes, const T& value) {
@@ -43,26 +49,26 @@ bool parse_number(const char* text, Number& number) {
 std::vector<std::string> ngspice_worker_arguments(const std::string& worker_path,
                                                   const NgspiceWorkerRequest& request) {
   std::vector<std::string> arguments = {
-      worker_path, kProtocolOption, std::to_string(kNgspiceWorkerProtocol), kMaxMessageBytesOption,
-      std::to_string(request.max_message_bytes)};
-  for (const std::string& name : request.library_names) {
-    arguments.push_back(kLibraryOption);
-    arguments.push_back(name);
-  }
+      worker_path, word(kProtocolWord, std::to_string(kNgspiceWorkerProtocol)),
+      word(kMaxMessageBytesWord, std::to_string(request.max_message_bytes))};
+  for (const std::string& name : request.library_names)
+    arguments.push_back(word(kLibraryWord, name));
   return arguments;
 }
 
 bool parse_ngspice_worker_arguments(int argc, const char* const* argv,
                                     NgspiceWorkerRequest& request, std::string& why) {
   bool have_protocol = false, have_limit = false;
-  for (int index = 1; index < argc; index += 2) {
-    const std::string option = argv[index];
-    if (index + 1 >= argc) {
-      why = "option " + option + " needs a value";
+  for (int index = 1; index < argc; ++index) {
+    const std::string argument = argv[index];
+    const std::size_t equals = argument.find('=');
+    if (equals == std::string::npos) {
+      why = "argument '" + argument + "' is not NAME=VALUE";
       return false;
     }
-    const char* value = argv[index + 1];
-    if (option == kProtocolOption) {
+    const std::string option = argument.substr(0, equals);
+    const char* value = argv[index] + equals + 1;
+    if (option == kProtocolWord) {
       int protocol = 0;
       if (!parse_number(value, protocol) || protocol != kNgspiceWorkerProtocol) {
         why = "asked for protocol " + std::string(value) + "; this worker speaks protocol " +
@@ -70,23 +76,24 @@ bool parse_ngspice_worker_arguments(int argc, const char* const* argv,
         return false;
       }
       have_protocol = true;
-    } else if (option == kMaxMessageBytesOption) {
+    } else if (option == kMaxMessageBytesWord) {
       if (!parse_number(value, request.max_message_bytes)) {
         why = "bad " + option + " value '" + value + "'";
         return false;
       }
       have_limit = true;
-    } else if (option == kLibraryOption) {
+    } else if (option == kLibraryWord) {
       request.library_names.emplace_back(value);
     } else {
-      why = "unknown option " + option;
+      why = "unknown argument " + option;
       return false;
     }
   }
   if (!have_protocol || !have_limit) {
-    why = std::string("usage: ") + kNgspiceWorkerName + " " + kProtocolOption + " " +
-          std::to_string(kNgspiceWorkerProtocol) + " " + kMaxMessageBytesOption + " BYTES [" +
-          kLibraryOption + " NAME ...] < DECK (started by emnet's ngspice runner)";
+    why = std::string("usage: ") + kNgspiceWorkerName + " " +
+          word(kProtocolWord, std::to_string(kNgspiceWorkerProtocol)) + " " +
+          word(kMaxMessageBytesWord, "BYTES") + " [" + word(kLibraryWord, "NAME") +
+          " ...] < DECK (started by emnet's ngspice runner)";
     return false;
   }
   return true;

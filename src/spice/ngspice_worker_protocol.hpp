@@ -3,7 +3,7 @@
 // ngspice_worker_main.cpp is the worker).
 //
 // The runner starts the worker through the process helper (emnet/core/process.hpp) as
-//   emnet-ngspice-worker --protocol 1 --max-message-bytes BYTES --library NAME [--library ...]
+//   emnet-ngspice-worker protocol=1 max_message_bytes=BYTES library=NAME [library=NAME ...]
 // with the deck on standard input, one line per '\n' (the lines hold no '\n' and no NUL). The
 // worker answers with records on its standard output; whatever else it prints (libngspice
 // writing to its standard streams directly) goes to its standard error, which the runner keeps

@@ -8,6 +8,7 @@
 
 #include "deck_writer.hpp"
 #include "emnet/analysis/analysis.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/model/outputs.hpp"
 
 namespace emnet {
@@ -55,8 +56,8 @@ void DeckWriter::write_outputs() {
         "write_spice_deck: a tran deck from the static state needs options.static_state "
         "(solve_static of the model's network)");
   if (static_start && !options_.static_state->status.ok())
-    throw InputError(
-        where(), "--start",
+    throw OptionError::in_file(
+        "start", where(), "",
         "static: the network has no static state (" + options_.static_state->status.message + ")");
   if (static_start && options_.static_state->state.size() != system_.size())
     throw std::invalid_argument("write_spice_deck: options.static_state is of another network");

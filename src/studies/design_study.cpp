@@ -20,6 +20,7 @@
 #include "emnet/analysis/operating_point.hpp"
 #include "emnet/analysis/periodic.hpp"
 #include "emnet/core/bounded_file.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/core/terminal_text.hpp"
 #include "emnet/core/units.hpp"
@@ -29,6 +30,7 @@
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "emnet/studies/switching_sweep.hpp"
+#include "option_parameter.hpp"
 
 namespace emnet {
 
@@ -227,11 +229,7 @@ ColumnLayout column_layout(const Model& model, const DesignStudyOptions& options
         defaults.frequencies = options.sweep_frequencies;
         layout.sweep_frequencies = switching_frequencies(defaults);
       }
-      if (options.report_frequencies.size() > 1000)
-        throw InputError("--at", "--at", "at most 1000 reported frequencies");
       for (double f : options.report_frequencies) {
-        if (!(f > 0.0) || !std::isfinite(f))
-          throw InputError("--at", "--at", "a reported frequency must be > 0 Hz");
         auto found = std::find_if(layout.sweep_frequencies.begin(), layout.sweep_frequencies.end(),
                                   [f](double g) { return std::abs(g - f) <= 1e-12 * f; });
         if (found == layout.sweep_frequencies.end()) layout.sweep_frequencies.push_back(f);
@@ -263,18 +261,35 @@ ColumnLayout column_layout(const Model& model, const DesignStudyOptions& options
 
 }  // namespace
 
-Variation parse_variation(const Scene& scene, const std::string& text, const std::string& where) {
+void DesignStudyOptions::validate() const {
+  if (analyses.empty())
+    throw OptionError("analyses", "no analysis asked (modes, static, sweep-switching)");
+  if (mode_count < 1 || mode_count > 100) throw OptionError("mode_count", "must be from 1 to 100");
+  if (threads < 0 || threads > 1024)
+    throw OptionError("threads", "must be from 1 to 1024 (0: every core)");
+  if (report_frequencies.size() > 1000)
+    throw OptionError("report_frequencies", "at most 1000 reported frequencies");
+  for (double f : report_frequencies)
+    if (!(f > 0.0) || !std::isfinite(f))
+      throw OptionError("report_frequencies", "a reported frequency must be > 0 Hz");
+}
+
+Variation parse_variation(const Scene& scene, const std::string& text) {
+  constexpr const char* kVariations = "variations";
+  auto refuse = [](const std::string& key, const std::string& reason) {
+    return OptionError(kVariations, reason, key);
+  };
   const auto equals = text.find('=');
   if (equals == std::string::npos || equals == 0)
-    throw InputError(where, text,
-                     "expected KEY=SPEC, e.g. beam.bending_stiffness=normal(100%,5%) or "
-                     "dea.A.lever_arm=1.4mm,1.55mm,1.7mm");
+    throw refuse(text,
+                 "expected KEY=SPEC, e.g. beam.bending_stiffness=normal(100%,5%) or "
+                 "dea.A.lever_arm=1.4mm,1.55mm,1.7mm");
   const std::vector<std::string> given_keys = split(text.substr(0, equals), "+");
   const std::string given_key = given_keys.front();
   const std::string spec = trim(text.substr(equals + 1));
-  const SceneParameterAddress address = find_scene_parameter_address(scene, given_key, where);
+  const SceneParameterAddress address = find_option_parameter(scene, given_key, kVariations);
   if (!address.info->numeric())
-    throw InputError(where, address.key, "is not numeric; a study varies numeric keys only");
+    throw refuse(address.key, "is not numeric; a study varies numeric keys only");
   const Dimension dimension = parameter_dimension(*address.info, scene, address.entry);
   std::optional<double> nominal;
   try {
@@ -284,21 +299,20 @@ Variation parse_variation(const Scene& scene, const std::string& text, const std
   Variation variation;
   variation.key = address.key;
   for (std::size_t k = 1; k < given_keys.size(); ++k) {
-    const SceneParameterAddress linked = find_scene_parameter_address(scene, given_keys[k], where);
+    const SceneParameterAddress linked = find_option_parameter(scene, given_keys[k], kVariations);
     if (!linked.info->numeric())
-      throw InputError(where, linked.key, "is not numeric; a study varies numeric keys only");
+      throw refuse(linked.key, "is not numeric; a study varies numeric keys only");
     double linked_value = 0.0;
     try {
       linked_value = get_parameter(scene, linked.key);
     } catch (const InputError&) {
-      throw InputError(where, linked.key,
-                       "has no value in the scene to change with " + address.key);
+      throw refuse(linked.key, "has no value in the scene to change with " + address.key);
     }
     if (!nominal || *nominal == 0.0)
-      throw InputError(where, address.key,
-                       "keys varied together change by the same ratio, which needs a non-zero "
-                       "value of " +
-                           address.key + " in the scene");
+      throw refuse(address.key,
+                   "keys varied together change by the same ratio, which needs a non-zero "
+                   "value of " +
+                       address.key + " in the scene");
     variation.linked.push_back(linked.key);
     variation.linked_ratios.push_back(linked_value / *nominal);
   }
@@ -306,8 +320,7 @@ Variation parse_variation(const Scene& scene, const std::string& text, const std
     try {
       return parse_study_value(field, dimension, nominal, fraction_only);
     } catch (const std::invalid_argument& error) {
-      throw InputError(where, address.key,
-                       "'" + terminal_excerpt(field, 60) + "': " + error.what());
+      throw refuse(address.key, "'" + terminal_excerpt(field, 60) + "': " + error.what());
     }
   };
   const auto open = spec.find('(');
@@ -316,9 +329,8 @@ Variation parse_variation(const Scene& scene, const std::string& text, const std
     const auto arguments = split(spec.substr(open + 1, spec.size() - open - 2), ",");
     auto expect = [&](std::size_t count, const char* form) {
       if (arguments.size() != count)
-        throw InputError(
-            where, address.key,
-            "expected " + std::string(form) + ", got '" + terminal_excerpt(spec, 60) + "'");
+        throw refuse(address.key, "expected " + std::string(form) + ", got '" +
+                                      terminal_excerpt(spec, 60) + "'");
     };
     if (name == "linspace" || name == "logspace") {
       expect(3, (name + "(from,to,count)").c_str());
@@ -326,11 +338,11 @@ Variation parse_variation(const Scene& scene, const std::string& text, const std
       char* end = nullptr;
       const long count = std::strtol(arguments[2].c_str(), &end, 10);
       if (end == arguments[2].c_str() || *end != '\0' || count < 1 || count > 1000000)
-        throw InputError(where, address.key,
-                         "the count of " + name + " must be an integer from 1 to 1000000, got '" +
-                             terminal_excerpt(arguments[2], 60) + "'");
+        throw refuse(address.key, "the count of " + name +
+                                      " must be an integer from 1 to 1000000, got '" +
+                                      terminal_excerpt(arguments[2], 60) + "'");
       if (name == "logspace" && !(from > 0.0 && to > 0.0))
-        throw InputError(where, address.key, "logspace needs from > 0 and to > 0");
+        throw refuse(address.key, "logspace needs from > 0 and to > 0");
       for (long k = 0; k < count; ++k) {
         const double t = count == 1 ? 0.0 : static_cast<double>(k) / static_cast<double>(count - 1);
         variation.values.push_back(
@@ -345,29 +357,27 @@ Variation parse_variation(const Scene& scene, const std::string& text, const std
       variation.first = value(arguments[0]);
       variation.second = value(arguments[1]);
       if (!(variation.first <= variation.second))
-        throw InputError(where, address.key, "uniform(lower,upper) needs lower <= upper");
+        throw refuse(address.key, "uniform(lower,upper) needs lower <= upper");
     } else if (name == "normal") {
       expect(2, "normal(mean,sd)");
       variation.kind = VariationKind::normal;
       variation.first = value(arguments[0]);
       variation.second = value(arguments[1]);
-      if (!(variation.second >= 0.0))
-        throw InputError(where, address.key, "normal(mean,sd) needs sd >= 0");
+      if (!(variation.second >= 0.0)) throw refuse(address.key, "normal(mean,sd) needs sd >= 0");
     } else if (name == "lognormal") {
       expect(2, "lognormal(median,s)");
       variation.kind = VariationKind::log_normal;
       variation.first = value(arguments[0]);
       variation.second = value(arguments[1], true);
       if (!(variation.first > 0.0) || !(variation.second >= 0.0))
-        throw InputError(where, address.key, "lognormal(median,s) needs median > 0 and s >= 0");
+        throw refuse(address.key, "lognormal(median,s) needs median > 0 and s >= 0");
     } else {
-      throw InputError(where, address.key,
-                       "unknown distribution '" + name +
-                           "'; expected linspace, logspace, uniform, normal or lognormal");
+      throw refuse(address.key, "unknown distribution '" + name +
+                                    "'; expected linspace, logspace, uniform, normal or lognormal");
     }
   } else {
     for (const std::string& field : split(spec, ",")) {
-      if (field.empty()) throw InputError(where, address.key, "an empty value in '" + spec + "'");
+      if (field.empty()) throw refuse(address.key, "an empty value in '" + spec + "'");
       variation.values.push_back(value(field));
     }
   }
@@ -384,30 +394,30 @@ VariantTable make_variants(const std::vector<Variation>& variations, std::size_t
     keys.insert(keys.end(), variation.linked.begin(), variation.linked.end());
     for (const std::string& key : keys) {
       if (std::find(table.keys.begin(), table.keys.end(), key) != table.keys.end())
-        throw InputError("--vary", key, "is varied twice");
+        throw OptionError("variations", "is varied twice", key);
       table.keys.push_back(key);
     }
     random = random || variation.random();
     if (!variation.random()) {
-      if (variation.values.empty()) throw InputError("--vary", variation.key, "has no values");
+      if (variation.values.empty()) throw OptionError("variations", "has no values", variation.key);
       if (grid_points > kMaxVariants / variation.values.size())
-        throw InputError("--vary", variation.key,
-                         "the grid has more than " + std::to_string(kMaxVariants) + " variants");
+        throw OptionError("variations",
+                          "the grid has more than " + std::to_string(kMaxVariants) + " variants",
+                          variation.key);
       grid_points *= variation.values.size();
     }
   }
   if (random && samples == 0)
-    throw InputError("--samples", "--samples",
-                     "a random variation (uniform, normal, lognormal) needs --samples N");
+    throw OptionError("samples",
+                      "a random variation (uniform, normal, lognormal) needs {samples} N");
   if (!random && samples != 0)
-    throw InputError("--samples", "--samples",
-                     "--samples draws random variations, and none is given (uniform(a,b), "
-                     "normal(mean,sd), lognormal(median,s))");
+    throw OptionError("samples",
+                      "{samples} draws random variations, and none is given (uniform(a,b), "
+                      "normal(mean,sd), lognormal(median,s))");
   const std::size_t draws = random ? samples : 1;
   if (grid_points > kMaxVariants / draws)
-    throw InputError(
-        "--samples", "--samples",
-        "grid points x samples is more than " + std::to_string(kMaxVariants) + " variants");
+    throw OptionError("samples", "grid points x samples is more than " +
+                                     std::to_string(kMaxVariants) + " variants");
   std::mt19937_64 generator(seed);
   std::vector<std::size_t> digits(variations.size(), 0);
   for (std::size_t point = 0; point < grid_points; ++point) {
@@ -449,10 +459,24 @@ VariantTable make_variants(const std::vector<Variation>& variations, std::size_t
   return table;
 }
 
+namespace {
+
+// The text of a variants file: a regular file of at most 256 MiB (a FIFO blocked, /dev/zero grew
+// to 8.4 GB); its errors name the file and the field "variants".
+std::string read_variants_file(const std::string& path) {
+  try {
+    return read_bounded_regular_file(path, 256u * 1024u * 1024u, "the variants file", "variants");
+  } catch (const OptionError&) {
+    throw;
+  } catch (const InputError& error) {
+    throw OptionError::in_file("variants", error.where(), "", input_error_reason(error));
+  }
+}
+
+}  // namespace
+
 VariantTable read_variants_csv(const Scene& scene, const std::string& path) {
-  // A regular file of at most 256 MiB (a FIFO blocked, /dev/zero grew to 8.4 GB).
-  std::istringstream stream(
-      read_bounded_regular_file(path, 256u * 1024u * 1024u, "the variants file", "--variants"));
+  std::istringstream stream(read_variants_file(path));
   VariantTable table;
   std::vector<Dimension> dimensions;
   std::vector<std::optional<double>> nominals;
@@ -486,14 +510,13 @@ VariantTable read_variants_csv(const Scene& scene, const std::string& path) {
       continue;
     }
     if (fields.size() != table.keys.size())
-      throw InputError(where, "--variants",
-                       "expected " + std::to_string(table.keys.size()) +
-                           " values (one per key "
-                           "of the header), got " +
-                           std::to_string(fields.size()));
+      throw OptionError::in_file("variants", where, "",
+                                 "expected " + std::to_string(table.keys.size()) +
+                                     " values (one per key of the header), got " +
+                                     std::to_string(fields.size()));
     if (table.rows.size() >= kMaxVariants)
-      throw InputError(where, "--variants",
-                       "more than " + std::to_string(kMaxVariants) + " variants");
+      throw OptionError::in_file("variants", where, "",
+                                 "more than " + std::to_string(kMaxVariants) + " variants");
     std::vector<double> row;
     for (std::size_t k = 0; k < fields.size(); ++k) {
       try {
@@ -505,12 +528,15 @@ VariantTable read_variants_csv(const Scene& scene, const std::string& path) {
     }
     table.rows.push_back(std::move(row));
   }
-  if (table.keys.empty()) throw InputError(path, "--variants", "no header line of keys");
-  if (table.rows.empty()) throw InputError(path, "--variants", "no variant (no line of values)");
+  if (table.keys.empty())
+    throw OptionError::in_file("variants", path, "", "no header line of keys");
+  if (table.rows.empty())
+    throw OptionError::in_file("variants", path, "", "no variant (no line of values)");
   return table;
 }
 
-std::vector<StudyAnalysis> parse_study_analyses(const std::string& text, const std::string& where) {
+std::vector<StudyAnalysis> parse_study_analyses(const std::string& text) {
+  constexpr const char* field = "analyses";
   std::vector<StudyAnalysis> analyses;
   for (const std::string& name : split(text, ",")) {
     StudyAnalysis analysis;
@@ -521,12 +547,11 @@ std::vector<StudyAnalysis> parse_study_analyses(const std::string& text, const s
     } else if (name == "sweep-switching" || name == "sweep_switching") {
       analysis = StudyAnalysis::switching_sweep;
     } else {
-      throw InputError(where, where,
-                       "unknown analysis '" + name +
-                           "'; expected modes, static or sweep-switching "
-                           "(comma-separated, e.g. modes,static)");
+      throw OptionError(field, "unknown analysis '" + name +
+                                   "'; expected modes, static or sweep-switching "
+                                   "(comma-separated, e.g. modes,static)");
     }
-    if (has(analyses, analysis)) throw InputError(where, where, "'" + name + "' is given twice");
+    if (has(analyses, analysis)) throw OptionError(field, "'" + name + "' is given twice");
     analyses.push_back(analysis);
   }
   return analyses;
@@ -536,17 +561,10 @@ namespace {
 
 // A key that no variant can set (beam.bending_stiffness on a beam of [[section]]s) is an input
 // error, not a study of failed rows: tried on the nominal scene with its own value.
-void refuse_a_key_no_variant_can_set(const Scene& nominal, const std::string& key) {
-  Scene trial = nominal;
-  try {
-    set_parameter(trial, key, get_parameter(nominal, key));
-  } catch (const InputError& error) {
-    const std::string prefix = error.where() + ": key '" + error.key() + "': ";
-    std::string reason = error.what();
-    if (reason.rfind(prefix, 0) == 0) reason.erase(0, prefix.size());
-    if (reason.rfind("is not set in scene", 0) == 0) return;  // no nominal value: the rows decide
-    throw InputError("--vary", error.key(), reason);
-  }
+void refuse_a_key_no_variant_can_set(const Scene& nominal, const SceneParameterAddress& address) {
+  const NumericUse use = numeric_use(nominal, address);
+  if (use.code == NumericUseCode::not_set) return;  // no nominal value: the rows decide
+  if (!use.usable()) throw OptionError("variations", use.reason, address.key);
 }
 
 }  // namespace
@@ -554,17 +572,10 @@ void refuse_a_key_no_variant_can_set(const Scene& nominal, const std::string& ke
 DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table,
                                    const DesignStudyOptions& options) {
   const Stopwatch stopwatch;
-  if (options.analyses.empty())
-    throw InputError("--analysis", "--analysis",
-                     "no analysis asked (modes, static, sweep-switching)");
-  if (options.mode_count < 1 || options.mode_count > 100)
-    throw InputError("--modes", "--modes", "must be from 1 to 100");
-  if (options.threads < 0 || options.threads > 1024)
-    throw InputError("--threads", "--threads", "must be from 1 to 1024 (0: every core)");
+  options.validate();
   if (table.rows.size() > kMaxVariants)
-    throw InputError("--variants", "--variants",
-                     std::to_string(table.rows.size()) + " variants; at most " +
-                         std::to_string(kMaxVariants) + " in one study");
+    throw OptionError("variants", std::to_string(table.rows.size()) + " variants; at most " +
+                                      std::to_string(kMaxVariants) + " in one study");
   for (const auto& row : table.rows)
     if (row.size() != table.keys.size())
       throw std::invalid_argument("run_design_study: a variant's values do not match its keys");
@@ -578,9 +589,9 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
     result.notes.push_back("beam.segments = \"auto\" was resolved once, on the nominal scene: " +
                            std::to_string(nominal.beam.segments) + " segments for every variant");
   for (const std::string& key : table.keys) {
-    const SceneParameterAddress address = find_scene_parameter_address(nominal, key, "--vary");
+    const SceneParameterAddress address = find_option_parameter(nominal, key, "variations");
     result.key_units.push_back(parameter_unit(*address.info, nominal, address.entry));
-    refuse_a_key_no_variant_can_set(nominal, key);
+    refuse_a_key_no_variant_can_set(nominal, address);
   }
   const Model nominal_model = prepare_model(nominal);
   result.unknowns = static_cast<int>(nominal_model.network.assemble().size());

@@ -10,12 +10,14 @@
 
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/operating_point.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/scene/parameters.hpp"
 #include "emnet/studies/periodic_peak.hpp"
 #include "emnet/studies/resolve.hpp"
+#include "option_parameter.hpp"
 
 namespace emnet {
 namespace {
@@ -271,7 +273,7 @@ class Identification {
     PeriodicExtremesOptions extremes_options;
     extremes_options.frequency_hz = options_.target_hz;
     extremes_options.output = options_.peak->output;
-    extremes_options.where = "--peak";
+    extremes_options.field = "peak";
     const PeriodicExtremesResult extremes = periodic_extremes(scene, extremes_options);
     ++result_.periodic_solves;
     if (!extremes.status.ok()) throw FitStopped{extremes.status};
@@ -314,36 +316,40 @@ class Identification {
 // The key options.parameter names in `scene`, checked for a quantity the scene uses with a
 // positive value (the root find works on its logarithm).
 SceneParameterAddress fitted_parameter(const Scene& scene, const IdentifyOptions& options) {
-  constexpr const char* where = "--fit";
-  const SceneParameterAddress address =
-      find_scene_parameter_address(scene, options.parameter, where);
+  constexpr const char* field = "parameter";
+  const SceneParameterAddress address = find_option_parameter(scene, options.parameter, field);
   const ParameterInfo& info = *address.info;
   const std::string& key = address.key;
   if (!info.numeric())
-    throw InputError(where, key,
-                     std::string("is not a number but a ") + parameter_kind_name(info.kind) +
-                         " key; identify fits a numeric key");
+    throw OptionError(field,
+                      std::string("is not a number but a ") + parameter_kind_name(info.kind) +
+                          " key; identify fits a numeric key",
+                      key);
   if (info.kind != ParameterKind::quantity)
-    throw InputError(where, key,
-                     "is an integer key; identify fits a continuous quantity (a stiffness, a "
-                     "mass, a length, ...)");
+    throw OptionError(field,
+                      "is an integer key; identify fits a continuous quantity (a stiffness, a "
+                      "mass, a length, ...)",
+                      key);
   if (const std::string unused = parameter_unused_reason(info, scene, address.entry);
       !unused.empty())
-    throw InputError(where, key, "is not used by scene '" + scene.name + "': " + unused);
+    throw OptionError(field, "is not used by scene '" + scene.name + "': " + unused, key);
   const std::optional<double> value = info.get(scene, address.entry);
   if (!value)
-    throw InputError(where, key,
-                     "is not set in scene '" + scene.name +
-                         "': the fit starts from the scene's value (give one with --set)");
+    throw OptionError(field,
+                      "is not set in scene '" + scene.name +
+                          "': the fit starts from the scene's value (give one with {overrides})",
+                      key);
   if (!(*value > 0.0))
-    throw InputError(
-        where, key,
+    throw OptionError(
+        field,
         "is " + format_number("%.6g", *value) + " in scene '" + scene.name +
-            "': the fit searches log(value) from the scene's value, which must be > 0");
+            "': the fit searches log(value) from the scene's value, which must be > 0",
+        key);
   if (options.peak && key == "damping.loss_factor")
-    throw InputError(where, key,
-                     "--peak fits damping.loss_factor to the peak; fit another key to the "
-                     "resonance");
+    throw OptionError(field,
+                      "{peak} fits damping.loss_factor to the peak; fit another key to the "
+                      "resonance",
+                      key);
   return address;
 }
 
@@ -374,25 +380,29 @@ void refuse_given(const Scene& scene, const std::string& key) {
 }
 
 SceneParameterAddress check_inputs(const Scene& scene, const IdentifyOptions& options) {
-  if (!(options.target_hz > 0.0) || !std::isfinite(options.target_hz))
-    throw InputError("--resonance", "--resonance", "must be a positive frequency in Hz (> 0)");
-  if (options.mode_number < 1) throw InputError("--mode", "--mode", "must be >= 1");
-  if (options.peak) {
-    if (!(options.peak->value > 0.0) || !std::isfinite(options.peak->value))
-      throw InputError("--peak", "--peak", "the peak must be > 0");
-    if (!(options.peak->voltage >= 0.0) || !std::isfinite(options.peak->voltage))
-      throw InputError("--peak", "--peak", "the voltage must be > 0");
-  }
+  options.validate();
   const SceneParameterAddress parameter = fitted_parameter(scene, options);
   refuse_given(scene, parameter.key);
   if (options.peak) refuse_given(scene, "damping.loss_factor");
   if (options.peak && !scene.damping.loss_factor)
-    throw InputError(scene.file, "damping.loss_factor",
-                     "--peak fits damping.loss_factor, which the scene does not set");
+    throw OptionError::in_file("peak", scene.file, "damping.loss_factor",
+                               "{peak} fits damping.loss_factor, which the scene does not set");
   return parameter;
 }
 
 }  // namespace
+
+void IdentifyOptions::validate() const {
+  if (!(target_hz > 0.0) || !std::isfinite(target_hz))
+    throw OptionError("target_hz", "must be a positive frequency in Hz (> 0)");
+  if (mode_number < 1) throw OptionError("mode_number", "must be >= 1");
+  if (peak) {
+    if (!(peak->value > 0.0) || !std::isfinite(peak->value))
+      throw OptionError("peak", "the peak must be > 0");
+    if (!(peak->voltage >= 0.0) || !std::isfinite(peak->voltage))
+      throw OptionError("peak", "the voltage must be > 0");
+  }
+}
 
 IdentifyResult identify(const Scene& scene, const IdentifyOptions& options) {
   const Stopwatch stopwatch;

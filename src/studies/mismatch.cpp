@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/model/model.hpp"
@@ -21,20 +22,24 @@ double asymmetry_of(double left, double right) {
 
 }  // namespace
 
+void MismatchOptions::validate() const {
+  if (!(change > 0.0 && change < 0.5))
+    throw OptionError("change", "must be > 0 and < 0.5 (a fraction)");
+  if (frequency_hz && (!(*frequency_hz > 0.0) || !std::isfinite(*frequency_hz)))
+    throw OptionError("frequency_hz", "must be a positive frequency in Hz (> 0)");
+}
+
 MismatchResult run_mismatch(const Scene& scene, const MismatchOptions& options) {
   const Stopwatch stopwatch;
+  options.validate();
   if (scene.drive.kind != DriveKind::antagonistic || scene.drive.deas.size() != 2)
     throw InputError(scene.file, "drive.kind",
                      "mismatch needs the antagonistic drive of two DEAs (drive.kind = "
                      "\"antagonistic\", drive.deas = [A, B])");
-  if (!(options.change > 0.0 && options.change < 0.5))
-    throw InputError("--change", "--change", "must be > 0 and < 0.5 (a fraction)");
   MismatchResult result;
   result.frequency_hz = options.frequency_hz.value_or(scene.drive.frequency);
   if (!(result.frequency_hz > 0.0) || !std::isfinite(result.frequency_hz))
-    throw InputError(options.frequency_hz ? "--frequency" : scene.file,
-                     options.frequency_hz ? "--frequency" : "drive.frequency",
-                     "must be a positive frequency in Hz (> 0)");
+    throw InputError(scene.file, "drive.frequency", "must be a positive frequency in Hz (> 0)");
   result.output = options.output;
   if (result.output.empty()) {
     const Model model = prepare_model(scene);
@@ -66,7 +71,7 @@ MismatchResult run_mismatch(const Scene& scene, const MismatchOptions& options) 
   PeriodicExtremesOptions extremes_options;
   extremes_options.frequency_hz = result.frequency_hz;
   extremes_options.output = result.output;
-  extremes_options.where = "--output";
+  extremes_options.field = "output";
   const long solves = 1 + 2 * static_cast<long>(cases.size());
   auto solve = [&](const Scene& changed, double& left, double& right) {
     if (!keep_going(options.progress, result.periodic_solves, solves, "periodic solves")) {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "emnet/analysis/operating_point.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/studies/segment_selection.hpp"
@@ -167,8 +168,13 @@ void match_refined_modes(ModesStudyResult& result, const std::vector<Mode>& mode
 
 }  // namespace
 
+void ModesStudyOptions::validate() const {
+  if (count < 0) throw OptionError("count", "must be >= 0 (0: the default request)");
+}
+
 ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& options) {
   const Stopwatch total;
+  options.validate();
   ModesStudyResult result;
   {
     const Stopwatch stopwatch;
@@ -199,10 +205,10 @@ ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& op
   modal_options.progress = options.progress;
   if (options.dense) {
     if (result.system.size() > kDenseModesLimit)
-      throw InputError("--dense", "--dense",
-                       "the network has " + std::to_string(result.system.size()) +
-                           " unknowns; a dense eigen-decomposition is limited to " +
-                           std::to_string(kDenseModesLimit) + " (inclusive; it grows as n^3)");
+      throw OptionError("dense", "the network has " + std::to_string(result.system.size()) +
+                                     " unknowns; a dense eigen-decomposition is limited to " +
+                                     std::to_string(kDenseModesLimit) +
+                                     " (inclusive; it grows as n^3)");
     modal_options.dense_limit = 2 * kDenseModesLimit;  // the pencil has the mass velocities too
   }
   result.modal = run_modes(result.system, result.rest.operating_point, modal_options);

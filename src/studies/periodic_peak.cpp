@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "emnet/analysis/periodic.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/model/drive.hpp"
 #include "emnet/model/model.hpp"
@@ -14,16 +15,22 @@
 
 namespace emnet {
 
+void PeriodicExtremesOptions::validate() const {
+  if (!(frequency_hz > 0.0) || !std::isfinite(frequency_hz))
+    throw OptionError("frequency_hz", "must be a positive frequency in Hz (> 0)");
+}
+
 PeriodicExtremesResult periodic_extremes(Scene scene, const PeriodicExtremesOptions& options) {
   const Stopwatch stopwatch;
+  options.validate();
   PeriodicExtremesResult result;
-  check_overlap_fits(scene, options.frequency_hz, options.where);
+  check_overlap_fits(scene, options.frequency_hz, options.field);
   scene.drive.electrical_dynamics = false;
   scene.drive.electrical_dynamics_auto = false;
   scene.drive.frequency = options.frequency_hz;
   const Model model = prepare_model(scene);
   const System system = model.network.assemble();
-  check_periodic_memory(system.size(), "--segments");
+  check_periodic_memory(system.size(), "segments");
   // The model's recorded outputs first (dx_k replaces P_k there), then the scene's own probes
   // (P4 is still a probe of the scene).
   std::vector<Probe> probes;
@@ -32,8 +39,7 @@ PeriodicExtremesResult periodic_extremes(Scene scene, const PeriodicExtremesOpti
   for (const auto& probe : model.probes)
     if (probes.empty() && probe.name == options.output) probes.push_back(probe);
   if (probes.empty())
-    throw InputError(options.where, options.where,
-                     "no deflection output named '" + options.output + "'");
+    throw OptionError(options.field, "no deflection output named '" + options.output + "'");
   const PeriodicSolver solver(system);
   const PeriodicResult periodic = solver.solve(system, probes, 1.0 / options.frequency_hz, 256);
   result.seconds = stopwatch.seconds();

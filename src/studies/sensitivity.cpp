@@ -9,6 +9,7 @@
 
 #include "analysis/left_eigenvector.hpp"
 #include "emnet/analysis/operating_point.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/scene/parameters.hpp"
 #include "emnet/studies/resolve.hpp"
@@ -44,7 +45,7 @@ SceneParameter parameter_of(const Scene& scene, const SceneParameterAddress& add
 SceneParameterAddress find_network_parameter(const Scene& scene, const std::string& key) {
   const std::vector<SceneParameterAddress> parameters = network_parameters(scene);
   try {
-    const SceneParameterAddress named = find_scene_parameter_address(scene, key, "--parameter");
+    const SceneParameterAddress named = find_scene_parameter_address(scene, key, "parameters");
     for (const SceneParameterAddress& parameter : parameters)
       if (parameter.key == named.key) return parameter;
   } catch (const InputError&) {
@@ -53,8 +54,8 @@ SceneParameterAddress find_network_parameter(const Scene& scene, const std::stri
   std::string known;
   for (const SceneParameterAddress& parameter : parameters)
     if (value_of(scene, parameter) != 0.0) known += (known.empty() ? "" : ", ") + parameter.key;
-  throw InputError("--parameter", key,
-                   "not a numeric parameter of scene '" + scene.name + "'; known: " + known);
+  throw OptionError("parameters",
+                    "not a numeric parameter of scene '" + scene.name + "'; known: " + known, key);
 }
 
 // ---- the linearised network of a scene --------------------------------------------------
@@ -109,8 +110,8 @@ std::vector<SceneParameter> scene_parameters(const Scene& scene) {
 SceneParameter find_scene_parameter(const Scene& scene, const std::string& key) {
   const SceneParameterAddress address = find_network_parameter(scene, key);
   if (value_of(scene, address) == 0.0)
-    throw InputError("--parameter", key,
-                     "is 0 in scene '" + scene.name + "': a relative step is undefined");
+    throw OptionError("parameters",
+                      "is 0 in scene '" + scene.name + "': a relative step is undefined", key);
   return parameter_of(scene, address);
 }
 
@@ -137,8 +138,17 @@ Scene with_parameter(const Scene& scene, const std::string& key, double value) {
   return copy;
 }
 
+void SensitivityOptions::validate() const {
+  if (modes < 1) throw OptionError("modes", "must be >= 1");
+  if (!(matrix_relative_step > 0.0 && matrix_relative_step < 1.0))
+    throw OptionError("matrix_relative_step", "must be a relative step in (0, 1)");
+  if (!(check_relative_step > 0.0 && check_relative_step < 1.0))
+    throw OptionError("check_relative_step", "must be a relative step in (0, 1)");
+}
+
 SensitivityResult run_sensitivity(const Scene& scene, const std::vector<std::string>& keys,
                                   const SensitivityOptions& options) {
+  options.validate();
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [](std::chrono::steady_clock::time_point since) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();

@@ -14,6 +14,7 @@
 #include "emnet/analysis/operating_point.hpp"
 #include "emnet/analysis/periodic.hpp"
 #include "emnet/analysis/transient.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/model/drive.hpp"
@@ -36,23 +37,23 @@ std::vector<double> switching_frequencies(const SwitchingSweepOptions& options) 
   if (!options.frequencies.empty()) {
     for (double f : options.frequencies)
       if (!(f > 0.0) || !std::isfinite(f))
-        throw InputError(
-            "frequencies", "frequencies",
+        throw OptionError(
+            "frequencies",
             "every switching frequency must be finite and > 0 Hz, not " + format_number("%.6g", f));
     if (options.frequencies.size() > 100000)
-      throw InputError("frequencies", "frequencies", "at most 100000 frequencies are swept");
+      throw OptionError("frequencies", "at most 100000 frequencies are swept");
     return options.frequencies;
   }
   if (!(options.from > 0.0) || !(options.to >= options.from) || !(options.step > 0.0) ||
       !std::isfinite(options.to))
-    throw InputError("--from/--to/--step", "--step",
-                     "need 0 < from <= to and step > 0 (frequencies in Hz)");
+    throw OptionError::between("step", "step",
+                               "need 0 < from <= to and step > 0 (frequencies in Hz)",
+                               "{from}/{to}/{step}");
   const double frequency_count =
       std::floor((options.to - options.from) / options.step + 1e-9) + 1.0;
   if (!(frequency_count <= 100000))
-    throw InputError("--step", "--step",
-                     "gives " + format_number("%.6g", frequency_count) +
-                         " frequencies; at most 100000 (inclusive) are swept");
+    throw OptionError("step", "gives " + format_number("%.6g", frequency_count) +
+                                  " frequencies; at most 100000 (inclusive) are swept");
   const long count = static_cast<long>(frequency_count);
   std::vector<double> frequencies;
   frequencies.reserve(static_cast<size_t>(count));
@@ -109,17 +110,16 @@ SwitchingSweepOptions resolve_sweep_method(const Model& model, const SwitchingSw
 
 }  // namespace
 
-void check_switching_sweep_options(const SwitchingSweepOptions& options) {
-  switching_frequencies(options);
-  const int samples = samples_or_default(options);
-  if (samples < 8 || samples > 1000000)
-    throw InputError("--samples", "--samples", "must be from 8 to 1000000 (inclusive)");
-  if (options.reduce && options.method == SwitchingSweepMethod::shooting)
-    throw InputError("--reduce", "--method", "--reduce replaces the exact method, not shooting");
-  if (!valid_relative_tolerance(options.rtol))
-    throw InputError("--rtol", "--rtol", kRelativeToleranceRange);
-  if (options.dense_limit < 0)
-    throw InputError("dense_limit", "dense_limit", "must be >= 0 (a number of unknowns)");
+void SwitchingSweepOptions::validate() const {
+  switching_frequencies(*this);
+  const int samples_used = samples_or_default(*this);
+  if (samples_used < 8 || samples_used > 1000000)
+    throw OptionError("samples", "must be from 8 to 1000000 (inclusive)");
+  if (reduce && method == SwitchingSweepMethod::shooting)
+    throw OptionError::between("reduce", "method",
+                               "{reduce} replaces the exact method, not shooting");
+  if (!valid_relative_tolerance(rtol)) throw OptionError("rtol", kRelativeToleranceRange);
+  if (dense_limit < 0) throw OptionError("dense_limit", "must be >= 0 (a number of unknowns)");
 }
 
 SwitchingSweepResult run_switching_sweep(const Model& model, const SwitchingSweepOptions& options) {
@@ -129,7 +129,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const SwitchingSwee
 SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
                                          const SwitchingSweepOptions& given) {
   const Stopwatch stopwatch;
-  check_switching_sweep_options(given);
+  given.validate();
   std::vector<std::string> method_notes;
   const SwitchingSweepOptions options = resolve_sweep_method(model, given, method_notes);
   const std::vector<double> frequencies = switching_frequencies(options);
@@ -142,10 +142,11 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   if (options.reduce)
     for (const auto& probe : probes)
       if (probe.quantity != ProbeQuantity::deflection && probe.quantity != ProbeQuantity::rotation)
-        throw InputError("--probe", probe.name,
-                         "--reduce takes deflections and rotations only: a velocity of the "
-                         "reduced model would need the derivative of the square wave's "
-                         "feed-through; run without --reduce");
+        throw OptionError("outputs",
+                          "{reduce} takes deflections and rotations only: a velocity of the "
+                          "reduced model would need the derivative of the square wave's "
+                          "feed-through; run without {reduce}",
+                          probe.name);
   const double highest = *std::max_element(frequencies.begin(), frequencies.end());
   auto phase = [&](const std::string& what) {
     if (options.phase) options.phase(what);
@@ -188,13 +189,13 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   // excitations into; with a model per frequency, the given model's, of the same size).
   if (exact && !options.reduce)
     check_periodic_memory(excitation_only ? swept.size() : model.network.assemble().size(),
-                          "--segments");
+                          "segments");
   if (!(scene.drive.rise_time < 0.5 / highest))
-    throw InputError(scene.file, "drive.rise_time",
-                     "must be < half the shortest period of the sweep (" +
-                         format_with_unit(0.5 / highest, "s") + " at --to " +
-                         format_with_unit(highest, "Hz") + ")");
-  check_overlap_fits(scene, highest, "--to");
+    throw OptionError::in_file("to", scene.file, "drive.rise_time",
+                               "must be < half the shortest period of the sweep (" +
+                                   format_with_unit(0.5 / highest, "s") + " at {to} " +
+                                   format_with_unit(highest, "Hz") + ")");
+  check_overlap_fits(scene, highest, "to");
 
   auto system_at = [&](double f) -> const System& {
     if (excitation_only) {
@@ -428,8 +429,7 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
 
 SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
                                const std::vector<std::string>& probe_texts,
-                               const PrepareOptions& prepare, double highest_hz,
-                               const std::string& probe_option) {
+                               const PrepareOptions& prepare, double highest_hz) {
   SweptModel swept{prepare_model(scene, prepare), scene, {}};
   check_swept_drive(swept.model.scene);
   if (method == SwitchingSweepMethod::shooting) return swept;
@@ -437,10 +437,11 @@ SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
   for (const auto& text : probe_texts)
     if (asks_for_dea_electrics(text)) {
       if (automatic) return swept;  // the RC loop is asked for: shooting (run_switching_sweep)
-      throw InputError(probe_option, text,
-                       "the exact periodic method models the DEAs as ideal voltage-driven "
-                       "forces, without the RC loop whose voltage and current this probe asks "
-                       "for; use the shooting method");
+      throw OptionError("probe",
+                        "the exact periodic method models the DEAs as ideal voltage-driven "
+                        "forces, without the RC loop whose voltage and current this probe asks "
+                        "for; use the shooting method",
+                        text);
     }
   const bool nonlinear = swept.model.network.assemble().is_nonlinear();
   if (nonlinear && !swept.model.scene.circuit.empty() && automatic) return swept;

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "emnet/core/errors.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/model/drive.hpp"
 #include "emnet/model/outputs.hpp"
@@ -48,40 +49,46 @@ void judge_computed_voltages(std::vector<DeaVoltage>& voltages,
 
 }  // namespace
 
-TransientStudyResult run_transient_study(Scene scene, const TransientStudyOptions& options) {
-  const Stopwatch stopwatch;
-  const std::string& p = options.option_prefix;
-  auto refuse = [&](const std::string& name, const std::string& why) {
-    throw InputError(p + name, p + name, why);
+void TransientStudyOptions::validate() const {
+  auto refuse = [](const std::string& field, const std::string& why) {
+    throw OptionError(field, why);
   };
-  if (options.switching_hz) {
-    if (!(*options.switching_hz > 0.0) || !std::isfinite(*options.switching_hz))
-      refuse("switching", "must be a positive frequency in Hz (> 0)");
-    set_switching_frequency(scene, *options.switching_hz);  // drive and periodic sources
-  }
-  if (!(options.periods > 0.0) || options.periods > 1e6)
+  if (switching_hz && (!(*switching_hz > 0.0) || !std::isfinite(*switching_hz)))
+    refuse("switching_hz", "must be a positive frequency in Hz (> 0)");
+  if (!(periods > 0.0) || periods > 1e6)
     refuse("periods", "must be > 0 and at most 1e6 (inclusive)");
-  if (!valid_relative_tolerance(options.rtol)) refuse("rtol", kRelativeToleranceRange);
-  if (!(options.atol >= 0.0) || !std::isfinite(options.atol)) refuse("atol", "must be >= 0");
+  if (!valid_relative_tolerance(rtol)) refuse("rtol", kRelativeToleranceRange);
+  if (!(atol >= 0.0) || !std::isfinite(atol)) refuse("atol", "must be >= 0");
   // IDA weighs each unknown's error by 1/(rtol·|y| + atol) and sums the squares: below 1e-150
   // the squares of an unknown at zero overflow, and IDA failed with a misleading "tstop ...
   // behind t".
-  if (options.atol > 0.0 && options.atol < 1e-150)
+  if (atol > 0.0 && atol < 1e-150)
     refuse("atol",
            "must be 0 (a scale per unknown) or at least 1e-150: below that IDA's error weights "
            "1/atol overflow when squared");
-  if (!(options.max_step >= 0.0) || !std::isfinite(options.max_step))
-    refuse("max-step", "must be >= 0 (0: no limit)");
-  if (options.points_per_period < 2 || options.points_per_period > 100000)
-    refuse("points-per-period", "must be from 2 to 100000 (inclusive)");
+  if (!(max_step >= 0.0) || !std::isfinite(max_step))
+    refuse("max_step", "must be >= 0 (0: no limit)");
+  if (points_per_period < 2 || points_per_period > 100000)
+    refuse("points_per_period", "must be from 2 to 100000 (inclusive)");
+}
+
+TransientStudyResult run_transient_study(Scene scene, const TransientStudyOptions& options) {
+  const Stopwatch stopwatch;
+  options.validate();
+  auto refuse = [](const std::string& field, const std::string& why) {
+    throw OptionError(field, why);
+  };
+  if (options.switching_hz)
+    set_switching_frequency(scene, *options.switching_hz);  // drive and periodic sources
   TransientStudyResult study;
   study.model = prepare_model(scene, options.prepare);
   study.system = study.model.network.assemble();
   const Model& model = study.model;
   study.frequency_hz = model.scene.drive.frequency;
   if (!(study.frequency_hz > 0.0))
-    throw InputError(model.scene.file, "drive.frequency",
-                     "a transient needs a drive with a frequency > 0 (or " + p + "switching)");
+    throw OptionError::in_file(
+        "switching_hz", model.scene.file, "drive.frequency",
+        "a transient needs a drive with a frequency > 0 (or {switching_hz})");
   if (options.method == TransientMethod::exact && study.system.is_nonlinear())
     refuse("method",
            "the exact method needs a linear network, and this scene's DEAs have their "

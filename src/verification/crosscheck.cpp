@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "crosscheck_session.hpp"
+#include "emnet/core/option_error.hpp"
 
 namespace emnet {
 
@@ -26,8 +27,8 @@ const char* crosscheck_analysis_name(CrosscheckAnalysis analysis) {
   return "?";
 }
 
-std::vector<CrosscheckAnalysis> parse_crosscheck_analyses(const std::string& text,
-                                                          const std::string& option) {
+std::vector<CrosscheckAnalysis> parse_crosscheck_analyses(const std::string& text) {
+  constexpr const char* field = "analyses";
   if (text == "all")
     return {CrosscheckAnalysis::op, CrosscheckAnalysis::ac, CrosscheckAnalysis::modal,
             CrosscheckAnalysis::tran};
@@ -44,13 +45,30 @@ std::vector<CrosscheckAnalysis> parse_crosscheck_analyses(const std::string& tex
     else if (name == "tran")
       analysis = CrosscheckAnalysis::tran;
     else
-      throw InputError(option, option,
-                       "unknown analysis '" + name + "' (op, ac, modal, tran, or all)");
+      throw OptionError(field, "unknown analysis '" + name + "' (op, ac, modal, tran, or all)");
     if (std::find(analyses.begin(), analyses.end(), analysis) == analyses.end())
       analyses.push_back(analysis);
   }
-  if (analyses.empty()) throw InputError(option, option, "names no analysis");
+  if (analyses.empty()) throw OptionError(field, "names no analysis");
   return analyses;
+}
+
+void CrosscheckOptions::validate() const {
+  if (!(same_network_tolerance > 0.0)) throw OptionError("same_network_tolerance", "must be > 0");
+  if (modal_count < 1 || modal_count > 20)
+    throw OptionError("modal_count", "must be between 1 and 20");
+  if (!(modal_half_width > 0.0 && modal_half_width < 0.5))
+    throw OptionError("modal_half_width", "must be between 0 and 0.5");
+  if (modal_points < 10 || modal_points > 100000)
+    throw OptionError("modal_points", "must be between 10 and 100000");
+  if (!(tran_periods > 0.0 && tran_periods <= 1000.0))
+    throw OptionError("tran_periods", "must be > 0 and at most 1000");
+  if (tran_points_per_period < 2 || tran_points_per_period > 100000)
+    throw OptionError("tran_points_per_period", "must be between 2 and 100000");
+  if (!(tran_reltol > 0.0 && tran_reltol < 1.0))
+    throw OptionError("tran_reltol", "must be between 0 and 1");
+  if (!(tran_tolerance_per_reltol > 0.0))
+    throw OptionError("tran_tolerance_per_reltol", "must be > 0");
 }
 
 bool CrosscheckReport::all_pass() const {

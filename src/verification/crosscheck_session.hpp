@@ -15,6 +15,7 @@
 
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/operating_point.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/output_file.hpp"
 #include "emnet/model/outputs.hpp"
 #include "emnet/spice/spice_netlist.hpp"
@@ -81,7 +82,7 @@ class CrosscheckSession {
       : model_(model), options_(options) {}
 
   CrosscheckReport run() {
-    check_options();
+    options_.validate();
     for (std::string& note : deck_left_out_notes(model_)) report_.notes.push_back(std::move(note));
     try {
       for (const auto analysis : options_.analyses) {
@@ -106,28 +107,6 @@ class CrosscheckSession {
     return report_;
   }
 
-  // The parts the four comparisons share.
-  void check_options() const {
-    const auto& o = options_;
-    if (!(o.same_network_tolerance > 0.0))
-      throw InputError("crosscheck", "same_network_tolerance", "must be > 0");
-    if (o.modal_count < 1 || o.modal_count > 20)
-      throw InputError("crosscheck", "modal_count", "must be between 1 and 20");
-    if (!(o.modal_half_width > 0.0 && o.modal_half_width < 0.5))
-      throw InputError("crosscheck", "modal_half_width", "must be between 0 and 0.5");
-    if (o.modal_points < 10 || o.modal_points > 100000)
-      throw InputError("crosscheck", "modal_points", "must be between 10 and 100000");
-    if (!(o.tran_periods > 0.0 && o.tran_periods <= 1000.0))
-      throw InputError("--periods", "--periods", "must be > 0 and at most 1000");
-    if (o.tran_points_per_period < 2 || o.tran_points_per_period > 100000)
-      throw InputError("--points-per-period", "--points-per-period",
-                       "must be between 2 and 100000");
-    if (!(o.tran_reltol > 0.0 && o.tran_reltol < 1.0))
-      throw InputError("--reltol", "--reltol", "must be between 0 and 1");
-    if (!(o.tran_tolerance_per_reltol > 0.0))
-      throw InputError("crosscheck", "tran_tolerance_per_reltol", "must be > 0");
-  }
-
   // Runs one deck; a failure of ngspice ends the cross-check with a clear status.
   NgspiceResult run_deck(CrosscheckAnalysis analysis, const SpiceDeck& deck,
                          const std::string& label, bool failure_allowed = false) {
@@ -136,13 +115,13 @@ class CrosscheckSession {
       std::error_code made;
       std::filesystem::create_directories(options_.keep_decks_directory, made);
       if (made)
-        throw InputError("--keep-decks", options_.keep_decks_directory,
-                         "cannot make the directory: " + made.message());
+        throw OptionError("keep_decks_directory", "cannot make the directory: " + made.message(),
+                          options_.keep_decks_directory);
       const std::string path = options_.keep_decks_directory + "/" +
                                spice_identifier(model_.scene.name) + "-crosscheck-" + label +
                                ".cir";
       if (const Status written = write_output_file(path, deck.text); !written.ok())
-        throw InputError("--keep-decks", path, written.message);
+        throw OptionError("keep_decks_directory", written.message, path);
     }
     NgspiceResult result = run_ngspice(deck.text, options_.ngspice);
     if (!result.status.ok() && !failure_allowed) {

@@ -7,6 +7,7 @@
 
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/operating_point.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/report/design_study.hpp"
 #include "emnet/scene/parameters.hpp"
 #include "emnet/scene/scene_reader.hpp"
@@ -32,22 +33,20 @@ Scene cantilever_with_load() {
 
 TEST(DesignStudy, ValuesUnitsAndPercentages) {
   const Scene scene = cantilever_with_load();
-  const Variation list =
-      parse_variation(scene, "beam.bending_stiffness=1, 2 N*m^2, 150%", "--vary");
+  const Variation list = parse_variation(scene, "beam.bending_stiffness=1, 2 N*m^2, 150%");
   EXPECT_EQ(list.key, "beam.bending_stiffness");
   EXPECT_EQ(list.values, (std::vector<double>{1.0, 2.0, 3.0}));  // 150 % of 2 N*m^2
-  const Variation grid = parse_variation(scene, "beam.length=linspace(0.4,0.6,3)", "--vary");
+  const Variation grid = parse_variation(scene, "beam.length=linspace(0.4,0.6,3)");
   ASSERT_EQ(grid.values.size(), 3u);
   EXPECT_DOUBLE_EQ(grid.values[1], 0.5);
   EXPECT_EQ(grid.values[2], 0.6);  // the end is the end, not a sum of steps
-  const Variation log = parse_variation(scene, "beam.mass_per_length=logspace(0.1,10,3)", "--vary");
+  const Variation log = parse_variation(scene, "beam.mass_per_length=logspace(0.1,10,3)");
   EXPECT_NEAR(log.values[1], 1.0, 1e-15);
-  const Variation normal =
-      parse_variation(scene, "beam.bending_stiffness=normal(100%,5%)", "--vary");
+  const Variation normal = parse_variation(scene, "beam.bending_stiffness=normal(100%,5%)");
   EXPECT_EQ(normal.kind, VariationKind::normal);
   EXPECT_EQ(normal.first, 2.0);
   EXPECT_DOUBLE_EQ(normal.second, 0.1);
-  const Variation millimetres = parse_variation(scene, "beam.length=uniform(400 mm,0.6)", "--vary");
+  const Variation millimetres = parse_variation(scene, "beam.length=uniform(400 mm,0.6)");
   EXPECT_DOUBLE_EQ(millimetres.first, 0.4);
 }
 
@@ -57,10 +56,11 @@ TEST(DesignStudy, BadSpecsNameTheKey) {
                            "beam.bending_stiffness=uniform(2,1)", "beam.length=3 V",
                            "beam.nothing=1", "beam.left=1", "beam.length=linspace(1,2,0)"}) {
     try {
-      parse_variation(scene, text, "--vary");
+      parse_variation(scene, text);
       ADD_FAILURE() << text << " was accepted";
-    } catch (const InputError& error) {
-      EXPECT_EQ(error.where(), "--vary") << text;
+    } catch (const OptionError& error) {
+      EXPECT_EQ(error.field(), "variations") << text;
+      EXPECT_EQ(error.where(), "variations") << text;
       EXPECT_NE(std::string(error.what()).find("beam."), std::string::npos) << error.what();
     }
   }
@@ -69,8 +69,8 @@ TEST(DesignStudy, BadSpecsNameTheKey) {
 TEST(DesignStudy, GridIsCartesianLastKeyFastest) {
   const Scene scene = cantilever_with_load();
   const VariantTable table =
-      make_variants({parse_variation(scene, "beam.bending_stiffness=1,2", "--vary"),
-                     parse_variation(scene, "beam.mass_per_length=0.1,0.2,0.3", "--vary")},
+      make_variants({parse_variation(scene, "beam.bending_stiffness=1,2"),
+                     parse_variation(scene, "beam.mass_per_length=0.1,0.2,0.3")},
                     0, 1);
   ASSERT_EQ(table.rows.size(), 6u);
   EXPECT_EQ(table.rows[0], (std::vector<double>{1.0, 0.1}));
@@ -81,8 +81,8 @@ TEST(DesignStudy, GridIsCartesianLastKeyFastest) {
 TEST(DesignStudy, MonteCarloFollowsItsSeedAndItsDistribution) {
   const Scene scene = cantilever_with_load();
   const std::vector<Variation> vary{
-      parse_variation(scene, "beam.bending_stiffness=normal(2,0.1)", "--vary"),
-      parse_variation(scene, "beam.mass_per_length=uniform(0.2,0.4)", "--vary")};
+      parse_variation(scene, "beam.bending_stiffness=normal(2,0.1)"),
+      parse_variation(scene, "beam.mass_per_length=uniform(0.2,0.4)")};
   const VariantTable a = make_variants(vary, 4000, 42), b = make_variants(vary, 4000, 42),
                      c = make_variants(vary, 4000, 43);
   EXPECT_EQ(a.rows, b.rows);
@@ -99,8 +99,19 @@ TEST(DesignStudy, MonteCarloFollowsItsSeedAndItsDistribution) {
   // mean, 0.1/sqrt(2*4000) for the sd) of the distribution's.
   EXPECT_NEAR(mean, 2.0, 5 * 0.1 / std::sqrt(4000.0));
   EXPECT_NEAR(sd, 0.1, 5 * 0.1 / std::sqrt(8000.0));
-  EXPECT_THROW(make_variants(vary, 0, 1), InputError);  // random without samples
-  EXPECT_THROW(make_variants({parse_variation(scene, "beam.length=0.4,0.5", "--vary")}, 3, 1),
+  try {
+    make_variants(vary, 0, 1);  // random without samples
+    ADD_FAILURE() << "random variations without samples were accepted";
+  } catch (const OptionError& error) {
+    EXPECT_EQ(error.field(), "samples");
+    EXPECT_STREQ(error.what(),
+                 "samples: key 'samples': a random variation (uniform, normal, lognormal) needs "
+                 "samples N");
+    EXPECT_EQ(error.message_with([](const std::string& field) { return "--" + field; }),
+              "--samples: key '--samples': a random variation (uniform, normal, lognormal) "
+              "needs --samples N");
+  }
+  EXPECT_THROW(make_variants({parse_variation(scene, "beam.length=0.4,0.5")}, 3, 1),
                InputError);  // samples without a random variation
 }
 
@@ -108,7 +119,7 @@ TEST(DesignStudy, LinkedKeysChangeByTheSameRatio) {
   Scene scene = cantilever_with_load();
   scene.beam.rotary_inertia_per_length = 1e-4;
   const Variation linked =
-      parse_variation(scene, "beam.mass_per_length+beam.rotary_inertia_per_length=0.6", "--vary");
+      parse_variation(scene, "beam.mass_per_length+beam.rotary_inertia_per_length=0.6");
   const VariantTable table = make_variants({linked}, 0, 1);
   ASSERT_EQ(table.keys.size(), 2u);
   EXPECT_EQ(table.keys[1], "beam.rotary_inertia_per_length");
@@ -136,8 +147,8 @@ TEST_F(DesignStudyFiles, VariantsFromCsv) {
 // F·L³/(3·EI) of the static tip deflection (nodal statics are exact for any N: rounding only).
 TEST(DesignStudy, RowsAreTheAnalysesOfEachVariantWhateverTheThreads) {
   const Scene scene = cantilever_with_load();
-  const VariantTable table = make_variants(
-      {parse_variation(scene, "beam.bending_stiffness=uniform(1,3)", "--vary")}, 24, 5);
+  const VariantTable table =
+      make_variants({parse_variation(scene, "beam.bending_stiffness=uniform(1,3)")}, 24, 5);
   DesignStudyOptions options;
   options.analyses = {StudyAnalysis::modes, StudyAnalysis::static_state};
   options.mode_count = 2;
@@ -226,7 +237,8 @@ TEST(DesignStudy, AKeyNoVariantCanSetIsRefusedBeforeTheRun) {
   try {
     run_design_study(tweezer, table, DesignStudyOptions{});
     FAIL() << "accepted";
-  } catch (const InputError& error) {
+  } catch (const OptionError& error) {
+    EXPECT_EQ(error.field(), "variations");
     EXPECT_EQ(error.key(), "beam.bending_stiffness");
     EXPECT_NE(std::string(error.what()).find("section[].bending_stiffness"), std::string::npos)
         << error.what();

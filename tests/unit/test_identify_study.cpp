@@ -33,6 +33,7 @@
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/operating_point.hpp"
 #include "emnet/core/errors.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/scene/parameters.hpp"
@@ -240,7 +241,7 @@ TEST(IdentifyStudy, TargetAboveTheClampedBeamIsOutOfReachOfAnyClampStiffness) {
   EXPECT_TRUE(std::isfinite(result.achieved_hz));
 }
 
-TEST(IdentifyStudy, BadFitKeysAreInputErrorsNamingTheKey) {
+TEST(IdentifyStudy, BadFitKeysAreOptionErrorsNamingTheFieldAndTheKey) {
   const emnet::Scene scene = elastic_clamp(4.0);
   emnet::IdentifyOptions options;
   options.target_hz = 5.0;
@@ -248,8 +249,9 @@ TEST(IdentifyStudy, BadFitKeysAreInputErrorsNamingTheKey) {
     options.parameter = key;
     try {
       emnet::identify(scene, options);
-    } catch (const emnet::InputError& error) {
-      EXPECT_EQ(error.where(), "--fit") << key;
+    } catch (const emnet::OptionError& error) {
+      EXPECT_EQ(error.field(), "parameter") << key;
+      EXPECT_EQ(error.where(), "parameter") << key;
       return std::string(error.what());
     }
     ADD_FAILURE() << key << " was accepted";

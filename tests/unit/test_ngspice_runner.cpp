@@ -823,8 +823,8 @@ TEST(NgspiceRunner, MissingWorkerProgramIsAClearFailure) {
 TEST(NgspiceRunner, WorkerOfAnotherProtocolIsRefused) {
   const std::string built = std::string(EMNET_BINARY);
   ProcessOptions refusal;
-  refusal.arguments = {built.substr(0, built.rfind('/') + 1) + "emnet-ngspice-worker", "--protocol",
-                       "99", "--max-message-bytes", "1000"};
+  refusal.arguments = {built.substr(0, built.rfind('/') + 1) + "emnet-ngspice-worker",
+                       "protocol=99", "max_message_bytes=1000"};
   refusal.standard_error = ProcessOutput::captured(4096);
   refusal.timeout_seconds = 20;
   const ProcessResult end = run_process(refusal);
@@ -835,7 +835,7 @@ TEST(NgspiceRunner, WorkerOfAnotherProtocolIsRefused) {
 
   const std::string worker = write_fake_program(
       "other_protocol_worker",
-      "echo \"emnet-ngspice-worker: asked for protocol $2; this worker speaks protocol 0\" >&2\n"
+      "echo \"emnet-ngspice-worker: asked for ${1#protocol=}; this worker speaks protocol 0\" >&2\n"
       "exit 2\n");
   NgspiceOptions options;
   options.backend = NgspiceBackend::library;

@@ -36,7 +36,7 @@ std::string number(double value) {
 }
 
 // The outcome of reading the fish fin with overrides: the scene, or the error's key and message
-// (without its "where", which is "--set" for the reader and "set_parameter" for set_parameter).
+// (without its "where", which is "override" for the reader and "set_parameter" for set_parameter).
 struct Outcome {
   std::optional<Scene> scene;
   std::string key, message;

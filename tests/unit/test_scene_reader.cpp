@@ -580,27 +580,27 @@ TEST(SceneReaderError, FileThatIsNotToml) {
 
 TEST(SceneReaderError, OverrideOfUnknownKey) {
   const auto error = read_error(kMinimalScene, {"beam.lenght=0.2"});
-  expect_error(error, "--set", "beam.lenght", "unknown key (did you mean 'beam.length'?)");
+  expect_error(error, "override", "beam.lenght", "unknown key (did you mean 'beam.length'?)");
 }
 
 TEST(SceneReaderError, OverrideWithBadValue) {
   const auto error = read_error(kMinimalScene, {"beam.length=abc"});
-  expect_error(error, "--set", "beam.length", "not a number: 'abc'");
+  expect_error(error, "override", "beam.length", "not a number: 'abc'");
 }
 
 TEST(SceneReaderError, OverrideWithWrongUnit) {
   const auto error = read_error(kMinimalScene, {"beam.length=4kV"});
-  expect_error(error, "--set", "beam.length", "unit 'kV' is a voltage, expected a length (m)");
+  expect_error(error, "override", "beam.length", "unit 'kV' is a voltage, expected a length (m)");
 }
 
 TEST(SceneReaderError, OverrideWithoutEqualsSign) {
   const auto error = read_error(kMinimalScene, {"beam.length"});
-  expect_error(error, "--set", "beam.length", "expected key=value");
+  expect_error(error, "override", "beam.length", "expected key=value");
 }
 
 TEST(SceneReaderError, OverrideOfMissingArrayEntry) {
   const auto error = read_error(kFullScene, {"dea.C.lever_arm=2mm"});
-  expect_error(error, "--set", "dea.C.lever_arm", "no [[dea]] entry 'C'");
+  expect_error(error, "override", "dea.C.lever_arm", "no [[dea]] entry 'C'");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -805,14 +805,14 @@ TEST(SceneReaderBounds, OverrideThatTomlCannotReadSafelyIsTakenAsAString) {
   // A deeply nested value is not parsed either: it arrives as a string and is refused as one.
   const auto error = read_error(kMinimalScene, {"beam.length=" + repeated("[", 50000)});
   ASSERT_TRUE(error.has_value());
-  EXPECT_EQ(error->where(), "--set");
+  EXPECT_EQ(error->where(), "override");
   EXPECT_NE(std::string(error->what()).find("not a number: '[[["), std::string::npos)
       << error->what();
 }
 
 TEST(SceneReaderBounds, AtMostTheLimitOfOverrides) {
   expect_error(read_error(kMinimalScene, std::vector<std::string>(1001, "beam.length=0.2")),
-               "--set", "", "1001 overrides; at most 1000 may be given");
+               "override", "", "1001 overrides; at most 1000 may be given");
   EXPECT_NO_THROW(
       read_scene_text(kMinimalScene, kFileName, std::vector<std::string>(1000, "beam.length=0.2")));
 }
@@ -1114,7 +1114,7 @@ TEST(SceneReaderError, DriveKeysTheKindDoesNotUseAreRefused) {
     expect_error(read_error(text), at_line(text, line), "drive." + c.key, "used by " + c.used_by);
   }
   // And from an override, named as such.
-  expect_error(read_error(kFullScene, {"drive.bias=1kV"}), "--set", "drive.bias",
+  expect_error(read_error(kFullScene, {"drive.bias=1kV"}), "override", "drive.bias",
                "is not used by drive kind 'antagonistic'");
 }
 
@@ -1162,11 +1162,11 @@ TEST(SceneReader, ValidityLimitsDefaultAndRead) {
 
 TEST(SceneReaderError, ValidityLimitsOutOfRange) {
   for (const char* bad : {"0", "1.5", "-0.1"})
-    expect_error(read_error(kFullScene, {std::string("model.deflection_limit=") + bad}), "--set",
+    expect_error(read_error(kFullScene, {std::string("model.deflection_limit=") + bad}), "override",
                  "model.deflection_limit", "must be > 0 and at most 1 (a fraction of beam.length)");
-  expect_error(read_error(kFullScene, {"dea.B.breakdown_field=0"}), "--set",
+  expect_error(read_error(kFullScene, {"dea.B.breakdown_field=0"}), "override",
                "dea[B].breakdown_field", "must be > 0");
-  expect_error(read_error(kFullScene, {"dea.B.breakdown_field=80 V"}), "--set",
+  expect_error(read_error(kFullScene, {"dea.B.breakdown_field=80 V"}), "override",
                "dea[B].breakdown_field", "expected an electric field (V/m)");
 }
 

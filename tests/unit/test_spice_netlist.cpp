@@ -19,6 +19,7 @@
 
 #include "cli_run.hpp"
 #include "emnet/analysis/analysis.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/elements/conductance.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene_reader.hpp"
@@ -285,7 +286,7 @@ std::string regenerate(const CheckedInDeck& d) {
 // The tran deck from the static state takes that state from its caller (the writer runs no
 // analysis). Reference: emnet's static solve of the same network, whose probe values the .ic
 // lines hold (printed with the deck's 12 digits); without a state the writer refuses, a failed
-// one is the InputError naming --start that the command line reports.
+// one is the OptionError naming the field "start" (the command line's --start).
 TEST(SpiceNetlist, StaticStartTakesTheCallersStaticState) {
   const Model model = scene_model("netlists/fishfin.toml");
   SpiceDeckOptions options;
@@ -307,8 +308,9 @@ TEST(SpiceNetlist, StaticStartTakesTheCallersStaticState) {
   try {
     write_spice_deck(model, options);
     ADD_FAILURE() << "a failed static state was written";
-  } catch (const InputError& error) {
-    EXPECT_EQ(error.key(), "--start");
+  } catch (const OptionError& error) {
+    EXPECT_EQ(error.field(), "start");
+    EXPECT_EQ(error.key(), "start");
     EXPECT_NE(std::string(error.what()).find("no static state (singular)"), std::string::npos);
   }
 }

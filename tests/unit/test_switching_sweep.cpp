@@ -14,6 +14,7 @@
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/periodic.hpp"
 #include "emnet/core/errors.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
@@ -301,21 +302,36 @@ TEST(SwitchingSweep, CancelledProgressIsAFailureWithoutNaN) {
   EXPECT_TRUE(std::isfinite(sweep.seconds));
 }
 
-// Bad options are InputErrors naming the option, before any model is touched.
-TEST(SwitchingSweep, BadOptionsAreInputErrors) {
+// The field an OptionError of `options.validate()` names ("" when none is thrown).
+std::string refused_field(const SwitchingSweepOptions& options) {
+  try {
+    options.validate();
+  } catch (const OptionError& error) {
+    return error.field();
+  }
+  return "";
+}
+
+// Bad options are OptionErrors naming the field, before any model is touched.
+TEST(SwitchingSweep, BadOptionsAreOptionErrorsNamingTheField) {
   SwitchingSweepOptions options;
   options.step = 0.0;
-  EXPECT_THROW(check_switching_sweep_options(options), InputError);
+  EXPECT_EQ(refused_field(options), "step");
   options.step = 0.1;
   options.samples = 4;
-  EXPECT_THROW(check_switching_sweep_options(options), InputError);
+  EXPECT_EQ(refused_field(options), "samples");
+  try {
+    options.validate();
+  } catch (const OptionError& error) {
+    EXPECT_STREQ(error.what(), "samples: key 'samples': must be from 8 to 1000000 (inclusive)");
+  }
   options.samples = 0;
   options.reduce = true;
   options.method = SwitchingSweepMethod::shooting;
-  EXPECT_THROW(check_switching_sweep_options(options), InputError);
+  EXPECT_EQ(refused_field(options), "reduce");
   options.reduce = false;
   options.frequencies = {1.0, -2.0};
-  EXPECT_THROW(check_switching_sweep_options(options), InputError);
+  EXPECT_EQ(refused_field(options), "frequencies");
   options.frequencies = {};
   EXPECT_EQ(switching_frequencies(options).size(), 61u);  // 1, 1.1, …, 7 Hz
   // The drive's rise time must fit half the shortest period: 0.08 s does (the reader's check)

@@ -37,7 +37,7 @@ std::string study_section(const Settings& settings) {
   const emnet::Scene scene = emnet::read_scene(settings.fishfin());
   std::vector<emnet::Variation> variations;
   for (const auto& text : tolerance_variations())
-    variations.push_back(emnet::parse_variation(scene, text, "--vary"));
+    variations.push_back(emnet::parse_variation(scene, text));
   const std::size_t count = settings.quick ? 40 : 1000;
   const emnet::VariantTable table = emnet::make_variants(variations, count, 1);
   emnet::DesignStudyOptions options;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli/common.hpp"
+#include "cli/option_names.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/studies/ac_study.hpp"
@@ -87,9 +88,11 @@ Command add_ac_command(CLI::App& app, CommonOptions& options) {
       "the response: a magnitude panel per unit over the phase, the resonances "
       "that show as a peak (damping ratio below 1/sqrt(2)) marked; the title names the "
       "AC input");
-  ac_command->add_flag("--reduce", ac_options->reduce,
-                       "evaluate the sweep by modal reduction (modes below band/sqrt(tolerance), "
-                       "static correction for the rest), checked against the full model");
+  sets_fields(ac_command->add_flag("--reduce", ac_options->reduce,
+                                   "evaluate the sweep by modal reduction (modes below "
+                                   "band/sqrt(tolerance), static correction for the rest), "
+                                   "checked against the full model"),
+              {"reduce"});
   add_reduction_tolerance_and_band(ac_command, ac_options->tolerance, ac_options->band);
 
   return {ac_command, [ac_options, &options] { return run_ac_command(options, *ac_options); }};

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli/common.hpp"
+#include "cli/option_names.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/report/json.hpp"
 
@@ -99,11 +100,13 @@ std::string tolerance_warning(double measured, double tolerance) {
 
 void add_reduction_tolerance_and_band(CLI::App* command, std::string& tolerance,
                                       std::string& band) {
-  command->add_option("--tolerance", tolerance,
-                      "--reduce: relative error wanted, in (0, 1) (default: the scene's "
-                      "model.tolerance, 1e-3)");
-  command->add_option("--band", band,
-                      "--reduce: highest frequency of interest [Hz] (default: --to)");
+  sets_fields(command->add_option("--tolerance", tolerance,
+                                  "--reduce: relative error wanted, in (0, 1) (default: the "
+                                  "scene's model.tolerance, 1e-3)"),
+              {"tolerance", "reduction.tolerance"});
+  sets_fields(command->add_option("--band", band,
+                                  "--reduce: highest frequency of interest [Hz] (default: --to)"),
+              {"band", "reduction.band"});
 }
 
 }  // namespace emnet_cli

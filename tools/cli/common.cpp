@@ -14,6 +14,7 @@
 #include <optional>
 #include <sstream>
 
+#include "cli/option_names.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/modal_reduction.hpp"
 #include "emnet/analysis/operating_point.hpp"
@@ -284,18 +285,23 @@ Prepared prepare(const CommonOptions& options, bool require_static,
 void add_common(CLI::App* command, CommonOptions& options) {
   command->add_option("scene", options.scene_path, "scene file (TOML), e.g. netlists/fishfin.toml")
       ->required();
-  command->add_option("--segments", options.segments,
-                      "number of beam segments, >= 1 (same as --set beam.segments=N)");
-  command
-      ->add_option("--set", options.overrides,
-                   "override a scene key: --set beam.length=0.2 or --set \"drive.voltage=3 kV\"")
-      ->allow_extra_args(false);
-  command
-      ->add_option("--probe", options.probes,
-                   "output: a probe name of the scene, QUANTITY@POSITION "
-                   "(deflection, velocity, rotation, angular_velocity; e.g. deflection@70mm) or "
-                   "dea_voltage:NAME / dea_current:NAME")
-      ->allow_extra_args(false);
+  // Fields of the library's calls these set: the mesh, the scene's overrides, the probe texts.
+  sets_fields(command->add_option("--segments", options.segments,
+                                  "number of beam segments, >= 1 (same as --set beam.segments=N)"),
+              {"segments"});
+  sets_fields(command
+                  ->add_option("--set", options.overrides,
+                               "override a scene key: --set beam.length=0.2 or --set "
+                               "\"drive.voltage=3 kV\"")
+                  ->allow_extra_args(false),
+              {"overrides"});
+  sets_fields(command
+                  ->add_option("--probe", options.probes,
+                               "output: a probe name of the scene, QUANTITY@POSITION "
+                               "(deflection, velocity, rotation, angular_velocity; e.g. "
+                               "deflection@70mm) or dea_voltage:NAME / dea_current:NAME")
+                  ->allow_extra_args(false),
+              {"probe", "outputs"});
   command->add_flag("--json", options.json, "print machine-readable JSON instead of tables");
   command->add_option("--csv", options.csv, "also write the result table to this CSV file");
   auto* progress = command->add_flag(

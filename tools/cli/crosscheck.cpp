@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "cli/common.hpp"
+#include "cli/option_names.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/modal_reduction.hpp"
 #include "emnet/analysis/periodic.hpp"
@@ -71,7 +72,7 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
   if (!(cross.timeout > 0.0) || cross.timeout > 86400.0)
     throw InputError("--timeout", "--timeout", "must be > 0 s and at most 86400 s (inclusive)");
   emnet::CrosscheckOptions check;
-  check.analyses = emnet::parse_crosscheck_analyses(cross.analyses, "--analysis");
+  check.analyses = emnet::parse_crosscheck_analyses(cross.analyses);
   check.ngspice.timeout_seconds = cross.timeout;
   check.ngspice.backend = cross.backend == "library"   ? emnet::NgspiceBackend::library
                           : cross.backend == "program" ? emnet::NgspiceBackend::program
@@ -143,8 +144,9 @@ Command add_crosscheck_command(CLI::App& app, CommonOptions& options) {
       "Exit status: 0 every difference within its tolerance; 4 one exceeds it; 3 ngspice\n"
       "missing, failing or timed out, or an emnet analysis failed; 2 bad input.");
   add_common(command, options);
-  command->add_option("--analysis", cross.analyses,
-                      "comma-separated subset of op,ac,modal,tran (default: all)");
+  sets_fields(command->add_option("--analysis", cross.analyses,
+                                  "comma-separated subset of op,ac,modal,tran (default: all)"),
+              {"analyses"});
   command->add_option("--timeout", cross.timeout,
                       "wall-clock limit per ngspice run [s] (default 60)");
   command
@@ -153,13 +155,19 @@ Command add_crosscheck_command(CLI::App& app, CommonOptions& options) {
       ->check(CLI::IsMember({"auto", "library", "program"}));
   command->add_option("--ngspice-program", cross.program,
                       "the ngspice program of the program backend (default: ngspice in PATH)");
-  command->add_option("--keep-decks", cross.keep_decks,
-                      "also write the decks that were run into this directory");
-  command->add_option("--periods", cross.periods,
-                      "tran: periods of the drive (or of the first mode) to compare (default 2)");
-  command->add_option("--points-per-period", cross.points_per_period,
-                      "tran: ngspice's max step = period / this (default 2000)");
-  command->add_option("--reltol", cross.reltol, "tran: ngspice's reltol (default 1e-6)");
+  sets_fields(command->add_option("--keep-decks", cross.keep_decks,
+                                  "also write the decks that were run into this directory"),
+              {"keep_decks_directory"});
+  sets_fields(command->add_option("--periods", cross.periods,
+                                  "tran: periods of the drive (or of the first mode) to compare "
+                                  "(default 2)"),
+              {"tran_periods"});
+  sets_fields(command->add_option("--points-per-period", cross.points_per_period,
+                                  "tran: ngspice's max step = period / this (default 2000)"),
+              {"tran_points_per_period"});
+  sets_fields(
+      command->add_option("--reltol", cross.reltol, "tran: ngspice's reltol (default 1e-6)"),
+      {"tran_reltol"});
   return {command, [crosscheck_options, &options] {
             return run_crosscheck_command(options, *crosscheck_options);
           }};

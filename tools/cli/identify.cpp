@@ -14,6 +14,7 @@
 #include <string>
 
 #include "cli/common.hpp"
+#include "cli/option_names.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/core/stopwatch.hpp"
@@ -169,20 +170,25 @@ Command add_identify_command(CLI::App& app, CommonOptions& options) {
       "deflection); e.g. emnet identify netlists/fishfin.toml --resonance 6.385, or "
       "emnet identify SCENE --resonance 40 --fit spring.clamp.stiffness for an elastic clamp");
   add_common(identify_command, options);
-  identify_command->add_option("--resonance", identify_options->target_hz, "target frequency [Hz]")
-      ->required();
-  identify_command->add_option("--mode", identify_options->mode_number,
-                               "which oscillatory mode (default 1)");
-  identify_command->add_option(
-      "--fit", identify_options->fit_key,
-      "the scene key fitted to the resonance (default beam.bending_stiffness): any numeric key "
-      "the scene uses, as --set names it, e.g. spring.clamp.stiffness, "
-      "section.1.bending_stiffness, mass.0.mass, dea.A.lever_arm");
-  identify_command->add_option(
-      "--peak", identify_options->peak_text,
-      "also fit damping.loss_factor: NAME=VALUE[@VOLTAGE], the periodic peak |deflection| of "
-      "output NAME (P4, dx4, tip, ...) under the scene's square-wave drive switched at the "
-      "--resonance frequency, e.g. P4=9.3mm@4kV");
+  sets_fields(identify_command
+                  ->add_option("--resonance", identify_options->target_hz, "target frequency [Hz]")
+                  ->required(),
+              {"target_hz"});
+  sets_fields(identify_command->add_option("--mode", identify_options->mode_number,
+                                           "which oscillatory mode (default 1)"),
+              {"mode_number"});
+  sets_fields(identify_command->add_option(
+                  "--fit", identify_options->fit_key,
+                  "the scene key fitted to the resonance (default beam.bending_stiffness): any "
+                  "numeric key the scene uses, as --set names it, e.g. spring.clamp.stiffness, "
+                  "section.1.bending_stiffness, mass.0.mass, dea.A.lever_arm"),
+              {"parameter"});
+  sets_fields(identify_command->add_option(
+                  "--peak", identify_options->peak_text,
+                  "also fit damping.loss_factor: NAME=VALUE[@VOLTAGE], the periodic peak "
+                  "|deflection| of output NAME (P4, dx4, tip, ...) under the scene's square-wave "
+                  "drive switched at the --resonance frequency, e.g. P4=9.3mm@4kV"),
+              {"peak"});
 
   return {identify_command,
           [identify_options, &options] { return run_identify(options, *identify_options); }};

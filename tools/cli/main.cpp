@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/option_names.hpp"
 #include "emnet/core/terminal_text.hpp"
 
 using namespace emnet_cli;
@@ -176,7 +177,8 @@ int main(int argc, char** argv) {
     for (const Command& command : commands)
       if (*command.app) status = command.run();
   } catch (const InputError& e) {
-    status = failed(2, "error", e.what());
+    // Worded with the command's flags: a library OptionError names its Options fields.
+    status = failed(2, "error", input_error_text(app.get_subcommands().front(), e));
   } catch (const FileError& e) {
     status = failed(2, "error", e.what());
   } catch (const Interrupted& e) {

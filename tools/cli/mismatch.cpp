@@ -12,6 +12,7 @@
 #include <string>
 
 #include "cli/common.hpp"
+#include "cli/option_names.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/report/mismatch_json.hpp"
@@ -83,12 +84,16 @@ Command add_mismatch_command(CLI::App& app, CommonOptions& options) {
       "left/right asymmetry of the periodic swing from a mismatched antagonistic pair: DEA A's\n"
       "electrode area or film thickness changed by +/-X, or the switching overlapping by X*T/2");
   add_common(mismatch_command, options);
-  mismatch_command->add_option("--frequency", mismatch_options->frequency,
-                               "switching frequency [Hz] (default: the scene's drive.frequency)");
-  mismatch_command->add_option("--output", mismatch_options->output,
-                               "deflection output (default: the last, e.g. dx4)");
-  mismatch_command->add_option("--change", mismatch_options->change,
-                               "relative change of each parameter (default 0.05)");
+  sets_fields(mismatch_command->add_option(
+                  "--frequency", mismatch_options->frequency,
+                  "switching frequency [Hz] (default: the scene's drive.frequency)"),
+              {"frequency_hz"});
+  sets_fields(mismatch_command->add_option("--output", mismatch_options->output,
+                                           "deflection output (default: the last, e.g. dx4)"),
+              {"output"});
+  sets_fields(mismatch_command->add_option("--change", mismatch_options->change,
+                                           "relative change of each parameter (default 0.05)"),
+              {"change"});
 
   return {mismatch_command, [mismatch_options, &options] {
             return run_mismatch_command(options, *mismatch_options);

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "cli/common.hpp"
+#include "cli/option_names.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/report/json.hpp"
 #include "emnet/studies/modes_study.hpp"
@@ -159,14 +160,16 @@ Command add_modes_command(CLI::App& app, CommonOptions& options) {
   auto* modes_command = app.add_subcommand(
       "modes", "poles of the network: frequency, damping ratio, mode shape along the beam");
   add_common(modes_command, options);
-  modes_command->add_option("--count", modes_options->count,
-                            "number of modes to show (default: every pole for small networks, "
-                            "the 20 lowest for large ones)");
+  sets_fields(modes_command->add_option("--count", modes_options->count,
+                                        "number of modes to show (default: every pole for small "
+                                        "networks, the 20 lowest for large ones)"),
+              {"count"});
   modes_command->add_flag("--shapes", modes_options->shapes, "print the mode shapes");
-  modes_command->add_flag("--dense", modes_options->dense,
-                          "every finite pole by the dense method, whatever the size, up to 2000 "
-                          "unknowns (inclusive; O(n^3): seconds at 1000 unknowns, but not "
-                          "stopped by clusters of real poles)");
+  sets_fields(modes_command->add_flag("--dense", modes_options->dense,
+                                      "every finite pole by the dense method, whatever the size, "
+                                      "up to 2000 unknowns (inclusive; O(n^3): seconds at 1000 "
+                                      "unknowns, but not stopped by clusters of real poles)"),
+              {"dense"});
   modes_command->add_flag("!--no-error-estimate", modes_options->error_estimate,
                           "skip the N/2N discretisation error estimate");
 

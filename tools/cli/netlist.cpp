@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "cli/common.hpp"
+#include "cli/option_names.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/modal_reduction.hpp"
 #include "emnet/analysis/periodic.hpp"
@@ -174,11 +175,12 @@ Command add_netlist_command(CLI::App& app, CommonOptions& options) {
   command->add_option("--switching", netlist.switching,
                       "tran: switching frequency [Hz] (default: the scene's drive.frequency)");
   command->add_option("--periods", netlist.periods, "tran: number of periods (default 10)");
-  command
-      ->add_option("--start", netlist.start,
-                   "tran: rest (default) or static (the static state under the first "
-                   "half-period's drive)")
-      ->check(CLI::IsMember({"rest", "static"}));
+  sets_fields(command
+                  ->add_option("--start", netlist.start,
+                               "tran: rest (default) or static (the static state under the first "
+                               "half-period's drive)")
+                  ->check(CLI::IsMember({"rest", "static"})),
+              {"start"});
   command->add_option("--points-per-period", netlist.points_per_period,
                       "tran: output step = period / this (default 100)");
   command->add_option("--max-step", netlist.max_step,

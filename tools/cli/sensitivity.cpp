@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "cli/common.hpp"
+#include "cli/option_names.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/modal_reduction.hpp"
 #include "emnet/analysis/periodic.hpp"
@@ -129,13 +130,15 @@ Command add_sensitivity_command(CLI::App& app, CommonOptions& options) {
       "eigenvectors (first-order eigenvalue perturbation); --check compares with finite\n"
       "differences of the poles");
   add_common(sensitivity_command, options);
-  sensitivity_command->add_option("--modes", sensitivity_options->modes,
-                                  "number of lowest oscillatory modes (default 3)");
-  sensitivity_command
-      ->add_option("--parameter", sensitivity_options->parameters,
-                   "a scene key, e.g. beam.bending_stiffness or dea[A].lever_arm (default: every "
-                   "non-zero parameter)")
-      ->allow_extra_args(false);
+  sets_fields(sensitivity_command->add_option("--modes", sensitivity_options->modes,
+                                              "number of lowest oscillatory modes (default 3)"),
+              {"modes"});
+  sets_fields(sensitivity_command
+                  ->add_option("--parameter", sensitivity_options->parameters,
+                               "a scene key, e.g. beam.bending_stiffness or dea[A].lever_arm "
+                               "(default: every non-zero parameter)")
+                  ->allow_extra_args(false),
+              {"parameters"});
   sensitivity_command->add_flag("--check", sensitivity_options->check,
                                 "also difference the poles at p(1 +/- 1e-4) and report the "
                                 "difference");

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "cli/common.hpp"
+#include "cli/option_names.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/output_file.hpp"
 #include "emnet/model/validity.hpp"
@@ -71,12 +72,11 @@ int run_study_command(const CommonOptions& options, const StudyCommandOptions& c
     table = emnet::read_variants_csv(scene, cmd.variants);
   } else {
     std::vector<emnet::Variation> variations;
-    for (const auto& text : cmd.vary)
-      variations.push_back(emnet::parse_variation(scene, text, "--vary"));
+    for (const auto& text : cmd.vary) variations.push_back(emnet::parse_variation(scene, text));
     table = emnet::make_variants(variations, samples, seed);
   }
   emnet::DesignStudyOptions study;
-  study.analyses = emnet::parse_study_analyses(cmd.analyses, "--analysis");
+  study.analyses = emnet::parse_study_analyses(cmd.analyses);
   study.mode_count = cmd.modes;
   study.threads = cmd.threads;
   study.report_frequencies = cmd.at;
@@ -191,29 +191,47 @@ Command add_study_command(CLI::App& app, CommonOptions& options) {
       "Reads the scene's keys named by --vary, [beam], [[dea]], [drive] (the sweep) and [[probe]]\n"
       "(static).");
   add_common(command, options);
-  command
-      ->add_option("--vary", study->vary,
-                   "KEY=SPEC: values v1,v2,... or linspace(a,b,n), logspace(a,b,n) (a grid); "
-                   "uniform(a,b), normal(mean,sd), lognormal(median,s) (Monte Carlo, with "
-                   "--samples); values in SI, with a unit (\"60 mm\") or a percentage of the "
-                   "scene's value (\"95%\")")
-      ->allow_extra_args(false);
-  command->add_option("--variants", study->variants,
-                      "a CSV file: a header of keys, one variant per line (instead of --vary)");
-  command->add_option("--samples", study->samples, "Monte Carlo draws (per grid point)");
+  sets_fields(command
+                  ->add_option("--vary", study->vary,
+                               "KEY=SPEC: values v1,v2,... or linspace(a,b,n), logspace(a,b,n) (a "
+                               "grid); uniform(a,b), normal(mean,sd), lognormal(median,s) (Monte "
+                               "Carlo, with --samples); values in SI, with a unit (\"60 mm\") or "
+                               "a percentage of the scene's value (\"95%\")")
+                  ->allow_extra_args(false),
+              {"variations"});
+  sets_fields(command->add_option("--variants", study->variants,
+                                  "a CSV file: a header of keys, one variant per line (instead "
+                                  "of --vary)"),
+              {"variants"});
+  sets_fields(
+      command->add_option("--samples", study->samples, "Monte Carlo draws (per grid point)"),
+      {"samples"});
   command->add_option("--seed", study->seed, "the random generator's seed (default 1)");
-  command->add_option("--analysis", study->analyses,
-                      "comma-separated: modes, static, sweep-switching (default modes)");
-  command->add_option("--modes", study->modes, "modes: the lowest K modes reported (default 1)");
-  command
-      ->add_option("--at", study->at,
-                   "sweep-switching: report each output's periodic min and max at this "
-                   "switching frequency [Hz] (repeatable)")
-      ->allow_extra_args(false);
-  command->add_option("--from", study->from, "sweep-switching: first frequency (default 1 Hz)");
-  command->add_option("--to", study->to, "sweep-switching: last frequency (default 7 Hz)");
-  command->add_option("--step", study->step, "sweep-switching: frequency step [Hz] (default 0.1)");
-  command->add_option("--threads", study->threads, "worker threads (default 0: every core)");
+  sets_fields(
+      command->add_option("--analysis", study->analyses,
+                          "comma-separated: modes, static, sweep-switching (default modes)"),
+      {"analyses"});
+  sets_fields(command->add_option("--modes", study->modes,
+                                  "modes: the lowest K modes reported (default 1)"),
+              {"mode_count"});
+  sets_fields(command
+                  ->add_option("--at", study->at,
+                               "sweep-switching: report each output's periodic min and max at "
+                               "this switching frequency [Hz] (repeatable)")
+                  ->allow_extra_args(false),
+              {"report_frequencies"});
+  sets_fields(
+      command->add_option("--from", study->from, "sweep-switching: first frequency (default 1 Hz)"),
+      {"from"});
+  sets_fields(
+      command->add_option("--to", study->to, "sweep-switching: last frequency (default 7 Hz)"),
+      {"to"});
+  sets_fields(command->add_option("--step", study->step,
+                                  "sweep-switching: frequency step [Hz] (default 0.1)"),
+              {"step", "sweep_frequencies", "frequencies"});
+  sets_fields(
+      command->add_option("--threads", study->threads, "worker threads (default 0: every core)"),
+      {"threads"});
   command->add_option("-o,--output", study->output, "write the table: FILE.csv or FILE.json");
 
   return {command, [study, &options] { return run_study_command(options, *study); }};

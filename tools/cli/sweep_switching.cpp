@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/option_names.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/core/stopwatch.hpp"
@@ -48,7 +49,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   study.rtol = sweep.rtol;
   study.reduce = sweep.reduce;
   study.sources = sweep.sources;
-  emnet::check_switching_sweep_options(study);
+  study.validate();
   check_plot_options(sweep.plot, sweep.plot_script);
   if (!sweep.reduce && (!sweep.tolerance.empty() || !sweep.band.empty()))
     throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
@@ -95,34 +96,45 @@ Command add_sweep_switching_command(CLI::App& app, CommonOptions& options) {
       "switching frequency (paper Fig. 14), computed directly: exact for linear networks,\n"
       "Newton shooting over one period otherwise");
   add_common(sweep_command, options);
-  sweep_command->add_option("--from", sweep_options->from, "first switching frequency [Hz] (1)");
-  sweep_command->add_option("--to", sweep_options->to, "last switching frequency [Hz] (7)");
-  sweep_command->add_option("--step", sweep_options->step, "frequency step [Hz] (0.1)");
-  sweep_command
-      ->add_option("--method", sweep_options->method,
-                   "auto (default: exact for a linear network, reduced above 1000 unknowns, "
-                   "shooting where the DEAs are driven through a nonlinear [[circuit]]), exact "
-                   "or shooting")
-      ->check(CLI::IsMember({"auto", "exact", "shooting"}));
-  sweep_command->add_option("--samples", sweep_options->samples,
-                            "samples per period before refining the extremes (default 64 "
-                            "for the exact method, whose extremes are global whatever the "
-                            "count, also with --reduce; 256 for shooting, which refines the "
-                            "largest samples)");
-  sweep_command->add_option("--rtol", sweep_options->rtol,
-                            "shooting: IDA relative tolerance (1e-9)");
+  sets_fields(sweep_command->add_option("--from", sweep_options->from,
+                                        "first switching frequency [Hz] (1)"),
+              {"from"});
+  sets_fields(
+      sweep_command->add_option("--to", sweep_options->to, "last switching frequency [Hz] (7)"),
+      {"to"});
+  sets_fields(sweep_command->add_option("--step", sweep_options->step, "frequency step [Hz] (0.1)"),
+              {"step"});
+  sets_fields(sweep_command
+                  ->add_option("--method", sweep_options->method,
+                               "auto (default: exact for a linear network, reduced above 1000 "
+                               "unknowns, shooting where the DEAs are driven through a nonlinear "
+                               "[[circuit]]), exact or shooting")
+                  ->check(CLI::IsMember({"auto", "exact", "shooting"})),
+              {"method"});
+  sets_fields(sweep_command->add_option("--samples", sweep_options->samples,
+                                        "samples per period before refining the extremes "
+                                        "(default 64 for the exact method, whose extremes are "
+                                        "global whatever the count, also with --reduce; 256 for "
+                                        "shooting, which refines the largest samples)"),
+              {"samples"});
+  sets_fields(sweep_command->add_option("--rtol", sweep_options->rtol,
+                                        "shooting: IDA relative tolerance (1e-9)"),
+              {"rtol"});
   add_plot_options(sweep_command, sweep_options->plot, sweep_options->plot_script,
                    "the peaks against the switching frequency (each output in one colour, "
                    "its left peak solid and its right peak dashed), f1 and the sweep's peak "
                    "marked");
-  sweep_command->add_flag("--reduce", sweep_options->reduce,
-                          "periodic state of a modal reduction (modes below band/tolerance, "
-                          "static correction as a feed-through), checked against the exact one");
-  sweep_command->add_option("--source", sweep_options->sources,
-                            "a [[circuit]] source whose frequency is swept (repeatable; default "
-                            "every periodic source: square, sine, pulse with a period), keeping "
-                            "its levels, duty, rise/fall and its delay as a fraction of the "
-                            "period");
+  sets_fields(sweep_command->add_flag("--reduce", sweep_options->reduce,
+                                      "periodic state of a modal reduction (modes below "
+                                      "band/tolerance, static correction as a feed-through), "
+                                      "checked against the exact one"),
+              {"reduce"});
+  sets_fields(sweep_command->add_option("--source", sweep_options->sources,
+                                        "a [[circuit]] source whose frequency is swept "
+                                        "(repeatable; default every periodic source: square, "
+                                        "sine, pulse with a period), keeping its levels, duty, "
+                                        "rise/fall and its delay as a fraction of the period"),
+              {"sources"});
   add_reduction_tolerance_and_band(sweep_command, sweep_options->tolerance, sweep_options->band);
 
   return {sweep_command,

@@ -9,6 +9,7 @@
 #include <iterator>
 #include <memory>
 
+#include "cli/option_names.hpp"
 #include "emnet/analysis/transient.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/stopwatch.hpp"
@@ -126,24 +127,35 @@ Command add_tran_command(CLI::App& app, CommonOptions& options) {
       "exactly (--method exact) for linear networks under piecewise-linear sources (any rise\n"
       "time)");
   add_common(tran_command, options);
-  tran_command->add_option("--switching", tran_options->switching,
-                           "switching frequency [Hz] (default: the scene's drive.frequency)");
-  tran_command->add_option("--periods", tran_options->periods, "number of periods (default 10)");
-  tran_command->add_option("--rtol", tran_options->rtol, "IDA relative tolerance (default 1e-6)");
-  tran_command->add_option("--atol", tran_options->atol,
-                           "IDA absolute tolerance for every unknown (default: rtol times a "
-                           "scale per kind of unknown from the static state)");
-  tran_command->add_option("--max-step", tran_options->max_step,
-                           "IDA's largest step [s] (default 0: no limit)");
-  tran_command->add_option("--method", tran_options->method, "ida or exact")
-      ->check(CLI::IsMember({"ida", "exact"}));
-  tran_command
-      ->add_option("--start", tran_options->start,
-                   "rest (default) or static (the static state under the first "
-                   "half-period's drive)")
-      ->check(CLI::IsMember({"rest", "static"}));
-  tran_command->add_option("--points-per-period", tran_options->points_per_period,
-                           "output points per period (default 100)");
+  sets_fields(
+      tran_command->add_option("--switching", tran_options->switching,
+                               "switching frequency [Hz] (default: the scene's drive.frequency)"),
+      {"switching_hz"});
+  sets_fields(tran_command->add_option("--periods", tran_options->periods,
+                                       "number of periods (default 10)"),
+              {"periods"});
+  sets_fields(tran_command->add_option("--rtol", tran_options->rtol,
+                                       "IDA relative tolerance (default 1e-6)"),
+              {"rtol"});
+  sets_fields(tran_command->add_option("--atol", tran_options->atol,
+                                       "IDA absolute tolerance for every unknown (default: rtol "
+                                       "times a scale per kind of unknown from the static state)"),
+              {"atol"});
+  sets_fields(tran_command->add_option("--max-step", tran_options->max_step,
+                                       "IDA's largest step [s] (default 0: no limit)"),
+              {"max_step"});
+  sets_fields(tran_command->add_option("--method", tran_options->method, "ida or exact")
+                  ->check(CLI::IsMember({"ida", "exact"})),
+              {"method"});
+  sets_fields(tran_command
+                  ->add_option("--start", tran_options->start,
+                               "rest (default) or static (the static state under the first "
+                               "half-period's drive)")
+                  ->check(CLI::IsMember({"rest", "static"})),
+              {"start"});
+  sets_fields(tran_command->add_option("--points-per-period", tran_options->points_per_period,
+                                       "output points per period (default 100)"),
+              {"points_per_period"});
   add_plot_options(tran_command, tran_options->plot, tran_options->plot_script,
                    "the response over time (the deflections, or the --probe outputs, one panel "
                    "per unit) over a panel of the drive: the DEA voltages and the source "

@@ -109,7 +109,7 @@ struct ReductionOptions {
   bool series_correction = true;
 };
 
-// Throws InputError naming the option (`--band`, `--tolerance`) for values outside the ranges.
+// Throws OptionError naming the field ("band", "tolerance") for values outside the ranges.
 void validate(const ReductionOptions& options);
 // f_c = f_band / √tol, or options.cutoff_hz when set.
 double cutoff_frequency(const ReductionOptions& options);

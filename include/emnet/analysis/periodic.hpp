@@ -85,8 +85,8 @@ inline double periodic_memory_bytes(int unknowns) {
   return kPeriodicDenseBytesPerUnknown2 * unknowns * static_cast<double>(unknowns);
 }
 
-// InputError naming `option` when the exact periodic method's decomposition of `unknowns`
-// unknowns would need more than kPeriodicDenseMemoryLimit.
-void check_periodic_memory(int unknowns, const std::string& option);
+// OptionError naming `field` (the option that sets the mesh: "segments") when the exact periodic
+// method's decomposition of `unknowns` unknowns would need more than kPeriodicDenseMemoryLimit.
+void check_periodic_memory(int unknowns, const std::string& field);
 
 }  // namespace emnet

@@ -1,8 +1,9 @@
 // Error types shared by every layer.
 //
 // Three kinds of error (docs/model.md, Kinds of error): assert for invariants; InputError for bad
-// user input, naming the file, line and key; a status in each analysis Result for numerical
-// failure.
+// user input, naming the file, line and key (OptionError, emnet/core/option_error.hpp, for an
+// option of a library call, naming its Options field); a status in each analysis Result for
+// numerical failure or cancellation.
 #pragma once
 
 #include <stdexcept>
@@ -10,8 +11,9 @@
 
 namespace emnet {
 
-// Bad user input: a scene file, a --set override or a command-line option.
-// `where` is "file:line" (or "file", or "--set"), `key` the dotted key concerned.
+// Bad user input: a scene file, an override of one or an option of a library call.
+// `where` is "file:line" (or "file", or "override" for a value an override wrote, or the called
+// function: "set_parameter"), `key` the dotted key concerned.
 class InputError : public std::runtime_error {
  public:
   InputError(std::string where, std::string key, const std::string& message)
@@ -52,8 +54,6 @@ struct Status {
   static Status success() { return {}; }
   /// A numerical failure, `why` saying what failed and what to change.
   static Status failure(std::string why) { return {StatusCode::numerical, std::move(why)}; }
-  /// Stopped by a cancellation; the message is "cancelled".
-  static Status stopped() { return {StatusCode::cancelled, "cancelled"}; }
 
   /// The same outcome, its message after `context` ("static operating point: ") when not ok.
   Status with_context(const std::string& context) const {

@@ -34,9 +34,10 @@ inline bool keep_going(Progress* progress, long done, long total, std::string_vi
   return !progress->cancelled();
 }
 
-// The Status of an analysis stopped by its Progress (code StatusCode::cancelled).
+// The Status of an analysis stopped by its Progress: code StatusCode::cancelled, message
+// "cancelled" (the one place that builds it).
 inline Status cancelled_status() {
-  return Status::stopped();
+  return {StatusCode::cancelled, "cancelled"};
 }
 
 // Forwards the cancellation of `outer` but drops reports: for analyses run inside one step of

@@ -110,8 +110,9 @@ std::vector<std::string> set_switching_frequency(Scene& scene, double frequency_
                                                  const std::vector<std::string>& sources = {});
 
 // drive.overlap is in seconds: DEA A's on-time duty·T + overlap must stay inside the period
-// (less the rise time at both edges) at the switching frequency `frequency_hz` too. InputError
-// naming the scene file and drive.overlap, and `where` (the option that asked for the frequency).
-void check_overlap_fits(const Scene& scene, double frequency_hz, const std::string& where);
+// (less the rise time at both edges) at the switching frequency `frequency_hz` too. OptionError
+// naming the scene file and drive.overlap, and `field` (the Options field that asked for the
+// frequency: a sweep's "to").
+void check_overlap_fits(const Scene& scene, double frequency_hz, const std::string& field);
 
 }  // namespace emnet

@@ -119,6 +119,7 @@ struct Model {
   std::optional<AppliedFluidLoading> fluid;
   Probe make_probe(const ProbeSpec& spec) const;
   // Parses "deflection@70mm", "velocity@0.1", "dea_current:A" or a probe name of the scene.
+  // Throws OptionError (emnet/core/option_error.hpp) naming the field "probe" and the text.
   Probe parse_probe(const std::string& text) const;
   // The DEA named `name`; nullptr when there is none.
   const DeaLayout* find_dea(const std::string& name) const;

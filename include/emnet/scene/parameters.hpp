@@ -167,6 +167,22 @@ struct SceneParameterAddress {
 // with the reader's messages for an unknown key or entry.
 SceneParameterAddress find_scene_parameter_address(const Scene& scene, const std::string& key,
                                                    const std::string& where);
+// Whether `scene` can take a number for a key: usable, or why not (numeric_use).
+enum class NumericUseCode {
+  usable,       // a number the scene uses and has a value for
+  not_numeric,  // a choice, text or list key
+  unused,       // the scene does not use it (parameter_unused_reason)
+  not_set,      // an optional key the scene leaves unset (no value to start from)
+};
+struct NumericUse {
+  NumericUseCode code = NumericUseCode::usable;
+  std::string reason;  // "" when usable, else as the reader says it ("is not set in scene 'x'")
+  bool usable() const { return code == NumericUseCode::usable; }
+};
+/// Whether the key at `address` (found in `scene`) is a number that `scene` uses and sets, the
+/// check get_parameter and set_parameter make, as a code and a reason instead of an exception.
+NumericUse numeric_use(const Scene& scene, const SceneParameterAddress& address);
+
 // Every numeric key of `scene` that the scene uses (parameter_unused_reason is ""), table by
 // table in the table's order and entry by entry: "dea[A].…" before "dea[B].…".
 std::vector<SceneParameterAddress> scene_numeric_parameters(const Scene& scene);

@@ -3,7 +3,8 @@
 //
 // Every problem (missing file, TOML syntax, unknown or missing key, wrong type, wrong or missing
 // unit, out-of-range value, bad override) is thrown as an InputError naming the file and line
-// (or "--set" for a value that came from an override), the dotted key and what was expected.
+// (or "override" for a value that came from an override, which each front-end shows in its own
+// words), the dotted key and what was expected.
 // Keys of array-of-tables entries are named by the entry's name where it has one, e.g.
 // "dea[A].from", otherwise by index, e.g. "load[0].at".
 #pragma once

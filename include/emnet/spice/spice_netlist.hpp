@@ -103,8 +103,8 @@ struct SpiceDeckOptions {
   StartState start = StartState::rest;
   // tran with start = static: the static state of the model's network (solve_static of
   // model.network.assemble()), whose integral outputs' values the deck's .ic lines hold.
-  // Required then: std::invalid_argument without it; a failed one is an InputError naming
-  // --start ("the network has no static state").
+  // Required then: std::invalid_argument without it; a failed one is an OptionError naming the
+  // field "start" ("the network has no static state").
   std::optional<StaticResult> static_state;
   // Append an ngspice `.control` block (run, then wrdata of the outputs to `control_output`).
   bool control = false;

@@ -67,8 +67,8 @@ struct Variation {
 };
 
 // "KEY=SPEC" (see above) against `scene` (which gives the nominal value for percentages and
-// checks the key). Throws InputError naming `where` (an option, "--vary") and the key.
-Variation parse_variation(const Scene& scene, const std::string& text, const std::string& where);
+// checks the key). Throws OptionError naming the field "variations" and the key.
+Variation parse_variation(const Scene& scene, const std::string& text);
 
 // The variants: keys (canonical) and one row of SI values per variant.
 struct VariantTable {
@@ -83,20 +83,21 @@ inline constexpr std::size_t kMaxVariants = 1000000;
 
 // The grid × Monte Carlo variants of `variations` (see above). `samples`: draws per grid point
 // when a variation is random (0 there: InputError asking for it; given without a random
-// variation: InputError). Throws InputError (key "--vary"/"--samples") for a bad combination or
-// more than kMaxVariants variants.
+// variation: InputError). Throws OptionError (field "variations" or "samples") for a bad
+// combination or more than kMaxVariants variants.
 VariantTable make_variants(const std::vector<Variation>& variations, std::size_t samples,
                            std::uint64_t seed);
 
 // The variants of a CSV file: a header of keys (any form --set takes), then one variant per line
 // of values (numbers in SI, quantities with units, percentages of the scene's value); ',' or ';'
 // between fields; blank lines and lines starting with '#' skipped. Errors name the file, line and
-// key.
+// key (an OptionError of the field "variants" for the file's form).
 VariantTable read_variants_csv(const Scene& scene, const std::string& path);
 
 enum class StudyAnalysis { modes, static_state, switching_sweep };
-// "modes", "static", "sweep-switching" (and "sweep_switching"); InputError naming `where`.
-std::vector<StudyAnalysis> parse_study_analyses(const std::string& text, const std::string& where);
+// "modes", "static", "sweep-switching" (and "sweep_switching"), comma-separated; OptionError
+// naming the field "analyses" of DesignStudyOptions.
+std::vector<StudyAnalysis> parse_study_analyses(const std::string& text);
 
 struct DesignStudyOptions {
   std::vector<StudyAnalysis> analyses{StudyAnalysis::modes};
@@ -111,6 +112,11 @@ struct DesignStudyOptions {
   // Reported from the calling thread (variants done of all, "variants"), about ten times a
   // second; cancelled: the variants not started are rows "cancelled".
   Progress* progress = nullptr;
+
+  /// The checks of the options alone, as run_design_study makes them first.
+  /// @throws OptionError naming "analyses" (none), "mode_count" (outside 1..100), "threads"
+  /// (outside 0..1024) or "report_frequencies" (more than 1000, or one not > 0)
+  void validate() const;
 };
 
 // What a variant cost, per stage [s].
@@ -151,10 +157,11 @@ struct DesignStudyResult {
   std::vector<std::string> notes;
 };
 
-// Runs every variant of `table` on `scene` (a read scene). Bad options are InputError (naming the
-// option); a nominal scene that cannot be built is InputError too; a variant's failure (input
-// or numerical) is its row's Status, never an exception. The rows and their values depend only
-// on the scene, the table and the options, not on `threads`.
+// Runs every variant of `table` on `scene` (a read scene). Bad options are OptionError (naming
+// the field; "variants" for a table of more than kMaxVariants rows, "variations" for a key no
+// variant can set); a nominal scene that cannot be built is InputError too; a variant's failure
+// (input or numerical) is its row's Status, never an exception. The rows and their values depend
+// only on the scene, the table and the options, not on `threads`.
 DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table,
                                    const DesignStudyOptions& options);
 

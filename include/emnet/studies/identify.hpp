@@ -75,6 +75,11 @@ struct IdentifyOptions {
   double round_tolerance = 1e-9;  // relative change of η and EI that ends the rounds
   int peak_rounds = 10;           // at most
   Progress* progress = nullptr;   // one report per trial; cancelled: Status "cancelled"
+
+  /// The checks of the options alone, as identify makes them first.
+  /// @throws OptionError naming "target_hz" (not > 0), "mode_number" (< 1) or "peak" (a peak
+  /// or voltage that is not positive)
+  void validate() const;
 };
 
 struct FittedValue {
@@ -104,12 +109,12 @@ struct IdentifyResult {
   double seconds = 0.0;
 };
 
-// Throws InputError for a bad target (where "--resonance", "--mode", "--peak"), a bad parameter
-// (where "--fit", naming the key: unknown, not a number, an integer, not used by the scene, not
-// set, not > 0), a fitted key the scene takes as given (key "provenance.<key>"), or a peak target
-// on a scene without damping.loss_factor. A target out of reach (no value of the parameter or no
-// loss factor in the bracket gives it, a fit that does not converge, no such mode), a trial value
-// the scene refuses and any numerical failure are the Status.
+// Throws OptionError for a bad target (IdentifyOptions::validate), a bad parameter (the field
+// "parameter" and the key: unknown, not a number, an integer, not used by the scene, not set,
+// not > 0), InputError for a fitted key the scene takes as given (key "provenance.<key>"), or a
+// peak target on a scene without damping.loss_factor. A target out of reach (no value of the
+// parameter or no loss factor in the bracket gives it, a fit that does not converge, no such mode),
+// a trial value the scene refuses and any numerical failure are the Status.
 IdentifyResult identify(const Scene& scene, const IdentifyOptions& options);
 
 }  // namespace emnet

@@ -32,6 +32,10 @@ struct MismatchOptions {
   std::string output;
   double change = 0.05;          // X, the relative change of each parameter, in (0, 0.5)
   Progress* progress = nullptr;  // one report per periodic solve; cancelled: Status "cancelled"
+
+  /// The checks of the options alone, as run_mismatch makes them first.
+  /// @throws OptionError naming "change" (outside (0, 0.5)) or "frequency_hz" (given, not > 0)
+  void validate() const;
 };
 
 struct MismatchRow {
@@ -56,9 +60,9 @@ struct MismatchResult {
   double seconds = 0.0;
 };
 
-// Throws InputError for a scene without the antagonistic drive of two DEAs (key drive.kind), a
-// change out of (0, 0.5) ("--change"), a frequency that is not positive ("--frequency" or the
-// scene's drive.frequency), an unknown output ("--output"); a numerical failure (including a
+// Throws OptionError for bad options (MismatchOptions::validate) or an unknown output (field
+// "output"), InputError for a scene without the antagonistic drive of two DEAs (key drive.kind)
+// or whose drive.frequency is not positive; a numerical failure (including a
 // non-finite asymmetry) is the Status.
 MismatchResult run_mismatch(const Scene& scene, const MismatchOptions& options);
 

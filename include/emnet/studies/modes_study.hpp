@@ -49,6 +49,10 @@ struct ModesStudyOptions {
   bool shapes = false;           // the mode shapes along the beam
   PrepareOptions prepare;        // how the scene's remaining "auto" keys are resolved
   Progress* progress = nullptr;  // the phases, the static solve and the modal analysis
+
+  /// The checks of the options alone, as run_modes_study makes them first.
+  /// @throws OptionError naming "count" when it is negative
+  void validate() const;
 };
 
 // A mode's shape at the beam nodes, largest nodal |deflection| = 1.
@@ -89,8 +93,8 @@ struct ModesStudyResult {
   std::vector<std::string> notes;
 };
 
-// Throws InputError (key "--dense") when `dense` is asked for a network of more than
-// kDenseModesLimit unknowns; every numerical failure is in the Status.
+// Throws OptionError (ModesStudyOptions::validate; the field "dense" when `dense` is asked for a
+// network of more than kDenseModesLimit unknowns); every numerical failure is in the Status.
 ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& options = {});
 
 // A mode's shape along the beam (see above).

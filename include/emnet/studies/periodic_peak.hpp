@@ -24,8 +24,13 @@ struct PeriodicExtremesOptions {
   // An output of transient_output_list (emnet/model/outputs.hpp: dx4, u_A, ...), else a probe
   // of the scene (P4, tip).
   std::string output;
-  // The option InputErrors name: the one that gave the output and the frequency ("--output").
-  std::string where = "--output";
+  // The field of the calling study's Options that OptionErrors name: the one that gave the
+  // output and the frequency (mismatch's "output", identify's "peak").
+  std::string field = "output";
+
+  /// The checks of the options alone, as periodic_extremes makes them first.
+  /// @throws OptionError naming "frequency_hz" when it is not a finite frequency > 0
+  void validate() const;
 };
 
 struct PeriodicExtremesResult {
@@ -36,7 +41,7 @@ struct PeriodicExtremesResult {
   double seconds = 0.0;
 };
 
-// Throws InputError (naming options.where) when the drive's overlap does not fit the period at
+// Throws OptionError (naming options.field) when the drive's overlap does not fit the period at
 // options.frequency_hz, the exact method would need too much memory, or there is no output of
 // that name; a numerical failure is the Status.
 PeriodicExtremesResult periodic_extremes(Scene scene, const PeriodicExtremesOptions& options);

@@ -55,8 +55,8 @@ struct SceneParameter {
 // relative step of zero is none): beam, damping, DEA geometry and material, drive levels; the
 // parameter table's sensitivity keys the scene uses, in the table's order.
 std::vector<SceneParameter> scene_parameters(const Scene& scene);
-// One parameter by key; throws InputError (where "--parameter", naming the key and listing the
-// known ones) when the scene has no such parameter or its value is zero.
+// One parameter by key; throws OptionError (the field "parameters" of run_sensitivity, naming
+// the key and listing the known ones) when the scene has no such parameter or its value is zero.
 SceneParameter find_scene_parameter(const Scene& scene, const std::string& key);
 // The scene with one parameter set to `value` (no validation: meant for small steps). A new
 // beam.length stretches every position along the beam with it (DEA extents, probes, loads), so
@@ -69,6 +69,10 @@ struct SensitivityOptions {
   bool check = false;                  // also difference the poles themselves
   double check_relative_step = 1e-4;   // h of that check (and 2h for its error estimate)
   Progress* progress = nullptr;        // one report per parameter; cancelled: Status "cancelled"
+
+  /// The checks of the options alone, as run_sensitivity makes them first.
+  /// @throws OptionError naming "modes" (< 1) or a relative step outside (0, 1)
+  void validate() const;
 };
 
 struct ModeSensitivity {

@@ -76,6 +76,12 @@ struct SwitchingSweepOptions {
   // Unknowns up to which `automatic` takes the dense exact method (above: the reduction) and a
   // reduction is checked against the full exact method (above: against a wider reduction).
   int dense_limit = kPeriodicDenseAutomaticUnknowns;
+
+  /// The checks of the options alone (the frequencies, samples from 8 to 1000000 after the
+  /// default, reduce with the exact method only, rtol, dense_limit), as run_switching_sweep
+  /// makes them first.
+  /// @throws OptionError naming the field ("samples"; "step" for from/to/step)
+  void validate() const;
 };
 
 // The periodic extremes of one output over the sweep: left[k], right[k] at frequencies[k].
@@ -136,24 +142,22 @@ struct SwitchingSweepResult {
   std::vector<std::string> notes;
 };
 
-// The switching frequencies of from/to/step (throws InputError naming "--from/--to/--step" or
-// "--step" when 0 < from <= to, step > 0 fails or they are more than 100000) or `frequencies`
-// as given (each finite and > 0).
+// The switching frequencies of from/to/step (throws OptionError naming the field "step" when
+// 0 < from <= to, step > 0 fails or they are more than 100000) or `frequencies` as given (each
+// finite and > 0; else OptionError naming "frequencies").
 std::vector<double> switching_frequencies(const SwitchingSweepOptions& options);
-// The checks of the options alone (the frequencies, samples from 8 to 1000000 after the
-// default, reduce with the exact method only), as run_switching_sweep makes them first.
 // InputError (scene file, "circuit") for a scene with nothing to switch: drive.kind "none"
 // with a [[circuit]] none of whose `sources` (empty: all its sources) is periodic, or a named
 // source that is missing or not periodic (switched_sources in emnet/model/drive.hpp).
 void check_swept_drive(const Scene& scene, const std::vector<std::string>& sources = {});
-void check_switching_sweep_options(const SwitchingSweepOptions& options);
 
 // The model a sweep runs on, and the scene it varies. For the exact method the network must be
 // linear: when the scene's DEAs have their electrical model (a nonlinear network), the model is
 // rebuilt with drive.electrical_dynamics = false (ideal voltage-driven DEAs) and `notes` says so
 // with the RC time constant against the shortest period (1/highest_hz). InputError: the swept
 // drive (check_swept_drive); with the exact method an electrical probe among `probe_texts`
-// (dea_voltage, dea_current: naming `probe_option`), or a nonlinear scene driven through its
+// (dea_voltage, dea_current: OptionError naming the field "probe" and the text), or a nonlinear
+// scene driven through its
 // [[circuit]] (naming "circuit").
 struct SweptModel {
   Model model;
@@ -162,8 +166,7 @@ struct SweptModel {
 };
 SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
                                const std::vector<std::string>& probe_texts,
-                               const PrepareOptions& prepare, double highest_hz,
-                               const std::string& probe_option = "--probe");
+                               const PrepareOptions& prepare, double highest_hz);
 
 // The outputs a sweep follows: the deflections of the recorded outputs (transient_output_list),
 // or, given `probe_texts`, each of those (an output name or a probe of parse_probe). InputError

@@ -9,8 +9,8 @@
 //     (emnet/analysis/transient.hpp), from rest or from the static state of the first half-period.
 //   - Validity: each deflection output's largest |value| [m] against the deflection limit, the
 //     drive's peak voltages against breakdown (emnet/model/validity.hpp).
-// Options are checked first, each InputError naming its option as `option_prefix` + its name
-// ("--periods" for the command line, "periods" for the Python module).
+// Options are checked first (TransientStudyOptions::validate), each OptionError naming its field
+// ("periods"), which each front-end words as its own option.
 #pragma once
 
 #include <optional>
@@ -45,8 +45,11 @@ struct TransientStudyOptions {
   // empty: transient_output_list.
   std::vector<std::string> outputs;
   PrepareOptions prepare;
-  Progress* progress = nullptr;      // one report per output time
-  std::string option_prefix = "--";  // how errors name the options
+  Progress* progress = nullptr;  // one report per output time
+
+  /// The checks of the options alone, as run_transient_study makes them first.
+  /// @throws OptionError naming the field out of its range above ("periods", "rtol", ...)
+  void validate() const;
 };
 
 struct TransientStudyResult {

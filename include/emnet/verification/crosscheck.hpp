@@ -42,17 +42,17 @@
 //    evaluated at ngspice's own time points (at most 2000 of them, evenly strided), against
 //    ngspice with `.options reltol` 1e-6, vntol 1e-12, abstol 1e-15 and max step = period /
 //    2000 (period: the shorter of the drive's and the first mode's; the first mode's without a
-//    drive frequency), over 2 periods of the drive (or of the first mode) from rest. The exact method needs a linear network: a scene whose DEAs have their
-//    electrical model (RC loop, force on the capacitor voltage) is checked with the ideal drive
-//    (drive.electrical_dynamics = false, force k_F·V(t)² from the source), said in a note; a
-//    network that is still nonlinear uses IDA at rtol 1e-10 as the reference (at 1e-9 or 1e-8
-//    where rounding stops IDA's corrector at 1e-10, said in the note). The deck switches
-//    with linear edges of width ε centred on emnet's instants (ε = 1e-5 × the shorter level
-//    time); points within ±10ε of an edge are excluded (stated). Outside, the edge's effect is
-//    a zero-mean pulse, of second order: ~(ε·2π·f)² relative, 1e-9 at 40 Hz for ε = 1 µs.
-//    The difference is relative to each output's peak |value| over the run: it is ngspice's
-//    error against the exact solution. Tolerance: 100 × reltol. ngspice's trapezoidal rule
-//    keeps its local truncation error near trtol (7) × reltol; the global error of an undamped
+//    drive frequency), over 2 periods of the drive (or of the first mode) from rest. The exact
+//    method needs a linear network: a scene whose DEAs have their electrical model (RC loop, force
+//    on the capacitor voltage) is checked with the ideal drive (drive.electrical_dynamics = false,
+//    force k_F·V(t)² from the source), said in a note; a network that is still nonlinear uses IDA
+//    at rtol 1e-10 as the reference (at 1e-9 or 1e-8 where rounding stops IDA's corrector at 1e-10,
+//    said in the note). The deck switches with linear edges of width ε centred on emnet's instants
+//    (ε = 1e-5 × the shorter level time); points within ±10ε of an edge are excluded (stated).
+//    Outside, the edge's effect is a zero-mean pulse, of second order: ~(ε·2π·f)² relative, 1e-9 at
+//    40 Hz for ε = 1 µs. The difference is relative to each output's peak |value| over the run: it
+//    is ngspice's error against the exact solution. Tolerance: 100 × reltol. ngspice's trapezoidal
+//    rule keeps its local truncation error near trtol (7) × reltol; the global error of an undamped
 //    or lightly damped oscillation accumulates as phase error, and where the max step is
 //    coarse it dominates. Measured (2026-11-22): fish fin 1.5e-5 at max step T/2000 (3.7e-4 at
 //    T/200, 4.8e-5 at T/1000, 5.2e-6 at T/4000: the max step's part, ∝ h^1.5); cantilever
@@ -78,9 +78,8 @@ namespace emnet {
 
 enum class CrosscheckAnalysis { op, ac, modal, tran };
 const char* crosscheck_analysis_name(CrosscheckAnalysis analysis);
-// "op,ac,modal,tran" or "all"; throws InputError (key `option`) on an unknown name.
-std::vector<CrosscheckAnalysis> parse_crosscheck_analyses(const std::string& text,
-                                                          const std::string& option);
+// "op,ac,modal,tran" or "all"; throws OptionError (the field "analyses") on an unknown name.
+std::vector<CrosscheckAnalysis> parse_crosscheck_analyses(const std::string& text);
 
 struct CrosscheckOptions {
   std::vector<CrosscheckAnalysis> analyses = {CrosscheckAnalysis::op, CrosscheckAnalysis::ac,
@@ -110,6 +109,10 @@ struct CrosscheckOptions {
   std::vector<std::string> overrides;  // listed in the decks' headers
   // Called with every ngspice result before it is compared (tests perturb vectors with it).
   std::function<void(CrosscheckAnalysis, NgspiceResult&)> inspect_ngspice_result;
+
+  /// The checks of the options alone, as run_crosscheck makes them first.
+  /// @throws OptionError naming the field out of its range ("tran_periods", "modal_count", ...)
+  void validate() const;
 };
 
 struct CrosscheckRow {
@@ -139,7 +142,8 @@ struct CrosscheckReport {
   bool all_pass() const;
 };
 
-// Runs the cross-check. Throws InputError for options out of range or a model the deck writer
+// Runs the cross-check. Throws OptionError for options out of range (CrosscheckOptions::validate)
+// or a keep_decks_directory that cannot be written, InputError for a model the deck writer
 // refuses; ngspice's and emnet's failures are a failing status.
 CrosscheckReport run_crosscheck(const Model& model, const CrosscheckOptions& options = {});
 
