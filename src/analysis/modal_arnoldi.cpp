@@ -98,10 +98,11 @@ Status grown_right_eigenpairs(ShiftInvertOperator& op, bool has_rigid_space, dou
   for (int attempt = 0;; ++attempt) {
     const Eigen::Index converged = arnoldi(op, nev, has_rigid_space, right, result.iterations);
     if (converged == 0)
-      return Status::failure(
-          "shift-invert Arnoldi converged to no pole in " + std::to_string(result.iterations) +
-          " restarts (the poles nearest s = 0 form a cluster); --dense computes every pole of "
-          "a pencil up to its size limit");
+      return Status::failure("shift-invert Arnoldi converged to no pole in " +
+                             std::to_string(result.iterations) +
+                             " restarts (the poles nearest s = 0 form a cluster); the dense method "
+                             "computes every pole of "
+                             "a pencil up to its size limit");
     // Modes by the mode rule (is_resonance); real poles and overdamped pairs are the
     // others, which take converged places without being wanted.
     int resonant = 0, others = 0;

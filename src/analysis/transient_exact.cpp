@@ -24,7 +24,7 @@ Status require_piecewise_linear(const System& system) {
     if (!w.piecewise_linear())
       return Status::failure(
           "the exact method needs piecewise-linear sources (dc, pulse, pwl): sine sources are "
-          "not piecewise linear; use --method ida");
+          "not piecewise linear; use the IDA method");
   return Status::success();
 }
 

@@ -384,7 +384,7 @@ class IdaRun {
       if (ic != IDA_SUCCESS)
         return Status::failure("consistent initial values at t = " + format_time(t) +
                                " s failed (" + consistent.message + "; then " + data_.last_error +
-                               "); try a nonzero drive.rise_time or --start static");
+                               "); try a nonzero drive.rise_time or a start from the static state");
       if (!succeeded("IDAGetConsistentIC", IDAGetConsistentIC(mem_, yy_, yp_)))
         return run_failure(t);
     }
@@ -447,7 +447,7 @@ class IdaRun {
     std::snprintf(buffer, sizeof buffer, "IDA failed at t = %.9g s (flag %d): ", reached, flag);
     const std::string failure = buffer + data_.last_error;
     if (suppress_algebraic_)
-      return Status::failure(failure + "; try a looser --rtol or --atol, or fewer --periods");
+      return Status::failure(failure + "; try a looser rtol or atol, or a shorter end time");
     // The algebraic unknowns can pin the step size: right after an edge at N = 10 000
     // segments (the beam's forces leave the consistent start with rounding errors above
     // their absolute tolerance; the error test fails down to h = 1e-13 s), or in a fast

@@ -439,8 +439,7 @@ std::string electrical_dynamics_missing(const Model& model, const std::string& w
       model.automatic_choices.begin(), model.automatic_choices.end(),
       [](const AutomaticChoice& choice) { return choice.key == "drive.electrical_dynamics"; });
   return what + " (drive.electrical_dynamics = " +
-         (automatic ? std::string("\"auto\" chose false") : "false") +
-         "; set it true, e.g. --set drive.electrical_dynamics=true)";
+         (automatic ? std::string("\"auto\" chose false") : "false") + "; set it true)";
 }
 
 // The spring probe[].spring names: by its name, else by its index.

@@ -20,8 +20,9 @@ toml::table& table_for_override(toml::table& root, const std::string& table_name
   }
   toml::table* table = node->as_table();
   if (table == nullptr) {
-    locator.fail(node, table_name,
-                 "must be a table, written [" + table_name + "] (needed by --set " + key + ")");
+    locator.fail(
+        node, table_name,
+        "must be a table, written [" + table_name + "] (needed by the override of " + key + ")");
   }
   return *table;
 }

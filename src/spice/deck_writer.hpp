@@ -149,6 +149,11 @@ class DeckWriter {
   std::string source(const Waveform& waveform, const std::string& what);
 
  private:
+  // A section's heading comment: the title after a rule of four dashes.
+  void section_comment(std::ostringstream& out, const std::string& title) const {
+    comment(out, std::string(4, '-') + ' ' + title);
+  }
+
   // A comment, wrapped at 100 columns on spaces; continuation lines are indented.
   void comment(std::ostringstream& out, const std::string& text) const {
     const std::string safe = spice_comment_text(text);

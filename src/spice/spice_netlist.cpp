@@ -63,9 +63,9 @@ void DeckWriter::write_outputs() {
     throw std::invalid_argument("write_spice_deck: options.static_state is of another network");
   const int node_count = static_cast<int>(network_.nodes().size());
   out << "*\n";
-  comment(out,
-          "---- outputs: one node per probe, fed by G sources with emnet's weights "
-          "(Probe::terms: cubic Hermite between nodes)");
+  section_comment(out,
+                  "outputs: one node per probe, fed by G sources with emnet's weights "
+                  "(Probe::terms: cubic Hermite between nodes)");
   for (const std::string& note : deck_left_out_notes(model_)) comment(out, note);
   for (const Probe& probe : outputs_) {
     if (probe.integrations > 1)
@@ -115,7 +115,7 @@ void DeckWriter::write_header(std::ostringstream& out) const {
   comment(out, "emnet SPICE deck: scene " + scene_.name + " (" + label + "), " +
                    spice_analysis_name(options_.analysis) + " analysis");
   if (!scene_.title.empty()) comment(out, "title: " + scene_.title);
-  for (const auto& o : options_.overrides) comment(out, "override: --set " + o);
+  for (const auto& o : options_.overrides) comment(out, "override: " + o);
   comment(out,
           "Plain SPICE3: runs unchanged with ngspice -b FILE.cir; only elements LTspice "
           "also reads (R L C V I E F G B, PULSE SIN PWL)");
@@ -249,7 +249,7 @@ void DeckWriter::write_ac_input(std::ostringstream& out) const {
 
 void DeckWriter::write_analysis(std::ostringstream& out) {
   out << "*\n";
-  comment(out, "---- analysis");
+  section_comment(out, "analysis");
   std::vector<std::string> vectors;
   for (const auto& o : deck_.outputs) vectors.push_back(o.vector);
   switch (options_.analysis) {
@@ -340,8 +340,12 @@ void DeckWriter::check_options() const {
 void DeckWriter::write_groups() {
   for (const Group& group : groups()) {
     body_ << "*\n";
-    for (size_t k = 0; k < group.title.size(); ++k)
-      comment(body_, (k == 0 ? "---- " : "") + group.title[k]);
+    for (size_t k = 0; k < group.title.size(); ++k) {
+      if (k == 0)
+        section_comment(body_, group.title[k]);
+      else
+        comment(body_, group.title[k]);
+    }
     left_out_.clear();
     for (const Element* element : group.elements) write_element(*element);
     if (!left_out_.empty()) {

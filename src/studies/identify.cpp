@@ -443,7 +443,7 @@ IdentifyResult identify(const Scene& scene, const IdentifyOptions& options) {
         };
         // The peak falls monotonically with the loss factor: bisection in log η.
         if (peak_at(low) < peak.value || peak_at(high) > peak.value)
-          stop("identify --peak: no loss factor in [" + short_number(low) + ", " +
+          stop("identify by the peak: no loss factor in [" + short_number(low) + ", " +
                short_number(high) + "] gives the peak " + format_with_unit(peak.value, "m") +
                " at " + format_with_unit(options.target_hz, "Hz"));
         for (int k = 0; k < options.bisection_steps && high / low > 1 + options.bisection_ratio;
@@ -466,7 +466,7 @@ IdentifyResult identify(const Scene& scene, const IdentifyOptions& options) {
       }
       result.peak_rounds = converged ? round : options.peak_rounds;
       if (!converged)
-        result.notes.push_back("identify --peak: the loss factor and " + parameter.key +
+        result.notes.push_back("identify by the peak: the loss factor and " + parameter.key +
                                " still changed by more than " +
                                format_number("%.3g", options.round_tolerance) +
                                " (relative) after " + std::to_string(options.peak_rounds) +

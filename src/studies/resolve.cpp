@@ -109,7 +109,7 @@ AutomaticChoice choose_electrical_dynamics(const Scene& scene, bool electrical_p
         probe.quantity == ProbeQuantity::dea_current || probe.quantity == ProbeQuantity::dea_force)
       asking = "probe " + probe.name + " asks for " + probe_quantity_name(probe.quantity);
   if (asking.empty() && electrical_probe_requested)
-    asking = "a --probe asks for an electrical quantity";
+    asking = "a probe asks for an electrical quantity";
   if (!scene.circuit.empty())  // a circuit acts through the electrical loops only
     asking = "the scene has [[circuit]] elements (" + std::to_string(scene.circuit.size()) +
              "), which act through the DEAs' electrical loops";

@@ -300,14 +300,15 @@ TEST(PiecewiseLinear, SineSourceIsRefusedWithItsReason) {
   const TransientResult transient = run_transient_exact(system, {x}, options);
   EXPECT_FALSE(transient.status.ok());
   EXPECT_NE(
-      transient.status.message.find("sine sources are not piecewise linear; use --method ida"),
+      transient.status.message.find("sine sources are not piecewise linear; use the IDA method"),
       std::string::npos)
       << transient.status.message;
   const PeriodicSolver solver(system);
   const PeriodicResult periodic = solver.solve(system, {x}, 0.5);
   EXPECT_FALSE(periodic.status.ok());
-  EXPECT_NE(periodic.status.message.find("sine sources are not piecewise linear; use --method ida"),
-            std::string::npos)
+  EXPECT_NE(
+      periodic.status.message.find("sine sources are not piecewise linear; use the IDA method"),
+      std::string::npos)
       << periodic.status.message;
 }
 
