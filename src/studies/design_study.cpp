@@ -274,113 +274,169 @@ void DesignStudyOptions::validate() const {
       throw OptionError("report_frequencies", "a reported frequency must be > 0 Hz");
 }
 
+namespace {
+
+constexpr const char* kVariations = "variations";
+
+OptionError refuse_variation(const std::string& key, const std::string& reason) {
+  return OptionError(kVariations, reason, key);
+}
+
+// The keys after the first of "KEY+KEY2+...=SPEC": each changes by its ratio to the first key's
+// value in the scene.
+void link_the_keys_varied_together(const Scene& scene, const std::vector<std::string>& given_keys,
+                                   const SceneParameterAddress& address,
+                                   const std::optional<double>& nominal, Variation& variation) {
+  for (std::size_t k = 1; k < given_keys.size(); ++k) {
+    const SceneParameterAddress linked = find_option_parameter(scene, given_keys[k], kVariations);
+    if (!linked.info->numeric())
+      throw refuse_variation(linked.key, "is not numeric; a study varies numeric keys only");
+    double linked_value = 0.0;
+    try {
+      linked_value = get_parameter(scene, linked.key);
+    } catch (const InputError&) {
+      throw refuse_variation(linked.key, "has no value in the scene to change with " + address.key);
+    }
+    if (!nominal || *nominal == 0.0)
+      throw refuse_variation(address.key,
+                             "keys varied together change by the same ratio, which needs a "
+                             "non-zero value of " +
+                                 address.key + " in the scene");
+    variation.linked.push_back(linked.key);
+    variation.linked_ratios.push_back(linked_value / *nominal);
+  }
+}
+
+// The SPEC of one varied key: a list of values, linspace/logspace, or a distribution.
+class VariationSpecReader {
+ public:
+  VariationSpecReader(const std::string& key, const std::string& spec, Dimension dimension,
+                      std::optional<double> nominal)
+      : key_(key), spec_(spec), dimension_(dimension), nominal_(nominal) {}
+
+  void read_into(Variation& variation) const {
+    const auto open = spec_.find('(');
+    if (open != std::string::npos && !spec_.empty() && spec_.back() == ')')
+      read_function(open, variation);
+    else
+      read_list(variation);
+  }
+
+ private:
+  double value(const std::string& field, bool fraction_only = false) const {
+    try {
+      return parse_study_value(field, dimension_, nominal_, fraction_only);
+    } catch (const std::invalid_argument& error) {
+      throw refuse_variation(key_, "'" + terminal_excerpt(field, 60) + "': " + error.what());
+    }
+  }
+
+  void expect(const std::vector<std::string>& arguments, std::size_t count,
+              const std::string& form) const {
+    if (arguments.size() != count)
+      throw refuse_variation(key_,
+                             "expected " + form + ", got '" + terminal_excerpt(spec_, 60) + "'");
+  }
+
+  void read_list(Variation& variation) const {
+    for (const std::string& field : split(spec_, ",")) {
+      if (field.empty()) throw refuse_variation(key_, "an empty value in '" + spec_ + "'");
+      variation.values.push_back(value(field));
+    }
+  }
+
+  void read_function(std::size_t open, Variation& variation) const {
+    const std::string name = trim(spec_.substr(0, open));
+    const auto arguments = split(spec_.substr(open + 1, spec_.size() - open - 2), ",");
+    if (name == "linspace" || name == "logspace")
+      read_spaced_values(name, arguments, variation);
+    else if (name == "uniform" || name == "normal" || name == "lognormal")
+      read_distribution(name, arguments, variation);
+    else
+      throw refuse_variation(key_, "unknown distribution '" + name +
+                                       "'; expected linspace, logspace, uniform, normal or "
+                                       "lognormal");
+  }
+
+  void read_spaced_values(const std::string& name, const std::vector<std::string>& arguments,
+                          Variation& variation) const {
+    expect(arguments, 3, name + "(from,to,count)");
+    const double from = value(arguments[0]), to = value(arguments[1]);
+    char* end = nullptr;
+    const long count = std::strtol(arguments[2].c_str(), &end, 10);
+    if (end == arguments[2].c_str() || *end != '\0' || count < 1 || count > 1000000)
+      throw refuse_variation(key_, "the count of " + name +
+                                       " must be an integer from 1 to 1000000, got '" +
+                                       terminal_excerpt(arguments[2], 60) + "'");
+    if (name == "logspace" && !(from > 0.0 && to > 0.0))
+      throw refuse_variation(key_, "logspace needs from > 0 and to > 0");
+    for (long k = 0; k < count; ++k) {
+      const double t = count == 1 ? 0.0 : static_cast<double>(k) / static_cast<double>(count - 1);
+      variation.values.push_back(
+          name == "linspace" ? from + t * (to - from)
+                             : std::exp(std::log(from) + t * (std::log(to) - std::log(from))));
+    }
+    // The ends exactly as given, not as the formula rounds them.
+    variation.values.back() = to;
+    if (count == 1) variation.values.back() = from;
+  }
+
+  void read_distribution(const std::string& name, const std::vector<std::string>& arguments,
+                         Variation& variation) const {
+    if (name == "uniform") {
+      expect(arguments, 2, "uniform(lower,upper)");
+      variation.kind = VariationKind::uniform;
+      variation.first = value(arguments[0]);
+      variation.second = value(arguments[1]);
+      if (!(variation.first <= variation.second))
+        throw refuse_variation(key_, "uniform(lower,upper) needs lower <= upper");
+    } else if (name == "normal") {
+      expect(arguments, 2, "normal(mean,sd)");
+      variation.kind = VariationKind::normal;
+      variation.first = value(arguments[0]);
+      variation.second = value(arguments[1]);
+      if (!(variation.second >= 0.0)) throw refuse_variation(key_, "normal(mean,sd) needs sd >= 0");
+    } else {
+      expect(arguments, 2, "lognormal(median,s)");
+      variation.kind = VariationKind::log_normal;
+      variation.first = value(arguments[0]);
+      variation.second = value(arguments[1], true);
+      if (!(variation.first > 0.0) || !(variation.second >= 0.0))
+        throw refuse_variation(key_, "lognormal(median,s) needs median > 0 and s >= 0");
+    }
+  }
+
+  const std::string& key_;
+  const std::string& spec_;
+  const Dimension dimension_;
+  const std::optional<double> nominal_;
+};
+
+}  // namespace
+
 Variation parse_variation(const Scene& scene, const std::string& text) {
-  constexpr const char* kVariations = "variations";
-  auto refuse = [](const std::string& key, const std::string& reason) {
-    return OptionError(kVariations, reason, key);
-  };
   const auto equals = text.find('=');
   if (equals == std::string::npos || equals == 0)
-    throw refuse(text,
-                 "expected KEY=SPEC, e.g. beam.bending_stiffness=normal(100%,5%) or "
-                 "dea.A.lever_arm=1.4mm,1.55mm,1.7mm");
+    throw refuse_variation(text,
+                           "expected KEY=SPEC, e.g. beam.bending_stiffness=normal(100%,5%) or "
+                           "dea.A.lever_arm=1.4mm,1.55mm,1.7mm");
   const std::vector<std::string> given_keys = split(text.substr(0, equals), "+");
   const std::string given_key = given_keys.front();
   const std::string spec = trim(text.substr(equals + 1));
   const SceneParameterAddress address = find_option_parameter(scene, given_key, kVariations);
   if (!address.info->numeric())
-    throw refuse(address.key, "is not numeric; a study varies numeric keys only");
+    throw refuse_variation(address.key, "is not numeric; a study varies numeric keys only");
   const Dimension dimension = parameter_dimension(*address.info, scene, address.entry);
   std::optional<double> nominal;
   try {
     nominal = get_parameter(scene, address.key);
   } catch (const InputError&) {
+    // Not set in the scene: no percentage of it (parse_study_value says so).
   }
   Variation variation;
   variation.key = address.key;
-  for (std::size_t k = 1; k < given_keys.size(); ++k) {
-    const SceneParameterAddress linked = find_option_parameter(scene, given_keys[k], kVariations);
-    if (!linked.info->numeric())
-      throw refuse(linked.key, "is not numeric; a study varies numeric keys only");
-    double linked_value = 0.0;
-    try {
-      linked_value = get_parameter(scene, linked.key);
-    } catch (const InputError&) {
-      throw refuse(linked.key, "has no value in the scene to change with " + address.key);
-    }
-    if (!nominal || *nominal == 0.0)
-      throw refuse(address.key,
-                   "keys varied together change by the same ratio, which needs a non-zero "
-                   "value of " +
-                       address.key + " in the scene");
-    variation.linked.push_back(linked.key);
-    variation.linked_ratios.push_back(linked_value / *nominal);
-  }
-  auto value = [&](const std::string& field, bool fraction_only = false) {
-    try {
-      return parse_study_value(field, dimension, nominal, fraction_only);
-    } catch (const std::invalid_argument& error) {
-      throw refuse(address.key, "'" + terminal_excerpt(field, 60) + "': " + error.what());
-    }
-  };
-  const auto open = spec.find('(');
-  if (open != std::string::npos && !spec.empty() && spec.back() == ')') {
-    const std::string name = trim(spec.substr(0, open));
-    const auto arguments = split(spec.substr(open + 1, spec.size() - open - 2), ",");
-    auto expect = [&](std::size_t count, const char* form) {
-      if (arguments.size() != count)
-        throw refuse(address.key, "expected " + std::string(form) + ", got '" +
-                                      terminal_excerpt(spec, 60) + "'");
-    };
-    if (name == "linspace" || name == "logspace") {
-      expect(3, (name + "(from,to,count)").c_str());
-      const double from = value(arguments[0]), to = value(arguments[1]);
-      char* end = nullptr;
-      const long count = std::strtol(arguments[2].c_str(), &end, 10);
-      if (end == arguments[2].c_str() || *end != '\0' || count < 1 || count > 1000000)
-        throw refuse(address.key, "the count of " + name +
-                                      " must be an integer from 1 to 1000000, got '" +
-                                      terminal_excerpt(arguments[2], 60) + "'");
-      if (name == "logspace" && !(from > 0.0 && to > 0.0))
-        throw refuse(address.key, "logspace needs from > 0 and to > 0");
-      for (long k = 0; k < count; ++k) {
-        const double t = count == 1 ? 0.0 : static_cast<double>(k) / static_cast<double>(count - 1);
-        variation.values.push_back(
-            name == "linspace" ? from + t * (to - from)
-                               : std::exp(std::log(from) + t * (std::log(to) - std::log(from))));
-      }
-      variation.values.back() = to;
-      if (count == 1) variation.values.back() = from;
-    } else if (name == "uniform") {
-      expect(2, "uniform(lower,upper)");
-      variation.kind = VariationKind::uniform;
-      variation.first = value(arguments[0]);
-      variation.second = value(arguments[1]);
-      if (!(variation.first <= variation.second))
-        throw refuse(address.key, "uniform(lower,upper) needs lower <= upper");
-    } else if (name == "normal") {
-      expect(2, "normal(mean,sd)");
-      variation.kind = VariationKind::normal;
-      variation.first = value(arguments[0]);
-      variation.second = value(arguments[1]);
-      if (!(variation.second >= 0.0)) throw refuse(address.key, "normal(mean,sd) needs sd >= 0");
-    } else if (name == "lognormal") {
-      expect(2, "lognormal(median,s)");
-      variation.kind = VariationKind::log_normal;
-      variation.first = value(arguments[0]);
-      variation.second = value(arguments[1], true);
-      if (!(variation.first > 0.0) || !(variation.second >= 0.0))
-        throw refuse(address.key, "lognormal(median,s) needs median > 0 and s >= 0");
-    } else {
-      throw refuse(address.key, "unknown distribution '" + name +
-                                    "'; expected linspace, logspace, uniform, normal or lognormal");
-    }
-  } else {
-    for (const std::string& field : split(spec, ",")) {
-      if (field.empty()) throw refuse(address.key, "an empty value in '" + spec + "'");
-      variation.values.push_back(value(field));
-    }
-  }
+  link_the_keys_varied_together(scene, given_keys, address, nominal, variation);
+  VariationSpecReader(address.key, spec, dimension, nominal).read_into(variation);
   return variation;
 }
 
@@ -567,23 +623,18 @@ void refuse_a_key_no_variant_can_set(const Scene& nominal, const SceneParameterA
   if (!use.usable()) throw OptionError("variations", use.reason, address.key);
 }
 
-}  // namespace
-
-DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table,
-                                   const DesignStudyOptions& options) {
-  const Stopwatch stopwatch;
-  options.validate();
+void refuse_a_table_that_does_not_fit(const VariantTable& table) {
   if (table.rows.size() > kMaxVariants)
     throw OptionError("variants", std::to_string(table.rows.size()) + " variants; at most " +
                                       std::to_string(kMaxVariants) + " in one study");
   for (const auto& row : table.rows)
     if (row.size() != table.keys.size())
       throw std::invalid_argument("run_design_study: a variant's values do not match its keys");
+}
 
-  DesignStudyResult result;
-  result.keys = table.keys;
-  result.variants = table.rows;
-  // The nominal scene, with the mesh resolved once for every variant.
+// The nominal scene, with the mesh resolved once for every variant; the keys' units in `result`.
+Scene prepare_the_nominal_scene(const Scene& scene, const VariantTable& table,
+                                DesignStudyResult& result) {
   const Scene nominal = resolve_segments(scene);
   if (scene.beam.auto_segments)
     result.notes.push_back("beam.segments = \"auto\" was resolved once, on the nominal scene: " +
@@ -593,73 +644,115 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
     result.key_units.push_back(parameter_unit(*address.info, nominal, address.entry));
     refuse_a_key_no_variant_can_set(nominal, address);
   }
+  return nominal;
+}
+
+ColumnLayout lay_out_the_columns(const Scene& nominal, const DesignStudyOptions& options,
+                                 DesignStudyResult& result) {
   const Model nominal_model = prepare_model(nominal);
   result.unknowns = static_cast<int>(nominal_model.network.assemble().size());
   result.segments = nominal.beam.segments;
-  const ColumnLayout layout = column_layout(nominal_model, options);
+  ColumnLayout layout = column_layout(nominal_model, options);
   result.columns = layout.columns;
   result.units = layout.units;
+  return layout;
+}
 
-  const std::size_t count = table.rows.size();
-  result.rows.assign(count, VariantResult{});
-  unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
-                                         : std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
-  result.threads = static_cast<int>(threads);
-  // `done`: rows taken and finished; `computed`: of those, the ones not skipped by a cancellation
-  // (what the progress reports).
-  std::atomic<std::size_t> next{0}, done{0}, computed{0};
-  std::mutex finished_mutex;
-  std::condition_variable finished;
-  auto work = [&] {
+unsigned thread_count(const DesignStudyOptions& options, std::size_t count) {
+  const unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
+                                               : std::max(1u, std::thread::hardware_concurrency());
+  return static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
+}
+
+// One variant: the nominal scene with its row's values set, then the analyses; a row that
+// failed keeps no values.
+void run_one_variant(const Scene& nominal, const VariantTable& table, std::size_t index,
+                     const ColumnLayout& layout, const DesignStudyOptions& options,
+                     VariantResult& row) {
+  try {
+    Scene variant = nominal;
+    const Stopwatch set_watch;
+    for (std::size_t k = 0; k < table.keys.size(); ++k)
+      set_parameter(variant, table.keys[k], table.rows[index][k]);
+    row.cost.build += set_watch.seconds();
+    row.status = run_analyses(variant, layout, options, row.values, row.validity, row.cost);
+  } catch (const std::exception& error) {
+    row.status = Status::failure(error.what());
+  }
+  if (!row.status.ok()) row.values.clear();
+}
+
+// The variants on a pool of threads, each taking the next row not taken.
+class VariantPool {
+ public:
+  VariantPool(const Scene& nominal, const VariantTable& table, const ColumnLayout& layout,
+              const DesignStudyOptions& options, std::vector<VariantResult>& rows)
+      : nominal_(nominal), table_(table), layout_(layout), options_(options), rows_(rows) {}
+
+  void run(unsigned threads) {
+    std::vector<std::thread> pool;
+    for (unsigned k = 1; k < threads; ++k) pool.emplace_back([this] { work(); });
+    if (options_.progress == nullptr) {
+      work();
+    } else {
+      // The calling thread reports and asks for cancellation (a Progress may see it only there:
+      // Python runs its signal handlers on its main thread); a worker of its own does the
+      // calling thread's share.
+      pool.emplace_back([this] { work(); });
+      report_until_done();
+    }
+    for (auto& thread : pool) thread.join();
+  }
+
+ private:
+  void work() {
+    const std::size_t count = rows_.size();
     for (;;) {
-      const std::size_t index = next.fetch_add(1);
+      const std::size_t index = next_.fetch_add(1);
       if (index >= count) return;
-      VariantResult& row = result.rows[index];
-      if (cancel_requested(options.progress)) {
+      VariantResult& row = rows_[index];
+      if (cancel_requested(options_.progress)) {
         row.status = cancelled_status();
       } else {
-        try {
-          Scene variant = nominal;
-          const Stopwatch set_watch;
-          for (std::size_t k = 0; k < table.keys.size(); ++k)
-            set_parameter(variant, table.keys[k], table.rows[index][k]);
-          row.cost.build += set_watch.seconds();
-          row.status = run_analyses(variant, layout, options, row.values, row.validity, row.cost);
-        } catch (const std::exception& error) {
-          row.status = Status::failure(error.what());
-        }
-        if (!row.status.ok()) row.values.clear();
-        computed.fetch_add(1);
+        run_one_variant(nominal_, table_, index, layout_, options_, row);
+        computed_.fetch_add(1);
       }
-      if (done.fetch_add(1) + 1 == count) {
-        const std::lock_guard<std::mutex> lock(finished_mutex);
-        finished.notify_all();
+      if (done_.fetch_add(1) + 1 == count) {
+        const std::lock_guard<std::mutex> lock(finished_mutex_);
+        finished_.notify_all();
       }
     }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned k = 1; k < threads; ++k) pool.emplace_back(work);
-  if (options.progress == nullptr) {
-    work();
-  } else {
-    // The calling thread reports and asks for cancellation (a Progress may see it only there:
-    // Python runs its signal handlers on its main thread); a worker of its own does the calling
-    // thread's share.
-    pool.emplace_back(work);
-    for (int tick = 0; done.load() < count; ++tick) {
-      if (tick % 10 == 0)
-        options.progress->report(static_cast<long>(computed.load()), static_cast<long>(count),
-                                 "variants");
-      static_cast<void>(options.progress->cancelled());
-      // Woken by the last row, so that a short study does not wait out a tick.
-      std::unique_lock<std::mutex> lock(finished_mutex);
-      finished.wait_for(lock, std::chrono::milliseconds(10), [&] { return done.load() == count; });
-    }
-    options.progress->report(static_cast<long>(computed.load()), static_cast<long>(count),
-                             "variants");
   }
-  for (auto& thread : pool) thread.join();
+
+  void report_until_done() {
+    const std::size_t count = rows_.size();
+    for (int tick = 0; done_.load() < count; ++tick) {
+      if (tick % 10 == 0)
+        options_.progress->report(static_cast<long>(computed_.load()), static_cast<long>(count),
+                                  "variants");
+      static_cast<void>(options_.progress->cancelled());
+      // Woken by the last row, so that a short study does not wait out a tick.
+      std::unique_lock<std::mutex> lock(finished_mutex_);
+      finished_.wait_for(lock, std::chrono::milliseconds(10),
+                         [&] { return done_.load() == count; });
+    }
+    options_.progress->report(static_cast<long>(computed_.load()), static_cast<long>(count),
+                              "variants");
+  }
+
+  const Scene& nominal_;
+  const VariantTable& table_;
+  const ColumnLayout& layout_;
+  const DesignStudyOptions& options_;
+  std::vector<VariantResult>& rows_;
+  // `done_`: rows taken and finished; `computed_`: of those, the ones not skipped by a
+  // cancellation (what the progress reports).
+  std::atomic<std::size_t> next_{0}, done_{0}, computed_{0};
+  std::mutex finished_mutex_;
+  std::condition_variable finished_;
+};
+
+void count_the_failures_and_add_the_costs(DesignStudyResult& result) {
   for (const VariantResult& row : result.rows) {
     if (!row.status.ok()) ++result.failed;
     if (row.status.ok() && !row.validity.within()) ++result.outside_validity;
@@ -669,6 +762,25 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
     result.cost.static_state += row.cost.static_state;
     result.cost.sweep += row.cost.sweep;
   }
+}
+
+}  // namespace
+
+DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table,
+                                   const DesignStudyOptions& options) {
+  const Stopwatch stopwatch;
+  options.validate();
+  refuse_a_table_that_does_not_fit(table);
+  DesignStudyResult result;
+  result.keys = table.keys;
+  result.variants = table.rows;
+  const Scene nominal = prepare_the_nominal_scene(scene, table, result);
+  const ColumnLayout layout = lay_out_the_columns(nominal, options, result);
+  result.rows.assign(table.rows.size(), VariantResult{});
+  const unsigned threads = thread_count(options, table.rows.size());
+  result.threads = static_cast<int>(threads);
+  VariantPool(nominal, table, layout, options, result.rows).run(threads);
+  count_the_failures_and_add_the_costs(result);
   result.seconds = stopwatch.seconds();
   return result;
 }

@@ -172,33 +172,32 @@ void ModesStudyOptions::validate() const {
   if (count < 0) throw OptionError("count", "must be >= 0 (0: the default request)");
 }
 
-ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& options) {
-  const Stopwatch total;
-  options.validate();
-  ModesStudyResult result;
-  {
-    const Stopwatch stopwatch;
-    show_phase(options.progress, "building the network");
-    result.model = prepare_model(scene, options.prepare);
-    result.system = result.model.network.assemble();
-    result.seconds_model = stopwatch.seconds();
+namespace {
+
+void build_the_network(const Scene& scene, const ModesStudyOptions& options,
+                       ModesStudyResult& result) {
+  const Stopwatch stopwatch;
+  show_phase(options.progress, "building the network");
+  result.model = prepare_model(scene, options.prepare);
+  result.system = result.model.network.assemble();
+  result.seconds_model = stopwatch.seconds();
+}
+
+Status find_the_operating_point(const ModesStudyOptions& options, ModesStudyResult& result) {
+  OperatingPointOptions point_options;
+  point_options.static_options.progress = options.progress;
+  OperatingPoint point = operating_point(result.system, point_options);
+  result.seconds_operating_point = point.seconds;
+  if (!point.status.ok()) return point.status;
+  if (point.about_zero) {
+    result.model.notes.push_back(point.note);
+    result.notes.push_back(point.note);
   }
-  {
-    OperatingPointOptions point_options;
-    point_options.static_options.progress = options.progress;
-    OperatingPoint point = operating_point(result.system, point_options);
-    result.seconds_operating_point = point.seconds;
-    if (!point.status.ok()) {
-      result.status = point.status;
-      result.seconds = total.seconds();
-      return result;
-    }
-    if (point.about_zero) {
-      result.model.notes.push_back(point.note);
-      result.notes.push_back(point.note);
-    }
-    result.rest = std::move(point.rest);
-  }
+  result.rest = std::move(point.rest);
+  return Status::success();
+}
+
+Status run_the_modal_analysis(const ModesStudyOptions& options, ModesStudyResult& result) {
   ModalOptions modal_options;
   modal_options.count = options.count;
   modal_options.keep_vectors = true;
@@ -213,31 +212,25 @@ ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& op
   }
   result.modal = run_modes(result.system, result.rest.operating_point, modal_options);
   result.seconds_modal = result.modal.seconds;
-  if (!result.modal.status.ok()) {
-    result.status = result.modal.status.with_context("modes: ");
-    result.seconds = total.seconds();
-    return result;
-  }
-  if (cancel_requested(options.progress)) {
-    result.status = cancelled_status();
-    result.seconds = total.seconds();
-    return result;
-  }
-  std::vector<Mode> modes = result.modal.modes;
+  if (!result.modal.status.ok()) return result.modal.status.with_context("modes: ");
+  if (cancel_requested(options.progress)) return cancelled_status();
+  return Status::success();
+}
+
+// The modes asked for, each checked finite; those whose error is not bounded are listed.
+Status check_the_modes_asked_for(const ModesStudyOptions& options, ModesStudyResult& result,
+                                 std::vector<Mode>& modes) {
+  modes = result.modal.modes;
   if (options.count > 0 && static_cast<int>(modes.size()) > options.count)
     modes.resize(static_cast<size_t>(options.count));
   for (size_t k = 0; k < modes.size(); ++k) {
     const std::string which = " of mode " + std::to_string(k + 1);
     if (!std::isfinite(modes[k].frequency_hz))
-      result.status = Status::failure("non-finite result for a modal frequency" + which);
-    else if (!std::isfinite(modes[k].damping_ratio))
-      result.status = Status::failure("non-finite result for a damping ratio" + which);
-    else if (!std::isfinite(modes[k].natural_frequency_hz))
-      result.status = Status::failure("non-finite result for a natural frequency" + which);
-    if (!result.status.ok()) {
-      result.seconds = total.seconds();
-      return result;
-    }
+      return Status::failure("non-finite result for a modal frequency" + which);
+    if (!std::isfinite(modes[k].damping_ratio))
+      return Status::failure("non-finite result for a damping ratio" + which);
+    if (!std::isfinite(modes[k].natural_frequency_hz))
+      return Status::failure("non-finite result for a natural frequency" + which);
     if (!modes[k].error_bounded) {
       char frequency[32];
       std::snprintf(frequency, sizeof frequency, "%.6g", modes[k].frequency_hz);
@@ -245,51 +238,91 @@ ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& op
                                  " Hz): " + modes[k].unbounded_reason);
     }
   }
+  return Status::success();
+}
+
+// The N/2N estimate, per mode in `errors` and `correlations` (NaN error: no match at 2N), or a
+// note saying why it is not made.
+Status estimate_the_discretisation_errors(const Scene& scene, const ModesStudyOptions& options,
+                                          const std::vector<Mode>& modes, ModesStudyResult& result,
+                                          std::vector<double>& errors,
+                                          std::vector<double>& correlations) {
   result.error_estimate_computed =
       options.error_estimate && scene.beam.segments <= kModesErrorEstimateSegmentLimit;
-  std::vector<double> errors, correlations;  // per mode; NaN error: no match at 2N
-  if (result.error_estimate_computed) {
-    const Stopwatch stopwatch;
-    std::vector<RefinedMode> refined;
-    // From the scene as given (not as resolved for N): its "auto" keys are resolved for 2N.
-    const Status status =
-        refined_modes(scene, options, std::max<int>(static_cast<int>(modes.size()) + 2, 6),
-                      result.model.beam.x, refined);
-    if (!status.ok()) {
-      result.status = status;
-      result.seconds = total.seconds();
-      return result;
-    }
-    if (!refined.empty()) match_refined_modes(result, modes, refined, errors, correlations);
-    result.seconds_error_estimate = stopwatch.seconds();
-  } else {
+  if (!result.error_estimate_computed) {
     result.notes.push_back(options.error_estimate
                                ? "discretisation error not estimated (N > " +
                                      std::to_string(kModesErrorEstimateSegmentLimit) + ")"
                                : "discretisation error not estimated (not asked)");
+    return Status::success();
   }
+  const Stopwatch stopwatch;
+  std::vector<RefinedMode> refined;
+  // From the scene as given (not as resolved for N): its "auto" keys are resolved for 2N.
+  const Status status =
+      refined_modes(scene, options, std::max<int>(static_cast<int>(modes.size()) + 2, 6),
+                    result.model.beam.x, refined);
+  if (!status.ok()) return status;
+  if (!refined.empty()) match_refined_modes(result, modes, refined, errors, correlations);
+  result.seconds_error_estimate = stopwatch.seconds();
+  return Status::success();
+}
+
+Status collect_the_modes(const ModesStudyOptions& options, const std::vector<Mode>& modes,
+                         const std::vector<double>& errors, const std::vector<double>& correlations,
+                         ModesStudyResult& result) {
   for (size_t k = 0; k < modes.size(); ++k) {
     ModesStudyMode entry;
     entry.mode = modes[k];
     if (k < errors.size() && !std::isnan(correlations[k])) {
       entry.shape_correlation = correlations[k];
-      if (!std::isfinite(errors[k])) {
-        result.status =
-            Status::failure("non-finite result for a discretisation error estimate of mode " +
-                            std::to_string(k + 1));
-        result.seconds = total.seconds();
-        return result;
-      }
+      if (!std::isfinite(errors[k]))
+        return Status::failure("non-finite result for a discretisation error estimate of mode " +
+                               std::to_string(k + 1));
       entry.discretisation_error = errors[k];
       entry.discretisation_error_estimated = true;
     }
     if (options.shapes) entry.shape = mode_shape(result.model, modes[k]);
     result.modes.push_back(std::move(entry));
   }
+  return Status::success();
+}
+
+void name_the_rigid_body_motions(ModesStudyResult& result) {
   for (const auto& motion : result.modal.rigid_body_modes)
     result.rigid_body_motions.push_back(rigid_body_motion_name(result.model, motion));
   if (result.rigid_body_motions.size() > 1)
     result.rigid_body_motions = {"translation and rotation (a free body)"};
+}
+
+}  // namespace
+
+ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& options) {
+  const Stopwatch total;
+  options.validate();
+  ModesStudyResult result;
+  auto stopped_by = [&](Status status) {
+    result.status = std::move(status);
+    result.seconds = total.seconds();
+    return result;
+  };
+  build_the_network(scene, options, result);
+  if (Status found = find_the_operating_point(options, result); !found.ok())
+    return stopped_by(found);
+  if (Status solved = run_the_modal_analysis(options, result); !solved.ok())
+    return stopped_by(solved);
+  std::vector<Mode> modes;
+  if (Status finite = check_the_modes_asked_for(options, result, modes); !finite.ok())
+    return stopped_by(finite);
+  std::vector<double> errors, correlations;  // per mode; NaN error: no match at 2N
+  if (Status estimated =
+          estimate_the_discretisation_errors(scene, options, modes, result, errors, correlations);
+      !estimated.ok())
+    return stopped_by(estimated);
+  if (Status collected = collect_the_modes(options, modes, errors, correlations, result);
+      !collected.ok())
+    return stopped_by(collected);
+  name_the_rigid_body_motions(result);
   result.seconds = total.seconds();
   return result;
 }

@@ -146,25 +146,141 @@ void SensitivityOptions::validate() const {
     throw OptionError("check_relative_step", "must be a relative step in (0, 1)");
 }
 
+namespace {
+
+std::vector<SceneParameter> parameters_to_differentiate(const Scene& scene,
+                                                        const std::vector<std::string>& keys) {
+  if (keys.empty()) return scene_parameters(scene);
+  std::vector<SceneParameter> parameters;
+  for (const auto& key : keys) parameters.push_back(find_scene_parameter(scene, key));
+  return parameters;
+}
+
+// Per mode, its left eigenvector y and the denominator yᴴ·C·x of the pole's derivative.
+struct LeftEigenvectors {
+  std::vector<Eigen::VectorXcd> vectors;
+  std::vector<std::complex<double>> denominators;
+};
+
+// Once per mode; their largest residual into result.left_vector_residual.
+Status find_left_eigenvectors(const Linearised& nominal, SensitivityResult& result,
+                              LeftEigenvectors& lefts) {
+  const Eigen::SparseMatrix<std::complex<double>> c_complex =
+      nominal.system.C.cast<std::complex<double>>();
+  for (const Mode& mode : result.modes) {
+    Eigen::VectorXcd left;
+    double residual = 0.0;
+    std::string why;
+    if (!left_eigenvector(nominal.g_matrix, nominal.system.C, mode.pole, left, residual, why))
+      return Status::failure(why);
+    result.left_vector_residual = std::max(result.left_vector_residual, residual);
+    const std::complex<double> denominator = left.dot(c_complex * mode.vector);  // yᴴ·C·x
+    if (!(std::abs(denominator) > 0.0) || !std::isfinite(std::abs(denominator)))
+      return Status::failure("yᴴ·C·x vanishes: the pole is not simple");
+    lefts.vectors.push_back(std::move(left));
+    lefts.denominators.push_back(denominator);
+  }
+  return check_residual(result.left_vector_residual, "left eigenvector");
+}
+
+// ds/dp = -yᴴ·(dG/dp + s·dC/dp)·x / (yᴴ·C·x), with dG/dp and dC/dp by central differences of
+// the assembled matrices at the relative step matrix_relative_step.
+Status differentiate_the_poles(const Scene& scene, const Linearised& nominal,
+                               const std::vector<Mode>& modes, const LeftEigenvectors& lefts,
+                               const SensitivityOptions& options, ParameterSensitivity& entry) {
+  const SceneParameter& parameter = entry.parameter;
+  const double p = parameter.value;
+  const double h = options.matrix_relative_step * std::abs(p);
+  const Linearised up = linearise(with_parameter(scene, parameter.key, p + h));
+  const Linearised down = linearise(with_parameter(scene, parameter.key, p - h));
+  if (!up.status.ok() || !down.status.ok())
+    return Status::failure(parameter.key +
+                           " ± step: " + (up.status.ok() ? down.status : up.status).message);
+  if (up.system.size() != nominal.system.size() || down.system.size() != nominal.system.size())
+    return Status::failure(parameter.key + " changes the network's unknowns");
+  const Eigen::SparseMatrix<std::complex<double>> dg =
+      ((up.g_matrix - down.g_matrix) / (2.0 * h)).cast<std::complex<double>>();
+  const Eigen::SparseMatrix<std::complex<double>> dc =
+      ((up.system.C - down.system.C) / (2.0 * h)).cast<std::complex<double>>();
+  for (size_t k = 0; k < modes.size(); ++k) {
+    const Mode& mode = modes[k];
+    ModeSensitivity sensitivity;
+    const Eigen::VectorXcd perturbation = dg * mode.vector + mode.pole * (dc * mode.vector);
+    sensitivity.pole_derivative = -lefts.vectors[k].dot(perturbation) / lefts.denominators[k];
+    fill_frequencies(sensitivity, mode.pole, p);
+    entry.modes.push_back(sensitivity);
+  }
+  return Status::success();
+}
+
+// Central differences of the poles at steps h and 2h (derivatives[0] and [1], per mode).
+Status pole_differences(const Scene& scene, const SceneParameter& parameter, int wanted,
+                        size_t mode_count, const SensitivityOptions& options,
+                        std::vector<std::vector<std::complex<double>>>& derivatives) {
+  const double p = parameter.value;
+  for (double factor : {1.0, 2.0}) {
+    const double step = factor * options.check_relative_step * std::abs(p);
+    std::vector<std::vector<Mode>> sides;
+    for (double sign : {+1.0, -1.0}) {
+      const Linearised side = linearise(with_parameter(scene, parameter.key, p + sign * step));
+      if (!side.status.ok()) return side.status;
+      const ModalResult side_modes = modes_of(side, wanted, false);
+      if (!side_modes.status.ok() || side_modes.modes.size() < mode_count)
+        return Status::failure(parameter.key + " check: modes not found");
+      sides.push_back(side_modes.modes);
+    }
+    std::vector<std::complex<double>> d;
+    for (size_t k = 0; k < mode_count; ++k)
+      d.push_back((sides[0][k].pole - sides[1][k].pole) / (2.0 * step));
+    derivatives.push_back(d);
+  }
+  return Status::success();
+}
+
+// The derivatives against the poles' central differences, with an estimate of the error of
+// those differences.
+Status check_by_finite_differences(const Scene& scene, const std::vector<Mode>& modes, int wanted,
+                                   const SensitivityOptions& options, ParameterSensitivity& entry) {
+  const double p = entry.parameter.value;
+  std::vector<std::vector<std::complex<double>>> derivatives;
+  if (Status found =
+          pole_differences(scene, entry.parameter, wanted, modes.size(), options, derivatives);
+      !found.ok())
+    return found;
+  for (size_t k = 0; k < modes.size(); ++k) {
+    ModeSensitivity& sensitivity = entry.modes[k];
+    const double pole_size = std::abs(modes[k].pole);
+    const double to_normalised = std::abs(p) / pole_size;
+    sensitivity.finite_difference_pole_derivative = derivatives[0][k];
+    sensitivity.check_difference =
+        std::abs(sensitivity.pole_derivative - derivatives[0][k]) * to_normalised;
+    // Truncation (Richardson) plus rounding: poles accurate to ~100ε relative (dense
+    // eigen-decomposition), divided by the step 2h.
+    const double truncation = std::abs(derivatives[1][k] - derivatives[0][k]) / 3.0;
+    const double rounding = 100.0 * std::numeric_limits<double>::epsilon() * pole_size /
+                            (2.0 * options.check_relative_step * std::abs(p));
+    sensitivity.check_error_estimate = (truncation + rounding) * to_normalised;
+  }
+  return Status::success();
+}
+
+double seconds_since(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+}  // namespace
+
 SensitivityResult run_sensitivity(const Scene& scene, const std::vector<std::string>& keys,
                                   const SensitivityOptions& options) {
   options.validate();
   const auto start = std::chrono::steady_clock::now();
-  const auto elapsed = [](std::chrono::steady_clock::time_point since) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-  };
   SensitivityResult result;
   auto finish = [&](Status status) {
     result.status = std::move(status);
-    result.seconds = elapsed(start);
+    result.seconds = seconds_since(start);
     return result;
   };
-  std::vector<SceneParameter> parameters;
-  if (keys.empty()) {
-    parameters = scene_parameters(scene);
-  } else {
-    for (const auto& key : keys) parameters.push_back(find_scene_parameter(scene, key));
-  }
+  const std::vector<SceneParameter> parameters = parameters_to_differentiate(scene, keys);
 
   const Linearised nominal = linearise(scene);
   if (!nominal.status.ok()) return finish(nominal.status);
@@ -174,29 +290,9 @@ SensitivityResult run_sensitivity(const Scene& scene, const std::vector<std::str
   if (modal.modes.empty()) return finish(Status::failure("the network has no oscillatory mode"));
   result.modes.assign(modal.modes.begin(),
                       modal.modes.begin() + std::min<size_t>(modal.modes.size(), wanted));
-
-  // Left eigenvectors and the denominators yᴴ·C·x, once per mode.
-  const Eigen::SparseMatrix<std::complex<double>> c_complex =
-      nominal.system.C.cast<std::complex<double>>();
-  std::vector<Eigen::VectorXcd> lefts;
-  std::vector<std::complex<double>> denominators;
-  for (const Mode& mode : result.modes) {
-    Eigen::VectorXcd left;
-    double residual = 0.0;
-    std::string why;
-    if (!left_eigenvector(nominal.g_matrix, nominal.system.C, mode.pole, left, residual, why))
-      return finish(Status::failure(why));
-    result.left_vector_residual = std::max(result.left_vector_residual, residual);
-    const std::complex<double> denominator = left.dot(c_complex * mode.vector);  // yᴴ·C·x
-    if (!(std::abs(denominator) > 0.0) || !std::isfinite(std::abs(denominator)))
-      return finish(Status::failure("yᴴ·C·x vanishes: the pole is not simple"));
-    lefts.push_back(std::move(left));
-    denominators.push_back(denominator);
-  }
-
-  if (Status accurate = check_residual(result.left_vector_residual, "left eigenvector");
-      !accurate.ok())
-    return finish(accurate);
+  LeftEigenvectors lefts;
+  if (Status found = find_left_eigenvectors(nominal, result, lefts); !found.ok())
+    return finish(found);
 
   double check_seconds = 0.0;
   for (const SceneParameter& parameter : parameters) {
@@ -204,63 +300,15 @@ SensitivityResult run_sensitivity(const Scene& scene, const std::vector<std::str
                     static_cast<long>(parameters.size()), "parameters"))
       return finish(cancelled_status());
     ParameterSensitivity entry{parameter, {}};
-    const double p = parameter.value;
-    const double h = options.matrix_relative_step * std::abs(p);
-    const Linearised up = linearise(with_parameter(scene, parameter.key, p + h));
-    const Linearised down = linearise(with_parameter(scene, parameter.key, p - h));
-    if (!up.status.ok() || !down.status.ok())
-      return finish(Status::failure(
-          parameter.key + " ± step: " + (up.status.ok() ? down.status : up.status).message));
-    if (up.system.size() != nominal.system.size() || down.system.size() != nominal.system.size())
-      return finish(Status::failure(parameter.key + " changes the network's unknowns"));
-    const Eigen::SparseMatrix<std::complex<double>> dg =
-        ((up.g_matrix - down.g_matrix) / (2.0 * h)).cast<std::complex<double>>();
-    const Eigen::SparseMatrix<std::complex<double>> dc =
-        ((up.system.C - down.system.C) / (2.0 * h)).cast<std::complex<double>>();
-    for (size_t k = 0; k < result.modes.size(); ++k) {
-      const Mode& mode = result.modes[k];
-      ModeSensitivity sensitivity;
-      const Eigen::VectorXcd perturbation = dg * mode.vector + mode.pole * (dc * mode.vector);
-      sensitivity.pole_derivative = -lefts[k].dot(perturbation) / denominators[k];
-      fill_frequencies(sensitivity, mode.pole, p);
-      entry.modes.push_back(sensitivity);
-    }
-
+    if (Status done = differentiate_the_poles(scene, nominal, result.modes, lefts, options, entry);
+        !done.ok())
+      return finish(done);
     if (options.check) {
       const auto check_start = std::chrono::steady_clock::now();
-      // Central differences of the poles at steps h and 2h.
-      std::vector<std::vector<std::complex<double>>> derivatives;
-      for (double factor : {1.0, 2.0}) {
-        const double step = factor * options.check_relative_step * std::abs(p);
-        std::vector<std::vector<Mode>> sides;
-        for (double sign : {+1.0, -1.0}) {
-          const Linearised side = linearise(with_parameter(scene, parameter.key, p + sign * step));
-          if (!side.status.ok()) return finish(side.status);
-          const ModalResult side_modes = modes_of(side, wanted, false);
-          if (!side_modes.status.ok() || side_modes.modes.size() < result.modes.size())
-            return finish(Status::failure(parameter.key + " check: modes not found"));
-          sides.push_back(side_modes.modes);
-        }
-        std::vector<std::complex<double>> d;
-        for (size_t k = 0; k < result.modes.size(); ++k)
-          d.push_back((sides[0][k].pole - sides[1][k].pole) / (2.0 * step));
-        derivatives.push_back(d);
-      }
-      for (size_t k = 0; k < result.modes.size(); ++k) {
-        ModeSensitivity& sensitivity = entry.modes[k];
-        const double pole_size = std::abs(result.modes[k].pole);
-        const double to_normalised = std::abs(p) / pole_size;
-        sensitivity.finite_difference_pole_derivative = derivatives[0][k];
-        sensitivity.check_difference =
-            std::abs(sensitivity.pole_derivative - derivatives[0][k]) * to_normalised;
-        // Truncation (Richardson) plus rounding: poles accurate to ~100ε relative (dense
-        // eigen-decomposition), divided by the step 2h.
-        const double truncation = std::abs(derivatives[1][k] - derivatives[0][k]) / 3.0;
-        const double rounding = 100.0 * std::numeric_limits<double>::epsilon() * pole_size /
-                                (2.0 * options.check_relative_step * std::abs(p));
-        sensitivity.check_error_estimate = (truncation + rounding) * to_normalised;
-      }
-      check_seconds += elapsed(check_start);
+      if (Status checked = check_by_finite_differences(scene, result.modes, wanted, options, entry);
+          !checked.ok())
+        return finish(checked);
+      check_seconds += seconds_since(check_start);
     }
     result.parameters.push_back(std::move(entry));
   }

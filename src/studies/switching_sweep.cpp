@@ -126,15 +126,12 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const SwitchingSwee
   return run_switching_sweep(model, model.scene, options);
 }
 
-SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
-                                         const SwitchingSweepOptions& given) {
-  const Stopwatch stopwatch;
-  given.validate();
-  std::vector<std::string> method_notes;
-  const SwitchingSweepOptions options = resolve_sweep_method(model, given, method_notes);
-  const std::vector<double> frequencies = switching_frequencies(options);
-  const int samples = samples_or_default(options);
-  const bool exact = options.method == SwitchingSweepMethod::exact;
+namespace {
+
+// What the sweep refuses before it solves: no output, a drive that nothing switches, and for the
+// reduced model an output other than a deflection or rotation.
+void check_sweep_outputs(const Model& model, const Scene& scene,
+                         const SwitchingSweepOptions& options) {
   const std::vector<Probe>& probes = options.outputs;
   if (probes.empty())
     throw InputError(model.scene.file, "probe", "the switching sweep needs at least one output");
@@ -147,272 +144,373 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
                           "reduced model would need the derivative of the square wave's "
                           "feed-through; run without {reduce}",
                           probe.name);
-  const double highest = *std::max_element(frequencies.begin(), frequencies.end());
-  auto phase = [&](const std::string& what) {
-    if (options.phase) options.phase(what);
-  };
+}
 
-  SwitchingSweepResult result;
-  result.method = options.reduce ? Method::reduced : exact ? Method::exact : Method::shooting;
-  result.notes = method_notes;
-  auto stop = [&](const Status& status) {
-    result.status = status;
-    result.seconds = stopwatch.seconds();
-    return result;
-  };
-  auto fail = [&](const std::string& message) { return stop(Status::failure(message)); };
+// Per output, the largest magnitude of its samples over the period (the edge estimate's scale).
+std::vector<double> largest_magnitude_per_output(const PeriodicResult& solution) {
+  std::vector<double> scale;
+  for (const std::vector<double>& values : solution.values) {
+    double largest = 0.0;
+    for (double v : values) largest = std::max(largest, std::abs(v));
+    scale.push_back(largest);
+  }
+  return scale;
+}
+
+// What the reduction is checked against: the full exact method where its dense decomposition is
+// the automatic choice's size, else a reduction with ten times the cut-off. Each is made at its
+// first use, as it is costly.
+class ReductionCheckReference {
+ public:
+  ReductionCheckReference(SwitchingSweepReductionCheck& check, const SwitchingSweepOptions& options,
+                          int samples)
+      : check_(check), options_(options), samples_(samples), wider_options_(options.reduction) {
+    wider_options_.cutoff_hz = 10.0 * check_.model.cutoff_hz;
+    check_.reference = check_.against_full
+                           ? "the full exact periodic solution"
+                           : "a reduction with ten times the cut-off (" +
+                                 format_with_unit(wider_options_.cutoff_hz, "Hz") + ")";
+  }
+
+  PeriodicResult solution_at(const System& system, double f) {
+    if (check_.against_full) return full_exact_solution_at(system, f);
+    return wider_reduction_solution_at(system, f);
+  }
+
+ private:
+  PeriodicResult full_exact_solution_at(const System& system, double f) {
+    if (!full_) {
+      const Stopwatch build_stopwatch;
+      full_ = std::make_unique<PeriodicSolver>(system);
+      check_.full_build_seconds = build_stopwatch.seconds();
+    }
+    return full_->solve(system, options_.outputs, 1.0 / f, samples_);
+  }
+
+  PeriodicResult wider_reduction_solution_at(const System& system, double f) {
+    if (!wider_) {
+      if (options_.phase) options_.phase("checking against a reduction with ten times the cut-off");
+      const Stopwatch build_stopwatch;
+      wider_ = std::make_unique<ReducedPeriodicSolver>(system, wider_options_);
+      check_.full_build_seconds = build_stopwatch.seconds();
+      check_.reference += ", " + std::to_string(wider_->reduction().kept_modes) + " mode(s) and " +
+                          std::to_string(wider_->reduction().kept_real_poles) +
+                          " real pole(s) against " + std::to_string(check_.model.kept_modes) +
+                          " and " + std::to_string(check_.model.kept_real_poles);
+    }
+    if (!wider_->reduction().status.ok()) {
+      PeriodicResult failed;
+      failed.status = wider_->reduction().status.with_context("the wider reduction: ");
+      return failed;
+    }
+    return wider_->solve(system, options_.outputs, 1.0 / f, samples_);
+  }
+
+  SwitchingSweepReductionCheck& check_;
+  const SwitchingSweepOptions& options_;
+  const int samples_;
+  ReductionOptions wider_options_;
+  std::unique_ptr<PeriodicSolver> full_;
+  std::unique_ptr<ReducedPeriodicSolver> wider_;
+};
+
+// One run of the sweep: the state its phases share (the swept System, the solvers, the result so
+// far). A phase that stops the run (a failure, a cancel) returns its Status.
+class SwitchingSweepRun {
+ public:
+  SwitchingSweepRun(const Model& model, const Scene& scene, const SwitchingSweepOptions& options,
+                    std::vector<std::string> method_notes, const Stopwatch& stopwatch)
+      : model_(model),
+        scene_(scene),
+        options_(options),
+        stopwatch_(stopwatch),
+        frequencies_(switching_frequencies(options)),
+        samples_(samples_or_default(options)),
+        exact_(options.method == SwitchingSweepMethod::exact),
+        probes_(options.outputs),
+        highest_(*std::max_element(frequencies_.begin(), frequencies_.end())),
+        solver_(options.solver) {
+    result_.method = options.reduce ? Method::reduced : exact_ ? Method::exact : Method::shooting;
+    result_.notes = std::move(method_notes);
+    if (options.reduce) check_.emplace();
+  }
+
+  SwitchingSweepResult run() {
+    decide_what_changes_per_frequency();
+    assemble_once_and_check_the_sweep_fits();
+    if (const std::optional<Status> stopped = solve_every_frequency()) return stopped_by(*stopped);
+    result_.solver = solver_;
+    find_the_sweep_peak();
+    check_validity_of_the_deflection_peaks();
+    if (check_ && !result_.frequencies.empty())
+      if (const std::optional<Status> stopped = check_the_reduction()) return stopped_by(*stopped);
+    if (options_.first_mode) find_the_first_mode_for_the_resonance_marker();
+    return finished();
+  }
+
+ private:
+  void phase(const std::string& what) const {
+    if (options_.phase) options_.phase(what);
+  }
+
+  SwitchingSweepResult finished() {
+    result_.seconds = stopwatch_.seconds();
+    return std::move(result_);
+  }
+
+  SwitchingSweepResult stopped_by(const Status& status) {
+    result_.status = status;
+    return finished();
+  }
+
   // Only the drive's excitation changes with the frequency: `model`'s G and C assembled once,
   // the drive sources' waveforms made again per frequency (the same b(t) as a model built at
   // that frequency). With drive.electrical_dynamics = "auto" left in the scene the choice may
   // change with the frequency (its default band is 10 x f): then a model per frequency.
-  const bool circuit_switched = !switched_sources(scene, options.sources).empty();
-  const bool excitation_only = !scene.drive.electrical_dynamics_auto && !circuit_switched;
-  if (circuit_switched) {
-    Scene probe_scene = scene;
-    for (const std::string& note : set_switching_frequency(probe_scene, highest, options.sources))
-      result.notes.push_back(note);
-    result.notes.push_back(
-        "the circuit's periodic sources switched at each sweep frequency (a model per "
-        "frequency), each keeping its levels, duty, rise and fall; a delay keeps its fraction "
-        "of the period");
-  } else if (!excitation_only)
-    result.notes.push_back(
-        "drive.electrical_dynamics = \"auto\": a model prepared per switching frequency (the "
-        "choice of the DEAs' RC dynamics may change with it)");
-  System swept;
-  if (excitation_only) {
-    const Stopwatch model_stopwatch;
-    swept = model.network.assemble();
-    result.model_seconds += model_stopwatch.seconds();
+  void decide_what_changes_per_frequency() {
+    const bool circuit_switched = !switched_sources(scene_, options_.sources).empty();
+    excitation_only_ = !scene_.drive.electrical_dynamics_auto && !circuit_switched;
+    if (circuit_switched) {
+      Scene probe_scene = scene_;
+      for (const std::string& note :
+           set_switching_frequency(probe_scene, highest_, options_.sources))
+        result_.notes.push_back(note);
+      result_.notes.push_back(
+          "the circuit's periodic sources switched at each sweep frequency (a model per "
+          "frequency), each keeping its levels, duty, rise and fall; a delay keeps its fraction "
+          "of the period");
+    } else if (!excitation_only_)
+      result_.notes.push_back(
+          "drive.electrical_dynamics = \"auto\": a model prepared per switching frequency (the "
+          "choice of the DEAs' RC dynamics may change with it)");
   }
-  // The exact method's memory is checked on the assembled system (the one the sweep swaps
-  // excitations into; with a model per frequency, the given model's, of the same size).
-  if (exact && !options.reduce)
-    check_periodic_memory(excitation_only ? swept.size() : model.network.assemble().size(),
-                          "segments");
-  if (!(scene.drive.rise_time < 0.5 / highest))
-    throw OptionError::in_file("to", scene.file, "drive.rise_time",
-                               "must be < half the shortest period of the sweep (" +
-                                   format_with_unit(0.5 / highest, "s") + " at {to} " +
-                                   format_with_unit(highest, "Hz") + ")");
-  check_overlap_fits(scene, highest, "to");
 
-  auto system_at = [&](double f) -> const System& {
-    if (excitation_only) {
+  void assemble_once_and_check_the_sweep_fits() {
+    if (excitation_only_) {
+      const Stopwatch model_stopwatch;
+      swept_ = model_.network.assemble();
+      result_.model_seconds += model_stopwatch.seconds();
+    }
+    // The exact method's memory is checked on the assembled system (the one the sweep swaps
+    // excitations into; with a model per frequency, the given model's, of the same size).
+    if (exact_ && !options_.reduce)
+      check_periodic_memory(excitation_only_ ? swept_.size() : model_.network.assemble().size(),
+                            "segments");
+    if (!(scene_.drive.rise_time < 0.5 / highest_))
+      throw OptionError::in_file("to", scene_.file, "drive.rise_time",
+                                 "must be < half the shortest period of the sweep (" +
+                                     format_with_unit(0.5 / highest_, "s") + " at {to} " +
+                                     format_with_unit(highest_, "Hz") + ")");
+    check_overlap_fits(scene_, highest_, "to");
+  }
+
+  const System& system_at(double f) {
+    if (excitation_only_) {
       const Stopwatch excitation_stopwatch;
-      swept.set_excitation(drive_excitation(model, swept.excitation(), f));
-      result.excitation_seconds += excitation_stopwatch.seconds();
+      swept_.set_excitation(drive_excitation(model_, swept_.excitation(), f));
+      result_.excitation_seconds += excitation_stopwatch.seconds();
     } else {
       const Stopwatch model_stopwatch;
-      Scene at = scene;
-      set_switching_frequency(at, f, options.sources);
-      swept = prepare_model(at).network.assemble();
-      result.model_seconds += model_stopwatch.seconds();
+      Scene at = scene_;
+      set_switching_frequency(at, f, options_.sources);
+      swept_ = prepare_model(at).network.assemble();
+      result_.model_seconds += model_stopwatch.seconds();
     }
-    return swept;
-  };
+    return swept_;
+  }
 
-  std::shared_ptr<const PeriodicSolver> solver = options.solver;
-  std::unique_ptr<ReducedPeriodicSolver> reduced;
-  std::optional<SwitchingSweepReductionCheck> check;
-  if (options.reduce) check.emplace();
   // The reduced periodic state at frequency f (the sweep and its check); nullopt when the
-  // reduction failed (result.status set).
-  std::string reduction_failure;
-  auto reduced_at = [&](const System& system, double f) -> std::optional<PeriodicResult> {
-    if (!reduced) {
+  // reduction failed (the message in reduction_failure_).
+  std::optional<PeriodicResult> reduced_solution_at(const System& system, double f) {
+    if (!reduced_) {
       phase("modal reduction (" + std::to_string(system.size()) + " unknowns)");
       const Stopwatch build_stopwatch;
-      reduced = std::make_unique<ReducedPeriodicSolver>(system, options.reduction);
-      check->build_seconds = build_stopwatch.seconds();
-      result.decomposition_seconds += check->build_seconds;
+      reduced_ = std::make_unique<ReducedPeriodicSolver>(system, options_.reduction);
+      check_->build_seconds = build_stopwatch.seconds();
+      result_.decomposition_seconds += check_->build_seconds;
     }
-    if (!reduced->reduction().status.ok()) {
-      reduction_failure = "sweep-switching --reduce: " + reduced->reduction().status.message;
+    if (!reduced_->reduction().status.ok()) {
+      reduction_failure_ = "sweep-switching --reduce: " + reduced_->reduction().status.message;
       return std::nullopt;
     }
-    return reduced->solve(system, probes, 1.0 / f, samples);
-  };
+    return reduced_->solve(system, probes_, 1.0 / f, samples_);
+  }
+
+  void decompose_the_state_matrix_once(const System& system) {
+    phase("eigen-decomposition of the state matrix (" + std::to_string(system.size()) +
+          " unknowns, dense; one step, no estimate inside it)");
+    const Stopwatch decomposition_stopwatch;
+    solver_ = std::make_shared<const PeriodicSolver>(system);
+    result_.decomposition_seconds += decomposition_stopwatch.seconds();
+  }
+
+  // By the reduced, exact or shooting method; nullopt as reduced_solution_at.
+  std::optional<PeriodicResult> periodic_solution_at(const System& system, double f) {
+    if (options_.reduce) return reduced_solution_at(system, f);
+    if (exact_) return solver_->solve(system, probes_, 1.0 / f, samples_);
+    return run_periodic_shooting(system, probes_, 1.0 / f, options_.rtol, samples_,
+                                 options_.progress);
+  }
+
+  std::optional<Status> failure_of_the_periodic_solution(const PeriodicResult& r, double f) const {
+    if (!r.status.ok())
+      return Status::failure("sweep-switching at " + format_with_unit(f, "Hz") + ": " +
+                             r.status.message);
+    for (size_t p = 0; p < probes_.size(); ++p)
+      if (!std::isfinite(r.minimum[p]) || !std::isfinite(r.maximum[p]))
+        return Status::failure("non-finite result for a peak of " + probes_[p].name);
+    if (!std::isfinite(r.periodicity_residual))
+      return Status::failure("sweep-switching at " + format_with_unit(f, "Hz") +
+                             ": non-finite periodicity residual");
+    return std::nullopt;
+  }
 
   // Per frequency only the extremes are kept (the samples of one period are dropped).
-  result.outputs.resize(probes.size());
-  for (size_t p = 0; p < probes.size(); ++p) {
-    result.outputs[p].probe = probes[p];
-    result.outputs[p].left.reserve(frequencies.size());
-    result.outputs[p].right.reserve(frequencies.size());
-  }
-  std::vector<double> solve_seconds_at;  // per frequency, for the reduction check
-  const long count = static_cast<long>(frequencies.size());
-  for (long k = 0; k < count; ++k) {
-    const double f = frequencies[static_cast<size_t>(k)];
-    const System& system = system_at(f);
-    result.unknowns = system.size();
-    if (exact && !options.reduce && !solver) {
-      phase("eigen-decomposition of the state matrix (" + std::to_string(system.size()) +
-            " unknowns, dense; one step, no estimate inside it)");
-      const Stopwatch decomposition_stopwatch;
-      solver = std::make_shared<const PeriodicSolver>(system);
-      result.decomposition_seconds += decomposition_stopwatch.seconds();
+  void keep_the_extremes(double f, const PeriodicResult& r) {
+    for (size_t p = 0; p < probes_.size(); ++p) {
+      result_.outputs[p].left.push_back(r.minimum[p]);
+      result_.outputs[p].right.push_back(r.maximum[p]);
     }
-    if (!keep_going(options.progress, k, count, "switching frequencies")) {
-      result.cancelled = true;
-      return stop(cancelled_status());
-    }
-    PeriodicResult r;
-    if (options.reduce) {
-      std::optional<PeriodicResult> solved = reduced_at(system, f);
-      if (!solved) return fail(reduction_failure);
-      r = std::move(*solved);
-    } else if (exact) {
-      r = solver->solve(system, probes, 1.0 / f, samples);
-    } else {
-      r = run_periodic_shooting(system, probes, 1.0 / f, options.rtol, samples, options.progress);
-    }
-    if (!r.status.ok())
-      return fail("sweep-switching at " + format_with_unit(f, "Hz") + ": " + r.status.message);
-    for (size_t p = 0; p < probes.size(); ++p)
-      if (!std::isfinite(r.minimum[p]) || !std::isfinite(r.maximum[p]))
-        return fail("non-finite result for a peak of " + probes[p].name);
-    if (!std::isfinite(r.periodicity_residual))
-      return fail("sweep-switching at " + format_with_unit(f, "Hz") +
-                  ": non-finite periodicity residual");
-    for (size_t p = 0; p < probes.size(); ++p) {
-      result.outputs[p].left.push_back(r.minimum[p]);
-      result.outputs[p].right.push_back(r.maximum[p]);
-    }
-    result.solve_seconds += r.seconds;
-    result.worst_periodicity_residual =
-        std::max(result.worst_periodicity_residual, r.periodicity_residual);
-    solve_seconds_at.push_back(r.seconds);
-    result.frequencies.push_back(f);
-    ++result.solves;
+    result_.solve_seconds += r.seconds;
+    result_.worst_periodicity_residual =
+        std::max(result_.worst_periodicity_residual, r.periodicity_residual);
+    solve_seconds_at_.push_back(r.seconds);
+    result_.frequencies.push_back(f);
+    ++result_.solves;
   }
 
-  result.solver = solver;
+  std::optional<Status> solve_every_frequency() {
+    result_.outputs.resize(probes_.size());
+    for (size_t p = 0; p < probes_.size(); ++p) {
+      result_.outputs[p].probe = probes_[p];
+      result_.outputs[p].left.reserve(frequencies_.size());
+      result_.outputs[p].right.reserve(frequencies_.size());
+    }
+    const long count = static_cast<long>(frequencies_.size());
+    for (long k = 0; k < count; ++k) {
+      const double f = frequencies_[static_cast<size_t>(k)];
+      const System& system = system_at(f);
+      result_.unknowns = system.size();
+      if (exact_ && !options_.reduce && !solver_) decompose_the_state_matrix_once(system);
+      if (!keep_going(options_.progress, k, count, "switching frequencies")) {
+        result_.cancelled = true;
+        return cancelled_status();
+      }
+      const std::optional<PeriodicResult> solved = periodic_solution_at(system, f);
+      if (!solved) return Status::failure(reduction_failure_);
+      if (std::optional<Status> failed = failure_of_the_periodic_solution(*solved, f))
+        return failed;
+      keep_the_extremes(f, *solved);
+    }
+    return std::nullopt;
+  }
+
   // The resonance of the sweep: the frequency of the largest peak-to-peak at the last output
   // (dx4 or the tip).
-  const size_t main_output = probes.size() - 1;
-  const SwitchingSweepOutput& main = result.outputs[main_output];
-  size_t best = 0;
-  for (size_t k = 0; k < result.frequencies.size(); ++k)
-    if (main.right[k] - main.left[k] > main.right[best] - main.left[best]) best = k;
-  result.peak_output = main_output;
-  if (!result.frequencies.empty()) {
-    result.peak_index = best;
-    result.peak_frequency = result.frequencies[best];
-    result.peak_left = main.left[best];
-    result.peak_right = main.right[best];
+  void find_the_sweep_peak() {
+    const size_t main_output = probes_.size() - 1;
+    const SwitchingSweepOutput& main = result_.outputs[main_output];
+    size_t best = 0;
+    for (size_t k = 0; k < result_.frequencies.size(); ++k)
+      if (main.right[k] - main.left[k] > main.right[best] - main.left[best]) best = k;
+    result_.peak_output = main_output;
+    if (!result_.frequencies.empty()) {
+      result_.peak_index = best;
+      result_.peak_frequency = result_.frequencies[best];
+      result_.peak_left = main.left[best];
+      result_.peak_right = main.right[best];
+    }
   }
 
-  std::vector<DeflectionPeak> peaks;
-  for (size_t p = 0; p < probes.size(); ++p) {
-    if (probes[p].quantity != ProbeQuantity::deflection) continue;
-    peaks.push_back({probes[p].name, 0.0});
-    for (size_t k = 0; k < result.frequencies.size(); ++k)
-      peaks.back().peak = std::max({peaks.back().peak, std::abs(result.outputs[p].left[k]),
-                                    std::abs(result.outputs[p].right[k])});
+  void check_validity_of_the_deflection_peaks() {
+    std::vector<DeflectionPeak> peaks;
+    for (size_t p = 0; p < probes_.size(); ++p) {
+      if (probes_[p].quantity != ProbeQuantity::deflection) continue;
+      peaks.push_back({probes_[p].name, 0.0});
+      for (size_t k = 0; k < result_.frequencies.size(); ++k)
+        peaks.back().peak = std::max({peaks.back().peak, std::abs(result_.outputs[p].left[k]),
+                                      std::abs(result_.outputs[p].right[k])});
+    }
+    result_.validity = check_validity(model_.scene, peaks, drive_peak_voltages(model_.scene));
   }
-  result.validity = check_validity(model.scene, peaks, drive_peak_voltages(model.scene));
 
-  if (check && !result.frequencies.empty()) {
-    // The full exact method at the first, the largest-swing and the last frequency, against the
-    // reduced solution there (solved again: the sweep keeps no samples).
-    phase("checking the reduction");
-    const Stopwatch check_stopwatch;
-    check->model = reduced->reduction();
-    check->tolerance = options.reduction.tolerance;
-    std::vector<size_t> picked{0, best, result.frequencies.size() - 1};
+  // The first, the largest-swing (the sweep peak) and the last frequency, each once.
+  std::vector<size_t> reduction_check_indices() const {
+    std::vector<size_t> picked{0, result_.peak_index, result_.frequencies.size() - 1};
     std::sort(picked.begin(), picked.end());
     picked.erase(std::unique(picked.begin(), picked.end()), picked.end());
-    // The reference: the full exact method where its dense decomposition is the automatic
-    // choice's size, else a reduction with ten times the cut-off.
-    check->against_full = result.unknowns <= options.dense_limit;
-    std::unique_ptr<PeriodicSolver> full;
-    std::unique_ptr<ReducedPeriodicSolver> wider;
-    ReductionOptions wider_options = options.reduction;
-    wider_options.cutoff_hz = 10.0 * check->model.cutoff_hz;
-    check->reference = check->against_full
-                           ? "the full exact periodic solution"
-                           : "a reduction with ten times the cut-off (" +
-                                 format_with_unit(wider_options.cutoff_hz, "Hz") + ")";
-    auto reference_at = [&](const System& system, double f) {
-      if (check->against_full) {
-        if (!full) {
-          const Stopwatch build_stopwatch;
-          full = std::make_unique<PeriodicSolver>(system);
-          check->full_build_seconds = build_stopwatch.seconds();
-        }
-        return full->solve(system, probes, 1.0 / f, samples);
-      }
-      if (!wider) {
-        phase("checking against a reduction with ten times the cut-off");
-        const Stopwatch build_stopwatch;
-        wider = std::make_unique<ReducedPeriodicSolver>(system, wider_options);
-        check->full_build_seconds = build_stopwatch.seconds();
-        check->reference += ", " + std::to_string(wider->reduction().kept_modes) + " mode(s) and " +
-                            std::to_string(wider->reduction().kept_real_poles) +
-                            " real pole(s) against " + std::to_string(check->model.kept_modes) +
-                            " and " + std::to_string(check->model.kept_real_poles);
-      }
-      if (!wider->reduction().status.ok()) {
-        PeriodicResult failed;
-        failed.status = wider->reduction().status.with_context("the wider reduction: ");
-        return failed;
-      }
-      return wider->solve(system, probes, 1.0 / f, samples);
-    };
-    for (size_t k : picked) {
-      if (cancel_requested(options.progress)) {
-        result.cancelled = true;
-        return stop(cancelled_status());
-      }
-      const double f = result.frequencies[k];
-      const System& system = system_at(f);
-      const PeriodicResult exact_there = reference_at(system, f);
-      if (!exact_there.status.ok())
-        return fail("sweep-switching --reduce check at " + format_with_unit(f, "Hz") + ": " +
-                    exact_there.status.message);
-      const std::optional<PeriodicResult> again = reduced_at(system, f);
-      if (!again) return fail(reduction_failure);
-      if (!again->status.ok())
-        return fail("sweep-switching --reduce at " + format_with_unit(f, "Hz") + ": " +
-                    again->status.message);
-      // Per frequency: the fastest check solve (the first also fills per-probe caches).
-      check->full_solve_seconds = check->full_solve_seconds > 0.0
-                                      ? std::min(check->full_solve_seconds, exact_there.seconds)
-                                      : exact_there.seconds;
-      check->reduced_solve_seconds =
-          check->reduced_solve_seconds > 0.0
-              ? std::min({check->reduced_solve_seconds, solve_seconds_at[k], again->seconds})
-              : std::min(solve_seconds_at[k], again->seconds);
-      double error = periodic_difference(*again, exact_there);
-      if (!check->against_full) {  // and what neither reduction keeps: the edge estimate
-        std::vector<double> scale;
-        for (const std::vector<double>& values : again->values) {
-          double largest = 0.0;
-          for (double v : values) largest = std::max(largest, std::abs(v));
-          scale.push_back(largest);
-        }
-        const double edge = reduced->edge_error_estimate(system, probes, scale);
-        check->edge_estimates.push_back(edge);
-        error = std::max(error, edge);
-      }
-      if (!std::isfinite(error))
-        return fail("sweep-switching --reduce check at " + format_with_unit(f, "Hz") +
-                    ": non-finite difference between the reduced and the full solution");
-      check->frequencies.push_back(f);
-      check->errors.push_back(error);
-      check->measured_error = std::max(check->measured_error, error);
-    }
-    check->tolerance_met = check->measured_error <= check->tolerance;
-    result.check_seconds = check_stopwatch.seconds();
-    result.reduction = std::move(check);
+    return picked;
   }
 
-  if (options.first_mode) {
+  // Per frequency: the fastest check solve (the first also fills per-probe caches).
+  void keep_the_fastest_check_solves(size_t k, double reference_seconds, double reduced_seconds) {
+    SwitchingSweepReductionCheck& check = *check_;
+    check.full_solve_seconds = check.full_solve_seconds > 0.0
+                                   ? std::min(check.full_solve_seconds, reference_seconds)
+                                   : reference_seconds;
+    check.reduced_solve_seconds =
+        check.reduced_solve_seconds > 0.0
+            ? std::min({check.reduced_solve_seconds, solve_seconds_at_[k], reduced_seconds})
+            : std::min(solve_seconds_at_[k], reduced_seconds);
+  }
+
+  std::optional<Status> check_the_reduction_at(size_t k, ReductionCheckReference& reference) {
+    SwitchingSweepReductionCheck& check = *check_;
+    const double f = result_.frequencies[k];
+    const System& system = system_at(f);
+    const PeriodicResult exact_there = reference.solution_at(system, f);
+    if (!exact_there.status.ok())
+      return Status::failure("sweep-switching --reduce check at " + format_with_unit(f, "Hz") +
+                             ": " + exact_there.status.message);
+    const std::optional<PeriodicResult> again = reduced_solution_at(system, f);
+    if (!again) return Status::failure(reduction_failure_);
+    if (!again->status.ok())
+      return Status::failure("sweep-switching --reduce at " + format_with_unit(f, "Hz") + ": " +
+                             again->status.message);
+    keep_the_fastest_check_solves(k, exact_there.seconds, again->seconds);
+    double error = periodic_difference(*again, exact_there);
+    if (!check.against_full) {  // and what neither reduction keeps: the edge estimate
+      const double edge =
+          reduced_->edge_error_estimate(system, probes_, largest_magnitude_per_output(*again));
+      check.edge_estimates.push_back(edge);
+      error = std::max(error, edge);
+    }
+    if (!std::isfinite(error))
+      return Status::failure("sweep-switching --reduce check at " + format_with_unit(f, "Hz") +
+                             ": non-finite difference between the reduced and the full solution");
+    check.frequencies.push_back(f);
+    check.errors.push_back(error);
+    check.measured_error = std::max(check.measured_error, error);
+    return std::nullopt;
+  }
+
+  // The reduced solution (solved again: the sweep keeps no samples) against a reference at a few
+  // frequencies of the sweep.
+  std::optional<Status> check_the_reduction() {
+    phase("checking the reduction");
+    const Stopwatch check_stopwatch;
+    SwitchingSweepReductionCheck& check = *check_;
+    check.model = reduced_->reduction();
+    check.tolerance = options_.reduction.tolerance;
+    check.against_full = result_.unknowns <= options_.dense_limit;
+    ReductionCheckReference reference(check, options_, samples_);
+    for (size_t k : reduction_check_indices()) {
+      if (cancel_requested(options_.progress)) {
+        result_.cancelled = true;
+        return cancelled_status();
+      }
+      if (std::optional<Status> failed = check_the_reduction_at(k, reference)) return failed;
+    }
+    check.tolerance_met = check.measured_error <= check.tolerance;
+    result_.check_seconds = check_stopwatch.seconds();
+    result_.reduction = std::move(check_);
+    return std::nullopt;
+  }
+
+  void find_the_first_mode_for_the_resonance_marker() {
     phase("modes for the resonance marker");
     const Stopwatch modes_stopwatch;
-    const System system = model.network.assemble();
+    const System system = model_.network.assemble();
     const OperatingPoint rest = operating_point(system);
     ModalOptions modal;
     modal.keep_vectors = false;
@@ -420,11 +518,40 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
     const ModalResult modes = run_modes(system, rest.rest.operating_point, modal);
     if (rest.status.ok() && modes.status.ok() && !modes.modes.empty() &&
         std::isfinite(modes.modes[0].frequency_hz))
-      result.first_mode_hz = modes.modes[0].frequency_hz;
-    result.first_mode_seconds = modes_stopwatch.seconds();
+      result_.first_mode_hz = modes.modes[0].frequency_hz;
+    result_.first_mode_seconds = modes_stopwatch.seconds();
   }
-  result.seconds = stopwatch.seconds();
-  return result;
+
+  const Model& model_;
+  const Scene& scene_;
+  const SwitchingSweepOptions& options_;
+  const Stopwatch& stopwatch_;
+  const std::vector<double> frequencies_;
+  const int samples_;
+  const bool exact_;
+  const std::vector<Probe>& probes_;
+  const double highest_;
+  bool excitation_only_ = true;
+  System swept_;
+  std::shared_ptr<const PeriodicSolver> solver_;
+  std::unique_ptr<ReducedPeriodicSolver> reduced_;
+  std::optional<SwitchingSweepReductionCheck> check_;
+  std::string reduction_failure_;
+  std::vector<double> solve_seconds_at_;  // per frequency, for the reduction check
+  SwitchingSweepResult result_;
+};
+
+}  // namespace
+
+SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
+                                         const SwitchingSweepOptions& given) {
+  const Stopwatch stopwatch;
+  given.validate();
+  std::vector<std::string> method_notes;
+  const SwitchingSweepOptions options = resolve_sweep_method(model, given, method_notes);
+  check_sweep_outputs(model, scene, options);
+  SwitchingSweepRun sweep(model, scene, options, std::move(method_notes), stopwatch);
+  return sweep.run();
 }
 
 SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,

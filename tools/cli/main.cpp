@@ -20,6 +20,7 @@
 #include <cstring>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,35 +30,30 @@
 
 using namespace emnet_cli;
 
-int main(int argc, char** argv) {
-  CLI::App app{
-      "emnet: lumped electromechanical network simulator.\n"
-      "Bending beams (Euler-Bernoulli or Timoshenko) cut into N segments, with masses, springs\n"
-      "and circuits, driven by dielectric elastomer actuators, as Firestone (mobility)\n"
-      "networks: force = current, velocity = voltage."};
-  app.require_subcommand(1);
-  app.footer(
-      "Exit status: 0 success; 2 bad input; 3 numerical failure; 4 crosscheck: a difference\n"
-      "exceeds its tolerance; 5 computed but outside the model's validity (a deflection above\n"
-      "model.deflection_limit of the beam length, default 10 %, or a DEA's field V/d above\n"
-      "dea[].breakdown_field): printed with a WARNING and \"validity\" in --json.");
-  CommonOptions options;
-  const std::vector<Command> commands = {add_static_command(app, options),
-                                         add_modes_command(app, options),
-                                         add_ac_command(app, options),
-                                         add_tran_command(app, options),
-                                         add_sweep_switching_command(app, options),
-                                         add_identify_command(app, options),
-                                         add_sensitivity_command(app, options),
-                                         add_mismatch_command(app, options),
-                                         add_netlist_command(app, options),
-                                         add_crosscheck_command(app, options),
-                                         add_study_command(app, options),
-                                         add_schema_command(app)};
-  const CLI::App* crosscheck_command = app.get_subcommand("crosscheck");
+namespace {
 
-  // Each command's help ends with one example and the scene keys it reads (their units,
-  // defaults and meanings: docs/scene-reference.md, `emnet schema`), before the exit statuses.
+// Words wrapped at 90 columns, continuation lines indented by two.
+std::string wrapped_at_90_columns(const std::string& text) {
+  std::string out, line;
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(start, end - start);
+    if (!line.empty() && line.size() + 1 + word.size() > 90) {
+      out += line + "\n";
+      line = "  " + word;
+    } else {
+      line += (line.empty() ? "" : " ") + word;
+    }
+    start = end + 1;
+  }
+  return out + line;
+}
+
+// Each command's help ends with one example and the scene keys it reads (their units,
+// defaults and meanings: docs/scene-reference.md, `emnet schema`), before the exit statuses.
+void add_examples_and_keys_read_to_the_help(const std::vector<Command>& commands) {
   const std::string model_tables =
       "the tables that build the model: [beam] (or [[section]]), [[mass]], [[spring]], "
       "[damping], [[dea]], [drive], [[load]], [[circuit]], [environment], [model]; and "
@@ -86,68 +82,145 @@ int main(int argc, char** argv) {
       {"study", "",  // its description has the example
        model_tables + "; the keys named by --vary or --variants are replaced per variant"},
       {"schema", "emnet schema --markdown", "no scene: it lists every key the reader accepts"}};
-  // Words wrapped at 90 columns, continuation lines indented by two.
-  auto wrapped = [](const std::string& text) {
-    std::string out, line;
-    size_t start = 0;
-    while (start < text.size()) {
-      size_t end = text.find(' ', start);
-      if (end == std::string::npos) end = text.size();
-      const std::string word = text.substr(start, end - start);
-      if (!line.empty() && line.size() + 1 + word.size() > 90) {
-        out += line + "\n";
-        line = "  " + word;
-      } else {
-        line += (line.empty() ? "" : " ") + word;
-      }
-      start = end + 1;
-    }
-    return out + line;
-  };
   for (const Command& command : commands)
     for (const Usage& usage : usages)
       if (command.app->get_name() == usage.command)
         command.app->footer((usage.example.empty() ? "" : "Example:\n  " + usage.example + "\n") +
-                            wrapped("Reads: " + usage.reads + ".") + "\n\n" +
+                            wrapped_at_90_columns("Reads: " + usage.reads + ".") + "\n\n" +
                             command.app->get_footer());
+}
 
-  // An unknown command would otherwise be taken for a scene file ("A subcommand is required").
+// An unknown command would otherwise be taken for a scene file ("A subcommand is required").
+bool refused_as_no_known_command(CLI::App& app, int argc, char** argv) {
   std::vector<std::string> command_names;
   std::string command_list;
   for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
     command_names.push_back(command->get_name());
     command_list += (command_list.empty() ? "" : ", ") + command->get_name();
   }
-  if (argc < 2 || (argv[1][0] != '-' && std::find(command_names.begin(), command_names.end(),
-                                                  argv[1]) == command_names.end())) {
-    std::cerr << "emnet: error: "
-              << (argc < 2 ? std::string("a command is required")
-                           : "unknown command '" + shown(argv[1]) + "'")
-              << "; the commands are " << command_list << " (see emnet --help)\n";
+  if (argc >= 2 && (argv[1][0] == '-' || std::find(command_names.begin(), command_names.end(),
+                                                   argv[1]) != command_names.end()))
+    return false;
+  std::cerr << "emnet: error: "
+            << (argc < 2 ? std::string("a command is required")
+                         : "unknown command '" + shown(argv[1]) + "'")
+            << "; the commands are " << command_list << " (see emnet --help)\n";
+  return true;
+}
+
+// The help is output too: a full disk or closed file behind standard output fails it (2).
+int help_printed(CLI::App& app, const CLI::ParseError& e) {
+  const int status = app.exit(e);
+  std::cout.flush();
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::cerr << "emnet: error: cannot write the help to standard output (" << std::strerror(errno)
+              << ")\n";
     return 2;
   }
-  // The help is output too: a full disk or closed file behind standard output fails it (2).
-  auto help_printed = [&](const CLI::ParseError& e) {
-    const int status = app.exit(e);
-    std::cout.flush();
-    if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
-      std::cerr << "emnet: error: cannot write the help to standard output ("
-                << std::strerror(errno) << ")\n";
-      return 2;
-    }
-    return status;
-  };
+  return status;
+}
+
+// The exit status when parsing ends the program (help, a bad option); nullopt to go on.
+std::optional<int> status_if_parsing_ends_the_program(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return help_printed(e);
+    return help_printed(app, e);
   } catch (const CLI::CallForAllHelp& e) {
-    return help_printed(e);
+    return help_printed(app, e);
   } catch (const CLI::ParseError& e) {
     // CLI11's message quotes the argument as given: control characters escaped here.
     std::cerr << "emnet: error: " << emnet::terminal_text(e.what()) << " (see emnet --help)\n";
     return 2;
   }
+  return std::nullopt;
+}
+
+// One message for a failure: after the progress line, control characters escaped; an
+// interruption wins over the failure it caused.
+int failed(TerminalProgress& reporter, int status, const std::string& kind,
+           const std::string& what) {
+  reporter.finish();
+  if (InterruptHandler::interrupted()) {
+    std::cerr << "emnet: interrupted (Ctrl-C): stopped, no output file written\n";
+    return 130;
+  }
+  std::cerr << "emnet: " << kind << ": "
+            << (status == 2 ? emnet::terminal_text(what) : emnet::terminal_lines(what)) << "\n";
+  return status;
+}
+
+// The chosen command's status, each kind of exception its own.
+int run_the_chosen_command(const CLI::App& app, const std::vector<Command>& commands,
+                           TerminalProgress& reporter) {
+  int status = 1;
+  try {
+    for (const Command& command : commands)
+      if (*command.app) status = command.run();
+  } catch (const InputError& e) {
+    // Worded with the command's flags: a library OptionError names its Options fields.
+    status = failed(reporter, 2, "error", input_error_text(app.get_subcommands().front(), e));
+  } catch (const FileError& e) {
+    status = failed(reporter, 2, "error", e.what());
+  } catch (const Interrupted& e) {
+    status = failed(reporter, 130, "interrupted", e.what());
+  } catch (const NumericalFailure& e) {
+    status = failed(reporter, 3, "numerical failure", e.what());
+  } catch (const std::bad_alloc&) {
+    status = failed(reporter, 3, "numerical failure",
+                    "out of memory: the model does not fit in the memory this process may "
+                    "use; fewer segments (--segments), or --reduce where the command has it");
+  } catch (const std::exception& e) {
+    status = failed(reporter, 1, "internal error", e.what());
+  }
+  return status;
+}
+
+// The result printed is output too: a full disk or a closed file behind standard output is
+// an error, not a silent loss.
+int status_once_the_output_is_written(int status) {
+  std::cout.flush();
+  const bool lost = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+  if (lost) {
+    std::cerr << "emnet: error: cannot write the result to standard output ("
+              << std::strerror(errno) << ")\n";
+    return status == 0 ? 2 : status;
+  }
+  return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "emnet: lumped electromechanical network simulator.\n"
+      "Bending beams (Euler-Bernoulli or Timoshenko) cut into N segments, with masses, springs\n"
+      "and circuits, driven by dielectric elastomer actuators, as Firestone (mobility)\n"
+      "networks: force = current, velocity = voltage."};
+  app.require_subcommand(1);
+  app.footer(
+      "Exit status: 0 success; 2 bad input; 3 numerical failure; 4 crosscheck: a difference\n"
+      "exceeds its tolerance; 5 computed but outside the model's validity (a deflection above\n"
+      "model.deflection_limit of the beam length, default 10 %, or a DEA's field V/d above\n"
+      "dea[].breakdown_field): printed with a WARNING and \"validity\" in --json.");
+  CommonOptions options;
+  const std::vector<Command> commands = {add_static_command(app, options),
+                                         add_modes_command(app, options),
+                                         add_ac_command(app, options),
+                                         add_tran_command(app, options),
+                                         add_sweep_switching_command(app, options),
+                                         add_identify_command(app, options),
+                                         add_sensitivity_command(app, options),
+                                         add_mismatch_command(app, options),
+                                         add_netlist_command(app, options),
+                                         add_crosscheck_command(app, options),
+                                         add_study_command(app, options),
+                                         add_schema_command(app)};
+  const CLI::App* crosscheck_command = app.get_subcommand("crosscheck");
+  add_examples_and_keys_read_to_the_help(commands);
+  if (refused_as_no_known_command(app, argc, argv)) return 2;
+  if (const std::optional<int> status = status_if_parsing_ends_the_program(app, argc, argv))
+    return *status;
 
   // Before any thread starts (terminal_progress.hpp): Ctrl-C sets a flag that the analyses
   // poll; SIGTERM, SIGHUP and a second Ctrl-C remove the temporaries and end the program.
@@ -160,47 +233,7 @@ int main(int argc, char** argv) {
                             : options.progress ? Mode::forced
                                                : Mode::automatic);
   options.reporter = &reporter;
-  // One message for a failure: after the progress line, control characters escaped; an
-  // interruption wins over the failure it caused.
-  auto failed = [&](int status, const std::string& kind, const std::string& what) {
-    reporter.finish();
-    if (InterruptHandler::interrupted()) {
-      std::cerr << "emnet: interrupted (Ctrl-C): stopped, no output file written\n";
-      return 130;
-    }
-    std::cerr << "emnet: " << kind << ": "
-              << (status == 2 ? emnet::terminal_text(what) : emnet::terminal_lines(what)) << "\n";
-    return status;
-  };
-  int status = 1;
-  try {
-    for (const Command& command : commands)
-      if (*command.app) status = command.run();
-  } catch (const InputError& e) {
-    // Worded with the command's flags: a library OptionError names its Options fields.
-    status = failed(2, "error", input_error_text(app.get_subcommands().front(), e));
-  } catch (const FileError& e) {
-    status = failed(2, "error", e.what());
-  } catch (const Interrupted& e) {
-    status = failed(130, "interrupted", e.what());
-  } catch (const NumericalFailure& e) {
-    status = failed(3, "numerical failure", e.what());
-  } catch (const std::bad_alloc&) {
-    status = failed(3, "numerical failure",
-                    "out of memory: the model does not fit in the memory this process may "
-                    "use; fewer segments (--segments), or --reduce where the command has it");
-  } catch (const std::exception& e) {
-    status = failed(1, "internal error", e.what());
-  }
+  const int status = run_the_chosen_command(app, commands, reporter);
   reporter.finish();
-  // The result printed is output too: a full disk or a closed file behind standard output is
-  // an error, not a silent loss.
-  std::cout.flush();
-  const bool lost = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
-  if (lost) {
-    std::cerr << "emnet: error: cannot write the result to standard output ("
-              << std::strerror(errno) << ")\n";
-    return status == 0 ? 2 : status;
-  }
-  return status;
+  return status_once_the_output_is_written(status);
 }
