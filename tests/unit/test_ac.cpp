@@ -11,12 +11,13 @@
 #include "emnet/elements/inductor.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double two_pi = 2 * M_PI;
+using emnet::testing::kTwoPi;
 
 Waveform unit_ac() {
   Waveform w = Waveform::constant(0.0);
@@ -45,7 +46,7 @@ TEST(AcFixtures, OneMassSpringMatchesClosedForm) {
   const AcResult ac = run_ac(system, rest.operating_point, grid, {displacement_of(v)});
   ASSERT_TRUE(ac.status.ok()) << ac.status.message;
   for (size_t i = 0; i < grid.size(); ++i) {
-    const double w = two_pi * grid[i];
+    const double w = kTwoPi * grid[i];
     const Complex exact = 1.0 / Complex(k - m * w * w, w * c);
     EXPECT_LT(std::abs(ac.values[0][i] - exact), 1e-12 * std::abs(exact)) << grid[i] << " Hz";
   }
@@ -76,7 +77,7 @@ TEST(AcFixtures, TwoMassSpringMatchesClosedForm) {
       run_ac(system, rest.operating_point, grid, {displacement_of(v1), displacement_of(v2)});
   ASSERT_TRUE(ac.status.ok()) << ac.status.message;
   for (size_t i = 0; i < grid.size(); ++i) {
-    const double w = two_pi * grid[i];
+    const double w = kTwoPi * grid[i];
     const Complex a11(k1 + k2 - m1 * w * w, w * (c1 + c2)), a12(-k2, -w * c2),
         a22(k2 - m2 * w * w, w * c2);
     const Complex det = a11 * a22 - a12 * a12;
@@ -137,7 +138,7 @@ TEST(AcConsistency, ModalFrequenciesSitAtTheAcPeaks) {
   scene.loads = {testing::load(LoadKind::force, 0.5, 1.0)};
   scene.probes = {testing::beam_probe("tip", ProbeQuantity::deflection, 0.5)};
   const double f3 = 101.41;  // continuum f3 of this beam [Hz]
-  scene.damping.kelvin_voigt_time = 2 * 0.002 / (two_pi * f3);
+  scene.damping.kelvin_voigt_time = 2 * 0.002 / (kTwoPi * f3);
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
@@ -191,7 +192,7 @@ TEST(AcAccuracy, RefinedNearTheResonanceOfALargeFin) {
     for (int step = 0; step < 3; ++step) y += lu.solve(WideVector(rhs - matrix * y));
     const Eigen::VectorXcd y_double = y.cast<Complex>();
     for (size_t p = 0; p < model.probes.size(); ++p)
-      reference[p].push_back(probe_phasor(model.probes[p], y_double, two_pi * f));
+      reference[p].push_back(probe_phasor(model.probes[p], y_double, kTwoPi * f));
   }
   for (size_t p = 0; p < model.probes.size(); ++p) {
     double largest = 0.0, worst = 0.0;

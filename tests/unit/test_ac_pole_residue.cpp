@@ -8,14 +8,15 @@
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double two_pi = 2 * M_PI;
-const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
-const std::string cantilever = std::string(EMNET_SOURCE_DIR) + "/netlists/cantilever.toml";
+using emnet::testing::kTwoPi;
+using emnet::testing::kFishfin;
+using emnet::testing::kCantilever;
 
 AcOptions forced(AcMethod method) {
   AcOptions options;
@@ -39,11 +40,11 @@ TEST(AcPoleResidue, OneMassMatchesTheClosedFormFromZeroFrequency) {
   EXPECT_LE(ac.check_deviation, kPoleResidueAgreement);
   double peak = 0.0;
   for (double f : grid) {
-    const double w = two_pi * f;
+    const double w = kTwoPi * f;
     peak = std::max(peak, std::abs(1.0 / Complex(k - m * w * w, w * c)));
   }
   for (size_t i = 0; i < grid.size(); ++i) {
-    const double w = two_pi * grid[i];
+    const double w = kTwoPi * grid[i];
     const Complex exact = 1.0 / Complex(k - m * w * w, w * c);
     EXPECT_LT(std::abs(ac.values[0][i] - exact), 1e-13 * peak) << grid[i] << " Hz";
   }
@@ -61,7 +62,7 @@ TEST_P(AcPoleResidueFin, MatchesADenseSolveToRounding) {
   // The ideal drive, or the RC loops (linearised at 0 V: the two DEAs' equal RC poles, a
   // repeated pole whose eigenspace basis is orthonormalised).
   const Scene scene = read_scene(
-      fin, {GetParam() ? "drive.electrical_dynamics=false" : "drive.electrical_dynamics=true"});
+      kFishfin, {GetParam() ? "drive.electrical_dynamics=false" : "drive.electrical_dynamics=true"});
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
@@ -80,7 +81,7 @@ TEST_P(AcPoleResidueFin, MatchesADenseSolveToRounding) {
   std::vector<std::vector<Complex>> reference(probes.size());
   std::vector<double> peak(probes.size(), 0.0);
   for (double f : grid) {
-    const double w = two_pi * f;
+    const double w = kTwoPi * f;
     Eigen::VectorXcd y = Eigen::VectorXcd::Zero(system.size());
     if (f > 0.0) y = (g + Complex(0.0, w) * c).fullPivLu().solve(b);
     for (size_t p = 0; p < probes.size(); ++p) {
@@ -105,7 +106,7 @@ INSTANTIATE_TEST_SUITE_P(IdealAndRcDrive, AcPoleResidueFin, ::testing::Bool());
 // scene is undamped, so near its resonances the two forms differ by more than the agreement
 // (neither is then trusted beyond its residual); the values are the direct solve's.
 TEST(AcPoleResidue, AutomaticFallsBackToTheDirectSolveWithTheReason) {
-  const Scene scene = read_scene(cantilever, {});
+  const Scene scene = read_scene(kCantilever, {});
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);
@@ -130,7 +131,7 @@ TEST(AcPoleResidue, AutomaticFallsBackToTheDirectSolveWithTheReason) {
 
 // Large networks are solved directly: the dense decomposition would cost more than the sweep.
 TEST(AcPoleResidue, LargeNetworksUseTheDirectSolve) {
-  const Scene scene = read_scene(fin, {"drive.electrical_dynamics=false", "beam.segments=60"});
+  const Scene scene = read_scene(kFishfin, {"drive.electrical_dynamics=false", "beam.segments=60"});
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   ASSERT_GT(system.size(), kPoleResidueUnknowns);

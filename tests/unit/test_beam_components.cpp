@@ -29,11 +29,12 @@
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "transfer_matrix.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+using emnet::testing::kPi;
 
 // The static value of probe `name` of the scene text `text`.
 double static_probe(const std::string& text, const std::string& name) {
@@ -172,8 +173,8 @@ TEST(Timoshenko, CantileverTipDeflectionExactForEveryN) {
 TEST(Timoshenko, SimplySupportedFrequenciesConvergeToTheShearBeam) {
   const double length = 0.5, ei = 2.0, rho_a = 0.3, shear = 400.0;
   auto exact_hz = [&](int n) {
-    const double k = n * pi / length;
-    return k * k * std::sqrt(ei / rho_a) / std::sqrt(1 + k * k * ei / shear) / (2 * pi);
+    const double k = n * kPi / length;
+    return k * k * std::sqrt(ei / rho_a) / std::sqrt(1 + k * k * ei / shear) / (2 * kPi);
   };
   std::vector<std::vector<double>> errors;
   for (int segments : {40, 80, 160}) {
@@ -278,7 +279,7 @@ TEST(TipMassCantilever, FirstModesConvergeToTheFrequencyEquation) {
   std::vector<double> exact;
   for (const auto& [low, high] : {std::pair{0.5, 2.0}, std::pair{3.0, 5.0}}) {
     const double lambda = bisect(equation, low, high);
-    exact.push_back(lambda * lambda / (2 * pi * length * length) * std::sqrt(ei / rho_a));
+    exact.push_back(lambda * lambda / (2 * kPi * length * length) * std::sqrt(ei / rho_a));
   }
   // The transfer matrix agrees (its point-mass matrix, independently of the equation).
   test_reference::BeamDescription beam;
@@ -305,10 +306,10 @@ TEST(RotationalRootSpring, FirstModesConvergeToTheFrequencyEquation) {
   std::vector<double> exact;
   for (const auto& [low, high] : {std::pair{0.5, 1.875}, std::pair{3.0, 4.69}}) {
     const double lambda = bisect(equation, low, high);
-    exact.push_back(lambda * lambda / (2 * pi * length * length) * std::sqrt(ei / rho_a));
+    exact.push_back(lambda * lambda / (2 * kPi * length * length) * std::sqrt(ei / rho_a));
   }
   const double clamped = std::pow(test_reference::cantilever_roots[0], 2) /
-                         (2 * pi * length * length) * std::sqrt(ei / rho_a);
+                         (2 * kPi * length * length) * std::sqrt(ei / rho_a);
   EXPECT_NEAR(exact[0] / clamped, 0.844, 5e-4);
   const double k_theta = stiffness_ratio * ei / length;  // 40 N*m/rad
   expect_second_order_convergence(

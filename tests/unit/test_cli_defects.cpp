@@ -9,13 +9,14 @@
 #include <vector>
 
 #include "cli_run.hpp"
+#include "shipped_scenes.hpp"
 
 namespace {
 
 using emnet::testing::CliRun;
 using emnet::testing::run_emnet;
 
-const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+using emnet::testing::kFishfin;
 
 // With the tip first and P2 (23 mm from the clamp) last, the largest swing is the tip's, not
 // the last output's. Reference: the same run's --json outputs, the largest peak-to-peak over
@@ -23,7 +24,7 @@ const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml"
 // the values are compared to 1e-5 relative.
 TEST(CliSweepReport, LargestSwingNamesTheLargestOutput) {
   const std::string command =
-      "sweep-switching " + fin + " --from 4 --to 6 --step 1 --probe tip --probe P2";
+      "sweep-switching " + kFishfin + " --from 4 --to 6 --step 1 --probe tip --probe P2";
   const CliRun json_run = run_emnet(command + " --json");
   ASSERT_EQ(json_run.status, 0) << json_run.err;
   const auto json = nlohmann::json::parse(json_run.out);
@@ -73,7 +74,7 @@ TEST(CliHelpOutput, HelpToAFullDeviceFails) {
 // A CLI11 parse error quotes the argument: an escape sequence in it reaches the terminal
 // escaped, not raw (ESC would clear the screen here).
 TEST(CliParseErrors, ArgumentsAreEscaped) {
-  const CliRun r = run_emnet("static " + fin + " --segments \"$(printf 'x\\033[2J')\"");
+  const CliRun r = run_emnet("static " + kFishfin + " --segments \"$(printf 'x\\033[2J')\"");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("x"), std::string::npos) << r.err;

@@ -5,14 +5,15 @@
 #include <string>
 
 #include "cli_run.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
 using testing::run_emnet;
 
-const std::string kFin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
-const std::string kCantilever = std::string(EMNET_SOURCE_DIR) + "/netlists/cantilever.toml";
+using emnet::testing::kFishfin;
+using emnet::testing::kCantilever;
 
 // --probe was accepted and ignored by modes (exit 0, no probe in the output). Now each probe's
 // value in each mode, per unit of the mode's largest nodal deflection. Reference: the first mode
@@ -20,7 +21,7 @@ const std::string kCantilever = std::string(EMNET_SOURCE_DIR) + "/netlists/canti
 // and none at the clamp (P1 at x = 0: exactly 0, the node is held); P4 lies between (a positive
 // fraction, the first mode has no node).
 TEST(CliModes, ProbesGiveTheModeShapeThere) {
-  const auto r = run_emnet("modes " + kFin +
+  const auto r = run_emnet("modes " + kFishfin +
                            " --count 2 --no-error-estimate --probe P1 --probe P4 "
                            "--probe deflection@122.5mm --json");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -32,11 +33,11 @@ TEST(CliModes, ProbesGiveTheModeShapeThere) {
   EXPECT_LT(probes[1]["value"].get<double>(), 0.95);
   EXPECT_NEAR(probes[2]["value"].get<double>(), 1.0, 1e-12);
   EXPECT_NEAR(probes[2]["value_imag"].get<double>(), 0.0, 1e-12);
-  const auto text = run_emnet("modes " + kFin + " --count 2 --no-error-estimate --probe P4");
+  const auto text = run_emnet("modes " + kFishfin + " --count 2 --no-error-estimate --probe P4");
   ASSERT_EQ(text.status, 0) << text.err;
   EXPECT_NE(text.out.find("mode shape at the probes"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("P4"), std::string::npos);
-  const auto bad = run_emnet("modes " + kFin + " --probe nowhere");
+  const auto bad = run_emnet("modes " + kFishfin + " --probe nowhere");
   EXPECT_EQ(bad.status, 2) << bad.out;
 }
 
@@ -69,10 +70,10 @@ TEST(CliModes, RigidBodyMotionsAreNamed) {
 // the difference between two independent computations of the same pencil's poles, the dense
 // method and Arnoldi (fish fin, N = 100), and be small (below 1e-9 relative there).
 TEST(CliModes, ErrorBoundsCoverTheDifferenceOfTwoMethods) {
-  const auto arnoldi = run_emnet("modes " + kFin +
+  const auto arnoldi = run_emnet("modes " + kFishfin +
                                  " --segments 100 --count 3 --no-error-estimate "
                                  "--json");
-  const auto dense = run_emnet("modes " + kFin +
+  const auto dense = run_emnet("modes " + kFishfin +
                                " --segments 100 --count 3 --no-error-estimate "
                                "--dense --json");
   ASSERT_EQ(arnoldi.status, 0) << arnoldi.err;
@@ -87,7 +88,7 @@ TEST(CliModes, ErrorBoundsCoverTheDifferenceOfTwoMethods) {
     EXPECT_LE(std::abs(fa - fd), ba + bd) << "mode " << k + 1;
     EXPECT_LT(ba / fa, 1e-9);
   }
-  const auto table = run_emnet("modes " + kFin + " --count 2");
+  const auto table = run_emnet("modes " + kFishfin + " --count 2");
   ASSERT_EQ(table.status, 0) << table.err;
   EXPECT_NE(table.out.find("rounding"), std::string::npos) << table.out;
 }

@@ -17,6 +17,7 @@
 
 #include "cli_run.hpp"
 #include "test_directory.hpp"
+#include "shipped_scenes.hpp"
 
 namespace {
 
@@ -24,7 +25,7 @@ namespace fs = std::filesystem;
 using emnet::testing::CliRun;
 using emnet::testing::run_emnet;
 
-const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+using emnet::testing::kFishfin;
 
 class CliFiles : public emnet::testing::TestDirectory {
  protected:
@@ -64,7 +65,7 @@ double largest_difference(const std::vector<double>& a, const std::vector<double
 // default outputs. Reference: the default run's tip and dx4 (the same integration; a probe is
 // read from the state, so the series agree to rounding: 1e-12 of the peak).
 TEST(CliProbes, TranHonoursEveryProbe) {
-  const std::string common = "tran " + fin + " --periods 1 --points-per-period 20 --json";
+  const std::string common = "tran " + kFishfin + " --periods 1 --points-per-period 20 --json";
   const auto all = json_of(run_emnet(common));
   const auto picked = json_of(run_emnet(common + " --probe tip --probe dx4 --probe velocity@0.1"));
   ASSERT_EQ(picked["outputs"].size(), 3u);
@@ -83,7 +84,7 @@ TEST(CliProbes, TranHonoursEveryProbe) {
 
 TEST_F(CliFiles, TranProbesReachTheCsvAndThePlot) {
   const std::string csv = path("tran.csv");
-  const CliRun r = run_emnet("tran " + fin +
+  const CliRun r = run_emnet("tran " + kFishfin +
                              " --periods 1 --points-per-period 10 --probe tip --probe P4 --csv " +
                              csv + " --plot " + path("tran.png") + " --plot-script");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -93,7 +94,7 @@ TEST_F(CliFiles, TranProbesReachTheCsvAndThePlot) {
   EXPECT_NE(data.find("P4 ("), std::string::npos) << data;
   EXPECT_EQ(data.find("dx2"), std::string::npos) << data;
   // Probes of different units are plotted, each unit in its own panel: no axis has two units.
-  const CliRun mixed = run_emnet("tran " + fin + " --periods 1 --probe tip --probe u_A --plot " +
+  const CliRun mixed = run_emnet("tran " + kFishfin + " --periods 1 --probe tip --probe u_A --plot " +
                                  path("mixed.png") + " --plot-script");
   ASSERT_EQ(mixed.status, 0) << mixed.err;
   const std::string script = contents(path("mixed.png.gp"));
@@ -106,13 +107,13 @@ TEST_F(CliFiles, TranProbesReachTheCsvAndThePlot) {
   EXPECT_NE(contents(path("tran.png.gp")).find("set ylabel 'voltage [V]'"), std::string::npos);
   // Without --plot-script only the image is written.
   const CliRun plain =
-      run_emnet("tran " + fin + " --periods 1 --probe tip --plot " + path("plain.png"));
+      run_emnet("tran " + kFishfin + " --periods 1 --probe tip --plot " + path("plain.png"));
   ASSERT_EQ(plain.status, 0) << plain.err;
   EXPECT_TRUE(fs::exists(path("plain.png")));
   EXPECT_FALSE(fs::exists(path("plain.png.dat")));
   EXPECT_FALSE(fs::exists(path("plain.png.gp")));
   // --plot-script alone is refused, naming it.
-  const CliRun alone = run_emnet("tran " + fin + " --periods 1 --plot-script");
+  const CliRun alone = run_emnet("tran " + kFishfin + " --periods 1 --plot-script");
   EXPECT_EQ(alone.status, 2) << alone.err;
   EXPECT_NE(alone.err.find("--plot-script"), std::string::npos) << alone.err;
 }
@@ -121,7 +122,7 @@ TEST_F(CliFiles, TranProbesReachTheCsvAndThePlot) {
 // dashed, left out of the legend, which has one entry per output).
 TEST_F(CliFiles, SweepPlotPairsTheSidesOfAnOutput) {
   const std::string image = path("sweep.png");
-  const CliRun r = run_emnet("sweep-switching " + fin + " --from 4 --to 6 --step 1 --probe tip " +
+  const CliRun r = run_emnet("sweep-switching " + kFishfin + " --from 4 --to 6 --step 1 --probe tip " +
                              "--probe dx4 --plot " + image + " --plot-script");
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string script = contents(image + ".gp");
@@ -146,7 +147,7 @@ TEST_F(CliFiles, SweepPlotPairsTheSidesOfAnOutput) {
 // sweep-switching --probe: the peaks of exactly the probes given. Reference: the default run's
 // tip peaks (the same closed-form periodic state; 1e-12 of the peak).
 TEST(CliProbes, SweepHonoursEveryProbe) {
-  const std::string common = "sweep-switching " + fin + " --from 4 --to 6 --step 1 --json";
+  const std::string common = "sweep-switching " + kFishfin + " --from 4 --to 6 --step 1 --json";
   const auto all = json_of(run_emnet(common));
   const auto picked = json_of(run_emnet(common + " --probe tip --probe rotation@0.1"));
   ASSERT_EQ(picked["outputs"].size(), 2u);
@@ -164,16 +165,16 @@ TEST(CliProbes, ProbesACommandCannotHonourAreRefused) {
   const std::vector<Case> cases = {
       // the exact periodic method has ideal DEAs: no RC loop to probe
       // (asked for: the automatic method takes shooting for such a probe)
-      {"sweep-switching " + fin + " --from 4 --to 5 --method exact --probe dea_voltage:A",
+      {"sweep-switching " + kFishfin + " --from 4 --to 5 --method exact --probe dea_voltage:A",
        "dea_voltage:A"},
       // a reduced model has no velocities (the square wave's feed-through has no derivative)
-      {"sweep-switching " + fin + " --from 4 --to 5 --reduce --probe velocity@0.1", "velocity@0.1"},
-      {"identify " + fin + " --resonance 6 --probe tip", "--probe"},
-      {"sensitivity " + fin + " --probe tip", "--probe"},
-      {"mismatch " + fin + " --probe tip", "--output"},
-      {"identify " + fin + " --resonance 6 --csv x.csv", "--csv"},
-      {"sensitivity " + fin + " --csv x.csv", "--csv"},
-      {"mismatch " + fin + " --csv x.csv", "--csv"},
+      {"sweep-switching " + kFishfin + " --from 4 --to 5 --reduce --probe velocity@0.1", "velocity@0.1"},
+      {"identify " + kFishfin + " --resonance 6 --probe tip", "--probe"},
+      {"sensitivity " + kFishfin + " --probe tip", "--probe"},
+      {"mismatch " + kFishfin + " --probe tip", "--output"},
+      {"identify " + kFishfin + " --resonance 6 --csv x.csv", "--csv"},
+      {"sensitivity " + kFishfin + " --csv x.csv", "--csv"},
+      {"mismatch " + kFishfin + " --csv x.csv", "--csv"},
   };
   for (const Case& c : cases) {
     const CliRun r = run_emnet(c.arguments);
@@ -186,28 +187,28 @@ TEST(CliProbes, ProbesACommandCannotHonourAreRefused) {
 
 TEST(CliOutputLoss, FullDeviceIsAnErrorAfterTheResult) {
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
-  const CliRun csv = run_emnet("static " + fin + " --csv /dev/full");
+  const CliRun csv = run_emnet("static " + kFishfin + " --csv /dev/full");
   EXPECT_EQ(csv.status, 2) << csv.err;
   EXPECT_NE(csv.err.find("/dev/full"), std::string::npos) << csv.err;
   EXPECT_NE(csv.err.find("No space left on device"), std::string::npos) << csv.err;
   EXPECT_NE(csv.out.find("deflection [m]"), std::string::npos) << "the result is printed first";
   // Standard output itself on a full device.
-  const CliRun out = run_emnet("static " + fin + " >/dev/full");
+  const CliRun out = run_emnet("static " + kFishfin + " >/dev/full");
   EXPECT_EQ(out.status, 2) << out.err;
   EXPECT_NE(out.err.find("standard output"), std::string::npos) << out.err;
 }
 
 TEST_F(CliFiles, UnwritableFilesAreReportedAfterTheResultAsExitTwo) {
   const std::string nowhere = path("no/such/dir/");
-  const CliRun csv = run_emnet("ac " + fin + " --points 5 --csv " + nowhere + "ac.csv");
+  const CliRun csv = run_emnet("ac " + kFishfin + " --points 5 --csv " + nowhere + "ac.csv");
   EXPECT_EQ(csv.status, 2) << csv.err;
   EXPECT_NE(csv.err.find(nowhere + "ac.csv"), std::string::npos) << csv.err;
   EXPECT_NE(csv.out.find("peak of tip"), std::string::npos) << csv.out;
-  const CliRun plot = run_emnet("tran " + fin + " --periods 1 --plot " + nowhere + "tran.png");
+  const CliRun plot = run_emnet("tran " + kFishfin + " --periods 1 --plot " + nowhere + "tran.png");
   EXPECT_EQ(plot.status, 2) << plot.err;  // not a numerical failure (3)
   EXPECT_NE(plot.err.find("--plot"), std::string::npos) << plot.err;
   EXPECT_NE(plot.out.find("range of tip"), std::string::npos) << plot.out;
-  const CliRun json = run_emnet("sweep-switching " + fin + " --from 4 --to 5 --json --csv " +
+  const CliRun json = run_emnet("sweep-switching " + kFishfin + " --from 4 --to 5 --json --csv " +
                                 nowhere + "sweep.csv");
   EXPECT_EQ(json.status, 2) << json.err;
   EXPECT_NO_THROW(nlohmann::json::parse(json.out)) << json.out;
@@ -220,11 +221,11 @@ TEST_F(CliFiles, AFailedWriteLeavesThePreviousFileWhole) {
   for (const std::string& file : {deck, csv, image + ".dat"}) std::ofstream(file) << "previous\n";
   const std::string limited = "ulimit -f 2; trap '' XFSZ; ";  // 1 or 2 KiB, by the shell's unit
   const CliRun netlist =
-      run_emnet("netlist " + fin + " --analysis tran --control -o " + deck, limited);
+      run_emnet("netlist " + kFishfin + " --analysis tran --control -o " + deck, limited);
   EXPECT_EQ(netlist.status, 2) << netlist.err;
   EXPECT_NE(netlist.err.find(deck), std::string::npos) << netlist.err;
   const CliRun table = run_emnet(
-      "ac " + fin + " --points 2000 --csv " + csv + " --plot " + image + " --plot-script", limited);
+      "ac " + kFishfin + " --points 2000 --csv " + csv + " --plot " + image + " --plot-script", limited);
   EXPECT_EQ(table.status, 2) << table.err;
   for (const std::string& file : {deck, csv, image + ".dat"})
     EXPECT_EQ(contents(file), "previous\n") << file;
@@ -233,7 +234,7 @@ TEST_F(CliFiles, AFailedWriteLeavesThePreviousFileWhole) {
 
 // Control characters in a scene's names and in a tool's messages reach the terminal escaped.
 TEST_F(CliFiles, ControlCharactersAreEscaped) {
-  std::string scene = contents(fin);
+  std::string scene = contents(kFishfin);
   const std::string name_line = "name = \"fishfin\"";
   const auto at = scene.find(name_line);
   ASSERT_NE(at, std::string::npos);
@@ -247,7 +248,7 @@ TEST_F(CliFiles, ControlCharactersAreEscaped) {
   EXPECT_NE(r.out.find("evil\\e[2J\\nforged line"), std::string::npos) << r.out;
   // An error naming an override with an escape sequence.
   const CliRun bad =
-      run_emnet("static " + fin + " --set \"$(printf 'beam.leng\\033]0;t\\007th=1')\"");
+      run_emnet("static " + kFishfin + " --set \"$(printf 'beam.leng\\033]0;t\\007th=1')\"");
   EXPECT_EQ(bad.status, 2) << bad.err;
   EXPECT_EQ(bad.err.find('\x1b'), std::string::npos) << bad.err;
   // ngspice's messages: a stand-in ngspice that prints escape sequences and fails.
@@ -256,7 +257,7 @@ TEST_F(CliFiles, ControlCharactersAreEscaped) {
                          "printf '\\033[31mred\\n'\nexit 1\n";
   chmod(fake.c_str(), 0755);
   const CliRun cross =
-      run_emnet("crosscheck " + fin + " --analysis op --backend program --ngspice-program " + fake);
+      run_emnet("crosscheck " + kFishfin + " --analysis op --backend program --ngspice-program " + fake);
   EXPECT_EQ(cross.status, 3) << cross.err;
   EXPECT_NE(cross.err.find("\\e]0;pwned\\x07"), std::string::npos) << cross.err;
   EXPECT_EQ(cross.err.find('\x1b'), std::string::npos) << cross.err;
@@ -268,7 +269,7 @@ TEST(CliBounds, OversizedRunsAreRefusedAtOnce) {
   // Nonlinear (the DEAs' electrical model): refused before any output time is built (it took
   // 1 GB and 7 s to say so).
   const CliRun nonlinear =
-      run_emnet("tran " + fin + " --periods 1e6 --method exact", "timeout 60 ");
+      run_emnet("tran " + kFishfin + " --periods 1e6 --method exact", "timeout 60 ");
   EXPECT_EQ(nonlinear.status, 2) << nonlinear.err;
   EXPECT_NE(nonlinear.err.find("--method"), std::string::npos) << nonlinear.err;
   EXPECT_NE(nonlinear.err.find("linear"), std::string::npos) << nonlinear.err;
@@ -277,18 +278,18 @@ TEST(CliBounds, OversizedRunsAreRefusedAtOnce) {
   };
   const std::vector<Case> cases = {
       // 1e8 output times x 9 values (about 10 GB before)
-      {"tran " + fin + " --periods 1e6 --method exact --set drive.electrical_dynamics=false",
+      {"tran " + kFishfin + " --periods 1e6 --method exact --set drive.electrical_dynamics=false",
        "--periods"},
-      {"tran " + fin + " --periods 1e6", "--periods"},
-      {"netlist " + fin + " --analysis tran --periods 1e6", "--periods"},
-      {"ac " + fin +
+      {"tran " + kFishfin + " --periods 1e6", "--periods"},
+      {"netlist " + kFishfin + " --analysis tran --periods 1e6", "--periods"},
+      {"ac " + kFishfin +
            " --points 1000000 --probe P2 --probe P3 --probe P4 --probe tip --probe P1 --probe "
            "velocity@0.1 --probe rotation@0.1 --probe deflection@0.05 --probe deflection@0.06 "
            "--probe deflection@0.07",
        "--points"},
       // the exact periodic method's dense decomposition at 4806 unknowns: about 5.9 GB (asked
       // for; the automatic method reduces there)
-      {"sweep-switching " + fin + " --segments 800 --method exact", "--segments"},
+      {"sweep-switching " + kFishfin + " --segments 800 --method exact", "--segments"},
   };
   for (const Case& c : cases) {
     const CliRun r = run_emnet(c.arguments, "timeout 60 ");

@@ -17,6 +17,7 @@
 #include "cli_run.hpp"
 #include "terminal_progress.hpp"
 #include "test_directory.hpp"
+#include "shipped_scenes.hpp"
 
 namespace {
 
@@ -24,8 +25,8 @@ namespace fs = std::filesystem;
 using emnet::testing::CliRun;
 using emnet::testing::EmnetChild;
 
-const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
-const std::vector<std::string> long_sweep = {"sweep-switching", fin,     "--from", "1", "--to", "7",
+using emnet::testing::kFishfin;
+const std::vector<std::string> long_sweep = {"sweep-switching", kFishfin,     "--from", "1", "--to", "7",
                                              "--step",          "0.0001"};  // 60001 frequencies
 const std::string progress_text = "emnet sweep-switching: switching frequencies ";
 
@@ -42,7 +43,7 @@ class CliProgress : public emnet::testing::TestDirectory {
 // --progress prints also into a pipe, a line when a step begins and one a second: the line
 // names the step and its counts.
 TEST_F(CliProgress, ForcedProgressAppearsInAPipe) {
-  const CliRun r = emnet::testing::run_emnet("sweep-switching " + fin +
+  const CliRun r = emnet::testing::run_emnet("sweep-switching " + kFishfin +
                                              " --from 1 --to 7 --step 0.01 --progress"
                                              // the fin's resonant swing is 10.8 % of L: inside
                                              " --set model.deflection_limit=0.2");
@@ -71,7 +72,7 @@ TEST_F(CliProgress, InterruptLeavesNoOutputFile) {
 // interrupt is sent when the Arnoldi iterations report their first solve, on a fin of 100 000
 // segments (the run would take tens of seconds), and no CSV is written.
 TEST_F(CliProgress, ModesShowsItsPhasesAndStopsAtInterrupt) {
-  EmnetChild child({"modes", fin, "--segments", "100000", "--count", "3", "--no-error-estimate",
+  EmnetChild child({"modes", kFishfin, "--segments", "100000", "--count", "3", "--no-error-estimate",
                     "--progress", "--csv", path("modes.csv")},
                    false, path("stdout.txt"));
   ASSERT_TRUE(child.started());

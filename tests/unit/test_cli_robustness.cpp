@@ -10,12 +10,13 @@
 #include <string>
 
 #include "cli_run.hpp"
+#include "shipped_scenes.hpp"
 
 namespace {
 
 using emnet::testing::run_emnet;
 
-const std::string kCantilever = std::string(EMNET_SOURCE_DIR) + "/netlists/cantilever.toml";
+using emnet::testing::kCantilever;
 const std::string kFinger = std::string(EMNET_SOURCE_DIR) + "/netlists/gripper-finger.toml";
 
 // --samples -1 read "more than 1000000 variants"; --seed -1, 2^64 and 1e23 ran with a seed

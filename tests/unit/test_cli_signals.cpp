@@ -19,13 +19,14 @@
 
 #include "cli_run.hpp"
 #include "test_directory.hpp"
+#include "shipped_scenes.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using emnet::testing::EmnetChild;
 
-const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+using emnet::testing::kFishfin;
 
 class CliSignals : public emnet::testing::TestDirectory {
  protected:
@@ -78,7 +79,7 @@ class CliSignals : public emnet::testing::TestDirectory {
   // A short sweep whose plot (with its data and script) is drawn by the stand-in gnuplot.
   std::vector<std::string> plotted_sweep() const {
     return {"sweep-switching",
-            fin,
+            kFishfin,
             "--from",
             "4",
             "--to",
@@ -127,7 +128,7 @@ TEST_F(CliSignals, SignalsDuringCrosscheckRemoveTheNgspiceDirectory) {
   const std::string ngspice = stand_in("fake-ngspice");
   for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
     fs::remove(path("marker"));
-    EmnetChild child({"crosscheck", fin, "--backend", "program", "--ngspice-program", ngspice,
+    EmnetChild child({"crosscheck", kFishfin, "--backend", "program", "--ngspice-program", ngspice,
                       "--analysis", "op"},
                      false, path("stdout.txt"));
     ASSERT_TRUE(child.started());

@@ -18,11 +18,12 @@
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using emnet::testing::kPi;
 constexpr double kEulerGamma = 0.57721566490153286061;
 
 struct HydrodynamicReference {

@@ -16,12 +16,13 @@
 #include "emnet/elements/inductor.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double two_pi = 2 * M_PI;
+using emnet::testing::kTwoPi;
 
 std::string scene_path(const std::string& name) {
   return std::string(EMNET_SOURCE_DIR) + "/netlists/" + name + ".toml";
@@ -73,10 +74,10 @@ TEST(ModalReduction, MassSpringDamperClosedForm) {
   ASSERT_TRUE(kept.status.ok()) << kept.status.message;
   EXPECT_EQ(kept.kept_modes, 1);
   for (double f : {0.0, 0.1, 1.0, 2.5, 5.0, 20.0}) {
-    const Complex s(0.0, two_pi * f);
+    const Complex s(0.0, kTwoPi * f);
     const Complex exact = 1.0 / (m * s * s + c * s + k);
-    EXPECT_LT(std::abs(kept.response(x, two_pi * f) - exact), 1e-12 * std::abs(exact)) << f;
-    EXPECT_LT(std::abs(kept.response(velocity, two_pi * f) - s * exact),
+    EXPECT_LT(std::abs(kept.response(x, kTwoPi * f) - exact), 1e-12 * std::abs(exact)) << f;
+    EXPECT_LT(std::abs(kept.response(velocity, kTwoPi * f) - s * exact),
               1e-12 * std::abs(exact) * std::max(1.0, std::abs(s)))
         << f;
   }
@@ -86,7 +87,7 @@ TEST(ModalReduction, MassSpringDamperClosedForm) {
   EXPECT_EQ(truncated.kept_modes, 0);
   EXPECT_EQ(truncated.truncated_poles, 1);
   for (double f : {0.0, 1.0, 20.0})
-    EXPECT_NEAR(std::abs(truncated.response(x, two_pi * f) - 1.0 / k), 0.0, 1e-15) << f;
+    EXPECT_NEAR(std::abs(truncated.response(x, kTwoPi * f) - 1.0 / k), 0.0, 1e-15) << f;
 }
 
 // At f = 0 the reduced response is the static solution, whatever is kept: D is built from it.
@@ -133,7 +134,7 @@ TEST(ModalReduction, KeepingAllModesReproducesTheFullModel) {
     EXPECT_EQ(reduced.modal_method, Method::dense);
     std::vector<std::vector<Complex>> values(b.model.probes.size());
     for (size_t p = 0; p < values.size(); ++p)
-      for (double f : grid) values[p].push_back(reduced.response(b.model.probes[p], two_pi * f));
+      for (double f : grid) values[p].push_back(reduced.response(b.model.probes[p], kTwoPi * f));
     const AcResult full = run_ac(b.system, b.operating_point, grid, b.model.probes);
     ASSERT_TRUE(full.status.ok());
     EXPECT_LT(worst_relative(values, full.values), 1e-8)

@@ -15,11 +15,12 @@
 #include "emnet/elements/inductor.hpp"
 #include "emnet/elements/transformer.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using emnet::testing::kPi;
 
 struct EndPair {
   EndCondition left, right;

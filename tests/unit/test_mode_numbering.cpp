@@ -18,15 +18,16 @@
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-constexpr double two_pi = 2 * M_PI;
+using emnet::testing::kTwoPi;
 
 // One oscillator on its own node: mass m, stiffness m·ω_n², damping 2ζ·m·ω_n.
 void add_oscillator(Network& network, const std::string& name, double natural_hz, double zeta) {
-  const double m = 1.0, w = two_pi * natural_hz;
+  const double m = 1.0, w = kTwoPi * natural_hz;
   const NodeId v = network.add_node(name, Domain::translational, name);
   network.add<Capacitor>(name + ".m", v, ground, m);
   network.add<Inductor>(name + ".k", v, ground, 1.0 / (m * w * w), Domain::translational);

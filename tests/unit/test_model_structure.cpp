@@ -15,11 +15,12 @@
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/spice/spice_netlist.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-const std::string kFishfin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+using emnet::testing::kFishfin;
 
 std::vector<std::string> names_of(const std::vector<ModelOutput>& outputs) {
   std::vector<std::string> names;

@@ -30,11 +30,12 @@
 #include "cli_run.hpp"
 #include "emnet/core/process.hpp"
 #include "emnet/spice/ngspice_runner.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using emnet::testing::kPi;
 constexpr double kResistance = 1e3;
 constexpr double kCapacitance = 1e-6;
 constexpr double kTimeConstant = kResistance * kCapacitance;

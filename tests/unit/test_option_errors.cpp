@@ -14,11 +14,12 @@
 #include "emnet/studies/switching_sweep.hpp"
 #include "emnet/studies/transient_study.hpp"
 #include "emnet/verification/crosscheck.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-const std::string kFishfin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+using emnet::testing::kFishfin;
 
 // The OptionError `run` throws; fails the test when it throws none.
 template <class Run>

@@ -23,11 +23,12 @@
 #include "emnet/model/outputs.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+using emnet::testing::kPi;
 
 struct Built {
   Model model;
@@ -192,7 +193,7 @@ TEST(Reaction, AcOfATipMassOnASegmentWithAndWithoutMaterialDamping) {
     const AcResult ac = run_ac(built.system, built.rest.operating_point, frequencies, probes);
     ASSERT_TRUE(ac.status.ok()) << ac.status.message;
     for (size_t i = 0; i < frequencies.size(); ++i) {
-      const double omega = 2 * pi * frequencies[i];
+      const double omega = 2 * kPi * frequencies[i];
       const std::complex<double> stiffness = k * std::complex<double>(1.0, omega * tau);
       const std::complex<double> carried =
           stiffness * force / (stiffness - tip_mass * omega * omega);

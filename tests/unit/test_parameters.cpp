@@ -23,11 +23,12 @@
 #include "emnet/core/errors.hpp"
 #include "emnet/scene/parameters.hpp"
 #include "emnet/scene/scene_reader.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-const std::string kFishfin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+using emnet::testing::kFishfin;
 
 std::string number(double value) {
   char buffer[40];

@@ -15,6 +15,7 @@
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/sensitivity.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
@@ -41,7 +42,7 @@ class RecordingProgress : public Progress {
   long cancel_after_;
 };
 
-const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+using emnet::testing::kFishfin;
 
 TEST(ProgressHooks, AcReportsEveryFrequencyAndStopsWhenCancelled) {
   auto one = testing::one_mass_spring_damper(0.2, 50.0, 0.3);
@@ -84,7 +85,7 @@ TEST(ProgressHooks, AcReportsEveryFrequencyAndStopsWhenCancelled) {
 }
 
 TEST(ProgressHooks, TransientsReportOutputTimesAndStopWhenCancelled) {
-  const Scene scene = read_scene(fin, {"drive.electrical_dynamics=false"});
+  const Scene scene = read_scene(kFishfin, {"drive.electrical_dynamics=false"});
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   TransientOptions options;
@@ -109,7 +110,7 @@ TEST(ProgressHooks, TransientsReportOutputTimesAndStopWhenCancelled) {
 }
 
 TEST(ProgressHooks, ShootingAndSensitivityStopWhenCancelled) {
-  const Scene scene = read_scene(fin, {"drive.electrical_dynamics=false"});
+  const Scene scene = read_scene(kFishfin, {"drive.electrical_dynamics=false"});
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   RecordingProgress cancelled_at_once(-1);  // cancelled() true from the start
@@ -154,7 +155,7 @@ TEST(ResidualLimit, AboveOrNotFiniteIsAFailure) {
 // A static solve whose residual is not small (a bending stiffness of 1e-308 N·m²: the system
 // is beyond double precision) is a failed Status; it was a result with "relative residual inf".
 TEST(ResidualLimit, StaticSolveBeyondDoublePrecisionFails) {
-  const Scene scene = read_scene(fin, {"beam.bending_stiffness=1e-300"});  // normal, overflows
+  const Scene scene = read_scene(kFishfin, {"beam.bending_stiffness=1e-300"});  // normal, overflows
   const Model model = build_model(scene);  // the System refers to the model's elements
   const StaticResult rest = solve_static(model.network.assemble());
   EXPECT_FALSE(rest.status.ok());

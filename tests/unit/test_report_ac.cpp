@@ -12,12 +12,13 @@
 #include "emnet/report/ac_json.hpp"
 #include "emnet/studies/ac_study.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double two_pi = 2 * M_PI;
+using emnet::testing::kTwoPi;
 
 Probe displacement_of(NodeId node, const std::string& name = "x") {
   Probe probe;
@@ -47,7 +48,7 @@ TEST(AcNonFinite, OverflowingDisplacementIsAFailedStatusNamingProbeAndFrequency)
 
   const AcResult finite = run_ac(system, zero, {1.0}, {displacement_of(v, "free_x")});
   ASSERT_TRUE(finite.status.ok()) << finite.status.message;
-  const double exact = 1.0 / (m * two_pi * two_pi);
+  const double exact = 1.0 / (m * kTwoPi * kTwoPi);
   EXPECT_NEAR(std::abs(finite.values[0][0]), exact, 1e-12 * exact);
 
   const AcResult overflow = run_ac(system, zero, {1.0, 1e-160}, {displacement_of(v, "free_x")});
@@ -88,7 +89,7 @@ TEST(AcJson, KeysInOrderAndValuesMatchTheClosedForm) {
   AcStudyResult study;
   study.ac = run_ac(system, rest.operating_point, frequency_grid(0.5, 5.0, 7, true), probes);
   ASSERT_TRUE(study.ac.status.ok()) << study.ac.status.message;
-  study.resonances_hz = {std::sqrt(k / m) / two_pi};
+  study.resonances_hz = {std::sqrt(k / m) / kTwoPi};
   Model model;
   model.scene.name = "one mass";
   model.scene.beam.segments = 3;
@@ -104,7 +105,7 @@ TEST(AcJson, KeysInOrderAndValuesMatchTheClosedForm) {
   EXPECT_EQ(json["segments"], 3);
   EXPECT_EQ(json["input"], "a unit force");
   EXPECT_EQ(json["cost"]["total_seconds"], 1.5);
-  EXPECT_EQ(json["resonances_hz"][0].get<double>(), std::sqrt(k / m) / two_pi);
+  EXPECT_EQ(json["resonances_hz"][0].get<double>(), std::sqrt(k / m) / kTwoPi);
   ASSERT_EQ(json["probes"].size(), 1u);
   const Json& probe = json["probes"][0];
   EXPECT_EQ(probe["name"], "x");
@@ -116,7 +117,7 @@ TEST(AcJson, KeysInOrderAndValuesMatchTheClosedForm) {
   ASSERT_EQ(magnitude.size(), 7u);
   ASSERT_EQ(phase.size(), 7u);
   for (size_t i = 0; i < frequencies.size(); ++i) {
-    const double w = two_pi * frequencies[i];
+    const double w = kTwoPi * frequencies[i];
     const Complex exact = 1.0 / Complex(k - m * w * w, w * c);
     ASSERT_TRUE(std::isfinite(magnitude[i]) && std::isfinite(phase[i]));
     EXPECT_NEAR(magnitude[i], std::abs(exact), 1e-12 * std::abs(exact)) << frequencies[i];

@@ -14,13 +14,14 @@
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-const std::string kFishfin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+using emnet::testing::kFishfin;
 const std::string kWater = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin-water.toml";
-const std::string kCantilever = std::string(EMNET_SOURCE_DIR) + "/netlists/cantilever.toml";
+using emnet::testing::kCantilever;
 
 // The message of the std::logic_error build_model throws for `scene` ("" when it builds).
 std::string refusal(const Scene& scene) {

@@ -17,12 +17,13 @@
 #include "emnet/scene/scene.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
 const char* const kFileName = "x.toml";
-constexpr double kPi = 3.14159265358979323846;
+using emnet::testing::kPi;
 
 const std::string kMinimalScene = R"([scene]
 name = "fishfin"
@@ -162,7 +163,7 @@ void expect_error(const std::optional<InputError>& error, const std::string& whe
 }
 
 std::string temporary_path(const std::string& name) {
-  return (std::filesystem::path(testing::TempDir()) / ("emnet_scene_reader_" + name)).string();
+  return (std::filesystem::path(::testing::TempDir()) / ("emnet_scene_reader_" + name)).string();
 }
 
 void write_file(const std::string& path, const std::string& text) {

@@ -18,13 +18,14 @@
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "emnet/studies/segment_selection.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-const std::string kCantilever = std::string(EMNET_SOURCE_DIR) + "/netlists/cantilever.toml";
-const std::string kFishfin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+using emnet::testing::kPi;
+using emnet::testing::kCantilever;
+using emnet::testing::kFishfin;
 
 const AutomaticChoice* find_choice(const Model& model, const std::string& key) {
   for (const auto& choice : model.automatic_choices)

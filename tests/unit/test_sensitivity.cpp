@@ -31,11 +31,12 @@
 #include "emnet/studies/resolve.hpp"
 #include "emnet/studies/sensitivity.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-const std::string fishfin_path = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+using emnet::testing::kFishfin;
 
 TEST(Sensitivity, UndampedCantileverScalesExactlyLikeTheContinuum) {
   const Scene scene = testing::cantilever_scene(7);
@@ -59,7 +60,7 @@ TEST(Sensitivity, UndampedCantileverScalesExactlyLikeTheContinuum) {
 }
 
 TEST(Sensitivity, FishFinAnalyticMatchesFiniteDifferencesForEveryParameter) {
-  const Scene scene = read_scene(fishfin_path);
+  const Scene scene = read_scene(kFishfin);
   SensitivityOptions options;
   options.modes = 3;
   options.check = true;
@@ -82,7 +83,7 @@ TEST(Sensitivity, FishFinAnalyticMatchesFiniteDifferencesForEveryParameter) {
 }
 
 TEST(Sensitivity, UnknownAndZeroParametersAreInputErrors) {
-  const Scene scene = read_scene(fishfin_path);
+  const Scene scene = read_scene(kFishfin);
   EXPECT_THROW(find_scene_parameter(scene, "beam.colour"), InputError);
   EXPECT_THROW(find_scene_parameter(scene, "dea[C].lever_arm"), InputError);
   EXPECT_THROW(find_scene_parameter(scene, "beam.rotary_inertia_per_length"), InputError);
@@ -94,7 +95,7 @@ TEST(Sensitivity, UnknownAndZeroParametersAreInputErrors) {
 // list `emnet sensitivity` printed before there was a table (docs/commands.md, sensitivity), in its
 // order and with its units: the beam, the loss factor pair, six per DEA and the drive voltage.
 TEST(Sensitivity, FishFinParametersAreTheListPrintedBeforeTheTable) {
-  const Scene scene = read_scene(fishfin_path);
+  const Scene scene = read_scene(kFishfin);
   std::vector<std::string> expected = {"beam.length m", "beam.bending_stiffness N*m^2",
                                        "beam.mass_per_length kg/m", "damping.loss_factor ",
                                        "damping.loss_factor_frequency Hz"};
@@ -215,7 +216,7 @@ TEST(Sensitivity, EveryComponentParameterMatchesFiniteDifferences) {
 }
 
 TEST(SensitivityCli, TableAndCheck) {
-  const auto r = testing::run_emnet("sensitivity " + fishfin_path +
+  const auto r = testing::run_emnet("sensitivity " + kFishfin +
                                     " --modes 2 --parameter beam.length --check");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("beam.length"), std::string::npos) << r.out;
@@ -223,13 +224,13 @@ TEST(SensitivityCli, TableAndCheck) {
 }
 
 TEST(SensitivityCli, UnknownParameterExitsTwoNamingIt) {
-  const auto r = testing::run_emnet("sensitivity " + fishfin_path + " --parameter beam.colour");
+  const auto r = testing::run_emnet("sensitivity " + kFishfin + " --parameter beam.colour");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("beam.colour"), std::string::npos) << r.err;
 }
 
 TEST(SensitivityCli, JsonHasEveryParameter) {
-  const auto r = testing::run_emnet("sensitivity " + fishfin_path + " --modes 1 --json");
+  const auto r = testing::run_emnet("sensitivity " + kFishfin + " --modes 1 --json");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("\"dea[B].electrode_resistance\""), std::string::npos);
   EXPECT_NE(r.out.find("\"normalised\""), std::string::npos);

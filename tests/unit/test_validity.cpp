@@ -12,6 +12,7 @@
 #include "cli_run.hpp"
 #include "emnet/model/validity.hpp"
 #include "emnet/scene/scene_reader.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
@@ -19,10 +20,10 @@ namespace {
 using Json = nlohmann::json;
 using testing::run_emnet;
 
-const std::string kFin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+using emnet::testing::kFishfin;
 
 Scene fin(const std::vector<std::string>& overrides = {}) {
-  return read_scene(kFin, overrides);
+  return read_scene(kFishfin, overrides);
 }
 
 // The limit is inclusive: exactly model.deflection_limit·L is inside, the next double above
@@ -133,14 +134,14 @@ bool has(const std::vector<std::string>& list, const std::string& item) {
 TEST(CliValidity, AbsurdVoltageIsFlaggedByEveryCommandThatPrintsDeflections) {
   const std::string absurd = " --set drive.voltage=3000kV --set drive.electrical_dynamics=false";
   const std::vector<std::string> commands = {
-      "static " + kFin + absurd,
-      "ac " + kFin + absurd + " --points 50",
-      "tran " + kFin + absurd + " --method exact --periods 1 --points-per-period 20",
-      "sweep-switching " + kFin + absurd + " --from 5 --to 5 --step 1",
-      "mismatch " + kFin + absurd,
+      "static " + kFishfin + absurd,
+      "ac " + kFishfin + absurd + " --points 50",
+      "tran " + kFishfin + absurd + " --method exact --periods 1 --points-per-period 20",
+      "sweep-switching " + kFishfin + absurd + " --from 5 --to 5 --step 1",
+      "mismatch " + kFishfin + absurd,
       // identify fits the damping to a given peak, so its field is made too high with a
       // voltage that still lets 9.3 mm at P4 be fitted: 4.5 kV, 88 V/um.
-      "identify " + kFin + " --resonance 6.385 --peak P4=9.3mm@4.5kV",
+      "identify " + kFishfin + " --resonance 6.385 --peak P4=9.3mm@4.5kV",
   };
   for (const std::string& command : commands) {
     const Flagged f = run(command);
@@ -163,7 +164,7 @@ TEST(CliValidity, AbsurdVoltageIsFlaggedByEveryCommandThatPrintsDeflections) {
 // The shipped fin at 4 kV: static and ac are inside (field 98 % of the breakdown field, the
 // tip's AC amplitude 10.4 mm = 8.5 % of L), exit 0, and say by how much.
 TEST(CliValidity, ShippedFinIsInsideAndSaysByHowMuch) {
-  for (const std::string command : {"static " + kFin, "ac " + kFin + " --points 200"}) {
+  for (const std::string command : {"static " + kFishfin, "ac " + kFishfin + " --points 200"}) {
     const Flagged f = run(command);
     EXPECT_EQ(f.status, 0) << command << "\n" << f.err;
     EXPECT_NE(f.out.find("validity: "), std::string::npos) << f.out;
@@ -182,7 +183,7 @@ TEST(CliValidity, ShippedFinIsInsideAndSaysByHowMuch) {
 // the violation's value is the printed tip's largest |deflection|. With the limit at 20 % the
 // same sweep is inside and exits 0.
 TEST(CliValidity, ResonantSwingPastTheDeflectionLimitIsFlagged) {
-  const std::string sweep = "sweep-switching " + kFin + " --from 6.4 --to 6.4 --step 1";
+  const std::string sweep = "sweep-switching " + kFishfin + " --from 6.4 --to 6.4 --step 1";
   const Flagged f = run(sweep);
   EXPECT_EQ(f.status, kExitOutsideValidity) << f.err;
   EXPECT_EQ(violated(f.json), (std::vector<std::string>{"deflection:tip"}));
