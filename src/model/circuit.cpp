@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "emnet/core/constants.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/elements/capacitor.hpp"
 #include "emnet/elements/conductance.hpp"
@@ -14,8 +15,6 @@
 namespace emnet {
 
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 ElementPart circuit_part(CircuitKind kind) {
   switch (kind) {
@@ -79,7 +78,7 @@ Waveform circuit_waveform(const CircuitSpec& element) {
       waveform.dc = spec.offset;
       waveform.amplitude = spec.amplitude;
       waveform.frequency = spec.frequency;
-      waveform.phase = spec.phase_degrees * pi / 180.0;
+      waveform.phase = spec.phase_degrees * kPi / 180.0;
       waveform.delay = spec.delay;
       break;
     case WaveformKind::pwl:

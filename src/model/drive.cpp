@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "emnet/core/constants.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/option_error.hpp"
 #include "emnet/core/units.hpp"
@@ -13,12 +14,6 @@
 #include "emnet/model/model.hpp"
 
 namespace emnet {
-
-namespace {
-
-constexpr double pi = 3.14159265358979323846;
-
-}  // namespace
 
 DeaDrive dea_drive(const DriveSpec& drive, const std::string& dea_name) {
   DeaDrive driven;
@@ -51,7 +46,7 @@ DeaDrive dea_drive(const DriveSpec& drive, const std::string& dea_name) {
       w.amplitude = role == 0 ? drive.amplitude : -drive.amplitude;
       w.frequency = drive.frequency;
       w.ac_magnitude = drive.amplitude;
-      w.ac_phase = role == 0 ? 0.0 : pi;
+      w.ac_phase = role == 0 ? 0.0 : kPi;
       break;
     case DriveKind::none:
       break;
@@ -71,7 +66,7 @@ std::vector<Waveform> squared_force(const Waveform& voltage, double force_consta
     harmonic.dc = 0.0;
     harmonic.frequency = 2 * voltage.frequency;
     harmonic.amplitude = -force_constant * voltage.amplitude * voltage.amplitude / 2;
-    harmonic.phase = 2 * voltage.phase + pi / 2;
+    harmonic.phase = 2 * voltage.phase + kPi / 2;
     harmonic.ac_magnitude = 0.0;
     return {fundamental, harmonic};
   }

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "emnet/core/constants.hpp"
+
 namespace emnet {
 
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 // Horner evaluation of c[0] + c[1]·τ + … + c[n]·τⁿ.
 template <std::size_t N>
@@ -84,8 +84,8 @@ FluidLoading rectangular_beam_fluid_loading(double density, double dynamic_visco
     throw std::invalid_argument(
         "fluid loading: density, viscosity, width and frequency must be > 0");
   FluidLoading loading;
-  const double omega = 2.0 * pi * frequency;
-  const double section = 0.25 * pi * density * width * width;  // (π/4)·ρ·b² [kg/m]
+  const double omega = 2.0 * kPi * frequency;
+  const double section = 0.25 * kPi * density * width * width;  // (π/4)·ρ·b² [kg/m]
   loading.frequency = frequency;
   loading.reynolds = density * omega * width * width / (4.0 * dynamic_viscosity);
   loading.hydrodynamic = rectangular_beam_hydrodynamic_function(loading.reynolds);

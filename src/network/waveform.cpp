@@ -4,11 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-namespace emnet {
+#include "emnet/core/constants.hpp"
 
-namespace {
-constexpr double two_pi = 6.283185307179586476925286766559;
-}
+namespace emnet {
 
 double Waveform::value(double t) const {
   switch (shape) {
@@ -16,7 +14,7 @@ double Waveform::value(double t) const {
       return dc;
     case Shape::sine:
       if (t < delay) return dc + amplitude * std::sin(phase);
-      return dc + amplitude * std::sin(two_pi * frequency * (t - delay) + phase);
+      return dc + amplitude * std::sin(kTwoPi * frequency * (t - delay) + phase);
     case Shape::pwl: {
       if (points.empty()) return dc;
       if (t <= points.front().first) return points.front().second;
@@ -47,7 +45,7 @@ double Waveform::slope(double t) const {
       return 0.0;
     case Shape::sine:
       if (t < delay) return 0.0;
-      return amplitude * two_pi * frequency * std::cos(two_pi * frequency * (t - delay) + phase);
+      return amplitude * kTwoPi * frequency * std::cos(kTwoPi * frequency * (t - delay) + phase);
     case Shape::pwl: {
       if (points.empty() || t < points.front().first || t >= points.back().first) return 0.0;
       auto upper = std::upper_bound(points.begin(), points.end(), t,

@@ -4,11 +4,9 @@
 #include <cmath>
 #include <complex>
 
-namespace emnet {
+#include "emnet/core/constants.hpp"
 
-namespace {
-constexpr double pi = 3.14159265358979323846;
-}  // namespace
+namespace emnet {
 
 Json to_json(const AcStudyResult& result, const Model& model, const std::vector<Probe>& probes,
              const std::string& input, double total_seconds) {
@@ -24,7 +22,7 @@ Json to_json(const AcStudyResult& result, const Model& model, const std::vector<
     std::vector<double> magnitude, phase;
     for (const auto& v : result.ac.values[k]) {
       magnitude.push_back(std::abs(v));
-      phase.push_back(std::arg(v) * 180.0 / pi);
+      phase.push_back(std::arg(v) * 180.0 / kPi);
     }
     out["probes"].push_back({{"name", probes[k].name},
                              {"description", probes[k].description},

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <vector>
 
+#include "emnet/core/constants.hpp"
 #include "emnet/core/terminal_text.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/model/drive.hpp"
@@ -14,8 +15,6 @@
 namespace emnet {
 
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 std::string format(const char* pattern, double value) {
   return format_number(pattern, value);
@@ -109,12 +108,12 @@ std::string ac_input_description(const Scene& scene, double top_hz) {
   // be 1/(1 + j*omega*tau) times it (src/model/model.cpp).
   auto rc_loops = [&] {
     const double tau = drive_time_constant(scene);
-    const std::complex<double> lag = 1.0 / std::complex<double>(1.0, 2 * pi * top_hz * tau);
+    const std::complex<double> lag = 1.0 / std::complex<double>(1.0, 2 * kPi * top_hz * tau);
     out << " The DEAs' RC loops are not in this input, whatever drive.electrical_dynamics: "
            "through them the force's fundamental would be 1/(1 + j*2*pi*f*tau) times it (exact "
            "at duty 0.5; tau = "
         << format_duration(tau) << ": at " << si(top_hz, "Hz") << " "
-        << format("%.6g", std::abs(lag)) << ", " << format("%.3g", std::arg(lag) * 180.0 / pi)
+        << format("%.6g", std::abs(lag)) << ", " << format("%.3g", std::arg(lag) * 180.0 / kPi)
         << " deg).";
   };
   switch (drive.kind) {

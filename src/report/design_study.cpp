@@ -10,7 +10,7 @@ namespace emnet {
 namespace {
 
 // %.17g: the double reads back exactly.
-std::string number_text(double value) {
+std::string round_trip_number_text(double value) {
   return format_number("%.17g", value);
 }
 
@@ -46,12 +46,12 @@ Status write_design_study_csv(const std::string& path, const DesignStudyResult& 
   out.write(line + "\n");
   for (std::size_t i = 0; i < result.rows.size(); ++i) {
     line = std::to_string(i);
-    for (double value : result.variants[i]) line += "," + number_text(value);
+    for (double value : result.variants[i]) line += "," + round_trip_number_text(value);
     line += "," + csv_field(status_text(result.rows[i].status));
     line += "," + csv_field(validity_text(result.rows[i]));
     const auto& values = result.rows[i].values;
     for (std::size_t k = 0; k < result.columns.size(); ++k)
-      line += "," + (k < values.size() ? number_text(values[k]) : std::string());
+      line += "," + (k < values.size() ? round_trip_number_text(values[k]) : std::string());
     out.write(line + "\n");
   }
   return out.commit();

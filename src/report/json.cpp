@@ -3,11 +3,9 @@
 
 #include <cmath>
 
-namespace emnet {
+#include "emnet/core/constants.hpp"
 
-namespace {
-constexpr double pi = 3.14159265358979323846;
-}  // namespace
+namespace emnet {
 
 std::string json_text(const Json& json) {
   return json.dump(2, ' ', false, Json::error_handler_t::replace);
@@ -77,7 +75,7 @@ Json to_json(const ModesStudyResult& result, const std::vector<Probe>& probes,
                  {"error_bounded", m.error_bounded}};
     if (m.error_bounded) {
       mode["pole_error_bound"] = m.pole_error;
-      mode["frequency_error_bound_hz"] = m.pole_error / (2 * pi);
+      mode["frequency_error_bound_hz"] = m.pole_error / (2 * kPi);
       mode["damping_ratio_error_bound"] = m.pole_error / std::abs(m.pole);
     } else {
       mode["unbounded_reason"] = m.unbounded_reason;

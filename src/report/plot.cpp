@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "emnet/analysis/analysis.hpp"
+#include "emnet/core/constants.hpp"
 #include "gnuplot_script.hpp"
 
 namespace emnet {
@@ -30,8 +31,6 @@ using gnuplot::PlotFiles;
 using gnuplot::script_header;
 using gnuplot::ScriptBody;
 using gnuplot::write_script_and_run;
-
-constexpr double kPi = 3.14159265358979323846;
 // The panels' horizontal extent on the page, in screen fractions (the multiplot's margins).
 constexpr double kPanelLeft = 0.11, kPanelRight = 0.97;
 

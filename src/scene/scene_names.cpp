@@ -1,4 +1,5 @@
 // Names of the scene enumerations (as written in scene files) and small Scene helpers.
+#include "emnet/core/constants.hpp"
 #include "emnet/scene/scene.hpp"
 
 namespace emnet {
@@ -144,10 +145,9 @@ std::string dea_of_node_name(const std::string& node) {
 
 double DampingSpec::effective_kelvin_voigt_time() const {
   if (!loss_factor.has_value()) return kelvin_voigt_time;
-  constexpr double two_pi = 6.283185307179586476925286766559;
   const double frequency = loss_factor_frequency.value_or(0.0);
   if (!(frequency > 0.0)) return kelvin_voigt_time;  // the reader never lets this happen
-  return *loss_factor / (two_pi * frequency);
+  return *loss_factor / (kTwoPi * frequency);
 }
 
 }  // namespace emnet

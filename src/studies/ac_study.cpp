@@ -7,14 +7,13 @@
 #include <cstdio>
 #include <utility>
 
+#include "emnet/core/constants.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/model/outputs.hpp"
 
 namespace emnet {
 
 namespace {
-
-constexpr double two_pi = 6.283185307179586476925286766559;
 
 void show_phase(Progress* progress, const char* what) {
   if (progress) progress->report(0, 0, what);
@@ -115,7 +114,7 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
   if (result.reduction) {
     for (const auto& kept : result.reduction->model.kept)
       if (kept.oscillatory && is_resonance(kept.pole))
-        resonances.emplace_back(std::abs(kept.pole.imag()) / two_pi,
+        resonances.emplace_back(std::abs(kept.pole.imag()) / kTwoPi,
                                 -kept.pole.real() / std::abs(kept.pole));
     std::sort(resonances.begin(), resonances.end());
   } else if (!result.ac.poles.empty()) {
@@ -127,7 +126,7 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
     for (const auto& pole : result.ac.poles) largest = std::max(largest, std::abs(pole));
     for (const auto& pole : result.ac.poles)
       if (pole.imag() > 0.0 && std::abs(pole) > 1e-9 * largest && is_resonance(pole))
-        resonances.emplace_back(pole.imag() / two_pi, -pole.real() / std::abs(pole));
+        resonances.emplace_back(pole.imag() / kTwoPi, -pole.real() / std::abs(pole));
     std::sort(resonances.begin(), resonances.end());
   } else {
     ModalOptions modal_options;

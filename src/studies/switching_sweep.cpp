@@ -330,7 +330,8 @@ class SwitchingSweepRun {
       result_.decomposition_seconds += check_->build_seconds;
     }
     if (!reduced_->reduction().status.ok()) {
-      reduction_failure_ = "sweep-switching --reduce: " + reduced_->reduction().status.message;
+      reduction_failure_ =
+          "switching sweep, reduced model: " + reduced_->reduction().status.message;
       return std::nullopt;
     }
     return reduced_->solve(system, probes_, 1.0 / f, samples_);
@@ -460,13 +461,13 @@ class SwitchingSweepRun {
     const System& system = system_at(f);
     const PeriodicResult exact_there = reference.solution_at(system, f);
     if (!exact_there.status.ok())
-      return Status::failure("sweep-switching --reduce check at " + format_with_unit(f, "Hz") +
-                             ": " + exact_there.status.message);
+      return Status::failure("switching sweep, reduced model's check at " +
+                             format_with_unit(f, "Hz") + ": " + exact_there.status.message);
     const std::optional<PeriodicResult> again = reduced_solution_at(system, f);
     if (!again) return Status::failure(reduction_failure_);
     if (!again->status.ok())
-      return Status::failure("sweep-switching --reduce at " + format_with_unit(f, "Hz") + ": " +
-                             again->status.message);
+      return Status::failure("switching sweep, reduced model at " + format_with_unit(f, "Hz") +
+                             ": " + again->status.message);
     keep_the_fastest_check_solves(k, exact_there.seconds, again->seconds);
     double error = periodic_difference(*again, exact_there);
     if (!check.against_full) {  // and what neither reduction keeps: the edge estimate
@@ -476,7 +477,8 @@ class SwitchingSweepRun {
       error = std::max(error, edge);
     }
     if (!std::isfinite(error))
-      return Status::failure("sweep-switching --reduce check at " + format_with_unit(f, "Hz") +
+      return Status::failure("switching sweep, reduced model's check at " +
+                             format_with_unit(f, "Hz") +
                              ": non-finite difference between the reduced and the full solution");
     check.frequencies.push_back(f);
     check.errors.push_back(error);

@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "emnet/core/constants.hpp"
+
 namespace emnet::testing {
 
 /// Absolute path of a scene file shipped in netlists/ (EMNET_SOURCE_DIR is the source tree).
@@ -16,7 +18,7 @@ inline const std::string kFishfin = shipped_scene("fishfin.toml");
 /// netlists/cantilever.toml, the uniform clamped-free beam.
 inline const std::string kCantilever = shipped_scene("cantilever.toml");
 
-inline constexpr double kPi = 3.14159265358979323846;
-inline constexpr double kTwoPi = 2 * kPi;
+using emnet::kPi;
+using emnet::kTwoPi;
 
 }  // namespace emnet::testing

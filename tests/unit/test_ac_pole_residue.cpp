@@ -14,9 +14,9 @@ namespace emnet {
 namespace {
 
 using Complex = std::complex<double>;
-using emnet::testing::kTwoPi;
-using emnet::testing::kFishfin;
 using emnet::testing::kCantilever;
+using emnet::testing::kFishfin;
+using emnet::testing::kTwoPi;
 
 AcOptions forced(AcMethod method) {
   AcOptions options;
@@ -61,8 +61,8 @@ class AcPoleResidueFin : public ::testing::TestWithParam<bool> {};
 TEST_P(AcPoleResidueFin, MatchesADenseSolveToRounding) {
   // The ideal drive, or the RC loops (linearised at 0 V: the two DEAs' equal RC poles, a
   // repeated pole whose eigenspace basis is orthonormalised).
-  const Scene scene = read_scene(
-      kFishfin, {GetParam() ? "drive.electrical_dynamics=false" : "drive.electrical_dynamics=true"});
+  const Scene scene = read_scene(kFishfin, {GetParam() ? "drive.electrical_dynamics=false"
+                                                       : "drive.electrical_dynamics=true"});
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const StaticResult rest = solve_static(system);

@@ -28,8 +28,8 @@
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
-#include "transfer_matrix.hpp"
 #include "shipped_scenes.hpp"
+#include "transfer_matrix.hpp"
 
 namespace emnet {
 namespace {

@@ -12,8 +12,8 @@ namespace {
 
 using testing::run_emnet;
 
-using emnet::testing::kFishfin;
 using emnet::testing::kCantilever;
+using emnet::testing::kFishfin;
 
 // --probe was accepted and ignored by modes (exit 0, no probe in the output). Now each probe's
 // value in each mode, per unit of the mode's largest nodal deflection. Reference: the first mode

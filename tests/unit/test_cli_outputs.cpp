@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "test_directory.hpp"
 #include "shipped_scenes.hpp"
+#include "test_directory.hpp"
 
 namespace {
 
@@ -94,8 +94,9 @@ TEST_F(CliFiles, TranProbesReachTheCsvAndThePlot) {
   EXPECT_NE(data.find("P4 ("), std::string::npos) << data;
   EXPECT_EQ(data.find("dx2"), std::string::npos) << data;
   // Probes of different units are plotted, each unit in its own panel: no axis has two units.
-  const CliRun mixed = run_emnet("tran " + kFishfin + " --periods 1 --probe tip --probe u_A --plot " +
-                                 path("mixed.png") + " --plot-script");
+  const CliRun mixed =
+      run_emnet("tran " + kFishfin + " --periods 1 --probe tip --probe u_A --plot " +
+                path("mixed.png") + " --plot-script");
   ASSERT_EQ(mixed.status, 0) << mixed.err;
   const std::string script = contents(path("mixed.png.gp"));
   EXPECT_NE(script.find("set ylabel 'deflection [mm]'"), std::string::npos) << script;
@@ -122,8 +123,9 @@ TEST_F(CliFiles, TranProbesReachTheCsvAndThePlot) {
 // dashed, left out of the legend, which has one entry per output).
 TEST_F(CliFiles, SweepPlotPairsTheSidesOfAnOutput) {
   const std::string image = path("sweep.png");
-  const CliRun r = run_emnet("sweep-switching " + kFishfin + " --from 4 --to 6 --step 1 --probe tip " +
-                             "--probe dx4 --plot " + image + " --plot-script");
+  const CliRun r =
+      run_emnet("sweep-switching " + kFishfin + " --from 4 --to 6 --step 1 --probe tip " +
+                "--probe dx4 --plot " + image + " --plot-script");
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string script = contents(image + ".gp");
   auto plot_line = [&](int index) {
@@ -168,7 +170,8 @@ TEST(CliProbes, ProbesACommandCannotHonourAreRefused) {
       {"sweep-switching " + kFishfin + " --from 4 --to 5 --method exact --probe dea_voltage:A",
        "dea_voltage:A"},
       // a reduced model has no velocities (the square wave's feed-through has no derivative)
-      {"sweep-switching " + kFishfin + " --from 4 --to 5 --reduce --probe velocity@0.1", "velocity@0.1"},
+      {"sweep-switching " + kFishfin + " --from 4 --to 5 --reduce --probe velocity@0.1",
+       "velocity@0.1"},
       {"identify " + kFishfin + " --resonance 6 --probe tip", "--probe"},
       {"sensitivity " + kFishfin + " --probe tip", "--probe"},
       {"mismatch " + kFishfin + " --probe tip", "--output"},
@@ -225,7 +228,8 @@ TEST_F(CliFiles, AFailedWriteLeavesThePreviousFileWhole) {
   EXPECT_EQ(netlist.status, 2) << netlist.err;
   EXPECT_NE(netlist.err.find(deck), std::string::npos) << netlist.err;
   const CliRun table = run_emnet(
-      "ac " + kFishfin + " --points 2000 --csv " + csv + " --plot " + image + " --plot-script", limited);
+      "ac " + kFishfin + " --points 2000 --csv " + csv + " --plot " + image + " --plot-script",
+      limited);
   EXPECT_EQ(table.status, 2) << table.err;
   for (const std::string& file : {deck, csv, image + ".dat"})
     EXPECT_EQ(contents(file), "previous\n") << file;
@@ -256,8 +260,8 @@ TEST_F(CliFiles, ControlCharactersAreEscaped) {
   std::ofstream(fake) << "#!/bin/sh\nprintf '\\033]0;pwned\\007\\033[2J forged\\n' >&2\n"
                          "printf '\\033[31mred\\n'\nexit 1\n";
   chmod(fake.c_str(), 0755);
-  const CliRun cross =
-      run_emnet("crosscheck " + kFishfin + " --analysis op --backend program --ngspice-program " + fake);
+  const CliRun cross = run_emnet("crosscheck " + kFishfin +
+                                 " --analysis op --backend program --ngspice-program " + fake);
   EXPECT_EQ(cross.status, 3) << cross.err;
   EXPECT_NE(cross.err.find("\\e]0;pwned\\x07"), std::string::npos) << cross.err;
   EXPECT_EQ(cross.err.find('\x1b'), std::string::npos) << cross.err;

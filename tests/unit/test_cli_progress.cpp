@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "cli_run.hpp"
+#include "shipped_scenes.hpp"
 #include "terminal_progress.hpp"
 #include "test_directory.hpp"
-#include "shipped_scenes.hpp"
 
 namespace {
 
@@ -26,8 +26,9 @@ using emnet::testing::CliRun;
 using emnet::testing::EmnetChild;
 
 using emnet::testing::kFishfin;
-const std::vector<std::string> long_sweep = {"sweep-switching", kFishfin,     "--from", "1", "--to", "7",
-                                             "--step",          "0.0001"};  // 60001 frequencies
+const std::vector<std::string> long_sweep = {
+    "sweep-switching", kFishfin, "--from", "1", "--to", "7",
+    "--step",          "0.0001"};  // 60001 frequencies
 const std::string progress_text = "emnet sweep-switching: switching frequencies ";
 
 class CliProgress : public emnet::testing::TestDirectory {
@@ -72,8 +73,8 @@ TEST_F(CliProgress, InterruptLeavesNoOutputFile) {
 // interrupt is sent when the Arnoldi iterations report their first solve, on a fin of 100 000
 // segments (the run would take tens of seconds), and no CSV is written.
 TEST_F(CliProgress, ModesShowsItsPhasesAndStopsAtInterrupt) {
-  EmnetChild child({"modes", kFishfin, "--segments", "100000", "--count", "3", "--no-error-estimate",
-                    "--progress", "--csv", path("modes.csv")},
+  EmnetChild child({"modes", kFishfin, "--segments", "100000", "--count", "3",
+                    "--no-error-estimate", "--progress", "--csv", path("modes.csv")},
                    false, path("stdout.txt"));
   ASSERT_TRUE(child.started());
   ASSERT_TRUE(child.wait_for_error_text("emnet modes: modal analysis: Arnoldi (solves)", 120.0))

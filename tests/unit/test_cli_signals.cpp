@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "test_directory.hpp"
 #include "shipped_scenes.hpp"
+#include "test_directory.hpp"
 
 namespace {
 

@@ -23,9 +23,9 @@
 namespace emnet {
 namespace {
 
-using emnet::testing::kPi;
 using emnet::testing::kCantilever;
 using emnet::testing::kFishfin;
+using emnet::testing::kPi;
 
 const AutomaticChoice* find_choice(const Model& model, const std::string& key) {
   for (const auto& choice : model.automatic_choices)

@@ -216,8 +216,8 @@ TEST(Sensitivity, EveryComponentParameterMatchesFiniteDifferences) {
 }
 
 TEST(SensitivityCli, TableAndCheck) {
-  const auto r = testing::run_emnet("sensitivity " + kFishfin +
-                                    " --modes 2 --parameter beam.length --check");
+  const auto r =
+      testing::run_emnet("sensitivity " + kFishfin + " --modes 2 --parameter beam.length --check");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("beam.length"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("-1.999"), std::string::npos) << r.out;
