@@ -20,8 +20,8 @@
 
 namespace emnet {
 
-// `result` of a successful run_ac_study on `model` with `probes`; `input` is the AC input's
-// description (ac_input_description, report/describe.hpp), `total_seconds` the whole command.
+/// `result` of a successful run_ac_study on `model` with `probes`; `input` is the AC input's
+/// description (ac_input_description, report/describe.hpp), `total_seconds` the whole command [s].
 Json to_json(const AcStudyResult& result, const Model& model, const std::vector<Probe>& probes,
              const std::string& input, double total_seconds);
 

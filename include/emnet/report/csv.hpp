@@ -16,15 +16,17 @@
 
 namespace emnet {
 
-// `text` as a CSV field: unchanged, or quoted when it holds a comma, quote, CR or LF.
+/// `text` as a CSV field: unchanged, or quoted when it holds a comma, quote, CR or LF.
 std::string csv_field(const std::string& text);
 
-// The header, then `count` rows, row i filled by fill_row(i, row) (the row is cleared before);
-// the rows are formatted as they are written, not stored.
+/// The header, then `count` rows, row i filled by fill_row(i, row) (the row is cleared before);
+/// the rows are formatted as they are written, not stored.
+/// @return the failure "<path>: <reason>" when the file could not be written, else success
 Status write_csv_rows(const std::string& path, const std::vector<std::string>& header,
                       std::size_t count,
                       const std::function<void(std::size_t, std::vector<double>&)>& fill_row);
 
+/// The header, then one line per entry of `rows` (write_csv_rows over them).
 Status write_csv(const std::string& path, const std::vector<std::string>& header,
                  const std::vector<std::vector<double>>& rows);
 

@@ -10,17 +10,17 @@
 
 namespace emnet {
 
-// "drive antagonistic 0/3000 V square wave at 6 Hz", "drive single V0 + v*sin(...) ...",
-// "drive none, circuit source(s) amp" (a circuit's sources named after the drive kind).
+/// "drive antagonistic 0/3000 V square wave at 6 Hz", "drive single V0 + v*sin(...) ...",
+/// "drive none, circuit source(s) amp" (a circuit's sources named after the drive kind).
 std::string drive_summary(const Scene& scene);
 
-// What the AC input is, in words. `top_hz`: the sweep's highest frequency, where the
-// square-wave drives' omitted RC factor 1/(1 + j·2π·f·τ) is largest (τ: drive_time_constant).
+/// What the AC input is, in words. `top_hz`: the sweep's highest frequency [Hz], where the
+/// square-wave drives' omitted RC factor 1/(1 + j·2π·f·τ) is largest (τ: drive_time_constant).
 std::string ac_input_description(const Scene& scene, double top_hz);
 
-// The AC input in a few words, for a plot's title: "the antagonistic drive's force level
-// k_F*V^2/2 as a sinusoid (V = 4000 V, DEAs A and B in antiphase)", "ac 1 V of circuit source
-// amp"; empty when nothing is driven.
+/// The AC input in a few words, for a plot's title: "the antagonistic drive's force level
+/// k_F*V^2/2 as a sinusoid (V = 4000 V, DEAs A and B in antiphase)", "ac 1 V of circuit source
+/// amp"; empty when nothing is driven.
 std::string ac_input_summary(const Scene& scene);
 
 }  // namespace emnet

@@ -15,18 +15,19 @@
 
 namespace emnet {
 
-// A computed variant's validity as the table writes it (see above).
+/// A computed variant's validity as the table writes it (see above).
 std::string validity_text(const VariantResult& row);
 
-// The table's header: "variant", the keys, "status", "validity", the result columns.
+/// The table's header: "variant", the keys, "status", "validity", the result columns.
 std::vector<std::string> design_study_header(const DesignStudyResult& result);
 
-// Written completely or not at all; a failure is the returned Status (emnet/report/csv.hpp).
+/// The table as a CSV file at `path`.
+/// Written completely or not at all; a failure is the returned Status (emnet/report/csv.hpp).
 Status write_design_study_csv(const std::string& path, const DesignStudyResult& result);
 
-// keys [{key, unit}], columns [{name, unit}], rows [{variant, values {key: value}, status,
-// results [...] or null}], failed, segments, unknowns, threads, cost (seconds per stage summed
-// over the variants and per variant, wall seconds), notes.
+/// keys [{key, unit}], columns [{name, unit}], rows [{variant, values {key: value}, status,
+/// results [...] or null}], failed, segments, unknowns, threads, cost (seconds per stage summed
+/// over the variants and per variant, wall seconds), notes.
 Json to_json(const DesignStudyResult& result);
 
 }  // namespace emnet

@@ -21,49 +21,53 @@
 
 namespace emnet {
 
+/// A JSON value of the reports, keys in the order written.
 using Json = nlohmann::ordered_json;
 
-// Indented by 2; strings with invalid UTF-8 (a name given by --set) are written with U+FFFD
-// instead of failing.
+/// `json` as text, indented by 2; strings with invalid UTF-8 (a name given by --set) are
+/// written with U+FFFD instead of failing.
 std::string json_text(const Json& json);
 
-// "validity": status ("within" or "OUTSIDE"), summary, the two fractions of their limits, and
-// each violation (check, subject, key, value, limit, message).
+/// "validity": status ("within" or "OUTSIDE"), summary, the two fractions of their limits, and
+/// each violation (check, subject, key, value, limit, message).
 Json to_json(const Validity& validity);
 
-// "automatic_choices": what each "auto" key became (key, value, reason, estimated_error,
-// tolerance, band_hz [from, to], seconds).
+/// "automatic_choices": what each "auto" key became (key, value, reason, estimated_error,
+/// tolerance, band_hz [from, to], seconds).
 Json to_json(const std::vector<AutomaticChoice>& automatic_choices);
 
-// The mesh built: "segments" (the model's segment count, which the attachments can raise above
-// beam.segments) and, when they did, "segments_asked" (beam.segments). Into `out`.
+/// The mesh built: "segments" (the model's segment count, which the attachments can raise above
+/// beam.segments) and, when they did, "segments_asked" (beam.segments). Into `out`.
 void add_mesh_json(Json& out, const Model& model);
 
-// A reduced model: status ("met" / "NOT MET" from `tolerance_met`), tolerance, band_hz,
-// cutoff_hz, kept_modes, kept_real_poles, truncated_poles, full_unknowns, modal_method.
+/// A reduced model: status ("met" / "NOT MET" from `tolerance_met`), tolerance, band_hz,
+/// cutoff_hz, kept_modes, kept_real_poles, truncated_poles, full_unknowns, modal_method.
 Json to_json(const ModalReduction& reduction, bool tolerance_met);
 
-// The modes study: scene, automatic_choices, segments, modes (frequency_hz, damping_ratio,
-// natural_frequency_hz, pole [re, im], relative_residual, error_bounded, the error bounds or
-// unbounded_reason, discretisation_error_estimate when estimated, shape [{x_m, deflection,
-// deflection_imag}] when computed, the value at each of `probes` per unit largest
-// deflection), real_poles, rigid_body_modes, method, complete, pencil_size, cost (modal,
-// error bound, error estimate and `total_seconds`), and status "NOT BOUNDED" when a mode's
-// rounding error is not bounded.
+/// The modes study: scene, automatic_choices, segments, modes (frequency_hz, damping_ratio,
+/// natural_frequency_hz, pole [re, im], relative_residual, error_bounded, the error bounds or
+/// unbounded_reason, discretisation_error_estimate when estimated, shape [{x_m, deflection,
+/// deflection_imag}] when computed, the value at each of `probes` per unit largest
+/// deflection), real_poles, rigid_body_modes, method, complete, pencil_size, cost (modal,
+/// error bound, error estimate and `total_seconds`), and status "NOT BOUNDED" when a mode's
+/// rounding error is not bounded.
+/// @param total_seconds  the whole command, from its start [s]
 Json to_json(const ModesStudyResult& result, const std::vector<Probe>& probes,
              double total_seconds);
 
-// The sensitivity study of `scene`: scene, automatic_choices, segments, the modes (frequency,
-// natural frequency, pole), per parameter (key, value, unit) each mode's pole, frequency and
-// natural-frequency derivatives and normalised sensitivities (with `with_check` the finite-
-// difference reference, its difference and error estimate), left_vector_residual, cost.
+/// The sensitivity study of `scene`: scene, automatic_choices, segments, the modes (frequency,
+/// natural frequency, pole), per parameter (key, value, unit) each mode's pole, frequency and
+/// natural-frequency derivatives and normalised sensitivities (with `with_check` the finite-
+/// difference reference, its difference and error estimate), left_vector_residual, cost.
+/// @param total_seconds  the whole command, from its start [s]
 Json to_json(const SensitivityResult& result, const Scene& scene, bool with_check,
              double total_seconds);
 
-// The static state of `model`: scene, automatic_choices, segments, nodes [{x_m, deflection_m,
-// rotation_rad}] from `nodes` (one {x [m], w [m], φ [rad]} per beam node), probes [{name,
-// description, unit, value}] with `probe_values` (one per probe), accuracy (relative_residual,
-// newton_iterations, discretisation), cost (solve and `total_seconds`), validity.
+/// The static state of `model`: scene, automatic_choices, segments, nodes [{x_m, deflection_m,
+/// rotation_rad}] from `nodes` (one {x [m], w [m], φ [rad]} per beam node), probes [{name,
+/// description, unit, value}] with `probe_values` (one per probe), accuracy (relative_residual,
+/// newton_iterations, discretisation), cost (solve and `total_seconds`), validity.
+/// @param total_seconds  the whole command, from its start [s]
 Json to_json(const Model& model, const StaticResult& rest,
              const std::vector<std::vector<double>>& nodes, const std::vector<Probe>& probes,
              const std::vector<double>& probe_values, const Validity& validity,

@@ -82,75 +82,83 @@
 
 namespace emnet {
 
+/// The analysis a deck runs: .op, .ac or .tran.
 enum class SpiceAnalysis { op, ac, tran };
+/// "op", "ac" or "tran".
 const char* spice_analysis_name(SpiceAnalysis analysis);
 
+/// What write_spice_deck writes.
 struct SpiceDeckOptions {
-  SpiceAnalysis analysis = SpiceAnalysis::op;
-  // Outputs; empty: spice_output_probes(model).
+  SpiceAnalysis analysis = SpiceAnalysis::op;  ///< the deck's analysis
+  /// Outputs; empty: spice_output_probes(model).
   std::vector<Probe> outputs;
-  // ac: the sweep; unset: the scene's [ac] table (what `emnet ac` uses without options).
+  /// ac: the sweep; unset: the scene's [ac] table (what `emnet ac` uses without options).
   std::optional<AcSpec> ac;
-  // tran: `.tran output_step end_time 0 max_step [uic]`.
-  double end_time = 0.0;     // [s], > 0
-  double output_step = 0.0;  // [s], > 0
-  double max_step = 0.0;     // [s]; 0: output_step
-  // tran: `.options reltol=`; vntol and abstol are set far below the deck's values (1e-12 V,
-  // 1e-15 A) so that reltol is what limits the error.
+  /// tran: `.tran output_step end_time 0 max_step [uic]`.
+  double end_time = 0.0;     ///< [s], > 0
+  double output_step = 0.0;  ///< [s], > 0
+  double max_step = 0.0;     ///< [s]; 0: output_step
+  /// tran: `.options reltol=`; vntol and abstol are set far below the deck's values (1e-12 V,
+  /// 1e-15 A) so that reltol is what limits the error.
   double relative_tolerance = 1e-6;
-  // tran: ε of instantly switching pulses = this fraction of the pulse's shorter level time.
+  /// tran: ε of instantly switching pulses = this fraction of the pulse's shorter level time.
   double edge_fraction = 1e-5;
-  StartState start = StartState::rest;
-  // tran with start = static: the static state of the model's network (solve_static of
-  // model.network.assemble()), whose integral outputs' values the deck's .ic lines hold.
-  // Required then: std::invalid_argument without it; a failed one is an OptionError naming the
-  // field "start" ("the network has no static state").
+  StartState start = StartState::rest;  ///< tran: the start state, at rest or static
+  /// tran with start = static: the static state of the model's network (solve_static of
+  /// model.network.assemble()), whose integral outputs' values the deck's .ic lines hold.
+  /// Required then: std::invalid_argument without it; a failed one is an OptionError naming the
+  /// field "start" ("the network has no static state").
   std::optional<StaticResult> static_state;
-  // Append an ngspice `.control` block (run, then wrdata of the outputs to `control_output`).
+  /// Append an ngspice `.control` block (run, then wrdata of the outputs to `control_output`).
   bool control = false;
-  std::string control_output;  // empty: "<scene name>-<analysis>.data"
-  // How the header names the scene file; empty: the file name of Scene::file (no directory,
-  // so that a deck does not depend on where the repository is).
+  std::string control_output;  ///< empty: "<scene name>-<analysis>.data"
+  /// How the header names the scene file; empty: the file name of Scene::file (no directory,
+  /// so that a deck does not depend on where the repository is).
   std::string scene_label;
-  std::vector<std::string> overrides;  // --set overrides, listed in the header
+  std::vector<std::string> overrides;  ///< --set overrides, listed in the header
 };
 
-// Where ngspice holds one of emnet's quantities: emnet value = sign × vector.
+/// Where ngspice holds one of emnet's quantities: emnet value = sign × vector.
 struct SpiceVector {
-  std::string vector;  // ngspice vector name, lower case ("v3", "l_nt0#branch"); empty: none
-  double sign = 1.0;
+  std::string vector;  ///< ngspice vector name, lower case ("v3", "l_nt0#branch"); empty: none
+  double sign = 1.0;   ///< the factor from the vector to emnet's value
 };
 
+/// One output of a deck: the probe it is and the vector that holds it.
 struct SpiceOutput {
-  std::string probe;   // emnet probe name
-  std::string vector;  // ngspice vector of its output node, lower case ("out_p4")
-  std::string unit;    // the probe's unit (m, rad, V, …)
+  std::string probe;   ///< emnet probe name
+  std::string vector;  ///< ngspice vector of its output node, lower case ("out_p4")
+  std::string unit;    ///< the probe's unit (m, rad, V, …)
   std::string description;
 };
 
+/// A written deck and where its vectors hold emnet's unknowns and outputs.
 struct SpiceDeck {
-  std::string text;  // the deck, lines ending in '\n', first line a comment, last ".end"
-  SpiceAnalysis analysis = SpiceAnalysis::op;
-  // One entry per unknown of network.assemble() (System::unknowns order). Node entries hold
-  // the node's voltage vector (op: the displacement z, or the voltage, of emnet's
-  // StaticResult::state; ac/tran: the velocity / voltage); branch entries the branch current.
+  std::string text;  ///< the deck, lines ending in '\n', first line a comment, last ".end"
+  SpiceAnalysis analysis = SpiceAnalysis::op;  ///< the analysis it runs
+  /// One entry per unknown of network.assemble() (System::unknowns order). Node entries hold
+  /// the node's voltage vector (op: the displacement z, or the voltage, of emnet's
+  /// StaticResult::state; ac/tran: the velocity / voltage); branch entries the branch current.
   std::vector<SpiceVector> unknowns;
-  std::vector<SpiceOutput> outputs;  // one per output probe, in order
-  std::vector<std::string> notes;    // what the deck approximates, in words
+  std::vector<SpiceOutput> outputs;  ///< one per output probe, in order
+  std::vector<std::string> notes;    ///< what the deck approximates, in words
 };
 
-// The deck for `options.analysis` over `model` (its network, beam layout and DEAs). Throws
-// InputError for a model that cannot be written safely or options out of range.
+/// The deck for `options.analysis` over `model` (its network, beam layout and DEAs).
+/// @throws InputError for a model that cannot be written safely or options out of range (an
+///         OptionError naming "start" when options.static_state is a failed one)
+/// @throws std::invalid_argument for a tran deck from the static state without
+///         options.static_state, or with one of another network
 SpiceDeck write_spice_deck(const Model& model, const SpiceDeckOptions& options);
 
-// A deck's default outputs: the model's deck_output_list (emnet/model/outputs.hpp): the scene's
-// probes as they are (P1 included), dx_k = P_k − P1 when a probe P1 exists (paper Eqs. 20–22),
-// and each DEA's capacitor voltage u_X and current i_X when it has an electrical model.
+/// A deck's default outputs: the model's deck_output_list (emnet/model/outputs.hpp): the scene's
+/// probes as they are (P1 included), dx_k = P_k − P1 when a probe P1 exists (paper Eqs. 20–22),
+/// and each DEA's capacitor voltage u_X and current i_X when it has an electrical model.
 std::vector<Probe> spice_output_probes(const Model& model);
 
-// Text made safe for a SPICE comment (see the header comment), and a name made of
-// [A-Za-z0-9_] only (an empty text gives "_").
+/// Text made safe for a SPICE comment (see the header comment).
 std::string spice_comment_text(const std::string& text);
+/// A name made of [A-Za-z0-9_] only (an empty text gives "_").
 std::string spice_identifier(const std::string& text);
 
 }  // namespace emnet

@@ -30,43 +30,49 @@
 
 namespace emnet {
 
-// Why the scene gives the AC analysis no input (B_ac = 0), in its own terms: "nothing excites
-// the AC analysis: drive.kind = \"none\" and no [[load]], so every response would be zero; …".
+/// Why the scene gives the AC analysis no input (B_ac = 0), in its own terms: "nothing excites
+/// the AC analysis: drive.kind = \"none\" and no [[load]], so every response would be zero; …".
 std::string no_ac_input_reason(const Scene& scene);
 
-// An InputError naming the scene's file and drive.kind, with no_ac_input_reason, when the
-// system has no AC input (System::b_ac = 0).
+/// Checks that `system` (of `model`) has an AC input.
+/// @throws InputError naming the scene's file and drive.kind, with no_ac_input_reason, when the
+///         system has no AC input (System::b_ac = 0)
 void require_ac_input(const Model& model, const System& system);
 
+/// What run_ac_study sweeps and how.
 struct AcStudyOptions {
-  AcSpec sweep;               // from, to [Hz], points, log: the grid is frequency_grid of these
-  std::vector<Probe> probes;  // the responses computed
-  std::optional<ReductionOptions> reduction;  // set: evaluate the sweep by modal reduction
-  Progress* progress = nullptr;               // the phases and the full sweep's frequencies
+  AcSpec sweep;               ///< from, to [Hz], points, log: the grid is frequency_grid of these
+  std::vector<Probe> probes;  ///< the responses computed
+  std::optional<ReductionOptions> reduction;  ///< set: evaluate the sweep by modal reduction
+  Progress* progress = nullptr;               ///< the phases and the full sweep's frequencies
 };
 
-// Which step of the study failed (Status::ok false), so that a caller can name it.
+/// Which step of the study failed (Status::ok false), so that a caller can name it.
 enum class AcStudyStage { none, reduction, sweep };
 
+/// The sweep, its resonances and validity, or the stage that failed.
 struct AcStudyResult {
-  // Failure: the analysis's message (run_ac's, run_ac_reduced's), in `failed_stage`.
+  /// Failure: the analysis's message (run_ac's, run_ac_reduced's), in `failed_stage`.
   Status status;
-  AcStudyStage failed_stage = AcStudyStage::none;
-  AcResult ac;                                   // the sweep (the reduced model's with `reduction`)
-  std::optional<AcReductionResult> reduction;    // set when asked for
-  std::vector<double> resonances_hz;             // in [from, to] of the grid, increasing
-  std::vector<double> resonance_damping_ratios;  // each resonance's damping ratio −Re s/|s|
-  std::vector<DeflectionPeak> peaks;             // per deflection probe, its largest |response|
-  Validity validity;
-  // What the input cannot reach: a circuit-driven DEA whose operating voltage is 0 V, whose
-  // k_F·V² force has no part linear in the AC input (2·k_F·u₀·U = 0).
+  AcStudyStage failed_stage = AcStudyStage::none;  ///< none on success
+  AcResult ac;                                 ///< the sweep (the reduced model's with `reduction`)
+  std::optional<AcReductionResult> reduction;  ///< set when asked for
+  std::vector<double> resonances_hz;           ///< in [from, to] of the grid, increasing
+  std::vector<double> resonance_damping_ratios;  ///< each resonance's damping ratio −Re s/|s|
+  std::vector<DeflectionPeak> peaks;             ///< per deflection probe, its largest |response|
+  Validity validity;  ///< the deflection amplitudes and DEA voltages against their limits
+  /// What the input cannot reach: a circuit-driven DEA whose operating voltage is 0 V, whose
+  /// k_F·V² force has no part linear in the AC input (2·k_F·u₀·U = 0).
   std::vector<std::string> notes;
 };
 
-// The study on a model already built and its operating point (the static state, or zero for
-// a linear network: analysis/operating_point.hpp). A system with no AC input is an InputError
-// (require_ac_input); so is an input that reaches no output (every response exactly zero,
-// e.g. a circuit source's ac about a DEA at 0 V), naming "circuit" with the notes.
+/// The study on a model already built and its operating point (the static state, or zero for
+/// a linear network: analysis/operating_point.hpp). A failure of the reduction or the sweep is
+/// the result's status, in `failed_stage`.
+/// @throws InputError when the system has no AC input (require_ac_input), or when the input
+///         reaches no output (every response exactly zero, e.g. a circuit source's ac about a
+///         DEA at 0 V), naming "circuit" with the notes
+/// @throws OptionError (an InputError) when `options.reduction` is out of range
 AcStudyResult run_ac_study(const Model& model, const System& system,
                            const Eigen::VectorXd& operating_point, const AcStudyOptions& options);
 

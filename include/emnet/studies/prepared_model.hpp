@@ -13,14 +13,16 @@
 
 namespace emnet {
 
+/// A scene's model, its assembled System and its operating point.
 struct PreparedModel {
-  Status status;  // the operating point's failure ("static operating point: …")
-  Model model;
-  System system;
-  StaticResult rest;  // the operating point (OperatingPoint::rest)
+  Status status;      ///< the operating point's failure ("static operating point: …")
+  Model model;        ///< prepare_model of the scene: every "auto" key resolved, then built
+  System system;      ///< model.network.assemble()
+  StaticResult rest;  ///< the operating point (OperatingPoint::rest)
 };
 
-// InputError from prepare_model; the operating point's numerical failure is the Status.
+/// The PreparedModel of `scene`; the operating point's numerical failure is the Status.
+/// @throws InputError from prepare_model
 PreparedModel prepare_at_rest(const Scene& scene, const PrepareOptions& options = {},
                               const OperatingPointOptions& point_options = {});
 

@@ -14,13 +14,14 @@
 
 namespace emnet {
 
+/// What the static study reports of a static state.
 struct StaticStudyValues {
-  std::vector<std::vector<double>> nodes;  // per beam node: {x [m], w [m], φ [rad]}
-  std::vector<double> probe_values;        // one per probe, in the probe's unit
-  Validity validity;
+  std::vector<std::vector<double>> nodes;  ///< per beam node: {x [m], w [m], φ [rad]}
+  std::vector<double> probe_values;        ///< one per probe, in the probe's unit
+  Validity validity;  ///< the deflections and the drive's voltages at t = 0 against their limits
 };
 
-// From a solved static state `rest` of `system` (model.network.assemble()).
+/// The study's values from a solved static state `rest` of `system` (model.network.assemble()).
 StaticStudyValues static_study_values(const Model& model, const System& system,
                                       const StaticResult& rest, const std::vector<Probe>& probes);
 
