@@ -17,13 +17,13 @@
 
 namespace emnet {
 
-// A linear solve whose relative residual ‖A·x − b‖/‖b‖ is above this, or not finite, has not
-// solved its system: the analyses return a failed Status then (static, AC, the exact periodic
-// state), never a result. Rounding of the equilibrated systems is 1e-16..1e-13; 1e-8 leaves
-// room for ill-conditioned but meaningful networks and none for a garbage answer.
+/// A linear solve whose relative residual ‖A·x − b‖/‖b‖ is above this, or not finite, has not
+/// solved its system: the analyses return a failed Status then (static, AC, the exact periodic
+/// state), never a result. Rounding of the equilibrated systems is 1e-16..1e-13; 1e-8 leaves
+/// room for ill-conditioned but meaningful networks and none for a garbage answer.
 inline constexpr double kResidualLimit = 1e-8;
-// The failed Status for `residual` of `what` above kResidualLimit or not finite; success
-// otherwise.
+/// The failed Status for `residual` of `what` above kResidualLimit or not finite; success
+/// otherwise.
 Status check_residual(double residual, const std::string& what);
 
 // ---- static / operating point -----------------------------------------------------------
@@ -35,41 +35,45 @@ Status check_residual(double residual, const std::string& what);
 //   z = [displacements (m, rad) on mechanical nodes; voltages on electrical nodes;
 //        through quantities (forces, torques, currents) on branches],
 // solved by Newton with a sparse LU. Built from G and C alone: no element is special-cased.
+
+/// Options of solve_static.
 struct StaticOptions {
-  double tolerance = 1e-12;  // Newton: relative step size
-  int max_iterations = 50;
-  Progress* progress = nullptr;  // a report per Newton iteration; cancelled: Status "cancelled"
+  double tolerance = 1e-12;      ///< Newton: relative step size
+  int max_iterations = 50;       ///< Newton iterations at most
+  Progress* progress = nullptr;  ///< a report per Newton iteration; cancelled: Status "cancelled"
 };
 
+/// The static state of a System, as solve_static returns it.
 struct StaticResult {
   Status status;
-  Eigen::VectorXd state;            // z, see above
-  Eigen::VectorXd operating_point;  // y at rest: velocities 0, everything else from z
-  double relative_residual = 0.0;   // ‖K·z + g − b‖ / ‖b‖ (above kResidualLimit: failed)
+  Eigen::VectorXd state;            ///< z, see above
+  Eigen::VectorXd operating_point;  ///< y at rest: velocities 0, everything else from z
+  double relative_residual = 0.0;  ///< ‖K·z + g − b‖ / ‖b‖ (above kResidualLimit: failed)
   int newton_iterations = 0;
-  double seconds = 0.0;
+  double seconds = 0.0;  ///< [s]
 };
 
+/// The static state of `system` (see above), by Newton with a sparse LU.
 StaticResult solve_static(const System& system, const StaticOptions& options = {});
-// Value of a probe at rest (deflections and rotations; velocities are zero; through quantities
-// as solved; rate terms zero; squares evaluated as they are).
+/// Value of a probe at rest (deflections and rotations; velocities are zero; through quantities
+/// as solved; rate terms zero; squares evaluated as they are).
 double static_probe_value(const System& system, const StaticResult& result, const Probe& probe);
 
-// Which unknowns are mechanical across values (velocities), and which rows have no s⁰ part
-// once those are written as s·(displacement) (compliance and lever rows): `divided`.
+/// Which unknowns are mechanical across values (velocities), and which rows have no s⁰ part
+/// once those are written as s·(displacement) (compliance and lever rows): `divided`.
 struct RowClassification {
   std::vector<bool> mechanical;
   std::vector<bool> divided;
 };
 RowClassification classify_rows(const System& system, const Eigen::SparseMatrix<double>& g_matrix);
 
-// The static operator of the linearised system, for reuse (AC at f = 0).
+/// The static operator of the linearised system, for reuse (AC at f = 0).
 class StaticOperator {
  public:
   StaticOperator(const System& system, const Eigen::SparseMatrix<double>& linearised_g);
-  // Solves matrix()·z = rhs; false (with a reason) when the operator is singular.
+  /// Solves matrix()·z = rhs; false (with a reason) when the operator is singular.
   bool solve(const Eigen::VectorXcd& rhs, Eigen::VectorXcd& z, std::string& why) const;
-  // A right-hand side on a row divided by s is a constant velocity: no static state.
+  /// A right-hand side on a row divided by s is a constant velocity: no static state.
   bool excites_divided_rows(const Eigen::VectorXcd& rhs) const;
   const Eigen::SparseMatrix<double>& matrix() const { return matrix_; }
   const std::vector<bool>& divided_rows() const { return divided_; }
@@ -84,7 +88,7 @@ class StaticOperator {
   bool factorised_ = false;
 };
 
-// G + ∂g/∂y at y.
+/// G + ∂g/∂y at y.
 Eigen::SparseMatrix<double> linearised_g(const System& system, const Eigen::VectorXd& y);
 
 // ---- AC ----------------------------------------------------------------------------------
@@ -92,62 +96,70 @@ Eigen::SparseMatrix<double> linearised_g(const System& system, const Eigen::Vect
 // Small-signal response about the operating point: (G + J_g + jω·C)·Y = B_ac with B_ac the
 // sources' AC phasors plus direct excitations (System::b_ac). At f = 0 a displacement probe
 // is the static response to B_ac (the limit of V/(jω)).
+
+/// `points` frequencies from `from` to `to` [Hz], both included, spaced logarithmically when
+/// `log`, else linearly; {from} for one point, empty for fewer.
 std::vector<double> frequency_grid(double from, double to, int points, bool log);
 
-// How the sweep is solved.
-//   direct: (G + J_g + jω·C)·Y = B_ac by a sparse LU at every frequency; accuracy: the residual.
-//   pole_residue: every pole of the network (a dense eigen-decomposition of its state matrix)
-//     and each probe's residues, then O(poles) work per frequency: p(jω) = Σ_k (a_k + jω·b_k)/
-//     (jω − λ_k) + its direct part (src/analysis/ac_pole_residue.hpp). Exact but for rounding,
-//     which grows with the eigenvectors' condition; so the result is compared with the direct
-//     solve at the check points (ends, peaks, the frequencies of the least damped poles) and is
-//     only returned when they agree to kPoleResidueAgreement of each probe's peak.
-//   automatic: pole_residue for networks of at most kPoleResidueUnknowns unknowns and sweeps of
-//     at least kPoleResidueFrequencies points, falling back to direct (with a note) where the
-//     form does not apply or its check fails; direct otherwise.
+/// How the sweep is solved.
+///   direct: (G + J_g + jω·C)·Y = B_ac by a sparse LU at every frequency; accuracy: the residual.
+///   pole_residue: every pole of the network (a dense eigen-decomposition of its state matrix)
+///     and each probe's residues, then O(poles) work per frequency: p(jω) = Σ_k (a_k + jω·b_k)/
+///     (jω − λ_k) + its direct part (src/analysis/ac_pole_residue.hpp). Exact but for rounding,
+///     which grows with the eigenvectors' condition; so the result is compared with the direct
+///     solve at the check points (ends, peaks, the frequencies of the least damped poles) and is
+///     only returned when they agree to kPoleResidueAgreement of each probe's peak.
+///   automatic: pole_residue for networks of at most kPoleResidueUnknowns unknowns and sweeps of
+///     at least kPoleResidueFrequencies points, falling back to direct (with a note) where the
+///     form does not apply or its check fails; direct otherwise.
 enum class AcMethod { automatic, direct, pole_residue };
-inline constexpr int kPoleResidueUnknowns = 160;
-inline constexpr size_t kPoleResidueFrequencies = 20;
-// Largest difference between the two forms at a check point, relative to the probe's peak
-// |value| over the sweep, that lets the pole–residue sweep stand. The direct solve's own error
-// is its residual (≤ 1e-13 on the equilibrated systems) times the condition; 1e-10 leaves that
-// room and no more.
+inline constexpr int kPoleResidueUnknowns = 160;       ///< see AcMethod::automatic
+inline constexpr size_t kPoleResidueFrequencies = 20;  ///< see AcMethod::automatic
+/// Largest difference between the two forms at a check point, relative to the probe's peak
+/// |value| over the sweep, that lets the pole–residue sweep stand. The direct solve's own error
+/// is its residual (≤ 1e-13 on the equilibrated systems) times the condition; 1e-10 leaves that
+/// room and no more.
 inline constexpr double kPoleResidueAgreement = 1e-10;
 
+/// Options of run_ac.
 struct AcOptions {
   AcMethod method = AcMethod::automatic;
-  Progress* progress = nullptr;  // one report per frequency; cancelled: Status "cancelled"
+  Progress* progress = nullptr;  ///< one report per frequency; cancelled: Status "cancelled"
 };
 
+/// The small-signal response of a sweep, as run_ac returns it.
 struct AcResult {
   Status status;
-  std::vector<double> frequencies;                        // Hz
-  std::vector<std::vector<std::complex<double>>> values;  // [probe][frequency]
-  double max_relative_residual = 0.0;  // worst ‖A·Y − B‖/‖B‖ over the sweep
-  int pivot_searches = 0;  // factorisations with a pivot search (the first, and where reused
-                           // pivots gave 4× the residual of the last search)
-  Method method = Method::direct;  // direct, pole_residue (or reduced: run_ac_reduced)
-  // pole-residue: the frequencies where it was compared with the direct solve (whose residuals
-  // are max_relative_residual), the largest difference there relative to each probe's peak, and
-  // the condition κ₁ of the eigenvector basis.
+  std::vector<double> frequencies;                        ///< Hz
+  std::vector<std::vector<std::complex<double>>> values;  ///< [probe][frequency]
+  double max_relative_residual = 0.0;  ///< worst ‖A·Y − B‖/‖B‖ over the sweep
+  int pivot_searches = 0;  ///< factorisations with a pivot search (the first, and where reused
+                           ///< pivots gave 4× the residual of the last search)
+  Method method = Method::direct;  ///< direct, pole_residue (or reduced: run_ac_reduced)
+  /// pole-residue: the frequencies where it was compared with the direct solve (whose residuals
+  /// are max_relative_residual), the largest difference there relative to each probe's peak, and
+  /// the condition κ₁ of the eigenvector basis.
   int check_points = 0;
   double check_deviation = 0.0;
   double basis_condition = 0.0;
-  std::string note;  // why automatic fell back to the direct solve, when it did
-  // pole-residue: every pole of the linearised network [1/s] (of the state equation, the
-  // levers' spurious ones at 0 removed), as the sweep used them; empty for direct.
+  std::string note;  ///< why automatic fell back to the direct solve, when it did
+  /// pole-residue: every pole of the linearised network [1/s] (of the state equation, the
+  /// levers' spurious ones at 0 removed), as the sweep used them; empty for direct.
   std::vector<std::complex<double>> poles;
-  double seconds = 0.0;
+  double seconds = 0.0;  ///< [s]
 };
 
-// A relative residual above kResidualLimit at any frequency is a failed Status naming it; so is
-// a probe value that is not finite ("non-finite result for an AC response: probe 'x' at
-// f = … Hz"): `values` never holds a NaN or an infinity.
+/// A relative residual above kResidualLimit at any frequency is a failed Status naming it; so is
+/// a probe value that is not finite ("non-finite result for an AC response: probe 'x' at
+/// f = … Hz"): `values` never holds a NaN or an infinity.
 AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
                 const std::vector<double>& frequencies, const std::vector<Probe>& probes,
                 const AcOptions& options = {});
-// Probes with squares are linearised about `operating_point` (linearised_probe) by run_ac;
-// probe_phasor takes linear probes only (std::invalid_argument otherwise).
+/// Probes with squares are linearised about `operating_point` (linearised_probe) by run_ac;
+/// probe_phasor takes linear probes only (std::invalid_argument otherwise).
+/// @param y      the phasors of the system's unknowns
+/// @param omega  angular frequency [rad/s], for the probe's integrations
+/// @throws std::invalid_argument when `probe` has squares
 std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y, double omega);
 
 // ---- modal -------------------------------------------------------------------------------
@@ -180,22 +192,22 @@ std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y,
 // problems", Linear Algebra Appl. 309 (2000)). A pole whose bound cannot be formed (no left
 // vector, Yᴴ·Ê·X singular) or is not small (relative bound above 1e-3, where first order is no
 // longer a bound) is marked unbounded, with the reason.
-//
-// A pole with |Im s| ≤ kNearlyReal·|s| (damping ratio above 1 − 5e-11) is real: rounding splits a
-// repeated real pole into a complex pair ~√ε apart. Measured: the fish fin with the ideal drive
-// and loss factor 1e-5 has repeated Kelvin–Voigt poles at −1/τ (τ = 2.5e-7 s) that came out as
-// a "mode" at 0.0071 Hz with |Im s|/|s| = 1.1e-8.
+
+/// A pole with |Im s| ≤ kNearlyReal·|s| (damping ratio above 1 − 5e-11) is real: rounding splits a
+/// repeated real pole into a complex pair ~√ε apart. Measured: the fish fin with the ideal drive
+/// and loss factor 1e-5 has repeated Kelvin–Voigt poles at −1/τ (τ = 2.5e-7 s) that came out as
+/// a "mode" at 0.0071 Hz with |Im s|/|s| = 1.1e-8.
 inline constexpr double kNearlyReal = 1e-5;
 
-// A numbered mode is a resonance: an oscillatory pole pair with damping ratio below 1/√2, where
-// a second-order response |1/(1 − (ω/ω_n)² + 2jζω/ω_n)| has a peak (at ω_n·√(1 − 2ζ²)); the
-// Bode markers use the same limit. A pair at or above it (an overdamped pair formed by
-// relaxation poles, e.g. Kelvin–Voigt or RC branches coupled through the structure) shows no
-// peak and moves with the mesh; it is listed apart, in ModalResult::overdamped_pairs.
+/// A numbered mode is a resonance: an oscillatory pole pair with damping ratio below 1/√2, where
+/// a second-order response |1/(1 − (ω/ω_n)² + 2jζω/ω_n)| has a peak (at ω_n·√(1 − 2ζ²)); the
+/// Bode markers use the same limit. A pair at or above it (an overdamped pair formed by
+/// relaxation poles, e.g. Kelvin–Voigt or RC branches coupled through the structure) shows no
+/// peak and moves with the mesh; it is listed apart, in ModalResult::overdamped_pairs.
 inline constexpr double kResonanceDampingLimit = 0.70710678118654752;
-// Whether `pole` [rad/s] (either one of its conjugate pair) is a numbered mode by kModeRule:
-// oscillatory (|Im s| above kNearlyReal·|s|) with damping ratio −Re s/|s| below
-// kResonanceDampingLimit. The one test of the modes, the AC markers and the Arnoldi request.
+/// Whether `pole` [rad/s] (either one of its conjugate pair) is a numbered mode by kModeRule:
+/// oscillatory (|Im s| above kNearlyReal·|s|) with damping ratio −Re s/|s| below
+/// kResonanceDampingLimit. The one test of the modes, the AC markers and the Arnoldi request.
 inline bool is_resonance(std::complex<double> pole) {
   const double magnitude = std::abs(pole);
   return std::abs(pole.imag()) > kNearlyReal * magnitude &&
@@ -205,57 +217,60 @@ inline constexpr const char* kModeRule =
     "a mode is an oscillatory pole pair with damping ratio below 1/sqrt(2) (a resonance with a "
     "peak); pairs at or above it are listed apart as overdamped pairs";
 
+/// Options of run_modes.
 struct ModalOptions {
-  int count = 0;  // large pencils: oscillatory poles wanted (0: the 10 lowest)
-  // System unknowns up to which the dense method is used (every pole, O(n³)). Measured on the
-  // fish fin with the default request (tools/bench, "modes"): dense/Arnoldi time 0.22 at 36
-  // unknowns, 0.76 at 66, 2.1 at 126, 114 at 606, so the crossover lies near 80.
+  int count = 0;  ///< large pencils: oscillatory poles wanted (0: the 10 lowest)
+  /// System unknowns up to which the dense method is used (every pole, O(n³)). Measured on the
+  /// fish fin with the default request (tools/bench, "modes"): dense/Arnoldi time 0.22 at 36
+  /// unknowns, 0.76 at 66, 2.1 at 126, 114 at 606, so the crossover lies near 80.
   int dense_limit = 80;
-  bool keep_vectors = true;
-  bool error_bounds = true;  // compute each pole's error bound (from the transposed pencil)
-  // Reports each phase (equilibration, factorisation, rigid-body space, eigenvalues, left
-  // vectors, bounds) and, inside the Arnoldi iterations, the operator applications; cancelled,
-  // the analysis stops at the next phase or application with cancelled_status().
+  bool keep_vectors = true;  ///< fill Mode::vector
+  bool error_bounds = true;  ///< compute each pole's error bound (from the transposed pencil)
+  /// Reports each phase (equilibration, factorisation, rigid-body space, eigenvalues, left
+  /// vectors, bounds) and, inside the Arnoldi iterations, the operator applications; cancelled,
+  /// the analysis stops at the next phase or application with cancelled_status().
   Progress* progress = nullptr;
 };
 
+/// One pole of the network, with its accuracy.
 struct Mode {
-  std::complex<double> pole;          // s [1/s], Im ≥ 0
-  double frequency_hz = 0.0;          // |Im s| / 2π (damped)
-  double natural_frequency_hz = 0.0;  // |s| / 2π
-  double damping_ratio = 0.0;         // −Re s / |s|
-  // ‖(Â + ŝÊ)·x̂‖ / ((‖Â‖ + |ŝ|·‖Ê‖)·‖x̂‖) on the equilibrated pencil (unit-free): the backward
-  // error.
+  std::complex<double> pole;          ///< s [1/s], Im ≥ 0
+  double frequency_hz = 0.0;          ///< |Im s| / 2π (damped)
+  double natural_frequency_hz = 0.0;  ///< |s| / 2π
+  double damping_ratio = 0.0;         ///< −Re s / |s|
+  /// ‖(Â + ŝÊ)·x̂‖ / ((‖Â‖ + |ŝ|·‖Ê‖)·‖x̂‖) on the equilibrated pencil (unit-free): the backward
+  /// error.
   double relative_residual = 0.0;
-  // First-order bound on |δs| [1/s] (see above); valid when error_bounded. The frequency's error
-  // is at most pole_error/2π [Hz], the damping ratio's at most pole_error/|s|.
+  /// First-order bound on |δs| [1/s] (see above); valid when error_bounded. The frequency's error
+  /// is at most pole_error/2π [Hz], the damping ratio's at most pole_error/|s|.
   double pole_error = 0.0;
   bool error_bounded = false;
-  std::string unbounded_reason;  // why not, when !error_bounded
-  Eigen::VectorXcd vector;       // y-space eigenvector (across values are velocities)
+  std::string unbounded_reason;  ///< why not, when !error_bounded
+  Eigen::VectorXcd vector;       ///< y-space eigenvector (across values are velocities)
 };
 
+/// The poles of the network, as run_modes returns them.
 struct ModalResult {
   Status status;
-  std::vector<Mode> modes;       // oscillatory poles (Im s > 0), sorted by frequency
-  std::vector<Mode> real_poles;  // non-oscillatory poles (RC, overdamped), sorted by |s|
-  // Oscillatory pairs with damping ratio ≥ kResonanceDampingLimit (no peak), sorted by |s|
+  std::vector<Mode> modes;       ///< oscillatory poles (Im s > 0), sorted by frequency
+  std::vector<Mode> real_poles;  ///< non-oscillatory poles (RC, overdamped), sorted by |s|
+  /// Oscillatory pairs with damping ratio ≥ kResonanceDampingLimit (no peak), sorted by |s|
   std::vector<Mode> overdamped_pairs;
-  // Rigid-body motions (pole s = 0): displacement fields on the system's unknowns (m and rad on
-  // mechanical across unknowns, 0 elsewhere), an orthonormal basis, largest entry positive.
+  /// Rigid-body motions (pole s = 0): displacement fields on the system's unknowns (m and rad on
+  /// mechanical across unknowns, 0 elsewhere), an orthonormal basis, largest entry positive.
   std::vector<Eigen::VectorXd> rigid_body_modes;
-  Method method = Method::dense;  // dense or arnoldi
-  int unknowns = 0;               // of the system
-  int pencil_size = 0;            // of the displacement-form pencil
-  double shift = 0.0;
+  Method method = Method::dense;  ///< dense or arnoldi
+  int unknowns = 0;               ///< of the system
+  int pencil_size = 0;            ///< of the displacement-form pencil
+  double shift = 0.0;             ///< σ of the shift-invert operator [1/s]
   double seconds = 0.0;
-  double bound_seconds = 0.0;  // of that, the error bounds
-  bool complete = false;       // true when every finite pole was computed
-  std::string note;            // e.g. how many of the requested poles converged
-  long iterations = 0;         // Arnoldi restarts over all attempts (0 for dense)
+  double bound_seconds = 0.0;  ///< of that, the error bounds
+  bool complete = false;       ///< true when every finite pole was computed
+  std::string note;            ///< e.g. how many of the requested poles converged
+  long iterations = 0;         ///< Arnoldi restarts over all attempts (0 for dense)
 };
 
-// `operating_point`: y at rest (velocities zero) to linearise about; empty means zero.
+/// `operating_point`: y at rest (velocities zero) to linearise about; empty means zero.
 ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,
                       const ModalOptions& options = {});
 

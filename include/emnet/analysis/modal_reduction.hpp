@@ -92,127 +92,140 @@
 
 namespace emnet {
 
+/// Options of the modal reductions (reduce_modal, run_ac_reduced, ReducedPeriodicSolver).
 struct ReductionOptions {
-  double band = 0.0;        // f_band [Hz]: highest frequency of interest; > 0
-  double tolerance = 1e-3;  // relative error wanted; in (0, 1)
-  // Unknowns up to which all poles come from a dense eigen-decomposition; above it, Arnoldi
-  // (Spectra shift-invert) for the poles below f_c only.
+  double band = 0.0;        ///< f_band [Hz]: highest frequency of interest; > 0
+  double tolerance = 1e-3;  ///< relative error wanted; in (0, 1)
+  /// Unknowns up to which all poles come from a dense eigen-decomposition; above it, Arnoldi
+  /// (Spectra shift-invert) for the poles below f_c only.
   int dense_limit = 200;
-  // Keep every computed finite pole, whatever f_c (for checks; dense networks only).
+  /// Keep every computed finite pole, whatever f_c (for checks; dense networks only).
   bool keep_all = false;
-  // When > 0, the cut-off f_c [Hz] instead of band/√tol (ReducedPeriodicSolver: band/tol).
+  /// When > 0, the cut-off f_c [Hz] instead of band/√tol (ReducedPeriodicSolver: band/tol).
   double cutoff_hz = 0.0;
-  // When not every pole below f_c was found (Arnoldi stopped at a cluster), match the
-  // truncated part's Taylor series at s = 0 to the order the unfound poles need (D + Σ s^m·D_m,
-  // see above). AC only: ReducedPeriodicSolver turns it off (its feed-through cannot carry
-  // derivatives of a square wave).
+  /// When not every pole below f_c was found (Arnoldi stopped at a cluster), match the
+  /// truncated part's Taylor series at s = 0 to the order the unfound poles need (D + Σ s^m·D_m,
+  /// see above). AC only: ReducedPeriodicSolver turns it off (its feed-through cannot carry
+  /// derivatives of a square wave).
   bool series_correction = true;
 };
 
-// Throws OptionError naming the field ("band", "tolerance") for values outside the ranges.
+/// The checks of ReductionOptions.
+/// @throws OptionError naming the field ("band", "tolerance", "dense_limit", "cutoff_hz") for
+///         values outside the ranges
 void validate(const ReductionOptions& options);
-// f_c = f_band / √tol, or options.cutoff_hz when set.
+/// f_c = f_band / √tol, or options.cutoff_hz when set.
 double cutoff_frequency(const ReductionOptions& options);
 
+/// A pole the reduced model keeps.
 struct KeptPole {
-  std::complex<double> pole;  // Im ≥ 0
-  bool oscillatory = false;   // with its conjugate
-  Eigen::VectorXcd z_vector;  // v^z (see above), wᵀ·C·v = 1
-  Eigen::VectorXcd left;      // w (a basis vector of its group's left space), physical rows
+  std::complex<double> pole;  ///< Im ≥ 0
+  bool oscillatory = false;   ///< with its conjugate
+  Eigen::VectorXcd z_vector;  ///< v^z (see above), wᵀ·C·v = 1
+  Eigen::VectorXcd left;      ///< w (a basis vector of its group's left space), physical rows
   double left_residual = 0.0;
 };
 
-// The reduced model for a set of input vectors b_j (one for AC: B_ac; one per waveform for a
-// periodic drive).
+/// The reduced model for a set of input vectors b_j (one for AC: B_ac; one per waveform for a
+/// periodic drive).
 struct ModalReduction {
   Status status;
-  double band_hz = 0.0, tolerance = 0.0, cutoff_hz = 0.0;
-  int full_unknowns = 0;
-  Method modal_method = Method::dense;  // dense or arnoldi
-  std::vector<KeptPole> kept;
-  int kept_modes = 0, kept_real_poles = 0;  // oscillatory pairs; real poles
-  int truncated_poles = 0;                  // computed but not kept (above f_c or inseparable)
-  int unreached_poles = 0;                  // below f_c, but the inputs do not reach them (dropped)
-  int clustered_poles = 0;  // in groups repeated to rounding (kept as a group, or truncated)
-  bool all_found = true;    // every pole below f_c was computed
-  // ρ_max(f_band) of the truncated poles found ((f_band/f_c)² when none were found).
+  double band_hz = 0.0, tolerance = 0.0, cutoff_hz = 0.0;  ///< f_band [Hz], tol, f_c [Hz]
+  int full_unknowns = 0;                                   ///< of the system
+  Method modal_method = Method::dense;                     ///< dense or arnoldi
+  std::vector<KeptPole> kept;                              ///< the poles kept
+  int kept_modes = 0, kept_real_poles = 0;                 ///< oscillatory pairs; real poles
+  int truncated_poles = 0;  ///< computed but not kept (above f_c or inseparable)
+  int unreached_poles = 0;  ///< below f_c, but the inputs do not reach them (dropped)
+  int clustered_poles = 0;  ///< in groups repeated to rounding (kept as a group, or truncated)
+  bool all_found = true;    ///< every pole below f_c was computed
+  /// ρ_max(f_band) of the truncated poles found ((f_band/f_c)² when none were found).
   double truncation_factor = 0.0;
-  std::vector<std::pair<std::complex<double>, bool>> truncated;  // (pole, oscillatory)
-  double largest_found = 0.0;                                    // largest |s| computed [1/s]
-  // ρ_max at ω of the truncated poles (and the undamped bound beyond the largest found when
-  // not all poles below f_c were found); truncation_factor is this at the band's edge.
+  std::vector<std::pair<std::complex<double>, bool>> truncated;  ///< (pole, oscillatory)
+  double largest_found = 0.0;                                    ///< largest |s| computed [1/s]
+  /// ρ_max at ω of the truncated poles (and the undamped bound beyond the largest found when
+  /// not all poles below f_c were found); truncation_factor is this at the band's edge.
+  /// @param omega  angular frequency ω [rad/s]
   double truncation_factor_at(double omega) const;
-  std::vector<bool> mechanical;                         // unknowns that are velocities
-  std::vector<Eigen::VectorXcd> inputs;                 // b_j
-  std::vector<std::vector<std::complex<double>>> beta;  // [pole][input] w_kᵀ·b_j
-  std::vector<Eigen::VectorXcd> correction;             // D_j, static form
-  // [input][m − 1]: D_m, the s^m term of the truncated part (empty: the static one alone).
+  std::vector<bool> mechanical;                         ///< unknowns that are velocities
+  std::vector<Eigen::VectorXcd> inputs;                 ///< b_j
+  std::vector<std::vector<std::complex<double>>> beta;  ///< [pole][input] w_kᵀ·b_j
+  std::vector<Eigen::VectorXcd> correction;             ///< D_j, static form
+  /// [input][m − 1]: D_m, the s^m term of the truncated part (empty: the static one alone).
   std::vector<std::vector<Eigen::VectorXcd>> correction_series;
-  int correction_order = 0;  // the highest m
+  int correction_order = 0;  ///< the highest m
   std::string note;
   double seconds = 0.0;
 
-  // The reduced response of `probe` at s = jω to input j (ω = 0: the static limit, as run_ac).
+  /// The reduced response of `probe` at s = jω to input j (ω = 0: the static limit, as run_ac).
+  /// @param omega  angular frequency ω [rad/s]
   std::complex<double> response(const Probe& probe, double omega, int input = 0) const;
-  // The static-correction part of that response alone.
+  /// The static-correction part of that response alone.
   std::complex<double> correction_response(const Probe& probe, double omega, int input = 0) const;
 };
 
+/// The reduced model of the network linearised about `operating_point` for `inputs` (the b_j).
+/// @throws OptionError when `options` is out of range (validate)
 ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operating_point,
                             const std::vector<Eigen::VectorXcd>& inputs,
                             const ReductionOptions& options);
 
 // ---- AC ----------------------------------------------------------------------------------
 
+/// A reduced AC sweep with its check, as run_ac_reduced returns it.
 struct AcReductionResult {
-  Status status;                // numerical failure of the reduction or of the check
-  AcResult ac;                  // the sweep, evaluated by the reduced model
-  ModalReduction model;         // (its vectors are kept)
-  double error_estimate = 0.0;  // a priori, see above
-  std::vector<double> check_frequencies;
-  std::vector<double> probe_errors;  // measured, per probe
-  double measured_error = 0.0;       // max of probe_errors
-  bool tolerance_met = false;        // measured_error ≤ tolerance
+  Status status;                          ///< numerical failure of the reduction or of the check
+  AcResult ac;                            ///< the sweep, evaluated by the reduced model
+  ModalReduction model;                   ///< (its vectors are kept)
+  double error_estimate = 0.0;            ///< a priori, see above
+  std::vector<double> check_frequencies;  ///< where the check compared with run_ac [Hz]
+  std::vector<double> probe_errors;       ///< measured, per probe
+  double measured_error = 0.0;            ///< max of probe_errors
+  bool tolerance_met = false;             ///< measured_error ≤ tolerance
   double reduce_seconds = 0.0, evaluate_seconds = 0.0, check_seconds = 0.0;
   double seconds = 0.0;
 };
 
-// Per probe p: max_f |values[p][f] − reference[p][f]| / max_f |reference[p][f]| (0 when both
-// are zero, 1 when only the reference is): the error measure of every reduction check.
+/// Per probe p: max_f |values[p][f] − reference[p][f]| / max_f |reference[p][f]| (0 when both
+/// are zero, 1 when only the reference is): the error measure of every reduction check.
 std::vector<double> errors_relative_to_peak(
     const std::vector<std::vector<std::complex<double>>>& values,
     const std::vector<std::vector<std::complex<double>>>& reference);
 
-// Reduced AC sweep of B_ac (System::b_ac) with its check against run_ac. options.band 0 means
-// the sweep's highest frequency.
+/// Reduced AC sweep of B_ac (System::b_ac) with its check against run_ac. options.band 0 means
+/// the sweep's highest frequency.
+/// @throws OptionError when `options` is out of range (validate)
 AcReductionResult run_ac_reduced(const System& system, const Eigen::VectorXd& operating_point,
                                  const std::vector<double>& frequencies,
                                  const std::vector<Probe>& probes, ReductionOptions options);
 
-// Check frequencies: `spread` points spread over the grid (first and last included) and each
-// probe's largest |value|, sorted, without repeats.
+/// Check frequencies: `spread` points spread over the grid (first and last included) and each
+/// probe's largest |value|, sorted, without repeats.
 std::vector<double> check_frequencies(const std::vector<double>& grid,
                                       const std::vector<std::vector<std::complex<double>>>& values,
                                       int spread = 5);
 
 // ---- periodic ----------------------------------------------------------------------------
 
-// The reduced counterpart of PeriodicSolver (linear network, piecewise-linear sources).
+/// The reduced counterpart of PeriodicSolver (linear network, piecewise-linear sources).
 class ReducedPeriodicSolver {
  public:
+  /// Reduces `system` for its drive's waveforms, one input per waveform.
+  /// @throws OptionError when `options` is out of range (validate)
   ReducedPeriodicSolver(const System& system, const ReductionOptions& options);
+  /// The reduced model.
   const ModalReduction& reduction() const { return reduction_; }
-  // As PeriodicSolver::solve, and with the same sampling and global extremes
-  // (src/analysis/exponential_series.hpp): samples at t = T·s/samples.
+  /// As PeriodicSolver::solve, and with the same sampling and global extremes
+  /// (src/analysis/exponential_series.hpp): samples at t = T·s/samples.
   PeriodicResult solve(const System& system, const std::vector<Probe>& probes, double period,
                        int samples = 256) const;
-  // The error the static correction makes at the switching edges, for when no full solution
-  // fits: an edge starts the truncated poles' transients from their static part, which the
-  // feed-through D follows at once, so the reduced state is off by up to
-  //   max over probes of Σ_j |probe·D_j|·(largest step of input j's waveform) / scale[p]
-  // just after an edge (scale[p]: the probe's largest |value|). An estimate: an underdamped
-  // truncated pair can overshoot its static part (up to twice it), and a slowly decaying one
-  // carries over from the edges before. Sine inputs count their peak-to-peak as a step.
+  /// The error the static correction makes at the switching edges, for when no full solution
+  /// fits: an edge starts the truncated poles' transients from their static part, which the
+  /// feed-through D follows at once, so the reduced state is off by up to
+  ///   max over probes of Σ_j |probe·D_j|·(largest step of input j's waveform) / scale[p]
+  /// just after an edge (scale[p]: the probe's largest |value|). An estimate: an underdamped
+  /// truncated pair can overshoot its static part (up to twice it), and a slowly decaying one
+  /// carries over from the edges before. Sine inputs count their peak-to-peak as a step.
   double edge_error_estimate(const System& system, const std::vector<Probe>& probes,
                              const std::vector<double>& scale) const;
 
@@ -221,8 +234,8 @@ class ReducedPeriodicSolver {
   std::vector<int> waveforms_;  // input j ↔ system.excitation().waveforms[waveforms_[j]]
 };
 
-// max over probes of max over samples |reduced − full| / max over samples |full|; both solved
-// with the same samples. −1 when they do not match.
+/// max over probes of max over samples |reduced − full| / max over samples |full|; both solved
+/// with the same samples. −1 when they do not match.
 double periodic_difference(const PeriodicResult& reduced, const PeriodicResult& full);
 
 }  // namespace emnet

@@ -13,19 +13,22 @@
 
 namespace emnet {
 
+/// Options of operating_point.
 struct OperatingPointOptions {
   StaticOptions static_options;
-  bool require_static = false;  // fail when there is no static state, also for linear networks
+  bool require_static = false;  ///< fail when there is no static state, also for linear networks
 };
 
+/// The operating point of a System, as operating_point returns it.
 struct OperatingPoint {
-  Status status;            // failure: "static operating point: <why>"
-  StaticResult rest;        // as solve_static returned it; operating_point filled in either way
-  bool about_zero = false;  // a linear network without a static state, taken about zero
-  std::string note;         // said when about_zero
-  double seconds = 0.0;
+  Status status;            ///< failure: "static operating point: <why>"
+  StaticResult rest;        ///< as solve_static returned it; operating_point filled in either way
+  bool about_zero = false;  ///< a linear network without a static state, taken about zero
+  std::string note;         ///< said when about_zero
+  double seconds = 0.0;     ///< [s]
 };
 
+/// The operating point of `system`, by the policy above.
 OperatingPoint operating_point(const System& system, const OperatingPointOptions& options = {});
 
 }  // namespace emnet

@@ -32,28 +32,33 @@
 
 namespace emnet {
 
+/// The periodic steady state over one period, as PeriodicSolver::solve and
+/// run_periodic_shooting return it.
 struct PeriodicResult {
   Status status;
-  Method method = Method::exact;  // exact or shooting
-  double period = 0.0;
-  std::vector<double> minimum, maximum;            // per probe, over one period
-  std::vector<double> minimum_time, maximum_time;  // where, in [0, T)
-  std::vector<double> times;                       // samples over one period
-  std::vector<std::vector<double>> values;         // [probe][sample]
-  double periodicity_residual = 0.0;  // ‖x(T) − x(0)‖ / ‖x(0)‖; above 1e-8: failed
-  int newton_iterations = 0;          // shooting
-  double seconds = 0.0;
+  Method method = Method::exact;                   ///< exact or shooting
+  double period = 0.0;                             ///< T [s]
+  std::vector<double> minimum, maximum;            ///< per probe, over one period
+  std::vector<double> minimum_time, maximum_time;  ///< where, in [0, T)
+  std::vector<double> times;                       ///< samples over one period
+  std::vector<std::vector<double>> values;         ///< [probe][sample]
+  double periodicity_residual = 0.0;  ///< ‖x(T) − x(0)‖ / ‖x(0)‖; above 1e-8: failed
+  int newton_iterations = 0;          ///< shooting
+  double seconds = 0.0;               ///< [s]
 };
 
+/// The exact method (see above) for one network, reused over periods and drives.
 class PeriodicSolver {
  public:
-  // Decomposes the network's state equation once; `system` fixes G and C.
+  /// Decomposes the network's state equation once; `system` fixes G and C.
   explicit PeriodicSolver(const System& system);
   ~PeriodicSolver();
-  // The periodic state of `system` (same G and C, sources of period `period`): the long-time
-  // limit, so a delayed pulse train is taken in its periodic regime, not in its first period
-  // (a pulse whose fall reaches into the next period is there from the start; shooting the
-  // same).
+  /// The periodic state of `system` (same G and C, sources of period `period`): the long-time
+  /// limit, so a delayed pulse train is taken in its periodic regime, not in its first period
+  /// (a pulse whose fall reaches into the next period is there from the start; shooting the
+  /// same).
+  /// @param period   T [s]
+  /// @param samples  samples over one period, at t = T·s/samples
   PeriodicResult solve(const System& system, const std::vector<Probe>& probes, double period,
                        int samples = 256) const;
 
@@ -63,30 +68,34 @@ class PeriodicSolver {
   Status status_;
 };
 
-// Shooting with IDA at relative tolerance `rtol`. `progress` is for cancellation only (Status
-// "cancelled"): the one-period IDA runs of a solve do not report, a sweep over frequencies does.
-// A periodicity residual ‖x(T) − x(0)‖/‖x(0)‖ above kResidualLimit (analysis.hpp) is a failure.
+/// Shooting with IDA at relative tolerance `rtol`. `progress` is for cancellation only (Status
+/// "cancelled"): the one-period IDA runs of a solve do not report, a sweep over frequencies does.
+/// A periodicity residual ‖x(T) − x(0)‖/‖x(0)‖ above kResidualLimit (analysis.hpp) is a failure.
+/// @param period   T [s]
+/// @param samples  samples over one period, at t = T·s/samples
 PeriodicResult run_periodic_shooting(const System& system, const std::vector<Probe>& probes,
                                      double period, double rtol = 1e-9, int samples = 256,
                                      const Progress* progress = nullptr);
 
-// Memory of the exact periodic method's dense eigen-decomposition of the state matrix, measured
-// on the fish fin: 31 MB at 306 unknowns, 104 MB at 606, 393 MB at 1206, 1.47 GB at 2406, about
-// 254 bytes per unknown squared (complex eigenvectors, their LU and inverse, work space); its
-// time grows as the cube (44 s at 1206 unknowns, 237 s at 2406 on this project's machine).
+/// Memory of the exact periodic method's dense eigen-decomposition of the state matrix, measured
+/// on the fish fin: 31 MB at 306 unknowns, 104 MB at 606, 393 MB at 1206, 1.47 GB at 2406, about
+/// 254 bytes per unknown squared (complex eigenvectors, their LU and inverse, work space); its
+/// time grows as the cube (44 s at 1206 unknowns, 237 s at 2406 on this project's machine).
 constexpr double kPeriodicDenseBytesPerUnknown2 = 256.0;
-constexpr double kPeriodicDenseMemoryLimit = 4e9;  // bytes
+constexpr double kPeriodicDenseMemoryLimit = 4e9;  ///< bytes
 
-// Unknowns up to which an automatic choice takes the dense exact method: its decomposition
-// takes under a minute there (44 s at 1206 unknowns, above), a reduction beyond.
+/// Unknowns up to which an automatic choice takes the dense exact method: its decomposition
+/// takes under a minute there (44 s at 1206 unknowns, above), a reduction beyond.
 constexpr int kPeriodicDenseAutomaticUnknowns = 1000;
-// The bytes of the dense decomposition of `unknowns` unknowns (the estimate above).
+/// The bytes of the dense decomposition of `unknowns` unknowns (the estimate above).
 inline double periodic_memory_bytes(int unknowns) {
   return kPeriodicDenseBytesPerUnknown2 * unknowns * static_cast<double>(unknowns);
 }
 
-// OptionError naming `field` (the option that sets the mesh: "segments") when the exact periodic
-// method's decomposition of `unknowns` unknowns would need more than kPeriodicDenseMemoryLimit.
+/// Checks that the exact periodic method's decomposition of `unknowns` unknowns fits in memory.
+/// @throws OptionError naming `field` (the option that sets the mesh: "segments") when the exact
+///         periodic method's decomposition of `unknowns` unknowns would need more than
+///         kPeriodicDenseMemoryLimit
 void check_periodic_memory(int unknowns, const std::string& field);
 
 }  // namespace emnet

@@ -21,21 +21,23 @@
 
 namespace emnet {
 
+/// A file written completely or not at all (see above).
 class OutputFile {
  public:
-  // Opens the temporary file (or, see above, `path` itself); a failure is kept in status().
+  /// Opens the temporary file (or, see above, `path` itself); a failure is kept in status().
   explicit OutputFile(std::string path);
-  // Removes the temporary file unless commit() succeeded.
+  /// Removes the temporary file unless commit() succeeded.
   ~OutputFile();
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
 
-  // Appends text (buffered). After a failure further writes are ignored; status() says why.
+  /// Appends text (buffered). After a failure further writes are ignored; status() says why.
   void write(std::string_view text);
-  // Writes what is buffered, flushes to disk, closes and renames into place. Once only.
+  /// Writes what is buffered, flushes to disk, closes and renames into place. Once only.
   Status commit();
-  // The first failure so far, or success.
+  /// The first failure so far, or success.
   const Status& status() const { return status_; }
+  /// The path as given.
   const std::string& path() const { return path_; }
 
  private:
@@ -51,7 +53,7 @@ class OutputFile {
   Status status_;
 };
 
-// The whole `text` as the file `path`, through OutputFile.
+/// The whole `text` as the file `path`, through OutputFile.
 Status write_output_file(const std::string& path, std::string_view text);
 
 }  // namespace emnet

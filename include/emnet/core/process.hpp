@@ -48,82 +48,93 @@
 
 namespace emnet {
 
+/// One of the program's two output streams.
 enum class ProcessStream { standard_output, standard_error };
 
-// What happens to one of the program's output streams.
+/// What happens to one of the program's output streams.
 struct ProcessOutput {
+  /// Where the stream goes.
   enum class Kind {
-    discard,   // the stream is /dev/null
-    capture,   // kept in the result, at most `capture_limit` bytes (the first ones)
-    callback,  // handed to `callback` as it arrives, at most 64 KiB per call
+    discard,   ///< the stream is /dev/null
+    capture,   ///< kept in the result, at most `capture_limit` bytes (the first ones)
+    callback,  ///< handed to `callback` as it arrives, at most 64 KiB per call
   };
   Kind kind = Kind::discard;
-  std::size_t capture_limit = 0;
-  // Returns false to stop the program: it is killed with everything it started, and the
-  // result says `stopped`. Called on the calling thread; it may throw (the tree is killed).
+  std::size_t capture_limit = 0;  ///< Kind::capture: bytes kept at most
+  /// Returns false to stop the program: it is killed with everything it started, and the
+  /// result says `stopped`. Called on the calling thread; it may throw (the tree is killed).
   std::function<bool(const char* data, std::size_t size)> callback;
 
+  /// To /dev/null.
   static ProcessOutput discarded() { return {}; }
+  /// Captured, at most `byte_limit` bytes.
   static ProcessOutput captured(std::size_t byte_limit) {
     return {Kind::capture, byte_limit, nullptr};
   }
+  /// Handed to `function` as it arrives.
   static ProcessOutput to_callback(std::function<bool(const char*, std::size_t)> function) {
     return {Kind::callback, 0, std::move(function)};
   }
 };
 
+/// What run_process runs, and how.
 struct ProcessOptions {
-  // The program and its arguments; the program is searched in PATH when it has no '/'.
+  /// The program and its arguments; the program is searched in PATH when it has no '/'.
   std::vector<std::string> arguments;
-  // NAME, VALUE pairs set in the program's environment (replacing this process's value of
-  // NAME); every other variable of this process is passed on as it is.
+  /// NAME, VALUE pairs set in the program's environment (replacing this process's value of
+  /// NAME); every other variable of this process is passed on as it is.
   std::vector<std::pair<std::string, std::string>> environment_additions;
-  // Standard input: /dev/null when absent, else these bytes, then end of file. Bytes the
-  // program does not read are dropped when it ends.
+  /// Standard input: /dev/null when absent, else these bytes, then end of file. Bytes the
+  /// program does not read are dropped when it ends.
   std::optional<std::string> standard_input;
   ProcessOutput standard_output = ProcessOutput::discarded();
   ProcessOutput standard_error = ProcessOutput::discarded();
-  // The program's working directory; empty: this process's.
+  /// The program's working directory; empty: this process's.
   std::string working_directory;
-  double timeout_seconds = 60.0;
-  // RLIMIT_FSIZE of the program and of everything it starts, in bytes.
+  double timeout_seconds = 60.0;  ///< the time limit [s]
+  /// RLIMIT_FSIZE of the program and of everything it starts, in bytes.
   std::uint64_t file_size_limit = UINT64_MAX;
-  // Asked at least every 100 ms while the program runs (on the calling thread); true stops it
-  // like an output callback's false: killed with everything it started, the result `stopped`.
-  // E.g. a Ctrl-C flag. Empty: never asked.
+  /// Asked at least every 100 ms while the program runs (on the calling thread); true stops it
+  /// like an output callback's false: killed with everything it started, the result `stopped`.
+  /// E.g. a Ctrl-C flag. Empty: never asked.
   std::function<bool()> stop_requested;
 };
 
+/// How a program run by run_process ended, and what it wrote.
 struct ProcessResult {
+  /// How the program ended; each names the field that says more.
   enum class How {
-    exited,       // `exit_status`
-    signalled,    // `signal_number`
-    timed_out,    // still running at the time limit: killed with everything it started
-    stopped,      // an output callback returned false or stop_requested() true: killed with
-                  // everything it started
-    not_started,  // `error_number`: not found in PATH, or exec failed
-    failed,       // `problem` (and `error_number` when a system call failed): no pipe, no fork
+    exited,       ///< `exit_status`
+    signalled,    ///< `signal_number`
+    timed_out,    ///< still running at the time limit: killed with everything it started
+    stopped,      ///< an output callback returned false or stop_requested() true: killed with
+                  ///< everything it started
+    not_started,  ///< `error_number`: not found in PATH, or exec failed
+    failed,       ///< `problem` (and `error_number` when a system call failed): no pipe, no fork
   };
   How how = How::failed;
   int exit_status = 0;
   int signal_number = 0;
   int error_number = 0;
-  std::string problem;
-  // Captured output (ProcessOutput::Kind::capture), and the bytes beyond the limit, counted.
+  std::string problem;  ///< what failed, when `how` is failed
+  /// Captured output (ProcessOutput::Kind::capture), and the bytes beyond the limit, counted.
   std::string standard_output, standard_error;
   std::uint64_t standard_output_bytes_left_out = 0, standard_error_bytes_left_out = 0;
-  // The program's run as its supervisor saw it: from just before it was started to the moment
-  // it was reaped (or killed: time limit, stop), without starting the supervisor or cleaning
-  // up after the program. `total_seconds`: the whole call.
+  /// The program's run as its supervisor saw it: from just before it was started to the moment
+  /// it was reaped (or killed: time limit, stop), without starting the supervisor or cleaning
+  /// up after the program. `total_seconds`: the whole call.
   double seconds = 0.0;
   double total_seconds = 0.0;
 
+  /// Whether the program exited with `status`.
   bool exited_with(int status) const { return how == How::exited && exit_status == status; }
-  // "exited with status 3", "killed by signal 11 (Segmentation fault)", "timed out after 2 s",
-  // "not started: No such file or directory", ...
+  /// "exited with status 3", "killed by signal 11 (Segmentation fault)", "timed out after 2 s",
+  /// "not started: No such file or directory", ...
   std::string description() const;
 };
 
+/// Runs the program of `options` to its end under its time limit (see above).
+/// @throws what an output callback throws (the program and everything it started are killed)
 ProcessResult run_process(const ProcessOptions& options);
 
 }  // namespace emnet

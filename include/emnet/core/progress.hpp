@@ -15,34 +15,37 @@
 
 namespace emnet {
 
+/// Receives an analysis's progress reports and tells it when to stop (see above).
 class Progress {
  public:
   virtual ~Progress() = default;
-  // `done` of `total` steps of `what` ("AC frequencies", "output times"); total 0: unknown.
+  /// `done` of `total` steps of `what` ("AC frequencies", "output times"); total 0: unknown.
   virtual void report(long done, long total, std::string_view what) = 0;
+  /// Whether the analysis is to stop at its next step.
   virtual bool cancelled() const = 0;
 };
 
+/// Whether `progress` is non-null and cancelled.
 inline bool cancel_requested(const Progress* progress) {
   return progress != nullptr && progress->cancelled();
 }
 
-// Reports a step; false when the analysis is to stop (cancelled).
+/// Reports a step; false when the analysis is to stop (cancelled).
 inline bool keep_going(Progress* progress, long done, long total, std::string_view what) {
   if (progress == nullptr) return true;
   progress->report(done, total, what);
   return !progress->cancelled();
 }
 
-// The Status of an analysis stopped by its Progress: code StatusCode::cancelled, message
-// "cancelled" (the one place that builds it).
+/// The Status of an analysis stopped by its Progress: code StatusCode::cancelled, message
+/// "cancelled" (the one place that builds it).
 inline Status cancelled_status() {
   return {StatusCode::cancelled, "cancelled"};
 }
 
-// Forwards the cancellation of `outer` but drops reports: for analyses run inside one step of
-// another (the one-period IDA runs of a shooting solve), whose reports would replace the outer
-// analysis's.
+/// Forwards the cancellation of `outer` but drops reports: for analyses run inside one step of
+/// another (the one-period IDA runs of a shooting solve), whose reports would replace the outer
+/// analysis's.
 class CancellationOnly : public Progress {
  public:
   explicit CancellationOnly(const Progress* outer) : outer_(outer) {}

@@ -6,12 +6,14 @@
 
 namespace emnet {
 
+/// Wall time since construction or the last restart.
 class Stopwatch {
  public:
-  // Seconds since construction (or the last restart).
+  /// Seconds since construction (or the last restart).
   double seconds() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }
+  /// Starts again from now.
   void restart() { start_ = std::chrono::steady_clock::now(); }
 
  private:

@@ -17,15 +17,15 @@
 
 namespace emnet {
 
-// `text` on one line: every control character escaped, newlines included.
+/// `text` on one line: every control character escaped, newlines included.
 std::string terminal_text(std::string_view text);
 
-// terminal_text of the first `max_bytes` bytes of `text`, with " [... N more bytes]" when there
-// were more: for quoting a piece of untrusted input in a message.
+/// terminal_text of the first `max_bytes` bytes of `text`, with " [... N more bytes]" when there
+/// were more: for quoting a piece of untrusted input in a message.
 std::string terminal_excerpt(std::string_view text, std::size_t max_bytes);
 
-// `text` keeping its line structure: newlines stay, every other control character is escaped.
-// For messages that are several lines by design (a tool's output tail).
+/// `text` keeping its line structure: newlines stay, every other control character is escaped.
+/// For messages that are several lines by design (a tool's output tail).
 std::string terminal_lines(std::string_view text);
 
 }  // namespace emnet

@@ -10,8 +10,10 @@
 
 namespace emnet {
 
+/// A capacitor, a mass or a rotary inertia (see above).
 class Capacitor : public Element {
  public:
+  /// @param capacitance  C [F], a mass m [kg] or an inertia J [kg·m²]
   Capacitor(std::string name, NodeId a, NodeId b, double capacitance)
       : Element(std::move(name)), a_(a), b_(b), capacitance_(capacitance) {}
   const char* kind() const override { return "capacitor"; }

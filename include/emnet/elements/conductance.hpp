@@ -11,8 +11,10 @@
 
 namespace emnet {
 
+/// A resistor, a viscous damper or a rotational damper (see above).
 class Conductance : public Element {
  public:
+  /// @param conductance  1/R [S], a damper's r [N·s/m] or a rotational damper's r [N·m·s/rad]
   Conductance(std::string name, NodeId a, NodeId b, double conductance)
       : Element(std::move(name)), a_(a), b_(b), conductance_(conductance) {}
   const char* kind() const override { return "conductance"; }

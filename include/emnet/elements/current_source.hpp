@@ -9,8 +9,10 @@
 
 namespace emnet {
 
+/// A current, force or torque source (see above).
 class CurrentSource : public Element {
  public:
+  /// @param waveform  the through quantity driven out of `from` into `to` [A, N or N·m]
   CurrentSource(std::string name, NodeId from, NodeId to, Waveform waveform)
       : Element(std::move(name)), from_(from), to_(to), waveform_(std::move(waveform)) {}
   const char* kind() const override { return "current_source"; }

@@ -34,12 +34,19 @@
 
 namespace emnet {
 
+/// A DEA transducer (see above).
 class Dea : public Element {
  public:
+  /// One term c_k·y_k of the face's elongation rate ẋ.
   struct Coupling {
     NodeId node;
-    double coefficient;  // ẋ = Σ coefficient·y_node [m/s per unit across]
+    double coefficient;  ///< ẋ = Σ coefficient·y_node [m/s per unit across]
   };
+  /// @param capacitance     C₀ [F]
+  /// @param force_constant  k_F [N/V²]
+  /// @param coupling        the terms of ẋ
+  /// @param back_coupling   add the back-coupling current i_b
+  /// @param ac_force        the direct small-signal force amplitude [N]
   Dea(std::string name, NodeId electrode_plus, NodeId electrode_minus, double capacitance,
       double force_constant, std::vector<Coupling> coupling, bool back_coupling,
       double ac_force = 0.0)
@@ -57,7 +64,7 @@ class Dea : public Element {
   void add_nonlinear(const Eigen::VectorXd& y, Eigen::VectorXd& g,
                      std::vector<Eigen::Triplet<double>>* jacobian) const override;
 
-  // F = k_F·u² for a given capacitor voltage u.
+  /// F = k_F·u² for a given capacitor voltage u.
   double force(double voltage) const { return force_constant_ * voltage * voltage; }
   double capacitance() const { return capacitance_; }
   double force_constant() const { return force_constant_; }
@@ -79,12 +86,18 @@ class Dea : public Element {
   double ac_force_;
 };
 
-// k_F of paper Eq. 16: ε₀·ε_r·d'·w_e / (2·d²) [N/V²].
+/// k_F of paper Eq. 16: ε₀·ε_r·d'·w_e / (2·d²) [N/V²].
+/// @param dielectric_thickness  d [m]
+/// @param force_thickness       d' [m]
+/// @param electrode_width       w_e [m]
 double dea_force_constant(double relative_permittivity, double dielectric_thickness,
                           double force_thickness, double electrode_width);
-// C₀ = ε₀·ε_r·w_e·length / d [F].
+/// C₀ = ε₀·ε_r·w_e·length / d [F].
+/// @param dielectric_thickness  d [m]
+/// @param electrode_width       w_e [m]
+/// @param electrode_length      length [m]
 double dea_capacitance(double relative_permittivity, double dielectric_thickness,
                        double electrode_width, double electrode_length);
-constexpr double vacuum_permittivity = 8.8541878128e-12;  // F/m (CODATA 2018)
+constexpr double vacuum_permittivity = 8.8541878128e-12;  ///< ε₀ [F/m] (CODATA 2018)
 
 }  // namespace emnet

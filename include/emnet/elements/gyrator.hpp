@@ -11,8 +11,10 @@
 
 namespace emnet {
 
+/// An ideal gyrator between ports (a, b) and (c, d) (see above).
 class Gyrator : public Element {
  public:
+  /// @param gyration  K, e.g. [N/V = A·s/m] for an electromechanical transducer
   Gyrator(std::string name, NodeId a, NodeId b, NodeId c, NodeId d, double gyration)
       : Element(std::move(name)), a_(a), b_(b), c_(c), d_(d), gyration_(gyration) {}
   const char* kind() const override { return "gyrator"; }

@@ -23,8 +23,11 @@
 
 namespace emnet {
 
+/// An inductor or a compliance (see above).
 class Inductor : public Element {
  public:
+  /// @param inductance            L [H], or a compliance n = 1/k [m/N or rad/(N·m)]
+  /// @param parallel_conductance  g_p across it (0: none); Kelvin–Voigt τ = g_p·L
   Inductor(std::string name, NodeId a, NodeId b, double inductance, Domain domain,
            double parallel_conductance = 0.0)
       : Element(std::move(name)),

@@ -13,12 +13,14 @@
 
 namespace emnet {
 
+/// An ideal transformer or lever (see above).
 class Transformer : public Element {
  public:
+  /// A primary port pk.
   struct Port {
-    NodeId plus;
-    NodeId minus;
-    double ratio;
+    NodeId plus;   ///< pk+
+    NodeId minus;  ///< pk−
+    double ratio;  ///< ratio_k (a lever's arm a [m])
   };
   Transformer(std::string name, NodeId secondary_plus, NodeId secondary_minus,
               std::vector<Port> primaries, Domain secondary_domain)

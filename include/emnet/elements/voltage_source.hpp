@@ -9,8 +9,10 @@
 
 namespace emnet {
 
+/// A voltage, velocity or angular-velocity source (see above).
 class VoltageSource : public Element {
  public:
+  /// @param waveform  y_plus − y_minus [V, m/s or rad/s]
   VoltageSource(std::string name, NodeId plus, NodeId minus, Waveform waveform, Domain domain)
       : Element(std::move(name)),
         plus_(plus),

@@ -36,40 +36,42 @@
 
 namespace emnet {
 
-// A circuit source's time function and AC phasor (see the top comment).
+/// A circuit source's time function and AC phasor (see the top comment).
 Waveform circuit_waveform(const CircuitSpec& element);
 
-// The largest |value| `waveform` takes over time: its levels, a sine's crest, its points (V or A;
-// the drive's waveforms and the circuit's sources alike).
+/// The largest |value| `waveform` takes over time: its levels, a sine's crest, its points (V or A;
+/// the drive's waveforms and the circuit's sources alike).
 double waveform_largest_magnitude(const Waveform& waveform);
 
-// Whether a [[circuit]] element of `scene` ends on DEA `dea_name`'s terminal ("dea.NAME").
+/// Whether a [[circuit]] element of `scene` ends on DEA `dea_name`'s terminal ("dea.NAME").
 bool circuit_drives_dea(const Scene& scene, const std::string& dea_name);
 
-// The DEAs of `scene` that a [[circuit]] element ends on, in the scene's order: the one answer
-// to "which DEAs does the circuit drive" (the model's note, the validity checks).
+/// The DEAs of `scene` that a [[circuit]] element ends on, in the scene's order: the one answer
+/// to "which DEAs does the circuit drive" (the model's note, the validity checks).
 std::vector<std::string> circuit_driven_deas(const Scene& scene);
 
-// What circuit-driven DEA `dea_name`'s terminal voltage is proven to stay within, from the
-// sources of the circuit's part joined to its terminal through nodes other than ground.
-// In a network of resistors and capacitors driven only by voltage sources that each have one
-// terminal on ground, started from rest, every node voltage stays within the range of the
-// sources' levels and 0 (the maximum principle of RC networks: the node equations are those of
-// an M-matrix, so no node exceeds its neighbours' extremes). `bounded` is false, with `reason`,
-// for a circuit outside that class (an inductor, a current source, a floating source) or a DEA
-// whose back-coupling injects current.
+/// What circuit-driven DEA `dea_name`'s terminal voltage is proven to stay within, from the
+/// sources of the circuit's part joined to its terminal through nodes other than ground.
+/// In a network of resistors and capacitors driven only by voltage sources that each have one
+/// terminal on ground, started from rest, every node voltage stays within the range of the
+/// sources' levels and 0 (the maximum principle of RC networks: the node equations are those of
+/// an M-matrix, so no node exceeds its neighbours' extremes). `bounded` is false, with `reason`,
+/// for a circuit outside that class (an inductor, a current source, a floating source) or a DEA
+/// whose back-coupling injects current.
 struct CircuitVoltageBound {
-  bool bounded = false;
-  std::string reason;     // why no bound is known (empty when bounded)
-  double peak = 0.0;      // [V] the largest |level| any source takes over its waveform
-  double at_start = 0.0;  // [V] the largest |level| at t = 0 (the static state's bound)
+  bool bounded = false;   ///< whether the bound below holds
+  std::string reason;     ///< why no bound is known (empty when bounded)
+  double peak = 0.0;      ///< [V] the largest |level| any source takes over its waveform
+  double at_start = 0.0;  ///< [V] the largest |level| at t = 0 (the static state's bound)
 };
+/// The CircuitVoltageBound of circuit-driven DEA `dea_name` of `scene`.
 CircuitVoltageBound circuit_voltage_bound(const Scene& scene, const std::string& dea_name);
 
-// Adds the circuit's nodes and elements of `scene` to `network`, each with its record
-// (Component::circuit; its entry index). `dea_terminals` maps a DEA's name to its source node
-// s_X. Returns the circuit's own nodes by name. Throws InputError naming the scene file and
-// the entry's key for a node "dea.X" without a terminal (a DEA without electrical dynamics).
+/// Adds the circuit's nodes and elements of `scene` to `network`, each with its record
+/// (Component::circuit; its entry index). `dea_terminals` maps a DEA's name to its source node
+/// s_X. Returns the circuit's own nodes by name.
+/// @throws InputError naming the scene file and the entry's key for a node "dea.X" without a
+///         terminal (a DEA without electrical dynamics)
 std::map<std::string, NodeId> add_circuit(Network& network, ModelStructure* structure,
                                           const Scene& scene,
                                           const std::map<std::string, NodeId>& dea_terminals);

@@ -29,34 +29,45 @@
 
 namespace emnet {
 
-// e^z·K₀(z) and e^z·K₁(z) for Re z > 0, by the trapezoidal rule on
-// K_ν(z) = ∫₀^∞ exp(−z·cosh t)·cosh(νt) dt (exponentially convergent; relative error ~1e-14).
+/// e^z·K₀(z) and e^z·K₁(z) for Re z > 0, by the trapezoidal rule on
+/// K_ν(z) = ∫₀^∞ exp(−z·cosh t)·cosh(νt) dt (exponentially convergent; relative error ~1e-14).
 struct ScaledBesselK01 {
-  std::complex<double> k0;
-  std::complex<double> k1;
+  std::complex<double> k0;  ///< e^z·K₀(z)
+  std::complex<double> k1;  ///< e^z·K₁(z)
 };
+/// The ScaledBesselK01 at `z`.
+/// @throws std::invalid_argument unless Re z > 0
 ScaledBesselK01 scaled_bessel_k01(std::complex<double> z);
 
-// Γ_circ(Re): the hydrodynamic function of a circular cylinder of diameter b, Re > 0.
+/// Γ_circ(Re): the hydrodynamic function of a circular cylinder of diameter b, Re > 0.
+/// @throws std::invalid_argument unless Re is finite and > 0
 std::complex<double> circular_cylinder_hydrodynamic_function(double reynolds);
-// Ω(Re): Sader's correction from the circular to the rectangular section, Re > 0.
+/// Ω(Re): Sader's correction from the circular to the rectangular section, Re > 0.
+/// @throws std::invalid_argument unless Re is finite and > 0
 std::complex<double> rectangular_section_correction(double reynolds);
-// Γ(Re) = Ω·Γ_circ for a thin rectangular beam of width b.
+/// Γ(Re) = Ω·Γ_circ for a thin rectangular beam of width b.
 std::complex<double> rectangular_beam_hydrodynamic_function(double reynolds);
 
+/// The lowest Re at which Ω is accurate (see above); below it Ω is extrapolated.
 inline constexpr double kSaderCorrectionMinimumReynolds = 1e-6;
+/// The highest Re at which Ω is accurate; above it Ω is extrapolated.
 inline constexpr double kSaderCorrectionMaximumReynolds = 1e4;
 
+/// The fluid loading per length of a beam at one frequency.
 struct FluidLoading {
-  double frequency = 0.0;               // [Hz] at which Γ is evaluated
-  double reynolds = 0.0;                // Re = ρωb²/(4η)
-  std::complex<double> hydrodynamic{};  // Γ
-  double added_mass_per_length = 0.0;   // m_a [kg/m]
-  double damping_per_length = 0.0;      // c_a [N·s/m²]
+  double frequency = 0.0;               ///< [Hz] at which Γ is evaluated
+  double reynolds = 0.0;                ///< Re = ρωb²/(4η)
+  std::complex<double> hydrodynamic{};  ///< Γ
+  double added_mass_per_length = 0.0;   ///< m_a [kg/m]
+  double damping_per_length = 0.0;      ///< c_a [N·s/m²]
 };
 
-// Added mass and damping per length of a plate of `width` b in a fluid (`density` ρ,
-// `dynamic_viscosity` η) at `frequency` f [Hz] > 0.
+/// Added mass and damping per length of a plate of `width` b in a fluid (`density` ρ,
+/// `dynamic_viscosity` η) at `frequency` f [Hz] > 0.
+/// @param density            ρ [kg/m³]
+/// @param dynamic_viscosity  η [Pa·s]
+/// @param width              b [m]
+/// @throws std::invalid_argument unless density, viscosity, width and frequency are > 0
 FluidLoading rectangular_beam_fluid_loading(double density, double dynamic_viscosity, double width,
                                             double frequency);
 

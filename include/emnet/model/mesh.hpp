@@ -29,23 +29,27 @@
 
 namespace emnet {
 
+/// The nodes of a beam and the section of each segment.
 struct BeamMesh {
-  std::vector<double> x;     // node positions [m], x.front() = 0, x.back() = beam.length
-  std::vector<int> section;  // per segment: its index in effective_sections(beam)
-  // The uniform grid of rule 1 (segment length exactly beam.length / N, before refinement).
+  std::vector<double> x;     ///< node positions [m], x.front() = 0, x.back() = beam.length
+  std::vector<int> section;  ///< per segment: its index in effective_sections(beam)
+  /// The uniform grid of rule 1 (segment length exactly beam.length / N, before refinement).
   bool uniform = false;
-  // beam.segments when the attachments needed more segments than it gives; else 0.
+  /// beam.segments when the attachments needed more segments than it gives; else 0.
   int raised_from = 0;
+  /// The number of segments N.
   int segments() const { return static_cast<int>(x.size()) - 1; }
 };
 
-// The positions of the scene's attachments that are not part of the beam itself: DEA ends and
-// loads (the beam's masses, springs and sections are in its BeamSpec).
+/// The positions of the scene's attachments that are not part of the beam itself: DEA ends and
+/// loads (the beam's masses, springs and sections are in its BeamSpec).
 std::vector<double> scene_attachment_points(const Scene& scene);
 
-// The nodes of `beam` with beam.segments segments (the resolved count; > 0) and a node at each
-// of `attachments` and of the beam's own sections, masses and springs. Throws std::logic_error
-// for a beam without segments or sections that do not add up to its length.
+/// The nodes of `beam` with beam.segments segments (the resolved count; > 0) and a node at each
+/// of `attachments` and of the beam's own sections, masses and springs.
+/// @param attachments  positions along the beam [m]
+/// @throws std::logic_error for a beam without segments, sections that do not add up to its
+///         length, or a refinement below 1
 BeamMesh mesh_beam(const BeamSpec& beam, const std::vector<double>& attachments);
 
 }  // namespace emnet

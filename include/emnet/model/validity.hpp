@@ -31,56 +31,62 @@
 
 namespace emnet {
 
-// Exit status of a command whose result is computed but outside the model's validity.
+/// Exit status of a command whose result is computed but outside the model's validity.
 constexpr int kExitOutsideValidity = 5;
 
-// The largest |deflection| [m] computed at one output (a probe, dx4, the beam's nodes).
+/// The largest |deflection| [m] computed at one output (a probe, dx4, the beam's nodes).
 struct DeflectionPeak {
-  std::string output;
-  double peak = 0.0;
+  std::string output;  ///< the output's name
+  double peak = 0.0;   ///< [m]
 };
 
-// The largest |voltage| [V] across one DEA's film in what was computed.
+/// The largest |voltage| [V] across one DEA's film in what was computed.
 struct DeaVoltage {
-  std::string dea;
-  double voltage = 0.0;
-  // How `voltage` was found when it is a bound, not a level of the drive or a computed value:
-  // named in the summary and the violation's message ("" for none).
+  std::string dea;       ///< the DEA's name
+  double voltage = 0.0;  ///< [V]
+  /// How `voltage` was found when it is a bound, not a level of the drive or a computed value:
+  /// named in the summary and the violation's message ("" for none).
   std::string bound;
 };
 
+/// The limits a result is checked against.
 enum class ValidityCheck { deflection, electric_field };
-const char* validity_check_name(ValidityCheck check);  // "deflection", "electric_field"
+/// "deflection", "electric_field"
+const char* validity_check_name(ValidityCheck check);
 
+/// A computed value beyond its limit.
 struct ValidityViolation {
   ValidityCheck check = ValidityCheck::deflection;
-  std::string subject;  // the output or the DEA
-  std::string key;      // the scene key of the limit: "model.deflection_limit"
-  double value = 0.0;   // |w| [m] or V/d [V/m]
-  double limit = 0.0;   // model.deflection_limit·L [m] or dea[].breakdown_field [V/m]
-  std::string message;  // one line, with the numbers
+  std::string subject;  ///< the output or the DEA
+  std::string key;      ///< the scene key of the limit: "model.deflection_limit"
+  double value = 0.0;   ///< |w| [m] or V/d [V/m]
+  double limit = 0.0;   ///< model.deflection_limit·L [m] or dea[].breakdown_field [V/m]
+  std::string message;  ///< one line, with the numbers
 };
 
+/// The outcome of check_validity.
 struct Validity {
   std::vector<ValidityViolation> violations;
-  // The worst of each check as a fraction of its limit (0 when nothing was checked).
+  /// The worst of each check as a fraction of its limit (0 when nothing was checked).
   double deflection_fraction = 0.0;
-  double field_fraction = 0.0;
-  std::string summary;  // one line: the largest values against their limits
+  double field_fraction = 0.0;  ///< see deflection_fraction
+  std::string summary;          ///< one line: the largest values against their limits
+  /// Whether nothing exceeds its limit.
   bool within() const { return violations.empty(); }
 };
 
-// Each DEA the drive names with its largest source voltage over the drive: V for the square
-// waves, V0 + v for the sines. The RC loop's capacitor voltage stays within the source's range.
-// Each DEA a [[circuit]] drives (circuit_driven_deas) with the bound circuit_voltage_bound
-// proves (the RC maximum principle over the circuit's sources), its `bound` saying so; none
-// when no bound is known (check_validity then says "field not checked" and why).
+/// Each DEA the drive names with its largest source voltage over the drive: V for the square
+/// waves, V0 + v for the sines. The RC loop's capacitor voltage stays within the source's range.
+/// Each DEA a [[circuit]] drives (circuit_driven_deas) with the bound circuit_voltage_bound
+/// proves (the RC maximum principle over the circuit's sources), its `bound` saying so; none
+/// when no bound is known (check_validity then says "field not checked" and why).
 std::vector<DeaVoltage> drive_peak_voltages(const Scene& scene);
-// The same at t = 0 (the state `emnet static` and `tran --start static` apply).
+/// The same at t = 0 (the state `emnet static` and `tran --start static` apply).
 std::vector<DeaVoltage> drive_voltages_at_start(const Scene& scene);
 
-// The violations among `deflections` and `voltages` of `scene` (its beam length, DEA films and
-// limits); a DEA named in `voltages` must be one of the scene's.
+/// The violations among `deflections` and `voltages` of `scene` (its beam length, DEA films and
+/// limits); a DEA named in `voltages` must be one of the scene's.
+/// @throws std::invalid_argument for a DEA in `voltages` that the scene does not have
 Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& deflections,
                         const std::vector<DeaVoltage>& voltages);
 

@@ -30,46 +30,57 @@
 
 namespace emnet {
 
+/// The physical domain of a node or a through quantity.
 enum class Domain { electrical, translational, rotational };
+/// The domain's name as messages give it.
 const char* domain_name(Domain domain);
-const char* across_unit(Domain domain);   // "V", "m/s", "rad/s"
-const char* through_unit(Domain domain);  // "A", "N", "N*m"
+/// "V", "m/s", "rad/s"
+const char* across_unit(Domain domain);
+/// "A", "N", "N*m"
+const char* through_unit(Domain domain);
+/// Whether `domain` is translational or rotational.
 inline bool is_mechanical(Domain domain) {
   return domain != Domain::electrical;
 }
 
+/// A node's index in y.
 using NodeId = int;
+/// The reference node; not an unknown.
 constexpr NodeId ground = -1;
 
+/// One node of a Network.
 struct Node {
-  std::string name;  // short, SPICE-safe: "v3", "r3", "e_A"
-  Domain domain;
-  std::string meaning;  // "velocity at x = 70.0 mm"
+  std::string name;     ///< short, SPICE-safe: "v3", "r3", "e_A"
+  Domain domain;        ///< the domain of its across value
+  std::string meaning;  ///< "velocity at x = 70.0 mm"
 };
 
-// What one unknown of y is.
+/// What one unknown of y is.
 struct Unknown {
   std::string name;
+  /// A node's across value, or a branch's through quantity.
   enum class Kind { node_across, branch_through } kind;
-  Domain domain;  // of the node, or of the branch's through quantity
+  Domain domain;  ///< of the node, or of the branch's through quantity
 };
 
 class Stamper;
 
-// One network element. Elements stamp; analyses solve.
+/// One network element. Elements stamp; analyses solve.
 class Element {
  public:
   explicit Element(std::string name) : name_(std::move(name)) {}
   virtual ~Element() = default;
   const std::string& name() const { return name_; }
+  /// The element's kind, e.g. "capacitor".
   virtual const char* kind() const = 0;
-  // Extra unknowns this element adds to y (branch currents), with their domain.
+  /// Extra unknowns this element adds to y (branch currents), with their domain.
   virtual std::vector<Unknown> branch_unknowns() const { return {}; }
-  // Linear part (G, C), source terms b(t) and the AC excitation.
+  /// Linear part (G, C), source terms b(t) and the AC excitation.
   virtual void stamp(Stamper& stamper) const = 0;
-  // Nonlinear part: adds g(y) to `g` and, when `jacobian` is given, ∂g/∂y to it (as entries
-  // added into the triplet list). Linear elements do nothing.
+  /// Whether the element has a nonlinear part.
   virtual bool is_nonlinear() const { return false; }
+  /// Nonlinear part: adds g(y) to `g` and, when `jacobian` is given, ∂g/∂y to it (as entries
+  /// added into the triplet list). Linear elements do nothing.
   virtual void add_nonlinear(const Eigen::VectorXd& /*y*/, Eigen::VectorXd& /*g*/,
                              std::vector<Eigen::Triplet<double>>* /*jacobian*/) const {}
 
@@ -80,9 +91,12 @@ class Element {
 class System;
 struct Excitation;
 
+/// Nodes and elements, assembled into a System.
 class Network {
  public:
+  /// Adds a node; returns its id.
   NodeId add_node(std::string name, Domain domain, std::string meaning);
+  /// Adds an element made from `args`; returns it.
   template <class ElementType, class... Args>
   ElementType& add(Args&&... args) {
     auto element = std::make_shared<ElementType>(std::forward<Args>(args)...);
@@ -93,14 +107,17 @@ class Network {
   const std::vector<Node>& nodes() const { return nodes_; }
   const Node& node(NodeId id) const { return nodes_.at(static_cast<size_t>(id)); }
   const std::vector<std::shared_ptr<Element>>& elements() const { return elements_; }
+  /// The element named `name`; nullptr when there is none.
   const Element* find(const std::string& name) const;
-  // Index in y of the k-th branch unknown of element `element` (an index into elements()) as
-  // assemble() numbers them: after every node, in element order. Valid for the network as it
-  // is: a node added later moves every branch unknown (elements added later do not).
+  /// Index in y of the k-th branch unknown of element `element` (an index into elements()) as
+  /// assemble() numbers them: after every node, in element order. Valid for the network as it
+  /// is: a node added later moves every branch unknown (elements added later do not).
+  /// @throws std::out_of_range when the element has no k-th branch unknown
   int branch_unknown_index(std::size_t element, int k = 0) const;
 
+  /// The MNA system of the network.
   System assemble() const;
-  // The excitation alone, as assemble() stamps it (no G, no C).
+  /// The excitation alone, as assemble() stamps it (no G, no C).
   Excitation assemble_excitation() const;
 
  private:
@@ -112,56 +129,65 @@ class Network {
   std::vector<std::shared_ptr<Element>> elements_;
 };
 
-// What drives the system: b(t) = Σ coefficient·waveforms[w].value(t)·e_row over the source
-// terms, and the AC right-hand side b_ac = Σ coefficient·waveforms[w].ac_phasor()·e_row + ac.
+/// What drives the system: b(t) = Σ coefficient·waveforms[w].value(t)·e_row over the source
+/// terms, and the AC right-hand side b_ac = Σ coefficient·waveforms[w].ac_phasor()·e_row + ac.
 struct Excitation {
+  /// coefficient·waveforms[waveform].value(t) added to b[row].
   struct SourceTerm {
     int row;
     double coefficient;
-    int waveform;
+    int waveform;  ///< index into waveforms
   };
   std::vector<Waveform> waveforms;
-  // The element (index into Network::elements()) whose stamp added each waveform.
+  /// The element (index into Network::elements()) whose stamp added each waveform.
   std::vector<int> waveform_element;
   std::vector<SourceTerm> source_terms;
-  Eigen::VectorXcd ac;  // direct AC excitation stamped by elements
+  Eigen::VectorXcd ac;  ///< direct AC excitation stamped by elements
 };
 
-// The assembled MNA system. Built once; every analysis reads it.
+/// The assembled MNA system. Built once; every analysis reads it.
 class System {
  public:
+  /// The number of unknowns.
   int size() const { return static_cast<int>(unknowns.size()); }
 
-  std::vector<Unknown> unknowns;
-  Eigen::SparseMatrix<double> G;  // conductance / stiffness-like part
-  Eigen::SparseMatrix<double> C;  // capacitance / mass-like part
-  // Elements with a nonlinear part g(y), shared with the Network they came from.
+  std::vector<Unknown> unknowns;  ///< what each entry of y is
+  Eigen::SparseMatrix<double> G;  ///< conductance / stiffness-like part
+  Eigen::SparseMatrix<double> C;  ///< capacitance / mass-like part
+  /// Elements with a nonlinear part g(y), shared with the Network they came from.
   std::vector<std::shared_ptr<const Element>> nonlinear_elements;
 
   using SourceTerm = Excitation::SourceTerm;
-  // The sources: stamped by assemble(), replaced only through set_excitation, which checks it.
+  /// The sources: stamped by assemble(), replaced only through set_excitation, which checks it.
   const Excitation& excitation() const { return excitation_; }
 
-  // A new excitation for the same G, C and nonlinear elements (a sweep's next frequency).
-  // Throws std::invalid_argument when it does not fit the system (size, rows, waveforms).
+  /// A new excitation for the same G, C and nonlinear elements (a sweep's next frequency).
+  /// @throws std::invalid_argument when it does not fit the system (size, rows, waveforms)
   void set_excitation(Excitation replacement);
+  /// A copy with `replacement` set as by set_excitation.
+  /// @throws std::invalid_argument when it does not fit the system
   System with_excitation(Excitation replacement) const;
 
+  /// The right-hand side b(t) of the sources; t [s].
   Eigen::VectorXd b(double t) const;
+  /// b(0).
   Eigen::VectorXd b_at_rest() const { return b(0.0); }
-  // db/dt on the source pieces that hold t (Waveform::slope): zero for piecewise-constant
-  // sources, so that b(t₀) + b_slope(t)·(t − t₀) is b on a piece of piecewise-linear ones.
+  /// db/dt on the source pieces that hold t (Waveform::slope): zero for piecewise-constant
+  /// sources, so that b(t₀) + b_slope(t)·(t − t₀) is b on a piece of piecewise-linear ones.
   Eigen::VectorXd b_slope(double t) const;
-  // AC right-hand side: source phasors plus the direct excitation.
+  /// AC right-hand side: source phasors plus the direct excitation.
   Eigen::VectorXcd b_ac() const;
+  /// Whether any element has a nonlinear part.
   bool is_nonlinear() const { return !nonlinear_elements.empty(); }
-  // g(y) and, optionally, its Jacobian.
+  /// g(y) and, optionally, its Jacobian.
   void nonlinear(const Eigen::VectorXd& y, Eigen::VectorXd& g,
                  Eigen::SparseMatrix<double>* jacobian) const;
-  // Instants in (t_begin, t_end] where a source jumps.
+  /// Instants in (t_begin, t_end] where a source jumps.
   std::vector<double> breakpoints(double t_begin, double t_end) const;
-  // Index of the first unknown belonging to each element's branch list, by element name.
+  /// Index of the first unknown belonging to each element's branch list, by element name.
+  /// @throws std::out_of_range when no element is named `element_name`
   int branch_index(const std::string& element_name, int k = 0) const;
+  /// (element name, index of its first branch unknown) for each element with branch unknowns.
   std::vector<std::pair<std::string, int>> branch_offsets;
 
  private:
@@ -170,24 +196,30 @@ class System {
   Excitation excitation_;
 };
 
-// Handed to Element::stamp. Rows/columns equal to `ground` are dropped.
+/// Handed to Element::stamp. Rows/columns equal to `ground` are dropped.
 class Stamper {
  public:
+  /// @param branch_offset  the index in y of the element's first branch unknown
   Stamper(System& system, int branch_offset) : system_(system), branch_offset_(branch_offset) {}
+  /// Adds `value` to G[row, column].
   void g(int row, int column, double value);
+  /// Adds `value` to C[row, column].
   void c(int row, int column, double value);
-  // A two-terminal admittance between nodes a and b: +value on the diagonal, −value off it.
+  /// A two-terminal admittance between nodes a and b: +value on the diagonal, −value off it.
   void g_between(NodeId a, NodeId b, double value);
+  /// The same on C.
   void c_between(NodeId a, NodeId b, double value);
-  // Adds coefficient·waveform(t) to b[row]; returns the waveform's index for reuse.
+  /// Adds coefficient·waveform(t) to b[row]; returns the waveform's index for reuse.
   int source(int row, double coefficient, const Waveform& waveform);
+  /// Adds coefficient·waveform(t) to b[row] for a waveform already added.
   void source(int row, double coefficient, int waveform_index);
+  /// Adds `value` to the direct AC excitation at `row`.
   void ac(int row, std::complex<double> value);
-  // Global index of this element's k-th branch unknown.
+  /// Global index of this element's k-th branch unknown.
   int branch(int k) const { return branch_offset_ + k; }
 
-  std::vector<Eigen::Triplet<double>> g_entries;
-  std::vector<Eigen::Triplet<double>> c_entries;
+  std::vector<Eigen::Triplet<double>> g_entries;  ///< G entries stamped so far
+  std::vector<Eigen::Triplet<double>> c_entries;  ///< C entries stamped so far
 
  private:
   System& system_;

@@ -26,38 +26,39 @@
 
 namespace emnet {
 
-// A linear functional Σ coefficient·y[index] over the unknowns.
+/// A linear functional Σ coefficient·y[index] over the unknowns.
 using LinearTerms = std::vector<std::pair<int, double>>;
 
-// factor·(Σ c·y[index])², e.g. k_F·u² with terms {electrode node: 1}.
+/// factor·(Σ c·y[index])², e.g. k_F·u² with terms {electrode node: 1}.
 struct SquaredTerm {
   double factor = 0.0;
-  LinearTerms terms;
+  LinearTerms terms;  ///< the functional squared
 };
 
-// An output: a linear functional of y (plus squares, see above). For `integrations` = 1 the
-// linear part is the time integral of the functional (a deflection from velocities:
-// W = V/(jω) in AC).
+/// An output: a linear functional of y (plus squares, see above). For `integrations` = 1 the
+/// linear part is the time integral of the functional (a deflection from velocities:
+/// W = V/(jω) in AC).
 struct Probe {
   std::string name;
   ProbeQuantity quantity = ProbeQuantity::deflection;
-  std::string unit;
-  LinearTerms terms;
-  int integrations = 0;
-  std::string description;           // "deflection at x = 70.0 mm"
-  std::vector<SquaredTerm> squares;  // empty for a linear probe
+  std::string unit;                  ///< the unit of its value
+  LinearTerms terms;                 ///< the linear part
+  int integrations = 0;              ///< time integrations of the linear part
+  std::string description;           ///< "deflection at x = 70.0 mm"
+  std::vector<SquaredTerm> squares;  ///< empty for a linear probe
 };
 
+/// Whether `probe` has no squares.
 inline bool is_linear(const Probe& probe) {
   return probe.squares.empty();
 }
-// Σ c·y over `terms` (a row of y; unknowns beyond y's size are an error of the caller).
+/// Σ c·y over `terms` (a row of y; unknowns beyond y's size are an error of the caller).
 double linear_value(const LinearTerms& terms, const Eigen::VectorXd& y);
-// Σ factor·(Σ d·y)² over the probe's squares, at y (across values, not integrated).
+/// Σ factor·(Σ d·y)² over the probe's squares, at y (across values, not integrated).
 double squares_value(const Probe& probe, const Eigen::VectorXd& y);
-// The probe's small-signal part about `operating_point` (see above): its squares become
-// linear terms 2·factor·u₀·d, the description says so with u₀. A linear probe is returned as
-// it is.
+/// The probe's small-signal part about `operating_point` (see above): its squares become
+/// linear terms 2·factor·u₀·d, the description says so with u₀. A linear probe is returned as
+/// it is.
 Probe linearised_probe(const Probe& probe, const Eigen::VectorXd& operating_point);
 
 }  // namespace emnet
