@@ -90,8 +90,9 @@ def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1
     (name, description, unit, left, right: the periodic minimum (left) and maximum (right) per
     output and frequency in the output's unit, 2-D arrays [output, frequency];
     outputs.row("dx4").right is one output's); sweep_peak_hz (the largest peak-to-peak of the
-    last output); accuracy (worst_periodicity_residual); cost (solve_seconds, total_seconds);
-    validity.
+    last output); first_mode_hz (the lowest mode, when found); accuracy
+    (worst_periodicity_residual); cost (solves, unknowns, decomposition_seconds, solve_seconds,
+    total_seconds); validity.
     """
     return Result(_emnet.sweep_switching(as_scene(scene)._handle, numbers(frequencies, "frequencies"),
                                          from_hz, to_hz, step_hz, method, samples, rtol,
@@ -102,8 +103,9 @@ def identify(scene, target_hz, parameter="beam.bending_stiffness", mode=1):
     """The value of `parameter` that puts mode `mode` at target_hz [Hz] (as `emnet identify`).
 
     Returns a Result with automatic_choices, parameter (its canonical key), value and unit (SI),
-    mode, target_hz and achieved_hz [Hz], iterations (modal solves of the fit), command (this
-    call, for the scene's [provenance]), total_seconds, notes (when there are any).
+    mode, target_hz and achieved_hz [Hz], iterations (modal solves of the fit), accuracy
+    (frequency_residual: (achieved - target) / target), cost (modal_solves, periodic_solves),
+    command (this call, for the scene's [provenance]), total_seconds, notes (when there are any).
     """
     return Result(_emnet.identify(as_scene(scene)._handle, target_hz, parameter, mode))
 
@@ -124,8 +126,9 @@ def mismatch(scene, frequency_hz=None, output="", change=0.05):
     """Left/right asymmetry of the periodic peaks when one DEA differs by ±change (as `emnet
     mismatch`): electrode area, film thickness, overlap.
 
-    Returns a Result with automatic_choices, output, frequency_hz, nominal (left_m, right_m),
-    cases (key, change, left_m, right_m, asymmetry [-], asymmetry_per_unit_change),
+    Returns a Result with automatic_choices, output, frequency_hz, nominal (left_m, right_m,
+    asymmetry [-]), cases (label, key, change, left_m, right_m, asymmetry [-],
+    asymmetry_per_unit_change),
     total_seconds, validity, notes (when there are any).
     """
     return Result(_emnet.mismatch(as_scene(scene)._handle, frequency_hz, output, change))

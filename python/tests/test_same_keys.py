@@ -83,3 +83,29 @@ def test_the_netlist_keys_are_those_of_the_command(fishfin, tmp_path):
     python = key_paths(emnet.netlist(fishfin, analysis="ac"))
     assert python - command == PYTHON_ONLY["netlist"]
     assert command - python == COMMAND_ONLY["netlist"]
+
+
+def test_accuracy_and_cost_reach_both_front_ends(fishfin):
+    """What each study measured of its own accuracy and cost is in the one JSON both print.
+
+    References: identify's residual is (achieved - target) / target by definition; the nominal
+    fin's pair is symmetric, so its asymmetry is zero to rounding (|x| ~ 1e-3 m, so 1e-12 is
+    many ulps of slack and still far below any mismatch case's ~1e-2); a sweep of 3 frequencies
+    without a check is 3 periodic solves.
+    """
+    fit = emnet.identify(fishfin, 5.0)
+    assert fit.accuracy["frequency_residual"] == pytest.approx(
+        (fit.achieved_hz - fit.target_hz) / fit.target_hz, rel=1e-12, abs=1e-15)
+    assert fit.cost["modal_solves"] >= fit.iterations
+
+    pair = emnet.mismatch(fishfin)
+    assert abs(pair.nominal["asymmetry"]) < 1e-12
+    assert len(pair.cases["label"]) == len(pair.cases["key"])
+
+    sweep = emnet.sweep_switching(fishfin, from_hz=4, to_hz=6, step_hz=1)
+    assert sweep.cost["solves"] == 3
+    assert sweep.cost["unknowns"] > 0
+    assert sweep.first_mode_hz == pytest.approx(6.385, abs=5e-4)  # the paper's predicted f1
+    command = cli_json("sweep-switching", FISHFIN, "--from", "4", "--to", "6", "--step", "1")
+    assert command["cost"]["solves"] == sweep.cost["solves"]
+    assert command["first_mode_hz"] == sweep.first_mode_hz

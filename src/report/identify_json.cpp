@@ -6,16 +6,20 @@ namespace emnet {
 Json to_json(const IdentifyResult& result, const IdentifyOptions& options,
              const IdentifyReportContext& context) {
   const FittedValue& fitted = result.parameter;
-  Json out = {{"automatic_choices", to_json(context.automatic_choices)},
-              {"parameter", fitted.key},
-              {"value", fitted.value},
-              {"unit", fitted.unit},
-              {"mode", options.mode_number},
-              {"target_hz", options.target_hz},
-              {"achieved_hz", result.achieved_hz},
-              {"iterations", result.stiffness_iterations},
-              {"command", context.command},
-              {"total_seconds", context.total_seconds}};
+  Json out = {
+      {"automatic_choices", to_json(context.automatic_choices)},
+      {"parameter", fitted.key},
+      {"value", fitted.value},
+      {"unit", fitted.unit},
+      {"mode", options.mode_number},
+      {"target_hz", options.target_hz},
+      {"achieved_hz", result.achieved_hz},
+      {"iterations", result.stiffness_iterations},
+      {"accuracy", {{"frequency_residual", result.frequency_residual}}},
+      {"cost",
+       {{"modal_solves", result.modal_solves}, {"periodic_solves", result.periodic_solves}}},
+      {"command", context.command},
+      {"total_seconds", context.total_seconds}};
   if (options.peak) {
     out["loss_factor"] = result.loss_factor;
     out["peak_probe"] = options.peak->output;

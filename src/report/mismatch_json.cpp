@@ -8,11 +8,15 @@ Json to_json(const MismatchResult& result, const std::vector<AutomaticChoice>& a
   Json out = {{"automatic_choices", to_json(automatic_choices)},
               {"output", result.output},
               {"frequency_hz", result.frequency_hz},
-              {"nominal", {{"left_m", result.nominal_left}, {"right_m", result.nominal_right}}},
+              {"nominal",
+               {{"left_m", result.nominal_left},
+                {"right_m", result.nominal_right},
+                {"asymmetry", result.nominal_asymmetry}}},
               {"cases", Json::array()},
               {"total_seconds", total_seconds}};
   for (const MismatchRow& row : result.rows)
-    out["cases"].push_back({{"key", row.key},
+    out["cases"].push_back({{"label", row.label},
+                            {"key", row.key},
                             {"change", row.change},
                             {"left_m", row.left},
                             {"right_m", row.right},

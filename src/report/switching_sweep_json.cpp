@@ -45,8 +45,13 @@ Json to_json(const SwitchingSweepResult& result, const Model& model,
                               {"left", output.left},
                               {"right", output.right}});
   out["sweep_peak_hz"] = result.frequencies.empty() ? 0.0 : result.frequencies[result.peak_index];
+  if (result.first_mode_hz) out["first_mode_hz"] = *result.first_mode_hz;
   out["accuracy"] = {{"worst_periodicity_residual", result.worst_periodicity_residual}};
-  out["cost"] = {{"solve_seconds", result.solve_seconds}, {"total_seconds", total_seconds}};
+  out["cost"] = {{"solves", result.solves},
+                 {"unknowns", result.unknowns},
+                 {"decomposition_seconds", result.decomposition_seconds},
+                 {"solve_seconds", result.solve_seconds},
+                 {"total_seconds", total_seconds}};
   if (result.reduction) out["reduction"] = reduction_check_json(*result.reduction, result);
   out["validity"] = to_json(result.validity);
   return out;

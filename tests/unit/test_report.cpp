@@ -136,13 +136,14 @@ TEST(Json, IdentifyAndMismatchHaveTheProgramsKeysInOrder) {
   IdentifyOptions options;
   options.target_hz = 5.0;
   const Json fit = to_json(identified, options, {{}, "emnet identify fin.toml", 0.5});
-  EXPECT_EQ(keys_of(fit), (std::vector<std::string>{"automatic_choices", "parameter", "value",
-                                                    "unit", "mode", "target_hz", "achieved_hz",
-                                                    "iterations", "command", "total_seconds"}));
+  EXPECT_EQ(keys_of(fit),
+            (std::vector<std::string>{"automatic_choices", "parameter", "value", "unit", "mode",
+                                      "target_hz", "achieved_hz", "iterations", "accuracy", "cost",
+                                      "command", "total_seconds"}));
   options.peak = PeakTarget{"P4", 9.3e-3, 4e3};
   identified.validity = Validity{};
   const std::vector<std::string> peak_keys = keys_of(to_json(identified, options, {}));
-  EXPECT_EQ(std::vector<std::string>(peak_keys.begin() + 10, peak_keys.end()),
+  EXPECT_EQ(std::vector<std::string>(peak_keys.begin() + 12, peak_keys.end()),
             (std::vector<std::string>{"loss_factor", "peak_probe", "target_peak_m",
                                       "achieved_peak_m", "peak_rounds", "validity"}));
   MismatchResult mismatch;
@@ -152,9 +153,10 @@ TEST(Json, IdentifyAndMismatchHaveTheProgramsKeysInOrder) {
   EXPECT_EQ(keys_of(table),
             (std::vector<std::string>{"automatic_choices", "output", "frequency_hz", "nominal",
                                       "cases", "total_seconds", "validity"}));
-  EXPECT_EQ(keys_of(table["nominal"]), (std::vector<std::string>{"left_m", "right_m"}));
+  EXPECT_EQ(keys_of(table["nominal"]),
+            (std::vector<std::string>{"left_m", "right_m", "asymmetry"}));
   EXPECT_EQ(keys_of(table["cases"][0]),
-            (std::vector<std::string>{"key", "change", "left_m", "right_m", "asymmetry",
+            (std::vector<std::string>{"label", "key", "change", "left_m", "right_m", "asymmetry",
                                       "asymmetry_per_unit_change"}));
 }
 
