@@ -24,7 +24,7 @@ namespace emnet {
 /// A JSON value of the reports, keys in the order written.
 using Json = nlohmann::ordered_json;
 
-/// `json` as text, indented by 2; strings with invalid UTF-8 (a name given by --set) are
+/// `json` as text, indented by 2; strings with invalid UTF-8 (a name given in an override) are
 /// written with U+FFFD instead of failing.
 std::string json_text(const Json& json);
 
