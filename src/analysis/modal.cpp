@@ -1,6 +1,6 @@
 // Modal analysis: poles of the displacement-form pencil by shift-invert, rigid-body motions
 // projected out, a first-order error bound per pole; see analysis.hpp.
-#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cassert>
 #include <chrono>
@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "core/timed.hpp"
+#include "dense_decompositions.hpp"
 #include "displacement_form.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "equilibration.hpp"
@@ -35,17 +36,17 @@ constexpr double kRigidShift = 1e-2;
 // poles map to μ = 0, perturbed by √ε for the index-2 blocks of massless nodes): dense.
 Eigenpairs dense_eigenpairs(const Eigen::MatrixXd& t, std::string& why) {
   Eigenpairs out;
-  Eigen::EigenSolver<Eigen::MatrixXd> solver(t, true);
-  if (solver.info() != Eigen::Success) {
+  const RealEigenDecomposition solver = real_eigen_decomposition(t);
+  if (!solver.converged) {
     why = "dense eigen-decomposition did not converge";
     return out;
   }
-  const Eigen::VectorXcd values = solver.eigenvalues();
+  const Eigen::VectorXcd& values = solver.values;
   const double largest = values.cwiseAbs().maxCoeff();
   for (Eigen::Index k = 0; k < values.size(); ++k)
     if (std::abs(values[k]) > 1e-7 * largest) {
       out.values.push_back(values[k]);
-      out.vectors.push_back(solver.eigenvectors().col(k));
+      out.vectors.push_back(solver.vectors.col(k));
     }
   return out;
 }

@@ -3,7 +3,6 @@
 #include "emnet/analysis/periodic.hpp"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,6 +12,7 @@
 #include <string>
 
 #include "core/timed.hpp"
+#include "dense_decompositions.hpp"
 #include "displacement_form.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/transient.hpp"
@@ -339,11 +339,11 @@ Eigen::MatrixXd consistent_state_basis(const DisplacementForm& form,
   }
   Eigen::MatrixXd basis = Eigen::MatrixXd::Identity(nd, nd);
   if (constraints.rows() > 0) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(constraints, Eigen::ComputeFullV);
+    const RealSingularValueDecomposition svd = jacobi_svd(constraints, Eigen::ComputeFullV);
     Eigen::Index rank = 0;
-    const auto& sv = svd.singularValues();
+    const Eigen::VectorXd& sv = svd.singular_values;
     while (rank < sv.size() && sv[rank] > 1e-12 * sv[0]) ++rank;
-    basis = svd.matrixV().rightCols(nd - rank);
+    basis = svd.v.rightCols(nd - rank);
   }
   return basis;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "dense_decompositions.hpp"
 #include "left_eigenvector.hpp"
 
 namespace emnet {
@@ -161,8 +162,7 @@ void bound_poles(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix
       residual_squares += r * r;
     }
     const Eigen::MatrixXcd coupling = left_basis.adjoint() * (e_complex * right_basis);
-    const Eigen::JacobiSVD<Eigen::MatrixXcd> coupling_svd(coupling);
-    const double smallest = coupling_svd.singularValues()[g - 1];
+    const double smallest = complex_jacobi_svd(coupling, 0).singular_values[g - 1];
     if (!(smallest > 0.0) || !std::isfinite(smallest)) {
       fail(g > 1 ? "a group of " + std::to_string(g) +
                        " equal poles whose left and right spaces are E-orthogonal (defective)"

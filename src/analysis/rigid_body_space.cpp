@@ -4,6 +4,8 @@
 #include <Eigen/SPQRSupport>
 #include <algorithm>
 
+#include "dense_decompositions.hpp"
+
 namespace emnet {
 
 namespace {
@@ -47,16 +49,16 @@ RigidBodySpace rigid_body_space(const Eigen::SparseMatrix<double>& a,
   }
   // Semisimple part: the directions where W0ᵀ·Ê·Z0 is regular (a motion damped to ground);
   // the others start Jordan chains.
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(w0.transpose() * (e * z0),
-                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::VectorXd values = svd.singularValues();
+  const RealSingularValueDecomposition svd =
+      jacobi_svd(w0.transpose() * (e * z0), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::VectorXd values = svd.singular_values;
   const double largest = std::max(values.size() > 0 ? values[0] : 0.0, 1.0);
   Eigen::Index semisimple = 0;
   while (semisimple < values.size() && values[semisimple] > 1e-8 * largest) ++semisimple;
   const Eigen::Index chains = z0.cols() - semisimple;
   Eigen::MatrixXd right(n, z0.cols() + chains), left(n, z0.cols() + chains);
-  right.leftCols(z0.cols()) = z0 * svd.matrixV();
-  left.leftCols(z0.cols()) = w0 * svd.matrixU();
+  right.leftCols(z0.cols()) = z0 * svd.v;
+  left.leftCols(z0.cols()) = w0 * svd.u;
   const Eigen::SparseMatrix<double> e_transposed = e.transpose();
   for (Eigen::Index k = 0; k < chains; ++k) {
     const Eigen::VectorXd rhs_right = -(e * right.col(semisimple + k));

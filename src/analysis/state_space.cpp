@@ -3,11 +3,11 @@
 #include "state_space.hpp"
 
 #include <Eigen/QR>
-#include <Eigen/SVD>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
+#include "dense_decompositions.hpp"
 #include "equilibration.hpp"
 
 namespace emnet {
@@ -105,15 +105,16 @@ LinearStateSpace::LinearStateSpace(const DisplacementForm& form,
   Eigen::VectorXd sigma;
   Eigen::MatrixXd u_leading, v_leading;
   if (e_used.size() > 0) {
-    const Eigen::BDCSVD<Eigen::MatrixXd> svd(e_used, Eigen::ComputeThinU | Eigen::ComputeThinV);
-    sigma = svd.singularValues();
+    const RealSingularValueDecomposition svd =
+        divide_and_conquer_svd(e_used, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    sigma = svd.singular_values;
     while (nd_ < sigma.size() && sigma[nd_] > 1e-12 * sigma[0]) ++nd_;
     u_leading = Eigen::MatrixXd::Zero(n_, nd_);
     v_leading = Eigen::MatrixXd::Zero(n_, nd_);
     for (Eigen::Index i = 0; i < e_used.rows(); ++i)
-      u_leading.row(used_rows[static_cast<size_t>(i)]) = svd.matrixU().row(i).head(nd_);
+      u_leading.row(used_rows[static_cast<size_t>(i)]) = svd.u.row(i).head(nd_);
     for (Eigen::Index j = 0; j < e_used.cols(); ++j)
-      v_leading.row(used_columns[static_cast<size_t>(j)]) = svd.matrixV().row(j).head(nd_);
+      v_leading.row(used_columns[static_cast<size_t>(j)]) = svd.v.row(j).head(nd_);
   } else {
     u_leading = v_leading = Eigen::MatrixXd::Zero(n_, 0);
   }
@@ -153,9 +154,8 @@ void LinearStateSpace::prepare_projection() const {
   const Eigen::Index k = constraint_.rows();
   if (k == 0) return;
   // V alone: the null vectors are its last columns (U would double the cost and is not used).
-  const Eigen::BDCSVD<Eigen::MatrixXd> m_svd(balanced_m_, Eigen::ComputeFullV);
-  null_vectors_ =
-      balance_.asDiagonal() * completed_basis(m_svd.matrixV().leftCols(nd_ - k)).rightCols(k);
+  const Eigen::MatrixXd v = divide_and_conquer_svd(balanced_m_, Eigen::ComputeFullV).v;
+  null_vectors_ = balance_.asDiagonal() * completed_basis(v.leftCols(nd_ - k)).rightCols(k);
   Eigen::VectorXd u, up;
   Eigen::MatrixXd h_null(k, k);
   const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(n_);

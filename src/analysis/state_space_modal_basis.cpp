@@ -1,11 +1,10 @@
 // The eigen-decomposition of the state matrix M and the modal increments stepped by ModalClock:
 // see state_space.hpp.
-#include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 #include <cmath>
 #include <complex>
 #include <vector>
 
+#include "dense_decompositions.hpp"
 #include "state_space.hpp"
 
 namespace emnet {
@@ -42,17 +41,17 @@ void orthonormalise_repeated(const Eigen::MatrixXd& m, Eigen::VectorXcd& lambda,
     Eigen::MatrixXcd basis;
     Eigen::VectorXd singular;
     if (std::abs(mean.imag()) <= 1e-12 * std::abs(mean)) {
-      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(m - mean.real() * Eigen::MatrixXd::Identity(n, n),
-                                                  Eigen::ComputeFullV);
-      singular = svd.singularValues();
-      basis = svd.matrixV().rightCols(k).cast<std::complex<double>>();
+      const RealSingularValueDecomposition svd =
+          jacobi_svd(m - mean.real() * Eigen::MatrixXd::Identity(n, n), Eigen::ComputeFullV);
+      singular = svd.singular_values;
+      basis = svd.v.rightCols(k).cast<std::complex<double>>();
       mean = mean.real();
     } else {
-      const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(
+      const ComplexSingularValueDecomposition svd = complex_jacobi_svd(
           m.cast<std::complex<double>>() - mean * Eigen::MatrixXcd::Identity(n, n),
           Eigen::ComputeFullV);
-      singular = svd.singularValues();
-      basis = svd.matrixV().rightCols(k);
+      singular = svd.singular_values;
+      basis = svd.v.rightCols(k);
     }
     if (!(singular[n - k] <= 1e-10 * norm)) continue;  // defective: fewer null vectors
     for (Eigen::Index c = 0; c < k; ++c) {
@@ -73,10 +72,10 @@ bool LinearStateSpace::ModalBasis::of(const Eigen::MatrixXd& m, ModalBasis& basi
   Eigen::VectorXd scale;
   Eigen::MatrixXd balanced;
   balance(m, scale, balanced);
-  const Eigen::EigenSolver<Eigen::MatrixXd> solver(balanced);
-  if (solver.info() != Eigen::Success) return false;
-  basis.values = solver.eigenvalues();
-  basis.vectors = scale.cast<std::complex<double>>().asDiagonal() * solver.eigenvectors();
+  const RealEigenDecomposition solver = real_eigen_decomposition(balanced);
+  if (!solver.converged) return false;
+  basis.values = solver.values;
+  basis.vectors = scale.cast<std::complex<double>>().asDiagonal() * solver.vectors;
   basis.vectors_lu.compute(basis.vectors);
   // κ₁ by the LU's estimate of ‖V⁻¹‖₁ (Hager–Higham, as LAPACK's gecon): O(n²), where the
   // explicit inverse was O(n³); the estimate is a lower bound, within a factor of a few of κ₁.
