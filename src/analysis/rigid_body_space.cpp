@@ -51,7 +51,7 @@ RigidBodySpace rigid_body_space(const Eigen::SparseMatrix<double>& a,
   // the others start Jordan chains.
   const RealSingularValueDecomposition svd =
       jacobi_svd(w0.transpose() * (e * z0), Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::VectorXd values = svd.singular_values;
+  const Eigen::VectorXd& values = svd.singular_values;
   const double largest = std::max(values.size() > 0 ? values[0] : 0.0, 1.0);
   Eigen::Index semisimple = 0;
   while (semisimple < values.size() && values[semisimple] > 1e-8 * largest) ++semisimple;
