@@ -281,13 +281,13 @@ void DeckWriter::write_analysis(std::ostringstream& out) {
           << " vntol=1e-12 abstol=1e-15\n";
       if (options_.start == StartState::rest) {
         comment(out,
-                "start at rest (as emnet tran --start rest): uic, every capacitor "
+                "start at rest (as emnet's transient from rest): uic, every capacitor "
                 "voltage and inductor current zero at t = 0");
         out << ".tran " << number(options_.output_step) << " " << number(options_.end_time) << " 0 "
             << number(max_step) << " uic\n";
       } else {
         comment(out,
-                "start from the static state (as emnet tran --start static): ngspice's "
+                "start from the static state (as emnet's transient from it): ngspice's "
                 "operating point under the sources at t = 0, the integrator outputs held "
                 "at emnet's static values by .ic while it is computed");
         out << ".tran " << number(options_.output_step) << " " << number(options_.end_time) << " 0 "

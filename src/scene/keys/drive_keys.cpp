@@ -50,7 +50,7 @@ SceneTableKeys drive_table_keys() {
   plain_field(
       keys.add(used_by_kinds(quantity("drive", "frequency", dim::frequency, positive(), true, "",
                                       "the switching or sine frequency (drive kind none: only "
-                                      "the period of tran --periods)"),
+                                      "the period a transient's length in periods counts)"),
                              {DriveKind::none, DriveKind::antagonistic, DriveKind::switched,
                               DriveKind::bias_differential, DriveKind::single})),
       &Scene::drive, &DriveSpec::frequency);

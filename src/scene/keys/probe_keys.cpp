@@ -10,7 +10,7 @@ SceneTableKeys probe_table_keys() {
   SceneTableKeys keys =
       entries_table("probe", scene_limits::probes, "named outputs, one [[probe]] entry each");
   keys.add(key("probe", "name", ParameterKind::name, "probes",
-               "the probe's name (--probe NAME, outputs)"))
+               "the probe's name, by which outputs and analyses ask for it"))
       .required = true;
   keys.back().constraint = kEntryNameConstraint;
   keys.back().text = [](const Scene& scene, std::size_t entry) { return scene.probes[entry].name; };
