@@ -200,11 +200,44 @@ std::string ida_against_ngspice(const Settings& settings) {
 
 }  // namespace
 
-std::string limits_section(const Settings& settings) {
-  std::ostringstream md;
-  const double rate = arithmetic_rate(), bandwidth = copy_rate();
+namespace {
+
+// What every row of the limits section measures against: the machine's rates and the fish fin's
+// AC network (N = 7, ideal drive) with its poles.
+struct LimitInputs {
+  const Settings& settings;
+  double rate = 0.0;       // dense arithmetic [flop/s]
+  double bandwidth = 0.0;  // memory copy [B/s]
+  Timing empty_process;    // /bin/true
+  AcContext context;
+  emnet::AcResult ac;
+  double poles = 0.0, outputs = 0.0;
+  double decomposition = 0.0;  // 25·n³ flop
+  emnet::SpiceDeck ac_deck;    // the network's AC deck, for ngspice
+};
+
+LimitInputs limit_inputs(const Settings& settings) {
+  LimitInputs in{settings};
+  in.rate = arithmetic_rate();
+  in.bandwidth = copy_rate();
   bool true_ok = true;
-  const Timing empty_process = measure_process({"/bin/true"}, 20, 2.0, true_ok);
+  in.empty_process = measure_process({"/bin/true"}, 20, 2.0, true_ok);
+  in.context = ac_context(settings);
+  in.ac = emnet::run_ac(in.context.system, in.context.rest.operating_point, in.context.grid,
+                        in.context.probes);
+  in.poles = static_cast<double>(in.ac.poles.size());
+  in.outputs = static_cast<double>(in.context.probes.size());
+  in.decomposition = 25.0 * in.poles * in.poles * in.poles;
+  emnet::SpiceDeckOptions options;
+  options.analysis = emnet::SpiceAnalysis::ac;
+  options.outputs = in.context.probes;
+  in.ac_deck = emnet::write_spice_deck(in.context.model, options);
+  return in;
+}
+
+// The section's opening: how a limit is counted, and this machine's rates.
+std::string limits_preamble(const LimitInputs& in) {
+  std::ostringstream md;
   md << "How far each analysis of the fish fin (N = 7, ideal drive) is from the arithmetic it "
         "cannot avoid. The limit of an analysis is the operation count of the method a careful "
         "implementation would use, divided by this machine's rate for dense double arithmetic, "
@@ -223,169 +256,170 @@ std::string limits_section(const Settings& settings) {
         "pair, a complex dot product per output);\n"
         "- switching sweep: the decomposition + F·(16·n + S·4·n·P) (the periodic state in modal "
         "coordinates, every sample of every output).\n\n"
-     << "Measured here: dense arithmetic " << format("%.1f", rate * 1e-9)
-     << " Gflop/s (one core), memory copy " << format("%.1f", bandwidth * 1e-9)
-     << " GB/s, an empty process (`/bin/true`) " << time_text(empty_process.median)
+     << "Measured here: dense arithmetic " << format("%.1f", in.rate * 1e-9)
+     << " Gflop/s (one core), memory copy " << format("%.1f", in.bandwidth * 1e-9)
+     << " GB/s, an empty process (`/bin/true`) " << time_text(in.empty_process.median)
      << ". Times are medians in this process unless the row says whole process; each goal is "
         "an absolute time.\n\n";
+  return md.str();
+}
 
-  const AcContext context = ac_context(settings);
-  const emnet::Model& model = context.model;
-  const emnet::System& system = context.system;
-  const emnet::StaticResult& rest = context.rest;
-  const auto& probes = context.probes;
+// AC: run_ac alone and from the scene file, ngspice's in-process time beside the first.
+std::vector<LimitRow> ac_limit_rows(const LimitInputs& in) {
+  const Settings& settings = in.settings;
+  const AcContext& context = in.context;
   const auto& grid = context.grid;
-  const double outputs = static_cast<double>(probes.size());
-  std::vector<LimitRow> rows;
-
-  // AC.
-  const emnet::AcResult ac = emnet::run_ac(system, rest.operating_point, grid, probes);
-  const double poles = static_cast<double>(ac.poles.size());
-  const double decomposition = 25.0 * poles * poles * poles;
-  double ac_ngspice = NAN, ac_ngspice_process = NAN;
-  emnet::SpiceDeck ac_deck;
-  {
-    emnet::SpiceDeckOptions options;
-    options.analysis = emnet::SpiceAnalysis::ac;
-    options.outputs = probes;
-    ac_deck = emnet::write_spice_deck(model, options);
-    ac_ngspice = ngspice_in_process(ac_deck.text);
-    bool ok = true;
-    const Timing process =
-        ngspice_process(settings, write_deck(settings, "limits-ac", ac_deck.text), 10, 3.0, ok);
-    if (ok) ac_ngspice_process = process.median;
-  }
-  {
-    LimitRow row;
-    row.analysis = "AC, " + std::to_string(grid.size()) + " points, N = 7";
-    row.method = emnet::method_name(ac.method) + ", run_ac alone";
-    const double flops = decomposition + grid.size() * (8.0 * poles + 16.0 * poles * outputs);
-    row.limit = flops / rate;
-    row.limit_text = format("%.2g flop", flops) + ", " + std::to_string(ac.poles.size()) + " poles";
-    row.emnet =
-        measure([&] { return emnet::run_ac(system, rest.operating_point, grid, probes).seconds; },
-                50, 2.0)
-            .median;
-    row.ngspice = ac_ngspice;
-    row.goal = 1e-3;
-    row.note = "pole-residue form checked at " + std::to_string(ac.check_points) +
-               " frequencies, largest difference from the direct solve " +
-               error_text(ac.check_deviation) +
-               " of the peak (the error against a dense solve is under Against ngspice)";
-    rows.push_back(row);
-    LimitRow scene = row;
-    scene.analysis = "AC from the scene file";
-    scene.method = emnet::method_name(ac.method) + ", read, build, static, run_ac";
-    scene.emnet = measure(
-                      [&] {
-                        const auto start = Clock::now();
-                        const emnet::Model m = build(settings.fishfin(), ideal_drive);
-                        const emnet::System s = m.network.assemble();
-                        const emnet::StaticResult r = emnet::solve_static(s);
-                        emnet::run_ac(s, r.operating_point, grid, deflection_probes(m));
-                        return seconds_since(start);
-                      },
-                      30, 2.0)
-                      .median;
-    scene.note.clear();
-    rows.push_back(scene);
-  }
-
-  // Whole process: emnet ac against ngspice -b.
-  {
-    LimitRow row;
-    row.analysis = "AC, whole process";
-    row.method = "`emnet ac` (ideal drive), 1000 rows written";
-    const double bytes = 1000.0 * (15.0 + 29.0 * model.probes.size());
-    row.limit = empty_process.median + rows[0].limit + bytes / bandwidth;
-    row.limit_text = "empty process + AC limit + " + format("%.0f kB", bytes * 1e-3) + " written";
-    bool ok = true;
-    row.emnet = measure_process(emnet_cli(settings, "ac", {}), 20, 3.0, ok).median;
-    bool help_ok = true;
-    const Timing help = measure_process({settings.emnet, "--help"}, 20, 2.0, help_ok);
-    row.ngspice = ac_ngspice_process;
-    row.goal = 5e-3;
-    row.note =
-        "`emnet --help` alone " + time_text(help.median) + " (" +
-        format("%.0f", 100.0 * help.median / row.emnet) +
-        " % of the command; program start: the dynamic loader, static initialisers, the "
-        "commands' options); the scene's own RC-loop drive (`emnet ac netlists/fishfin.toml`) " +
-        [&] {
-          bool rc_ok = true;
-          const Timing rc =
-              measure_process({settings.emnet, "ac", settings.fishfin()}, 10, 3.0, rc_ok);
-          const emnet::Model rc_model = build(settings.fishfin(), {});
-          const emnet::System rc_system = rc_model.network.assemble();
-          const emnet::AcResult rc_ac =
-              emnet::run_ac(rc_system, emnet::solve_static(rc_system).operating_point, grid,
-                            deflection_probes(rc_model));
-          return time_text(rc.median) + " (" + emnet::method_name(rc_ac.method) +
-                 (rc_ac.note.empty() ? "" : ": " + rc_ac.note) + ")";
-        }();
-    rows.push_back(row);
-  }
-
-  // Exact transient, 50 periods, 100 outputs per period.
-  {
-    const double period = 1.0 / model.scene.drive.frequency;
-    emnet::TransientOptions options;
-    options.end_time = 50 * period;
-    for (int k = 0; k <= 5000; ++k) options.output_times.push_back(k * period / 100.0);
-    LimitRow row;
-    row.analysis = "exact transient, 50 periods, 5001 outputs";
-    row.method = "modal, run_transient_exact alone";
-    const double intervals = 100.0, times = 5001.0;
-    const double flops = decomposition + intervals * 16.0 * poles * poles +
-                         times * (6.0 * poles + 4.0 * poles * outputs);
-    row.limit = flops / rate;
-    row.limit_text = format("%.2g flop", flops);
-    row.emnet = measure([&] { return emnet::run_transient_exact(system, probes, options).seconds; },
-                        20, 2.0)
+  LimitRow row;
+  row.analysis = "AC, " + std::to_string(grid.size()) + " points, N = 7";
+  row.method = emnet::method_name(in.ac.method) + ", run_ac alone";
+  const double flops =
+      in.decomposition + grid.size() * (8.0 * in.poles + 16.0 * in.poles * in.outputs);
+  row.limit = flops / in.rate;
+  row.limit_text =
+      format("%.2g flop", flops) + ", " + std::to_string(in.ac.poles.size()) + " poles";
+  row.emnet =
+      measure(
+          [&] {
+            return emnet::run_ac(context.system, context.rest.operating_point, grid, context.probes)
+                .seconds;
+          },
+          50, 2.0)
+          .median;
+  row.ngspice = ngspice_in_process(in.ac_deck.text);
+  row.goal = 1e-3;
+  row.note = "pole-residue form checked at " + std::to_string(in.ac.check_points) +
+             " frequencies, largest difference from the direct solve " +
+             error_text(in.ac.check_deviation) +
+             " of the peak (the error against a dense solve is under Against ngspice)";
+  LimitRow scene = row;
+  scene.analysis = "AC from the scene file";
+  scene.method = emnet::method_name(in.ac.method) + ", read, build, static, run_ac";
+  scene.emnet = measure(
+                    [&] {
+                      const auto start = Clock::now();
+                      const emnet::Model m = build(settings.fishfin(), ideal_drive);
+                      const emnet::System s = m.network.assemble();
+                      const emnet::StaticResult r = emnet::solve_static(s);
+                      emnet::run_ac(s, r.operating_point, grid, deflection_probes(m));
+                      return seconds_since(start);
+                    },
+                    30, 2.0)
                     .median;
-    row.ngspice = ngspice_in_process(default_tran_deck(model, probes, options.end_time, period));
-    row.goal = 1e-3;
-    emnet::TransientOptions few = options;
-    few.output_times.clear();
-    for (int k = 0; k <= 50; ++k) few.output_times.push_back(k * period);
-    const double sparse =
-        measure([&] { return emnet::run_transient_exact(system, probes, few).seconds; }, 20, 2.0)
-            .median;
-    row.note = "with 51 outputs " + time_text(sparse) + ": the outputs cost " +
-               time_text((row.emnet - sparse) / 4950.0) +
-               " each; the fixed part is the state equation (equilibration and the SVD of E, " +
-               std::to_string(system.size()) + " unknowns) and its " +
-               std::to_string(ac.poles.size()) + "-pole eigen-decomposition, then " +
-               "per interval the modal start and end (ngspice: default options)";
-    rows.push_back(row);
-  }
+  scene.note.clear();
+  return {row, scene};
+}
 
-  // Switching sweep, 61 frequencies.
-  {
-    SweepContext context = sweep_context(settings);
-    LimitRow row;
-    row.analysis =
-        "switching sweep, " + std::to_string(context.frequencies.size()) + " frequencies";
-    row.method = "exact PeriodicSolver, 64 samples";
-    const double frequencies = static_cast<double>(context.frequencies.size());
-    const double flops =
-        decomposition + frequencies * (16.0 * poles + 64.0 * 4.0 * poles * outputs);
-    row.limit = flops / rate;
-    row.limit_text = format("%.2g flop", flops);
-    DirectSweepParts parts;
-    row.emnet = measure([&] { return direct_sweep(context, 64, &parts), -1.0; }, 20, 3.0).median;
-    row.goal = 2e-3;
-    row.note = "of which decomposition " + time_text(parts.decomposition) +
-               ", the drives' "
-               "excitations " +
-               time_text(parts.build) + ", the model " + time_text(parts.assemble) +
-               ", the 61 periodic solves with their global "
-               "extremes " +
-               time_text(parts.solve) +
-               " (ngspice needs a transient per frequency until settled: see the switching "
-               "sweep under Against ngspice)";
-    rows.push_back(row);
-  }
-  md << limit_table(rows)
+// The scene's own RC-loop drive through `emnet ac`: its time and the method it took.
+std::string rc_drive_ac_text(const LimitInputs& in) {
+  const Settings& settings = in.settings;
+  bool rc_ok = true;
+  const Timing rc = measure_process({settings.emnet, "ac", settings.fishfin()}, 10, 3.0, rc_ok);
+  const emnet::Model rc_model = build(settings.fishfin(), {});
+  const emnet::System rc_system = rc_model.network.assemble();
+  const emnet::AcResult rc_ac =
+      emnet::run_ac(rc_system, emnet::solve_static(rc_system).operating_point, in.context.grid,
+                    deflection_probes(rc_model));
+  return time_text(rc.median) + " (" + emnet::method_name(rc_ac.method) +
+         (rc_ac.note.empty() ? "" : ": " + rc_ac.note) + ")";
+}
+
+// Whole process: `emnet ac` against `ngspice -b` on the same deck; ac_limit is run_ac's limit.
+LimitRow ac_process_limit_row(const LimitInputs& in, double ac_limit) {
+  const Settings& settings = in.settings;
+  LimitRow row;
+  row.analysis = "AC, whole process";
+  row.method = "`emnet ac` (ideal drive), 1000 rows written";
+  const double bytes = 1000.0 * (15.0 + 29.0 * in.context.model.probes.size());
+  row.limit = in.empty_process.median + ac_limit + bytes / in.bandwidth;
+  row.limit_text = "empty process + AC limit + " + format("%.0f kB", bytes * 1e-3) + " written";
+  bool ok = true;
+  row.emnet = measure_process(emnet_cli(settings, "ac", {}), 20, 3.0, ok).median;
+  bool help_ok = true;
+  const Timing help = measure_process({settings.emnet, "--help"}, 20, 2.0, help_ok);
+  bool ngspice_ok = true;
+  const Timing ngspice = ngspice_process(
+      settings, write_deck(settings, "limits-ac", in.ac_deck.text), 10, 3.0, ngspice_ok);
+  row.ngspice = ngspice_ok ? ngspice.median : NAN;
+  row.goal = 5e-3;
+  row.note = "`emnet --help` alone " + time_text(help.median) + " (" +
+             format("%.0f", 100.0 * help.median / row.emnet) +
+             " % of the command; program start: the dynamic loader, static initialisers, the "
+             "commands' options); the scene's own RC-loop drive (`emnet ac "
+             "netlists/fishfin.toml`) " +
+             rc_drive_ac_text(in);
+  return row;
+}
+
+// Exact transient, 50 periods, 100 outputs per period, and with one output per period.
+LimitRow exact_transient_limit_row(const LimitInputs& in) {
+  const emnet::Model& model = in.context.model;
+  const emnet::System& system = in.context.system;
+  const auto& probes = in.context.probes;
+  const double period = 1.0 / model.scene.drive.frequency;
+  emnet::TransientOptions options;
+  options.end_time = 50 * period;
+  for (int k = 0; k <= 5000; ++k) options.output_times.push_back(k * period / 100.0);
+  LimitRow row;
+  row.analysis = "exact transient, 50 periods, 5001 outputs";
+  row.method = "modal, run_transient_exact alone";
+  const double intervals = 100.0, times = 5001.0;
+  const double flops = in.decomposition + intervals * 16.0 * in.poles * in.poles +
+                       times * (6.0 * in.poles + 4.0 * in.poles * in.outputs);
+  row.limit = flops / in.rate;
+  row.limit_text = format("%.2g flop", flops);
+  row.emnet =
+      measure([&] { return emnet::run_transient_exact(system, probes, options).seconds; }, 20, 2.0)
+          .median;
+  row.ngspice = ngspice_in_process(default_tran_deck(model, probes, options.end_time, period));
+  row.goal = 1e-3;
+  emnet::TransientOptions few = options;
+  few.output_times.clear();
+  for (int k = 0; k <= 50; ++k) few.output_times.push_back(k * period);
+  const double sparse =
+      measure([&] { return emnet::run_transient_exact(system, probes, few).seconds; }, 20, 2.0)
+          .median;
+  row.note = "with 51 outputs " + time_text(sparse) + ": the outputs cost " +
+             time_text((row.emnet - sparse) / 4950.0) +
+             " each; the fixed part is the state equation (equilibration and the SVD of E, " +
+             std::to_string(system.size()) + " unknowns) and its " +
+             std::to_string(in.ac.poles.size()) + "-pole eigen-decomposition, then " +
+             "per interval the modal start and end (ngspice: default options)";
+  return row;
+}
+
+// Switching sweep, 61 frequencies, by the exact periodic solver with 64 samples.
+LimitRow switching_sweep_limit_row(const LimitInputs& in) {
+  SweepContext context = sweep_context(in.settings);
+  LimitRow row;
+  row.analysis = "switching sweep, " + std::to_string(context.frequencies.size()) + " frequencies";
+  row.method = "exact PeriodicSolver, 64 samples";
+  const double frequencies = static_cast<double>(context.frequencies.size());
+  const double flops =
+      in.decomposition + frequencies * (16.0 * in.poles + 64.0 * 4.0 * in.poles * in.outputs);
+  row.limit = flops / in.rate;
+  row.limit_text = format("%.2g flop", flops);
+  DirectSweepParts parts;
+  row.emnet = measure([&] { return direct_sweep(context, 64, &parts), -1.0; }, 20, 3.0).median;
+  row.goal = 2e-3;
+  row.note = "of which decomposition " + time_text(parts.decomposition) +
+             ", the drives' excitations " + time_text(parts.build) + ", the model " +
+             time_text(parts.assemble) + ", the 61 periodic solves with their global extremes " +
+             time_text(parts.solve) +
+             " (ngspice needs a transient per frequency until settled: see the switching "
+             "sweep under Against ngspice)";
+  return row;
+}
+
+}  // namespace
+
+std::string limits_section(const Settings& settings) {
+  const LimitInputs in = limit_inputs(settings);
+  std::vector<LimitRow> rows = ac_limit_rows(in);
+  rows.push_back(ac_process_limit_row(in, rows.front().limit));
+  rows.push_back(exact_transient_limit_row(in));
+  rows.push_back(switching_sweep_limit_row(in));
+  std::ostringstream md;
+  md << limits_preamble(in) << limit_table(rows)
      << "\nWhere a goal is missed, the notes split the time as this run measured it: a fixed "
         "part (the state equation and its eigen-decomposition, the program's start) against a "
         "part per frequency, output or interval. Below that split, a profile of the analysis "
