@@ -82,12 +82,21 @@ class RawfileReader {
       } else if (key == "Flags") {
         plot.flags = value;
       } else if (key == "No. Variables") {
+        // Once the list is read, its length is the count: a later count would contradict it.
+        if (!plot.vectors.empty()) {
+          why = "'No. Variables:' after the variable list";
+          return false;
+        }
         header.have_variables = parse_count(value, header.variable_count);
       } else if (key == "No. Points") {
         header.have_points = parse_count(value, header.point_count);
       } else if (key == "Variables") {
         if (!header.have_variables) {
           why = "'Variables:' before 'No. Variables:'";
+          return false;
+        }
+        if (!plot.vectors.empty()) {
+          why = "a second 'Variables:' list in one plot's header";
           return false;
         }
         if (!read_variables(plot, header.variable_count, why)) return false;

@@ -402,6 +402,31 @@ TEST(NgspiceRunner, RawfileParserRefusesATruncatedFile) {
   EXPECT_NE(why.find("truncated"), std::string::npos) << why;
 }
 
+// A header with two variable lists would give a plot two scales, and a count after the list
+// could make the list and the count disagree: both are malformed, refused with the reason
+// (the first was a finding of the rawfile fuzz target).
+TEST(NgspiceRunner, RawfileParserRefusesASecondVariableListOrCount) {
+  const double values[2] = {0.75, -2.5e-4};
+  const std::string data(reinterpret_cast<const char*>(values), sizeof values);
+  const std::string start = "Title: t\nPlotname: Operating Point\nFlags: real\n";
+  const std::string two_lists = start +
+                                "No. Variables: 1\nVariables:\n\t0\tv(a)\tvoltage\n"
+                                "Variables:\n\t0\tv(b)\tvoltage\nNo. Points: 1\nBinary:\n" +
+                                data;
+  const std::string count_after_list = start +
+                                       "No. Variables: 1\nVariables:\n\t0\tv(a)\tvoltage\n"
+                                       "No. Variables: 2\nNo. Points: 1\nBinary:\n" +
+                                       data;
+  for (const auto& [bytes, reason] :
+       {std::pair{two_lists, "a second 'Variables:' list"},
+        std::pair{count_after_list, "'No. Variables:' after the variable list"}}) {
+    std::vector<NgspiceRawPlot> plots;
+    std::string why;
+    EXPECT_FALSE(parse_ngspice_rawfile(bytes, plots, why)) << reason;
+    EXPECT_NE(why.find(reason), std::string::npos) << why;
+  }
+}
+
 // ---- bounds: output, time, processes, rawfile sizes, control characters ---------------------
 //
 // These drive stand-ins for ngspice: shell scripts written into the test's temporary directory
