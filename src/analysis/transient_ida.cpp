@@ -347,17 +347,20 @@ class IdaRun {
   // The counters are only read (each getter fails only for a null memory, which the Ida
   // handle excludes); a getter that fails anyway adds nothing.
   void accumulate_statistics() {
-    auto add = [](int flag, long value, long& total) {
-      if (flag == IDA_SUCCESS) total += value;
+    // The getter runs before its value is read: two statements, since the order in which a
+    // call's arguments are evaluated is unspecified (GCC read `value` first, so every counter
+    // showed the one before it).
+    const auto add = [this](int (*getter)(void*, long*), long& total) {
+      long value = 0;
+      if (getter(mem_, &value) == IDA_SUCCESS) total += value;
     };
     IntegratorStatistics& statistics = result_.statistics;
-    long value = 0;
-    add(IDAGetNumSteps(mem_, &value), value, statistics.steps);
-    add(IDAGetNumResEvals(mem_, &value), value, statistics.residual_evaluations);
-    add(IDAGetNumJacEvals(mem_, &value), value, statistics.jacobian_evaluations);
-    add(IDAGetNumNonlinSolvIters(mem_, &value), value, statistics.newton_iterations);
-    add(IDAGetNumErrTestFails(mem_, &value), value, statistics.error_test_failures);
-    add(IDAGetNumNonlinSolvConvFails(mem_, &value), value, statistics.convergence_failures);
+    add(IDAGetNumSteps, statistics.steps);
+    add(IDAGetNumResEvals, statistics.residual_evaluations);
+    add(IDAGetNumJacEvals, statistics.jacobian_evaluations);
+    add(IDAGetNumNonlinSolvIters, statistics.newton_iterations);
+    add(IDAGetNumErrTestFails, statistics.error_test_failures);
+    add(IDAGetNumNonlinSolvConvFails, statistics.convergence_failures);
   }
 
   // Consistent values at the start of the interval [t, stop]: algebraic unknowns and

@@ -62,6 +62,31 @@ TEST(Transient, StepResponseOfOneMassMatchesClosedForm) {
   }
 }
 
+// IDA's counters, each read from its own getter: every step takes at least one Newton
+// iteration, and every iteration one residual evaluation, so residual evaluations ≥ Newton
+// iterations ≥ steps > 0; a Jacobian is evaluated at least once and at most once an iteration;
+// failed error tests are retried steps, fewer than the steps. (Reference: the counting of
+// IDA's statistics. A counter shifted onto its neighbour, as when the arguments reading them
+// were evaluated in the wrong order, breaks the chain: steps 0.)
+TEST(Transient, IdaStatisticsAreEachTheirOwnCounter) {
+  const Scene scene = read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml",
+                                 {"drive.electrical_dynamics=false"});
+  const Model model = build_model(scene);
+  const System system = model.network.assemble();
+  TransientOptions options;
+  options.end_time = 2 / scene.drive.frequency;
+  options.output_times = uniform_times(options.end_time, 200);
+  const TransientResult ida = run_transient_ida(system, model.probes, options);
+  ASSERT_TRUE(ida.status.ok()) << ida.status.message;
+  const IntegratorStatistics& statistics = ida.statistics;
+  EXPECT_GT(statistics.steps, 0);
+  EXPECT_GE(statistics.newton_iterations, statistics.steps);
+  EXPECT_GE(statistics.residual_evaluations, statistics.newton_iterations);
+  EXPECT_GE(statistics.jacobian_evaluations, 1);
+  EXPECT_LE(statistics.jacobian_evaluations, statistics.newton_iterations);
+  EXPECT_LT(statistics.error_test_failures, statistics.steps);
+}
+
 // The paper's experiment in simulation: the fish fin switched at 5 Hz for 50 periods, with
 // the DEAs as ideal voltage-driven forces (a linear network under piecewise-constant forces).
 // Reference: the exact method. IDA at rtol 1e-8 must stay within 1e-6 of the peak deflection
