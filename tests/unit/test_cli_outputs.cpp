@@ -214,7 +214,7 @@ TEST_F(CliFiles, UnwritableFilesAreReportedAfterTheResultAsExitTwo) {
   const CliRun json = run_emnet("sweep-switching " + kFishfin + " --from 4 --to 5 --json --csv " +
                                 nowhere + "sweep.csv");
   EXPECT_EQ(json.status, 2) << json.err;
-  EXPECT_NO_THROW(nlohmann::json::parse(json.out)) << json.out;
+  EXPECT_NO_THROW((void)nlohmann::json::parse(json.out)) << json.out;
 }
 
 // A write that fails part-way (a file size limit with SIGXFSZ ignored, as a full disk makes it)
