@@ -11,9 +11,16 @@
 #include "emnet/elements/inductor.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
+
+// The fish fin with its DEAs as ideal voltage-driven forces: a linear network under
+// piecewise-constant forces, which the exact method solves.
+Scene ideal_drive_fishfin_scene() {
+  return read_scene(testing::kFishfin, {"drive.electrical_dynamics=false"});
+}
 
 std::vector<double> uniform_times(double end, int count) {
   std::vector<double> times;
@@ -69,8 +76,7 @@ TEST(Transient, StepResponseOfOneMassMatchesClosedForm) {
 // IDA's statistics. A counter shifted onto its neighbour, as when the arguments reading them
 // were evaluated in the wrong order, breaks the chain: steps 0.)
 TEST(Transient, IdaStatisticsAreEachTheirOwnCounter) {
-  const Scene scene = read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml",
-                                 {"drive.electrical_dynamics=false"});
+  const Scene scene = ideal_drive_fishfin_scene();
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   TransientOptions options;
@@ -93,8 +99,7 @@ TEST(Transient, IdaStatisticsAreEachTheirOwnCounter) {
 // at P2..P4 and the tip over the whole run (its error is a few rtol of the peak: BDF global
 // error grows with the number of periods, 50 here).
 TEST(Transient, IdaMatchesExactOnTheFishFinOverFiftyPeriods) {
-  const Scene scene = read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml",
-                                 {"drive.electrical_dynamics=false"});
+  const Scene scene = ideal_drive_fishfin_scene();
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   TransientOptions options;
@@ -125,8 +130,7 @@ TEST(Transient, IdaMatchesExactOnTheFishFinOverFiftyPeriods) {
 // the single-output runs. Tolerance 1e-12 of each output's peak: each step adds one rounding
 // of the size of the terms, and an interval holds at most ~120 outputs here (1e-14 per step).
 TEST(Transient, ExactOutputsSteppedMatchOutputsTakenAlone) {
-  const Scene scene = read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml",
-                                 {"drive.electrical_dynamics=false"});
+  const Scene scene = ideal_drive_fishfin_scene();
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   const double period = 1.0 / scene.drive.frequency;
@@ -162,8 +166,7 @@ TEST(Transient, ExactOutputsSteppedMatchOutputsTakenAlone) {
 // A drive of 0 V throughout: the network stays exactly at rest (no source, no motion; both
 // methods must return exact zeros, not rounding noise).
 TEST(Transient, ZeroDriveStaysExactlyAtRest) {
-  const Scene scene =
-      read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml", {"drive.voltage=0"});
+  const Scene scene = read_scene(testing::kFishfin, {"drive.voltage=0"});
   const Model model = build_model(scene);
   const System system = model.network.assemble();
   TransientOptions options;

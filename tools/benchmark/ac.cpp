@@ -62,17 +62,8 @@ Section ac_section(const Settings& settings, std::vector<ParetoPoint>& pareto) {
                   std::to_string(grid.size()) + " points"};
     row.error = ac_error(result.values, reference_at(grid));
     // In-process: from the scene file to the result, as `emnet ac` does it.
-    row.in_process = measure(
-        [&] {
-          const auto start = Clock::now();
-          const emnet::Model m = build(settings.fishfin(), ideal_drive);
-          const emnet::System s = m.network.assemble();
-          const emnet::StaticResult r = emnet::solve_static(s);
-          const auto own = deflection_probes(m);
-          emnet::run_ac(s, r.operating_point, grid, own);
-          return seconds_since(start);
-        },
-        20, 2.0);
+    row.in_process =
+        measure([&] { return fishfin_ac_from_scene_seconds(settings, grid); }, 20, 2.0);
     const Timing analysis_only = measure(
         [&] { return emnet::run_ac(system, rest.operating_point, grid, probes).seconds; }, 20, 1.0);
     bool ok = true;

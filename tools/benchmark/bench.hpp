@@ -113,6 +113,9 @@ emnet::Model build(const std::string& path, std::vector<std::string> overrides);
 // The deflection outputs compared everywhere: the scene's probes in metres (and dx_k) that
 // are not identically zero (P1 sits at the clamp).
 std::vector<emnet::Probe> deflection_probes(const emnet::Model& model);
+// The seconds `emnet ac` takes in process on the ideal-drive fish fin: read the scene, build and
+// assemble its model, solve the static state, run_ac over `grid` at its deflection probes.
+double fishfin_ac_from_scene_seconds(const Settings& settings, const std::vector<double>& grid);
 
 // ---- peaks ---------------------------------------------------------------------------------
 

@@ -124,6 +124,15 @@ std::vector<emnet::Probe> deflection_probes(const emnet::Model& model) {
   return probes;
 }
 
+double fishfin_ac_from_scene_seconds(const Settings& settings, const std::vector<double>& grid) {
+  const auto start = Clock::now();
+  const emnet::Model m = build(settings.fishfin(), ideal_drive);
+  const emnet::System s = m.network.assemble();
+  const emnet::StaticResult r = emnet::solve_static(s);
+  emnet::run_ac(s, r.operating_point, grid, deflection_probes(m));
+  return seconds_since(start);
+}
+
 // ---- peaks ---------------------------------------------------------------------------------
 
 // The extreme of samples (t_k, y_k), k in [begin, end), refined by the parabola through the

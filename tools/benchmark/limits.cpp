@@ -294,17 +294,8 @@ std::vector<LimitRow> ac_limit_rows(const LimitInputs& in) {
   LimitRow scene = row;
   scene.analysis = "AC from the scene file";
   scene.method = emnet::method_name(in.ac.method) + ", read, build, static, run_ac";
-  scene.emnet = measure(
-                    [&] {
-                      const auto start = Clock::now();
-                      const emnet::Model m = build(settings.fishfin(), ideal_drive);
-                      const emnet::System s = m.network.assemble();
-                      const emnet::StaticResult r = emnet::solve_static(s);
-                      emnet::run_ac(s, r.operating_point, grid, deflection_probes(m));
-                      return seconds_since(start);
-                    },
-                    30, 2.0)
-                    .median;
+  scene.emnet =
+      measure([&] { return fishfin_ac_from_scene_seconds(settings, grid); }, 30, 2.0).median;
   scene.note.clear();
   return {row, scene};
 }
