@@ -12,6 +12,7 @@
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/core/units.hpp"
 #include "equilibration.hpp"
+#include "static_operator.hpp"
 
 namespace emnet {
 

@@ -13,6 +13,7 @@
 #include "emnet/core/units.hpp"
 #include "exponential_series.hpp"
 #include "left_eigenvector.hpp"
+#include "static_operator.hpp"
 
 namespace emnet {
 

@@ -6,6 +6,7 @@
 
 #include "core/timed.hpp"
 #include "emnet/analysis/analysis.hpp"
+#include "static_operator.hpp"
 
 namespace emnet {
 

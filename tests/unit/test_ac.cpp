@@ -1,6 +1,7 @@
 // AC analysis against closed-form responses, and against the static and modal analyses.
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseLU>
 #include <cmath>
 #include <complex>
 #include <cstdio>

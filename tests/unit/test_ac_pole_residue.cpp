@@ -2,6 +2,7 @@
 // against an independent dense solve, and its fall-back to the direct solve.
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
 #include <cmath>
 #include <complex>
 

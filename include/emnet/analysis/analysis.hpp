@@ -3,8 +3,8 @@
 // a status, never an exception.
 #pragma once
 
-#include <Eigen/Dense>
-#include <Eigen/Sparse>
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <complex>
 #include <string>
 #include <vector>
@@ -66,27 +66,6 @@ struct RowClassification {
   std::vector<bool> divided;
 };
 RowClassification classify_rows(const System& system, const Eigen::SparseMatrix<double>& g_matrix);
-
-/// The static operator of the linearised system, for reuse (AC at f = 0).
-class StaticOperator {
- public:
-  StaticOperator(const System& system, const Eigen::SparseMatrix<double>& linearised_g);
-  /// Solves matrix()·z = rhs; false (with a reason) when the operator is singular.
-  bool solve(const Eigen::VectorXcd& rhs, Eigen::VectorXcd& z, std::string& why) const;
-  /// A right-hand side on a row divided by s is a constant velocity: no static state.
-  bool excites_divided_rows(const Eigen::VectorXcd& rhs) const;
-  const Eigen::SparseMatrix<double>& matrix() const { return matrix_; }
-  const std::vector<bool>& divided_rows() const { return divided_; }
-  const std::vector<bool>& mechanical() const { return mechanical_; }
-  bool factorised() const { return factorised_; }
-
- private:
-  Eigen::SparseMatrix<double> matrix_;
-  std::vector<bool> divided_;
-  std::vector<bool> mechanical_;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
-  bool factorised_ = false;
-};
 
 /// G + ∂g/∂y at y.
 Eigen::SparseMatrix<double> linearised_g(const System& system, const Eigen::VectorXd& y);

@@ -79,7 +79,7 @@
 // rotations: no velocity, which would need the derivative of the square wave).
 #pragma once
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <complex>
 #include <string>
 #include <vector>

@@ -9,7 +9,7 @@
 // states, read without a numerical integrator.
 #pragma once
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <vector>

@@ -20,7 +20,7 @@
 // (System::set_excitation) without assembling G and C again.
 #pragma once
 
-#include <Eigen/Sparse>
+#include <Eigen/SparseCore>
 #include <complex>
 #include <memory>
 #include <string>

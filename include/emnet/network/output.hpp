@@ -17,7 +17,7 @@
 // refuses a probe with squares.
 #pragma once
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <string>
 #include <utility>
 #include <vector>
