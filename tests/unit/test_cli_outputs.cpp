@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cli_run.hpp"
+#include "file_contents.hpp"
 #include "shipped_scenes.hpp"
 #include "test_directory.hpp"
 
@@ -31,11 +32,6 @@ class CliFiles : public emnet::testing::TestDirectory {
  protected:
   CliFiles() : TestDirectory("emnet_cli_") {}
 };
-
-std::string contents(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 nlohmann::json json_of(const CliRun& r) {
   EXPECT_EQ(r.status, 0) << r.err;
@@ -88,8 +84,10 @@ TEST_F(CliFiles, TranProbesReachTheCsvAndThePlot) {
                              " --periods 1 --points-per-period 10 --probe tip --probe P4 --csv " +
                              csv + " --plot " + path("tran.png") + " --plot-script");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(contents(csv).substr(0, contents(csv).find('\n')), "time_s,tip_m,P4_m");
-  const std::string data = contents(path("tran.png.dat"));
+  EXPECT_EQ(
+      emnet::testing::file_contents(csv).substr(0, emnet::testing::file_contents(csv).find('\n')),
+      "time_s,tip_m,P4_m");
+  const std::string data = emnet::testing::file_contents(path("tran.png.dat"));
   EXPECT_NE(data.find("tip (deflection at x = 122.5 mm) [mm]"), std::string::npos) << data;
   EXPECT_NE(data.find("P4 ("), std::string::npos) << data;
   EXPECT_EQ(data.find("dx2"), std::string::npos) << data;
@@ -98,14 +96,15 @@ TEST_F(CliFiles, TranProbesReachTheCsvAndThePlot) {
       run_emnet("tran " + kFishfin + " --periods 1 --probe tip --probe u_A --plot " +
                 path("mixed.png") + " --plot-script");
   ASSERT_EQ(mixed.status, 0) << mixed.err;
-  const std::string script = contents(path("mixed.png.gp"));
+  const std::string script = emnet::testing::file_contents(path("mixed.png.gp"));
   EXPECT_NE(script.find("set ylabel 'deflection [mm]'"), std::string::npos) << script;
   EXPECT_NE(script.find("set ylabel 'voltage [V]'"), std::string::npos) << script;
   // The drive in its own panel under the response: DEA A's and B's source voltages.
-  const std::string tip_data = contents(path("tran.png.dat"));
+  const std::string tip_data = emnet::testing::file_contents(path("tran.png.dat"));
   EXPECT_NE(tip_data.find("DEA A drive source voltage [V]"), std::string::npos) << tip_data;
   EXPECT_NE(tip_data.find("DEA B drive source voltage [V]"), std::string::npos) << tip_data;
-  EXPECT_NE(contents(path("tran.png.gp")).find("set ylabel 'voltage [V]'"), std::string::npos);
+  EXPECT_NE(emnet::testing::file_contents(path("tran.png.gp")).find("set ylabel 'voltage [V]'"),
+            std::string::npos);
   // Without --plot-script only the image is written.
   const CliRun plain =
       run_emnet("tran " + kFishfin + " --periods 1 --probe tip --plot " + path("plain.png"));
@@ -127,7 +126,7 @@ TEST_F(CliFiles, SweepPlotPairsTheSidesOfAnOutput) {
       run_emnet("sweep-switching " + kFishfin + " --from 4 --to 6 --step 1 --probe tip " +
                 "--probe dx4 --plot " + image + " --plot-script");
   ASSERT_EQ(r.status, 0) << r.err;
-  const std::string script = contents(image + ".gp");
+  const std::string script = emnet::testing::file_contents(image + ".gp");
   auto plot_line = [&](int index) {
     const auto at = script.find("index " + std::to_string(index) + " using");
     return at == std::string::npos ? std::string() : script.substr(at, script.find('\n', at) - at);
@@ -232,13 +231,13 @@ TEST_F(CliFiles, AFailedWriteLeavesThePreviousFileWhole) {
       limited);
   EXPECT_EQ(table.status, 2) << table.err;
   for (const std::string& file : {deck, csv, image + ".dat"})
-    EXPECT_EQ(contents(file), "previous\n") << file;
+    EXPECT_EQ(emnet::testing::file_contents(file), "previous\n") << file;
   EXPECT_EQ(names(), (std::vector<std::string>{"fin.cir", "fin.csv", "fin.png.dat"}));
 }
 
 // Control characters in a scene's names and in a tool's messages reach the terminal escaped.
 TEST_F(CliFiles, ControlCharactersAreEscaped) {
-  std::string scene = contents(kFishfin);
+  std::string scene = emnet::testing::file_contents(kFishfin);
   const std::string name_line = "name = \"fishfin\"";
   const auto at = scene.find(name_line);
   ASSERT_NE(at, std::string::npos);

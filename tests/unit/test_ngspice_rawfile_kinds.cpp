@@ -12,6 +12,7 @@
 #include <string>
 
 #include "emnet/spice/ngspice_runner.hpp"
+#include "file_contents.hpp"
 
 namespace emnet {
 namespace {
@@ -29,11 +30,6 @@ std::string fake_program(const std::string& name, const std::string& body,
   return path;
 }
 
-std::string contents(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 TEST(NgspiceRawfileKinds, AFifoAtTheRawfilePathIsRefusedWithoutBlocking) {
   const std::string witness =
       ::testing::TempDir() + "emnet_rawkind_path_" + std::to_string(::getpid());
@@ -45,7 +41,8 @@ TEST(NgspiceRawfileKinds, AFifoAtTheRawfilePathIsRefusedWithoutBlocking) {
   // 30 s is six times the run's own limit: a reader that blocks in open() never returns.
   if (run.wait_for(std::chrono::seconds(30)) != std::future_status::ready) {
     // Unblock the reader (a writer opening the FIFO), so the test ends, and fail.
-    const int writer = ::open(contents(witness).c_str(), O_WRONLY | O_NONBLOCK);
+    const int writer =
+        ::open(emnet::testing::file_contents(witness).c_str(), O_WRONLY | O_NONBLOCK);
     if (writer >= 0) ::close(writer);
     run.wait();
     FAIL() << "reading a FIFO left as the rawfile blocked past the time limit";

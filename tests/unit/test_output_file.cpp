@@ -15,6 +15,7 @@
 #include <string>
 
 #include "emnet/core/output_file.hpp"
+#include "file_contents.hpp"
 #include "test_directory.hpp"
 
 namespace {
@@ -26,11 +27,6 @@ class OutputFileTest : public emnet::testing::TestDirectory {
   OutputFileTest() : TestDirectory("emnet_output_") {}
 };
 
-std::string contents(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 TEST_F(OutputFileTest, WritesTheWholeTextAndReplacesAnOldFileKeepingItsMode) {
   const std::string file = path("table.csv");
   std::ofstream(file) << "old";
@@ -38,7 +34,7 @@ TEST_F(OutputFileTest, WritesTheWholeTextAndReplacesAnOldFileKeepingItsMode) {
   std::string text;
   for (int k = 0; k < 100000; ++k) text += std::to_string(k) + ",";  // several buffers
   ASSERT_TRUE(emnet::write_output_file(file, text).ok());
-  EXPECT_EQ(contents(file), text);
+  EXPECT_EQ(emnet::testing::file_contents(file), text);
   struct stat info {};
   ASSERT_EQ(stat(file.c_str(), &info), 0);
   EXPECT_EQ(info.st_mode & 0777, 0640u);
@@ -51,7 +47,7 @@ TEST_F(OutputFileTest, FollowsASymbolicLink) {
   fs::create_symlink(target, link);
   ASSERT_TRUE(emnet::write_output_file(link, "new deck").ok());
   EXPECT_TRUE(fs::is_symlink(link));
-  EXPECT_EQ(contents(target), "new deck");
+  EXPECT_EQ(emnet::testing::file_contents(target), "new deck");
 }
 
 TEST_F(OutputFileTest, MissingDirectoryIsAFailedStatusNamingTheFile) {
@@ -90,7 +86,7 @@ TEST_F(OutputFileTest, AWriteFailingPartWayKeepsThePreviousFile) {
   ASSERT_EQ(waitpid(child, &raw, 0), child);
   ASSERT_TRUE(WIFEXITED(raw));
   EXPECT_EQ(WEXITSTATUS(raw), 1) << "expected a failed Status saying 'File too large'";
-  EXPECT_EQ(contents(file), "previous deck\n");
+  EXPECT_EQ(emnet::testing::file_contents(file), "previous deck\n");
   EXPECT_EQ(entries(), 1u);  // the temporary file is gone
 }
 
@@ -99,7 +95,7 @@ TEST_F(OutputFileTest, CommitOnceOnly) {
   file.write("a");
   EXPECT_TRUE(file.commit().ok());
   EXPECT_FALSE(file.commit().ok());
-  EXPECT_EQ(contents(path("once.txt")), "a");
+  EXPECT_EQ(emnet::testing::file_contents(path("once.txt")), "a");
 }
 
 TEST_F(OutputFileTest, NotCommittedLeavesNothing) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "emnet/report/plot.hpp"
+#include "file_contents.hpp"
 #include "gnuplot_on_path.hpp"
 #include "test_directory.hpp"
 
@@ -66,11 +67,6 @@ OscillatorResponse oscillator_response(int points) {
   }
   response.series = {deflection, velocity};
   return response;
-}
-
-std::string contents(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // The lines of a gnuplot script that contain `text`.
@@ -254,7 +250,7 @@ TEST_F(PlotTest, SeriesAreGroupedByUnitOnePanelEach) {
   ASSERT_TRUE(emnet::write_bode_plot(bode, "two units", response.frequencies_hz, response.series,
                                      {}, false, {true})
                   .ok());
-  const std::string bode_script = contents(bode + ".gp");
+  const std::string bode_script = emnet::testing::file_contents(bode + ".gp");
   const auto bode_labels = lines_with(bode_script, "set ylabel 'magnitude");
   ASSERT_EQ(bode_labels.size(), 2u) << bode_script;
   EXPECT_NE(bode_labels[0].find("[m/V]"), std::string::npos) << bode_labels[0];
@@ -280,7 +276,7 @@ TEST_F(PlotTest, SeriesAreGroupedByUnitOnePanelEach) {
                                       {"P4", {0, 1}, {0, 5e-4}, "m"}},
                                      options)
                   .ok());
-  const std::string line_script = contents(line + ".gp");
+  const std::string line_script = emnet::testing::file_contents(line + ".gp");
   const auto labels = lines_with(line_script, "set ylabel");
   ASSERT_EQ(labels.size(), 2u) << line_script;
   EXPECT_NE(labels[0].find("'deflection [m]'"), std::string::npos) << labels[0];
@@ -307,7 +303,7 @@ TEST_F(PlotTest, LongLegendEntriesAreCutSoThatTheKeyIsDrawn) {
                   line, "t", "time [s]",
                   {{"tip", {0, 1}, {0, 1e-3}, "m"}, {long_label, {0, 1}, {0, 2e-4}, ""}}, options)
                   .ok());
-  const std::string script = contents(line + ".gp");
+  const std::string script = emnet::testing::file_contents(line + ".gp");
   EXPECT_NE(script.find("title 'tip'"), std::string::npos) << script;
   EXPECT_EQ(script.find("positive stretched"), std::string::npos) << script;
   const size_t cut = script.find("title 'strain@20mm,top,1.5mm (strain of the top face");
@@ -331,7 +327,7 @@ TEST_F(PlotTest, PairedSeriesShareAColour) {
   options.legend_note = "solid: left; dashed: right";
   const std::string image = path("pair.png");
   ASSERT_TRUE(emnet::write_line_plot(image, "pair", "f [Hz]", {left, right}, options).ok());
-  const std::string script = contents(image + ".gp");
+  const std::string script = emnet::testing::file_contents(image + ".gp");
   const auto first = lines_with(script, "index 0 using");
   const auto second = lines_with(script, "index 1 using");
   ASSERT_EQ(first.size(), 1u);
@@ -358,7 +354,7 @@ TEST_F(PlotTest, CloseMarkersShareOneLabel) {
   const std::string image = path("markers.png");
   ASSERT_TRUE(
       emnet::write_line_plot(image, "m", "f [Hz]", {{"a", {1, 7}, {0, 1}, "mm"}}, options).ok());
-  const std::string script = contents(image + ".gp");
+  const std::string script = emnet::testing::file_contents(image + ".gp");
   EXPECT_EQ(lines_with(script, "set arrow").size(), 3u) << script;
   const auto labels = lines_with(script, "boxed");
   ASSERT_EQ(labels.size(), 2u) << script;
@@ -392,7 +388,7 @@ TEST_F(PlotTest, MarkerLabelsStandAboveThePanelOnRowsThatDoNotOverlap) {
   const std::string image = path("rows.png");
   ASSERT_TRUE(
       emnet::write_line_plot(image, "m", "f [Hz]", {{"a", {1, 7}, {0, 1}, "mm"}}, options).ok());
-  const std::string script = contents(image + ".gp");
+  const std::string script = emnet::testing::file_contents(image + ".gp");
   const auto labels = lines_with(script, "boxed");
   ASSERT_EQ(labels.size(), 3u) << script;
   const auto top_margin = lines_with(script, "set tmargin at screen");
