@@ -65,8 +65,12 @@ emnet::PreparedModel prepare(const emnet::Scene& scene, const std::vector<std::s
   emnet::OperatingPointOptions options;
   options.require_static = require_static;
   options.static_options.progress = progress;
-  emnet::PreparedModel p =
-      emnet::prepare_at_rest(with_segments(scene), prepare_options_for_probes(probes), options);
+  emnet::PrepareOptions prepare = prepare_options_for_probes(probes);
+  // The static analysis requires the static state (and takes an inextensible beam with large
+  // kinematics); AC, the other analysis here, linearises about it.
+  prepare.large_kinematics = require_static ? emnet::LargeKinematicsUse::static_state
+                                            : emnet::LargeKinematicsUse::dynamics;
+  emnet::PreparedModel p = emnet::prepare_at_rest(with_segments(scene), prepare, options);
   require(p.status, "");
   return p;
 }
@@ -109,6 +113,7 @@ py::dict run_modes(const SceneHandle& handle, int count, bool dense, bool error_
     options.error_estimate = error_estimate;
     options.shapes = shapes;
     options.prepare = prepare_options_for_probes(probe_texts);
+    options.prepare.large_kinematics = emnet::LargeKinematicsUse::dynamics;
     options.progress = progress;
     study = emnet::run_modes_study(with_segments(handle.scene), options);
     require(study.status, "modes: ");
@@ -200,6 +205,7 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
     options.start = start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
     options.outputs = outputs;
     options.prepare = prepare_options_for_probes(outputs);
+    options.prepare.large_kinematics = emnet::LargeKinematicsUse::dynamics;
     options.progress = progress;
     study = emnet::run_transient_study(with_segments(handle.scene), options);
     require(study.status, "");

@@ -73,8 +73,9 @@ LinearStateSpace::LinearStateSpace(const DisplacementForm& form, double angular_
     : LinearStateSpace(form, form.a(), form.e(), angular_frequency) {
   if (form.system().is_nonlinear())
     throw std::runtime_error(
-        "the exact method needs a linear network; this one has nonlinear DEAs (set "
-        "drive.electrical_dynamics = false for ideal voltage-driven DEAs, or use IDA)");
+        "the exact method needs a linear network; this one is nonlinear (DEAs with their "
+        "electrical model: set drive.electrical_dynamics = false for ideal voltage-driven DEAs; "
+        "large kinematics), so use IDA");
 }
 
 LinearStateSpace::LinearStateSpace(const DisplacementForm& form,

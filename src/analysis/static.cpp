@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "core/timed.hpp"
 #include "emnet/analysis/analysis.hpp"
@@ -124,6 +125,119 @@ bool StaticOperator::solve(const Eigen::VectorXcd& rhs, Eigen::VectorXcd& z,
   return true;
 }
 
+namespace {
+
+// The outcome of Newton's iteration at one load level.
+struct NewtonOutcome {
+  bool converged = false;
+  bool cancelled = false;
+  int iterations = 0;
+  std::string why;  ///< why it did not converge
+};
+
+// Newton on K·z + g(z) = b from `z` (replaced by the solution when it converges): a sparse LU of
+// the linear operator for a linear network, of the Jacobian at every iteration otherwise.
+class StaticNewton {
+ public:
+  StaticNewton(const System& system, const StaticOperator& linear, const StaticOptions& options)
+      : system_(system), linear_(linear), options_(options) {}
+
+  Eigen::VectorXd residual(const Eigen::VectorXd& state, const Eigen::VectorXd& b) const {
+    Eigen::VectorXd g;
+    system_.nonlinear(rest_state(state, linear_.mechanical()), g, nullptr);
+    return Eigen::VectorXd(linear_.matrix() * state + g - b);
+  }
+
+  NewtonOutcome solve(const Eigen::VectorXd& b, Eigen::VectorXd& z,
+                      const std::string& stage) const {
+    NewtonOutcome outcome;
+    const int n = system_.size();
+    // Newton converges fast or not at all: steps that have not shrunk for kStalledIterations
+    // iterations in a row mean it is not converging (a load step too large), and the iteration
+    // stops there instead of running to max_iterations.
+    constexpr int kStalledIterations = 5;
+    double smallest_step = std::numeric_limits<double>::infinity();
+    int stalled = 0;
+    for (int iteration = 1; iteration <= options_.max_iterations; ++iteration) {
+      // Newton's count is not known ahead (2-5 iterations usually): no total, no estimate.
+      if (!keep_going(options_.progress, 0, 0,
+                      "static state (" + std::to_string(n) + " unknowns" + stage +
+                          "), Newton iteration " + std::to_string(iteration))) {
+        outcome.cancelled = true;
+        return outcome;
+      }
+      outcome.iterations = iteration;
+      Eigen::VectorXd step;
+      if (!newton_step(residual(z, b), z, iteration, step, outcome.why)) return outcome;
+      z += step;
+      for (int k = 0; k < n; ++k)
+        if (!std::isfinite(z[k])) {
+          outcome.why = "the static solution became non-finite at Newton iteration " +
+                        std::to_string(iteration) + " (unknown '" +
+                        system_.unknowns[static_cast<size_t>(k)].name + "')";
+          return outcome;
+        }
+      if (step.norm() <= options_.tolerance * z.norm() || step.norm() == 0.0) {
+        outcome.converged = true;
+        return outcome;
+      }
+      stalled = step.norm() < smallest_step ? 0 : stalled + 1;
+      smallest_step = std::min(smallest_step, step.norm());
+      if (stalled >= kStalledIterations && system_.is_nonlinear()) {
+        outcome.why = "Newton's steps stopped shrinking at iteration " + std::to_string(iteration);
+        return outcome;
+      }
+    }
+    outcome.why =
+        "Newton did not converge in " + std::to_string(options_.max_iterations) + " iterations";
+    return outcome;
+  }
+
+ private:
+  // The step −J⁻¹·r at z; false with `why` when the Jacobian is singular or the step not finite.
+  bool newton_step(const Eigen::VectorXd& r, const Eigen::VectorXd& z, int iteration,
+                   Eigen::VectorXd& step, std::string& why) const {
+    Eigen::VectorXcd complex_step;
+    if (system_.is_nonlinear()) {
+      const StaticOperator jacobian(system_,
+                                    linearised_g(system_, rest_state(z, linear_.mechanical())));
+      if (!jacobian.factorised()) {
+        why = "the static Jacobian is singular at Newton iteration " + std::to_string(iteration);
+        return false;
+      }
+      if (!jacobian.solve(-r.cast<std::complex<double>>(), complex_step, why))
+        return failed_step(complex_step, iteration, why);
+    } else if (!linear_.solve(-r.cast<std::complex<double>>(), complex_step, why)) {
+      return failed_step(complex_step, iteration, why);
+    }
+    step = complex_step.real();
+    return true;
+  }
+
+  // A failed solve; when it left a non-finite step, `why` names its first unknown.
+  bool failed_step(const Eigen::VectorXcd& step, int iteration, std::string& why) const {
+    for (Eigen::Index k = 0; k < step.size() && k < system_.size(); ++k)
+      if (!std::isfinite(step[k].real()) || !std::isfinite(step[k].imag())) {
+        why += ": unknown '" + system_.unknowns[static_cast<size_t>(k)].name +
+               "' at Newton iteration " + std::to_string(iteration);
+        break;
+      }
+    return false;
+  }
+
+  const System& system_;
+  const StaticOperator& linear_;
+  const StaticOptions& options_;
+};
+
+std::string load_factor_text(double factor) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", factor);
+  return text;
+}
+
+}  // namespace
+
 StaticResult solve_static(const System& system, const StaticOptions& options) {
   Timed<StaticResult> timed;
   StaticResult& result = timed.result;
@@ -140,63 +254,43 @@ StaticResult solve_static(const System& system, const StaticOptions& options) {
       return finish(Status::failure("a source imposes a constant velocity on '" +
                                     system.unknowns[static_cast<size_t>(k)].name +
                                     "', so there is no static state"));
-
+  const StaticNewton newton(system, linear, options);
+  // Load stepping: the whole load first; where Newton fails, a step half as large from the last
+  // state it reached, down to options.smallest_load_step; after a step of few iterations, the
+  // next one twice as large.
   Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
-  auto residual = [&](const Eigen::VectorXd& state) {
-    Eigen::VectorXd g;
-    system.nonlinear(rest_state(state, linear.mechanical()), g, nullptr);
-    return Eigen::VectorXd(linear.matrix() * state + g - b);
-  };
-  // A failed solve; when it left a non-finite step, the failure names its first unknown.
-  auto solve_failure = [&](const std::string& why, const Eigen::VectorXcd& step, int iteration) {
-    for (Eigen::Index k = 0; k < step.size() && k < n; ++k)
-      if (!std::isfinite(step[k].real()) || !std::isfinite(step[k].imag()))
-        return Status::failure(why + ": unknown '" + system.unknowns[static_cast<size_t>(k)].name +
-                               "' at Newton iteration " + std::to_string(iteration));
-    return Status::failure(why);
-  };
-  const double b_norm = b.norm();
-  for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
-    // Newton's count is not known ahead (2-5 iterations usually): no total, no estimate.
-    if (!keep_going(options.progress, 0, 0,
-                    "static state (" + std::to_string(n) + " unknowns), Newton iteration " +
-                        std::to_string(iteration)))
-      return finish(cancelled_status());
-    result.newton_iterations = iteration;
-    const Eigen::VectorXd r = residual(z);
-    Eigen::VectorXd step;
-    if (system.is_nonlinear()) {
-      const StaticOperator jacobian(system,
-                                    linearised_g(system, rest_state(z, linear.mechanical())));
-      if (!jacobian.factorised())
-        return finish(Status::failure("the static Jacobian is singular at Newton iteration " +
-                                      std::to_string(iteration)));
-      Eigen::VectorXcd complex_step;
-      std::string why;
-      if (!jacobian.solve(-r.cast<std::complex<double>>(), complex_step, why))
-        return finish(solve_failure(why, complex_step, iteration));
-      step = complex_step.real();
-    } else {
-      Eigen::VectorXcd complex_step;
-      std::string why;
-      if (!linear.solve(-r.cast<std::complex<double>>(), complex_step, why))
-        return finish(solve_failure(why, complex_step, iteration));
-      step = complex_step.real();
+  double reached = 0.0, increment = 1.0;
+  while (reached < 1.0) {
+    const double target = std::min(1.0, reached + increment);
+    const std::string stage =
+        target < 1.0 || reached > 0.0 ? ", load factor " + load_factor_text(target) : "";
+    Eigen::VectorXd trial = z;
+    const NewtonOutcome outcome = newton.solve(target * b, trial, stage);
+    result.newton_iterations += outcome.iterations;
+    if (outcome.cancelled) return finish(cancelled_status());
+    if (outcome.converged) {
+      z = trial;
+      reached = target;
+      ++result.load_steps;
+      if (outcome.iterations <= 4) increment *= 2.0;
+      continue;
     }
-    z += step;
-    for (int k = 0; k < n; ++k)
-      if (!std::isfinite(z[k]))
-        return finish(Status::failure("the static solution became non-finite at Newton iteration " +
-                                      std::to_string(iteration) + " (unknown '" +
-                                      system.unknowns[static_cast<size_t>(k)].name + "')"));
-    if (step.norm() <= options.tolerance * z.norm() || step.norm() == 0.0) break;
-    if (iteration == options.max_iterations)
-      return finish(Status::failure("Newton did not converge in " +
-                                    std::to_string(options.max_iterations) + " iterations"));
+    if (!system.is_nonlinear() || increment <= options.smallest_load_step)
+      return finish(Status::failure(
+          reached == 0.0 && !system.is_nonlinear()
+              ? outcome.why
+              : "no static state found beyond load factor " + load_factor_text(reached) +
+                    " of the whole load (Newton from there, with load steps down to " +
+                    load_factor_text(options.smallest_load_step) + ": " + outcome.why +
+                    "); the load passes a limit point (buckling or snap-through), or the "
+                    "state is beyond what the network can follow"));
+    increment *= 0.5;
   }
+  result.load_factor = reached;
   result.state = z;
   result.operating_point = rest_state(z, linear.mechanical());
-  const double r_norm = residual(z).norm();
+  const double b_norm = b.norm();
+  const double r_norm = newton.residual(z, b).norm();
   result.relative_residual = b_norm > 0.0 ? r_norm / b_norm : r_norm;
   return finish(check_residual(result.relative_residual, "static solve"));
 }

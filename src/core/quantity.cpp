@@ -3,6 +3,17 @@
 
 namespace emnet {
 
+const std::vector<ProbeQuantity>& probe_quantities() {
+  static const std::vector<ProbeQuantity> all = {
+      ProbeQuantity::deflection,     ProbeQuantity::velocity,
+      ProbeQuantity::rotation,       ProbeQuantity::angular_velocity,
+      ProbeQuantity::dea_voltage,    ProbeQuantity::dea_current,
+      ProbeQuantity::reaction_force, ProbeQuantity::reaction_moment,
+      ProbeQuantity::spring_force,   ProbeQuantity::strain,
+      ProbeQuantity::dea_force,      ProbeQuantity::axial_displacement};
+  return all;
+}
+
 const char* probe_quantity_name(ProbeQuantity quantity) {
   switch (quantity) {
     case ProbeQuantity::deflection:
@@ -27,6 +38,8 @@ const char* probe_quantity_name(ProbeQuantity quantity) {
       return "strain";
     case ProbeQuantity::dea_force:
       return "dea_force";
+    case ProbeQuantity::axial_displacement:
+      return "axial_displacement";
   }
   return "?";
 }
@@ -34,6 +47,7 @@ const char* probe_quantity_name(ProbeQuantity quantity) {
 const char* probe_unit(ProbeQuantity quantity) {
   switch (quantity) {
     case ProbeQuantity::deflection:
+    case ProbeQuantity::axial_displacement:
       return "m";
     case ProbeQuantity::velocity:
       return "m/s";

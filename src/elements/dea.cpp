@@ -21,7 +21,7 @@ void Dea::stamp(Stamper& s) const {
     for (const Coupling& c : coupling_) s.ac(c.node, ac_force_ * c.coefficient);
 }
 
-void Dea::add_nonlinear(const Eigen::VectorXd& y, Eigen::VectorXd& g,
+void Dea::add_nonlinear(const Eigen::VectorXd& y, int /*branch_offset*/, Eigen::VectorXd& g,
                         std::vector<Eigen::Triplet<double>>* jacobian) const {
   const double u = across(y, electrode_plus_) - across(y, electrode_minus_);
   const double force = force_constant_ * u * u;

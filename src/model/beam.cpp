@@ -7,6 +7,7 @@
 
 #include "emnet/elements/capacitor.hpp"
 #include "emnet/elements/conductance.hpp"
+#include "emnet/elements/corotational_segment.hpp"
 #include "emnet/elements/inductor.hpp"
 #include "emnet/elements/transformer.hpp"
 #include "emnet/model/mesh.hpp"
@@ -159,6 +160,10 @@ void add_point_masses(Network& network, const BeamSpec& spec, const BeamLayout& 
     if (beam.velocity[k] != ground && mass.mass > 0.0)
       add_recorded<Capacitor>(network, structure, record(ElementPart::point_mass, "mass [kg]"),
                               "pm" + std::to_string(m), beam.velocity[k], ground, mass.mass);
+    if (!beam.axial_velocity.empty() && beam.axial_velocity[k] != ground && mass.mass > 0.0)
+      add_recorded<Capacitor>(network, structure,
+                              record(ElementPart::point_axial_mass, "mass along x [kg]"),
+                              "pmx" + std::to_string(m), beam.axial_velocity[k], ground, mass.mass);
     if (beam.angular_velocity[k] != ground && mass.rotary_inertia > 0.0)
       add_recorded<Capacitor>(
           network, structure, record(ElementPart::point_rotary_inertia, "rotary inertia [kg*m^2]"),
@@ -230,7 +235,16 @@ void add_beam_nodes(Network& network, const BeamSpec& spec, BeamLayout& beam,
     const bool at_end = left || right;
     const bool hold_v = at_end && (end == EndCondition::clamped || end == EndCondition::pinned);
     const bool hold_r = at_end && (end == EndCondition::clamped || end == EndCondition::sliding);
+    // Large kinematics: a clamped, pinned or sliding end holds x too (a sliding end slides
+    // across the beam, not along it).
+    const bool hold_x = at_end && end != EndCondition::free;
     const std::string where = millimetres(x);
+    if (beam.kinematics == BeamKinematics::large)
+      beam.axial_velocity.push_back(
+          hold_x ? ground
+                 : add_recorded_node(network, structure, {NodeRole::beam_axial_velocity, k, ""},
+                                     "u" + std::to_string(k), Domain::translational,
+                                     "x velocity at " + where + " [m/s]"));
     beam.velocity.push_back(
         hold_v ? ground
                : add_recorded_node(network, structure, {NodeRole::beam_velocity, k, ""},
@@ -278,6 +292,94 @@ void add_lumped_node_elements(Network& network, const BeamMesh& mesh,
       add_recorded<Capacitor>(network, structure,
                               record(ElementPart::rotary_inertia, "rotary inertia [kg*m^2]"),
                               "inertia" + id, beam.angular_velocity[i], ground, inertia);
+    // Large kinematics: the mass and the viscous damping act in the fixed frame's x too.
+    if (beam.axial_velocity.empty() || beam.axial_velocity[i] == ground) continue;
+    add_recorded<Capacitor>(network, structure,
+                            record(ElementPart::axial_mass, "mass along x [kg]"), "massx" + id,
+                            beam.axial_velocity[i], ground, mass);
+    if (viscous > 0.0)
+      add_recorded<Conductance>(network, structure,
+                                record(ElementPart::axial_damper, "viscous damper along x [N*s/m]"),
+                                "damperx" + id, beam.axial_velocity[i], ground, viscous);
+  }
+}
+
+// One segment's values as its section gives them: length l, EI, the Kelvin–Voigt time τ, the
+// rotational compliance l/EI, the translational compliance l³/(12·EI) (+ l/(κGA) with shear)
+// and, for large kinematics, the axial compliance l/EA (0: inextensible).
+struct SegmentValues {
+  double length = 0.0;
+  double kelvin_voigt_time = 0.0;
+  double rotational_compliance = 0.0;
+  double translational_compliance = 0.0;
+  bool sheared = false;
+  double axial_compliance = 0.0;
+};
+
+SegmentValues segment_values(const BeamSpec& spec, const BeamMesh& mesh,
+                             const std::vector<SectionSpec>& sections, const DampingSpec& damping,
+                             const BeamLayout& beam, int k) {
+  const size_t a = static_cast<size_t>(k);
+  const SectionSpec& section = sections[static_cast<size_t>(mesh.section[a])];
+  SegmentValues values;
+  const double l = beam.segment_lengths[a];
+  const double ei = section.bending_stiffness;
+  values.length = l;
+  values.kelvin_voigt_time =
+      section.kelvin_voigt_time.value_or(damping.effective_kelvin_voigt_time());
+  values.rotational_compliance = l / ei;
+  values.translational_compliance = l * l * l / (12.0 * ei);
+  values.sheared = beam.shear_parameter[a] > 0.0;
+  if (values.sheared)
+    values.translational_compliance += l / section.shear_stiffness.value_or(spec.shear_stiffness);
+  const double axial_stiffness = section.axial_stiffness.value_or(spec.axial_stiffness);
+  values.axial_compliance = axial_stiffness > 0.0 ? l / axial_stiffness : 0.0;
+  return values;
+}
+
+// The record of part `part` of beam segment k.
+ElementRecord segment_record(int k, ElementPart part, const std::string& what) {
+  return ElementRecord{
+      Component::beam_segment, part, k, "", -1, -1, what + " of beam segment " + std::to_string(k)};
+}
+
+// Segment k's rotational compliance l/EI between its rotation nodes, with the Kelvin–Voigt
+// damper τ/n across it (stamped as τ·(spring force)'): the same with either kinematics.
+void add_rotational_compliance(Network& network, const BeamLayout& beam,
+                               const SegmentValues& segment, int k, ModelStructure* structure) {
+  const size_t a = static_cast<size_t>(k), b = a + 1;
+  add_recorded<Inductor>(network, structure,
+                         segment_record(k, ElementPart::rotational_compliance,
+                                        "rotational compliance l/EI [rad/(N*m)]"),
+                         "nR" + std::to_string(k), beam.angular_velocity[a],
+                         beam.angular_velocity[b], segment.rotational_compliance,
+                         Domain::rotational,
+                         segment.kelvin_voigt_time / segment.rotational_compliance);
+}
+
+// Large kinematics: each segment's rotational compliance l/EI (as with small kinematics) and
+// its co-rotational element: chord, translational compliance l³/(12·EI) (+ l/(κGA)) in the
+// chord's frame and axial compliance l/EA (none: inextensible); see corotational_segment.hpp.
+void add_corotational_segments(Network& network, const BeamSpec& spec, const BeamMesh& mesh,
+                               const std::vector<SectionSpec>& sections, const DampingSpec& damping,
+                               const BeamLayout& beam, ModelStructure* structure) {
+  for (int k = 0; k < mesh.segments(); ++k) {
+    const size_t a = static_cast<size_t>(k), b = a + 1;
+    const SegmentValues segment = segment_values(spec, mesh, sections, damping, beam, k);
+    add_rotational_compliance(network, beam, segment, k, structure);
+    add_recorded<CoRotationalSegment>(
+        network, structure,
+        segment_record(k, ElementPart::corotational_segment,
+                       std::string("chord, translational compliance [m/N] and ") +
+                           (segment.axial_compliance > 0.0 ? "axial compliance l/EA [m/N]"
+                                                           : "inextensible axis")),
+        "seg" + std::to_string(k),
+        CoRotationalSegment::End{beam.axial_velocity[a], beam.velocity[a],
+                                 beam.angular_velocity[a]},
+        CoRotationalSegment::End{beam.axial_velocity[b], beam.velocity[b],
+                                 beam.angular_velocity[b]},
+        segment.length, segment.translational_compliance, segment.axial_compliance,
+        segment.kelvin_voigt_time);
   }
 }
 
@@ -286,32 +388,24 @@ void add_lumped_node_elements(Network& network, const BeamMesh& mesh,
 void add_segment_elements(Network& network, const BeamSpec& spec, const BeamMesh& mesh,
                           const std::vector<SectionSpec>& sections, const DampingSpec& damping,
                           const BeamLayout& beam, ModelStructure* structure) {
-  const double default_tau = damping.effective_kelvin_voigt_time();
+  if (spec.kinematics == BeamKinematics::large) {
+    add_corotational_segments(network, spec, mesh, sections, damping, beam, structure);
+    return;
+  }
   for (int k = 0; k < mesh.segments(); ++k) {
     const size_t a = static_cast<size_t>(k), b = a + 1;
-    const SectionSpec& section = sections[static_cast<size_t>(mesh.section[a])];
-    const double l = beam.segment_lengths[a];
-    const double ei = section.bending_stiffness;
-    const double tau = section.kelvin_voigt_time.value_or(default_tau);
-    const double rotational_compliance = l / ei;
-    double translational_compliance = l * l * l / (12.0 * ei);
-    const bool sheared = beam.shear_parameter[a] > 0.0;
-    if (sheared)
-      translational_compliance += l / section.shear_stiffness.value_or(spec.shear_stiffness);
+    const SegmentValues segment = segment_values(spec, mesh, sections, damping, beam, k);
+    const double l = segment.length, tau = segment.kelvin_voigt_time;
+    const double translational_compliance = segment.translational_compliance;
+    const bool sheared = segment.sheared;
     const std::string id = std::to_string(k);
     const NodeId middle = add_recorded_node(
         network, structure, {NodeRole::segment_middle, k, ""}, "m" + id, Domain::translational,
         "segment " + id + " branch between spring and lever [m/s]");
     auto record = [&](ElementPart part, const std::string& what) {
-      return ElementRecord{Component::beam_segment,        part, k, "", -1, -1,
-                           what + " of beam segment " + id};
+      return segment_record(k, part, what);
     };
-    // Kelvin–Voigt: a damper τ/n across each compliance n, stamped as τ·(spring force)'.
-    add_recorded<Inductor>(
-        network, structure,
-        record(ElementPart::rotational_compliance, "rotational compliance l/EI [rad/(N*m)]"),
-        "nR" + id, beam.angular_velocity[a], beam.angular_velocity[b], rotational_compliance,
-        Domain::rotational, tau / rotational_compliance);
+    add_rotational_compliance(network, beam, segment, k, structure);
     add_recorded<Inductor>(
         network, structure,
         record(ElementPart::translational_compliance,
@@ -333,6 +427,7 @@ void add_segment_elements(Network& network, const BeamSpec& spec, const BeamMesh
 BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& damping,
                     const std::vector<double>& attachments, ModelStructure* structure) {
   BeamLayout beam;
+  beam.kinematics = spec.kinematics;
   const BeamMesh mesh = mesh_beam(spec, attachments);
   const std::vector<SectionSpec> sections = effective_sections(spec);
   lay_out_segments(spec, mesh, sections, beam);

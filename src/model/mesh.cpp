@@ -18,6 +18,14 @@ std::vector<double> scene_attachment_points(const Scene& scene) {
     points.push_back(dea.to);
   }
   for (const LoadSpec& load : scene.loads) points.push_back(load.at);
+  // Large kinematics: a probe reads a node's own unknowns (no shape functions between nodes).
+  if (scene.beam.kinematics == BeamKinematics::large)
+    for (const ProbeSpec& probe : scene.probes)
+      if (probe.quantity == ProbeQuantity::deflection ||
+          probe.quantity == ProbeQuantity::velocity || probe.quantity == ProbeQuantity::rotation ||
+          probe.quantity == ProbeQuantity::angular_velocity ||
+          probe.quantity == ProbeQuantity::axial_displacement)
+        points.push_back(probe.at);
   return points;
 }
 

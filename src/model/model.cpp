@@ -199,12 +199,15 @@ void note_beam_mesh(Model& model) {
     model.notes.push_back(
         "beam mesh: " + std::to_string(beam.x.size() - 1) +
         " segments, more than beam.segments = " + std::to_string(beam.raised_from) +
-        ", so that every section boundary, mass, spring, DEA end and load sits "
-        "on a node");
+        ", so that every section boundary, mass, spring, DEA end and load" +
+        (beam.kinematics == BeamKinematics::large ? std::string(" and probe") : std::string()) +
+        " sits on a node");
   else if (!beam.uniform)
-    model.notes.push_back("beam mesh: " + std::to_string(beam.x.size() - 1) +
-                          " segments spread by length between the section boundaries, masses, "
-                          "springs, DEA ends and loads");
+    model.notes.push_back(
+        "beam mesh: " + std::to_string(beam.x.size() - 1) +
+        " segments spread by length between the section boundaries, masses, "
+        "springs, DEA ends and loads" +
+        (beam.kinematics == BeamKinematics::large ? std::string(" and probes") : std::string()));
 }
 
 // Point loads: consistent nodal loads from the Hermite shape functions, exact at the nodes.
@@ -381,8 +384,36 @@ void add_probes(const Scene& scene, Model& model) {
 
 }  // namespace
 
+// Large kinematics: an inextensible beam whose two ends both hold x (clamped, pinned or sliding)
+// cannot deflect at all (any deflection would lengthen it), and its axial force is not
+// determined: refused, naming the key that makes it extensible.
+// Nothing holds a beam with two free ends along x (springs act along y or on the rotation): it
+// is refused too, naming the end condition.
+void require_deflectable(const Scene& scene) {
+  const BeamSpec& beam = scene.beam;
+  if (beam.kinematics != BeamKinematics::large) return;
+  if (beam.left == EndCondition::free && beam.right == EndCondition::free)
+    throw InputError(scene.file, "beam.left",
+                     "is free, and so is beam.right: with beam.kinematics = \"large\" nothing "
+                     "would hold the beam along x (springs act along y and on the rotation); hold "
+                     "one end (clamped, pinned or sliding)");
+  if (beam.left == EndCondition::free || beam.right == EndCondition::free) return;
+  bool inextensible = !(beam.axial_stiffness > 0.0);
+  for (const SectionSpec& section : beam.sections)
+    inextensible = inextensible || !(section.axial_stiffness.value_or(beam.axial_stiffness) > 0.0);
+  if (inextensible)
+    throw InputError(scene.file, "beam.axial_stiffness",
+                     "is needed: with beam.kinematics = \"large\" both ends hold the beam along "
+                     "x (" +
+                         std::string(end_condition_name(beam.left)) + " and " +
+                         end_condition_name(beam.right) +
+                         "), and an inextensible beam between them cannot deflect; give the "
+                         "axial stiffness EA (here or for every section)");
+}
+
 Model build_model(const Scene& scene) {
   require_resolved(scene);
+  require_deflectable(scene);
   Model model;
   model.scene = scene;
   BeamSpec beam_spec = scene.beam;
@@ -597,6 +628,46 @@ void spring_force_terms(const Model& model, const ProbeSpec& spec, Probe& probe)
   }
 }
 
+// With large kinematics a beam quantity reads the nodes' own unknowns: the probe must sit on a
+// node (the mesher puts one at every scene probe) and be one the co-rotational network carries.
+// Returns true when it filled `probe`; false for quantities that are not the beam's.
+// @throws InputError for a position between nodes or a quantity not yet carried
+bool large_kinematics_probe(const BeamLayout& beam, const ProbeSpec& spec, Probe& probe) {
+  const bool on_beam = spec.quantity == ProbeQuantity::deflection ||
+                       spec.quantity == ProbeQuantity::velocity ||
+                       spec.quantity == ProbeQuantity::rotation ||
+                       spec.quantity == ProbeQuantity::angular_velocity ||
+                       spec.quantity == ProbeQuantity::axial_displacement;
+  const std::string who = "probe " + spec.name;
+  if (spec.quantity == ProbeQuantity::strain || spec.quantity == ProbeQuantity::reaction_force ||
+      spec.quantity == ProbeQuantity::reaction_moment ||
+      spec.quantity == ProbeQuantity::spring_force)
+    throw InputError(who, "quantity",
+                     std::string("'") + probe_quantity_name(spec.quantity) +
+                         "' is not available with beam.kinematics = \"large\" yet (deflection, "
+                         "axial_displacement, rotation and their rates are)");
+  if (!on_beam) return false;
+  const int node = beam.node_at(spec.at);
+  if (node < 0)
+    throw InputError(who, "at",
+                     "is between the beam's nodes; with beam.kinematics = \"large\" a probe reads "
+                     "a node: name it in the scene's [[probe]] entries, which get a node each");
+  const size_t k = static_cast<size_t>(node);
+  const bool axial = spec.quantity == ProbeQuantity::axial_displacement;
+  const bool rotational =
+      spec.quantity == ProbeQuantity::rotation || spec.quantity == ProbeQuantity::angular_velocity;
+  const NodeId id =
+      axial ? beam.axial_velocity[k] : (rotational ? beam.angular_velocity[k] : beam.velocity[k]);
+  if (id != ground) probe.terms = {{id, 1.0}};
+  probe.integrations =
+      spec.quantity == ProbeQuantity::velocity || spec.quantity == ProbeQuantity::angular_velocity
+          ? 0
+          : 1;
+  probe.description = std::string(probe_quantity_name(spec.quantity)) + " at " +
+                      position_text(spec.at) + " (fixed frame)";
+  return true;
+}
+
 Probe make_probe_on(const Model& model, const ProbeSpec& spec, const DeaLayout* dea) {
   const BeamLayout& beam = model.beam;
   Probe probe;
@@ -616,7 +687,14 @@ Probe make_probe_on(const Model& model, const ProbeSpec& spec, const DeaLayout* 
                                 "voltage, not an output of the network"
                               : "")));
   };
+  if (beam.kinematics == BeamKinematics::large && large_kinematics_probe(beam, spec, probe))
+    return probe;
   switch (spec.quantity) {
+    case ProbeQuantity::axial_displacement:
+      throw InputError("probe " + spec.name, "quantity",
+                       "'axial_displacement' needs beam.kinematics = \"large\": with small "
+                       "deflections the beam has no axial motion (it is of second order in the "
+                       "rotations)");
     case ProbeQuantity::deflection:
     case ProbeQuantity::velocity:
       probe.terms = beam.deflection_terms(spec.at);
@@ -684,11 +762,7 @@ Probe Model::parse_probe(const std::string& text) const {
   const auto colon = text.find(':');
   const std::string quantity = text.substr(0, std::min(at_sign, colon));
   bool known = false;
-  for (ProbeQuantity q :
-       {ProbeQuantity::deflection, ProbeQuantity::velocity, ProbeQuantity::rotation,
-        ProbeQuantity::angular_velocity, ProbeQuantity::dea_voltage, ProbeQuantity::dea_current,
-        ProbeQuantity::reaction_force, ProbeQuantity::reaction_moment, ProbeQuantity::spring_force,
-        ProbeQuantity::strain, ProbeQuantity::dea_force})
+  for (ProbeQuantity q : probe_quantities())
     if (quantity == probe_quantity_name(q)) {
       spec.quantity = q;
       known = true;

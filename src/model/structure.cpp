@@ -41,6 +41,14 @@ const char* element_part_name(ElementPart part) {
       return "translational compliance";
     case ElementPart::lever:
       return "lever";
+    case ElementPart::corotational_segment:
+      return "co-rotational segment";
+    case ElementPart::axial_mass:
+      return "axial mass";
+    case ElementPart::axial_damper:
+      return "axial viscous damper";
+    case ElementPart::point_axial_mass:
+      return "point axial mass";
     case ElementPart::nodal_load:
       return "nodal load";
     case ElementPart::electrode_resistance:

@@ -110,7 +110,10 @@ Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& d
   const double length = scene.beam.length;
   const double limit = scene.model.deflection_limit * length;
   const DeflectionPeak* largest = nullptr;
+  // Large kinematics has no small-deflection assumption: the deflections are not limited.
+  const bool large = scene.beam.kinematics == BeamKinematics::large;
   for (const DeflectionPeak& deflection : deflections) {
+    if (large) break;
     if (!largest || deflection.peak > largest->peak) largest = &deflection;
     if (!(deflection.peak > limit)) continue;
     ValidityViolation violation;
@@ -127,7 +130,8 @@ Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& d
                         ", model.deflection_limit)";
     validity.violations.push_back(violation);
   }
-  std::string deflection_text = "no deflection computed";
+  std::string deflection_text =
+      large ? "deflection not limited (beam.kinematics = \"large\")" : "no deflection computed";
   if (largest) {
     validity.deflection_fraction = largest->peak / limit;
     deflection_text = "largest |deflection| " + length_text(largest->peak) + " (" +

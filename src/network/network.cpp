@@ -98,7 +98,10 @@ void Network::stamp_elements(const std::vector<int>& offsets, System& system, bo
     if (!matrices) continue;
     g_entries.insert(g_entries.end(), stamper.g_entries.begin(), stamper.g_entries.end());
     c_entries.insert(c_entries.end(), stamper.c_entries.begin(), stamper.c_entries.end());
-    if (elements[k]->is_nonlinear()) system.nonlinear_elements.push_back(elements[k]);
+    if (elements[k]->is_nonlinear()) {
+      system.nonlinear_elements.push_back(elements[k]);
+      system.nonlinear_branch_offsets.push_back(offsets[k]);
+    }
   }
   if (!matrices) return;
   system.G.resize(n, n);
@@ -176,8 +179,9 @@ void System::nonlinear(const Eigen::VectorXd& y, Eigen::VectorXd& g,
                        Eigen::SparseMatrix<double>* jacobian) const {
   g = Eigen::VectorXd::Zero(size());
   std::vector<Eigen::Triplet<double>> entries;
-  for (const auto& element : nonlinear_elements)
-    element->add_nonlinear(y, g, jacobian ? &entries : nullptr);
+  for (std::size_t k = 0; k < nonlinear_elements.size(); ++k)
+    nonlinear_elements[k]->add_nonlinear(y, nonlinear_branch_offsets[k], g,
+                                         jacobian ? &entries : nullptr);
   if (jacobian) {
     jacobian->resize(size(), size());
     jacobian->setFromTriplets(entries.begin(), entries.end());

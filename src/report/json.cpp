@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "emnet/core/constants.hpp"
+#include "emnet/studies/static_study.hpp"
 
 namespace emnet {
 
@@ -191,8 +192,10 @@ Json to_json(const Model& model, const StaticResult& rest,
   out["automatic_choices"] = to_json(model.automatic_choices);
   add_mesh_json(out, model);
   out["nodes"] = Json::array();
-  for (const auto& row : nodes)
+  for (const auto& row : nodes) {
     out["nodes"].push_back({{"x_m", row[0]}, {"deflection_m", row[1]}, {"rotation_rad", row[2]}});
+    if (row.size() > 3) out["nodes"].back()["axial_displacement_m"] = row[3];  // large kinematics
+  }
   out["probes"] = Json::array();
   for (size_t k = 0; k < probes.size(); ++k)
     out["probes"].push_back({{"name", probes[k].name},
@@ -201,7 +204,8 @@ Json to_json(const Model& model, const StaticResult& rest,
                              {"value", probe_values[k]}});
   out["accuracy"] = {{"relative_residual", rest.relative_residual},
                      {"newton_iterations", rest.newton_iterations},
-                     {"discretisation", "exact at the nodes for any N (Hermite statics)"}};
+                     {"load_steps", rest.load_steps},
+                     {"discretisation", static_discretisation(model)}};
   out["cost"] = {{"solve_seconds", rest.seconds}, {"total_seconds", total_seconds}};
   out["validity"] = to_json(validity);
   return out;

@@ -221,6 +221,10 @@ std::string parameter_unused_reason(const ParameterInfo& info, const Scene& scen
   if ((info.table == "beam" || info.table == "section") && info.name == "shear_stiffness" &&
       scene.beam.theory != BeamTheory::timoshenko)
     return "is only used with beam.theory = \"timoshenko\"";
+  if ((info.table == "beam" || info.table == "section") && info.name == "axial_stiffness" &&
+      scene.beam.kinematics != BeamKinematics::large)
+    return "is only used with beam.kinematics = \"large\" (small deflections have no axial "
+           "motion)";
   if (info.table == "environment" && info.name != "fluid" && scene.environment.fluid == Fluid::none)
     return "is only used with environment.fluid = \"air\" or \"water\"";
   if (info.table == "probe" && entry < scene.probes.size()) {

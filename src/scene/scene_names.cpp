@@ -22,6 +22,10 @@ const char* beam_theory_name(BeamTheory theory) {
   return theory == BeamTheory::timoshenko ? "timoshenko" : "euler_bernoulli";
 }
 
+const char* beam_kinematics_name(BeamKinematics kinematics) {
+  return kinematics == BeamKinematics::large ? "large" : "small";
+}
+
 std::vector<SectionSpec> effective_sections(const BeamSpec& beam) {
   if (!beam.sections.empty()) return beam.sections;
   SectionSpec uniform;
@@ -38,7 +42,8 @@ bool same_section(const SectionSpec& a, const SectionSpec& b) {
   return a.length == b.length && a.bending_stiffness == b.bending_stiffness &&
          a.mass_per_length == b.mass_per_length &&
          a.rotary_inertia_per_length == b.rotary_inertia_per_length &&
-         a.shear_stiffness == b.shear_stiffness && a.viscous_per_length == b.viscous_per_length &&
+         a.shear_stiffness == b.shear_stiffness && a.axial_stiffness == b.axial_stiffness &&
+         a.viscous_per_length == b.viscous_per_length &&
          a.kelvin_voigt_time == b.kelvin_voigt_time && a.segments == b.segments;
 }
 
@@ -66,6 +71,7 @@ bool same_beam(const BeamSpec& a, const BeamSpec& b) {
          a.bending_stiffness == b.bending_stiffness && a.mass_per_length == b.mass_per_length &&
          a.rotary_inertia_per_length == b.rotary_inertia_per_length && a.left == b.left &&
          a.right == b.right && a.theory == b.theory && a.shear_stiffness == b.shear_stiffness &&
+         a.kinematics == b.kinematics && a.axial_stiffness == b.axial_stiffness &&
          same_lists(a.sections, b.sections, same_section) &&
          same_lists(a.masses, b.masses, same_mass) && same_lists(a.springs, b.springs, same_spring);
 }

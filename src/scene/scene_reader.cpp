@@ -165,6 +165,13 @@ void SceneReader::read_beam(const toml::table& root, Scene& scene) const {
           .value_or(BeamSpec{}.theory);
   reader.reject_if_unused(key("shear_stiffness"), scene, 0);
   beam.shear_stiffness = reader.optional_quantity(key("shear_stiffness")).value_or(0.0);
+  beam.kinematics =
+      reader
+          .optional_choice(key("kinematics"), std::vector<BeamKinematics>{BeamKinematics::small,
+                                                                          BeamKinematics::large})
+          .value_or(BeamSpec{}.kinematics);
+  reader.reject_if_unused(key("axial_stiffness"), scene, 0);
+  beam.axial_stiffness = reader.optional_quantity(key("axial_stiffness")).value_or(0.0);
 }
 
 // [[section]]: in order from x = 0, adding up to beam.length; under Timoshenko theory each needs
@@ -197,6 +204,8 @@ void SceneReader::read_sections(const toml::table& root, Scene& scene) const {
       reader.fail("shear_stiffness",
                   "missing: beam.theory = \"timoshenko\" needs a shear stiffness kappa*G*A for "
                   "every section (give it here or as beam.shear_stiffness)");
+    reader.reject_if_unused(key("axial_stiffness"), scene, index);
+    section.axial_stiffness = reader.optional_quantity(key("axial_stiffness"));
     section.viscous_per_length = reader.optional_quantity(key("viscous_per_length"));
     section.kelvin_voigt_time = reader.optional_quantity(key("kelvin_voigt_time"));
     section.segments = 0;
@@ -478,13 +487,7 @@ void SceneReader::read_probes(const toml::table& root, Scene& scene) const {
     if (!names.insert(probe.name).second) {
       reader.fail("name", "duplicate probe name '" + probe.name + "'");
     }
-    probe.quantity = reader.choice(
-        key("quantity"),
-        std::vector<ProbeQuantity>{
-            ProbeQuantity::deflection, ProbeQuantity::velocity, ProbeQuantity::rotation,
-            ProbeQuantity::angular_velocity, ProbeQuantity::dea_voltage, ProbeQuantity::dea_current,
-            ProbeQuantity::reaction_force, ProbeQuantity::reaction_moment,
-            ProbeQuantity::spring_force, ProbeQuantity::strain, ProbeQuantity::dea_force});
+    probe.quantity = reader.choice(key("quantity"), probe_quantities());
     scene.probes.push_back(probe);
     const std::size_t index = scene.probes.size() - 1;
     // Each key belongs to the quantities that use it (parameter_unused_reason): probe[].at to

@@ -22,7 +22,9 @@ constexpr double pi = 3.14159265358979323846;
 // First undamped resonance [Hz] of the bare beam chain (no damping, no DEAs).
 double first_beam_resonance(const Scene& scene, const BeamSpec& beam) {
   Network network;
-  add_beam(network, beam, DampingSpec{}, scene_attachment_points(scene));
+  BeamSpec small = beam;  // the linear chain: its resonance at rest is the same
+  small.kinematics = BeamKinematics::small;
+  add_beam(network, small, DampingSpec{}, scene_attachment_points(scene));
   const System system = network.assemble();
   ModalOptions options;
   options.count = 1;
@@ -243,6 +245,35 @@ bool asks_for_dea_electrics(const std::vector<std::string>& probe_texts) {
   return false;
 }
 
+namespace {
+
+// Whether every segment of `beam` has an axial stiffness (its own section's or the beam's).
+bool extensible(const BeamSpec& beam) {
+  if (beam.sections.empty()) return beam.axial_stiffness > 0.0;
+  for (const SectionSpec& section : beam.sections)
+    if (!(section.axial_stiffness.value_or(beam.axial_stiffness) > 0.0)) return false;
+  return true;
+}
+
+// Refuses a large-kinematics scene the analysis does not serve (LargeKinematicsUse).
+void require_served_kinematics(const Scene& scene, LargeKinematicsUse use) {
+  if (scene.beam.kinematics != BeamKinematics::large) return;
+  if (use == LargeKinematicsUse::refused)
+    throw InputError(scene.file, "beam.kinematics",
+                     "is \"large\", which the static analysis, modes, AC and IDA transients "
+                     "serve so far; the switching sweep, the exact transient, identify, mismatch, "
+                     "sensitivity, studies, SPICE decks and the cross-check need "
+                     "beam.kinematics = \"small\"");
+  if (use == LargeKinematicsUse::dynamics && !extensible(scene.beam))
+    throw InputError(scene.file, "beam.axial_stiffness",
+                     "is needed for modes, AC and transients with beam.kinematics = \"large\": "
+                     "an inextensible beam with masses is a constrained mechanism (a DAE of index "
+                     "3); give the axial stiffness EA (the static analysis takes an inextensible "
+                     "beam)");
+}
+
+}  // namespace
+
 PrepareOptions prepare_options_for_probes(const std::vector<std::string>& probe_texts) {
   PrepareOptions prepare;
   prepare.electrical_probe_requested = asks_for_dea_electrics(probe_texts);
@@ -250,6 +281,7 @@ PrepareOptions prepare_options_for_probes(const std::vector<std::string>& probe_
 }
 
 Model prepare_model(const Scene& scene, const PrepareOptions& options) {
+  require_served_kinematics(scene, options.large_kinematics);
   ResolveOptions resolve;
   resolve.electrical_probe_requested = options.electrical_probe_requested;
   return build_model(resolve_scene(scene, resolve).scene);

@@ -8,6 +8,13 @@
 
 namespace emnet {
 
+std::string static_discretisation(const Model& model) {
+  return model.beam.kinematics == BeamKinematics::large
+             ? "large kinematics: chords of constant length between the nodes, an error of order "
+               "N^-2 in the deflected shape"
+             : "exact at the nodes for any N (Hermite statics)";
+}
+
 StaticStudyValues static_study_values(const Model& model, const System& system,
                                       const StaticResult& rest, const std::vector<Probe>& probes) {
   StaticStudyValues values;
@@ -22,6 +29,12 @@ StaticStudyValues static_study_values(const Model& model, const System& system,
     phi.quantity = ProbeQuantity::rotation;
     values.nodes.push_back({beam.x[k], static_probe_value(system, rest, model.make_probe(w)),
                             static_probe_value(system, rest, model.make_probe(phi))});
+    if (beam.kinematics == BeamKinematics::large) {
+      ProbeSpec u = w;
+      u.name = "u";
+      u.quantity = ProbeQuantity::axial_displacement;
+      values.nodes.back().push_back(static_probe_value(system, rest, model.make_probe(u)));
+    }
   }
   for (const auto& probe : probes)
     values.probe_values.push_back(static_probe_value(system, rest, probe));

@@ -89,6 +89,10 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
     throw OptionError::in_file(
         "switching_hz", model.scene.file, "drive.frequency",
         "a transient needs a drive with a frequency > 0 (or {switching_hz})");
+  if (options.method == TransientMethod::exact && model.beam.kinematics == BeamKinematics::large)
+    refuse("method",
+           "the exact method needs a linear network, and beam.kinematics = \"large\" makes the "
+           "beam nonlinear; use the ida method");
   if (options.method == TransientMethod::exact && study.system.is_nonlinear())
     refuse("method",
            "the exact method needs a linear network, and this scene's DEAs have their "

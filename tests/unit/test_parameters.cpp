@@ -127,6 +127,13 @@ std::map<std::string, SetCase> fishfin_set_cases() {
       {"beam.theory", {"beam.theory=timoshenko", {}, "needs the shear stiffness"}},
       {"beam.shear_stiffness",
        {"beam.shear_stiffness=100 N", {}, "is only used with beam.theory = \"timoshenko\""}},
+      // The fin at large deflection is read (no analysis runs here); its EA is unused with
+      // the small kinematics it has.
+      {"beam.kinematics", {"beam.kinematics=large", {}, ""}},
+      {"beam.axial_stiffness",
+       {"beam.axial_stiffness=1 kN", {}, "is only used with beam.kinematics = \"large\""}},
+      {"section[].axial_stiffness",
+       {"section.0.axial_stiffness=1 kN", {}, "no [[section]] entry '0'"}},
       // The fin is one uniform beam: no [[section]], [[mass]] or [[spring]] entries.
       {"section[].length", {"section.0.length=0.1", {}, "no [[section]] entry '0'"}},
       {"section[].bending_stiffness",

@@ -276,6 +276,10 @@ Prepared prepare(const CommonOptions& options, bool require_static,
   point_options.require_static = require_static;
   emnet::PrepareOptions prepare;
   prepare.electrical_probe_requested = electrical_probe_requested(options);
+  // `static` requires the static state (and takes an inextensible beam with large kinematics);
+  // `ac`, the other command here, linearises about it.
+  prepare.large_kinematics = require_static ? emnet::LargeKinematicsUse::static_state
+                                            : emnet::LargeKinematicsUse::dynamics;
   emnet::PreparedModel prepared = emnet::prepare_at_rest(*scene, prepare, point_options);
   stop_if_interrupted();
   if (!prepared.status.ok()) throw NumericalFailure(prepared.status.message);

@@ -59,7 +59,10 @@ int run_static(const CommonOptions& options) {
   const double total = stopwatch.seconds();
   end_progress(options);
   auto write_files = [&] {
-    if (!options.csv.empty()) write_csv(options.csv, {"x_m", "deflection_m", "rotation_rad"}, rows);
+    if (options.csv.empty()) return;
+    std::vector<std::string> header = {"x_m", "deflection_m", "rotation_rad"};
+    if (!rows.empty() && rows[0].size() > 3) header.push_back("axial_displacement_m");
+    write_csv(options.csv, header, rows);
   };
   if (options.json) {
     std::cout << json_text(
@@ -70,14 +73,21 @@ int run_static(const CommonOptions& options) {
   }
   print_header(p.model, p.system);
   std::cout << "static state at rest (" << drive_summary(p.model.scene) << ", first half-period)\n"
-            << "accuracy: Newton " << p.rest.newton_iterations
-            << " iteration(s), relative residual " << format("%.2g", p.rest.relative_residual)
-            << "; nodal values exact for any N (Hermite statics), cubic Hermite between nodes\n"
+            << "accuracy: Newton " << p.rest.newton_iterations << " iteration(s)"
+            << (p.rest.load_steps > 1 ? " in " + std::to_string(p.rest.load_steps) + " load steps"
+                                      : std::string())
+            << ", relative residual " << format("%.2g", p.rest.relative_residual) << "; "
+            << emnet::static_discretisation(p.model) << "\n"
             << "cost: solve " << milliseconds(p.rest.seconds) << ", total " << milliseconds(total)
             << "\n\n";
-  std::printf("%8s %12s %16s %16s\n", "node", "x [mm]", "deflection [m]", "rotation [rad]");
-  for (size_t k = 0; k < rows.size(); ++k)
-    std::printf("%8zu %12.6g %16.6e %16.6e\n", k, rows[k][0] * 1e3, rows[k][1], rows[k][2]);
+  const bool axial = !rows.empty() && rows[0].size() > 3;  // large kinematics
+  std::printf("%8s %12s %16s %16s%s\n", "node", "x [mm]", "deflection [m]", "rotation [rad]",
+              axial ? "      x displ. [m]" : "");
+  for (size_t k = 0; k < rows.size(); ++k) {
+    std::printf("%8zu %12.6g %16.6e %16.6e", k, rows[k][0] * 1e3, rows[k][1], rows[k][2]);
+    if (axial) std::printf(" %17.6e", rows[k][3]);
+    std::printf("\n");
+  }
   if (!probes.empty()) std::cout << "\nprobes:\n";
   for (size_t k = 0; k < probes.size(); ++k)
     std::printf("  %-10s %-40s %14.6e %s\n", shown(probes[k].name).c_str(),

@@ -35,11 +35,18 @@ Status check_residual(double residual, const std::string& what);
 //   z = [displacements (m, rad) on mechanical nodes; voltages on electrical nodes;
 //        through quantities (forces, torques, currents) on branches],
 // solved by Newton with a sparse LU. Built from G and C alone: no element is special-cased.
+// Where Newton fails on the whole load (large deflection, a strongly nonlinear drive), the load
+// b(0) is applied in steps λ·b(0), λ → 1, each from the state of the last (load stepping); a
+// load past which no step converges is a limit point, and the solve fails naming the λ reached.
 
 /// Options of solve_static.
 struct StaticOptions {
-  double tolerance = 1e-12;      ///< Newton: relative step size
-  int max_iterations = 50;       ///< Newton iterations at most
+  double tolerance = 1e-12;  ///< Newton: relative step size
+  int max_iterations = 50;   ///< Newton iterations at most, per load step
+  /// Nonlinear networks: where Newton fails on the whole load, the load is applied in steps,
+  /// halved after a failure down to this fraction of the whole (then the solve fails, naming
+  /// the load factor it reached) and doubled after a step of at most 4 iterations.
+  double smallest_load_step = 1.0 / 4096;
   Progress* progress = nullptr;  ///< a report per Newton iteration; cancelled: Status "cancelled"
 };
 
@@ -49,8 +56,10 @@ struct StaticResult {
   Eigen::VectorXd state;            ///< z, see above
   Eigen::VectorXd operating_point;  ///< y at rest: velocities 0, everything else from z
   double relative_residual = 0.0;  ///< ‖K·z + g − b‖ / ‖b‖ (above kResidualLimit: failed)
-  int newton_iterations = 0;
-  double seconds = 0.0;  ///< [s]
+  int newton_iterations = 0;       ///< over every load step
+  int load_steps = 0;              ///< load steps solved (1: the whole load at once)
+  double load_factor = 0.0;        ///< the fraction of the load solved (1 on success)
+  double seconds = 0.0;            ///< [s]
 };
 
 /// The static state of `system` (see above), by Newton with a sparse LU.

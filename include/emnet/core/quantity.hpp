@@ -3,6 +3,8 @@
 // stands for), so it sits below both.
 #pragma once
 
+#include <vector>
+
 namespace emnet {
 
 /// The physical quantity an output measures.
@@ -17,8 +19,12 @@ enum class ProbeQuantity {
   reaction_moment,   ///< M_R [N·m]: the moment a support exerts on the beam, positive as +ψ
   spring_force,  ///< k·Δ + c·Δ' [N or N·m] a [[spring]] carries (positive stretched, see model)
   strain,        ///< ε [-] at a face: ∓z·dψ/dx (top face compressed bending toward +w)
-  dea_force      ///< k_F·u² [N] a DEA pushes its face with
+  dea_force,     ///< k_F·u² [N] a DEA pushes its face with
+  /// u [m]: the fixed-frame x displacement (along the undeformed beam; large kinematics only)
+  axial_displacement
 };
+/// Every quantity, in the order scene files and messages list them.
+const std::vector<ProbeQuantity>& probe_quantities();
 /// "deflection", …
 const char* probe_quantity_name(ProbeQuantity quantity);
 /// "m", "m/s", "rad", …; "" for the dimensionless strain. spring_force: "N" (a rotational

@@ -61,7 +61,7 @@ class Dea : public Element {
   const char* kind() const override { return "dea"; }
   void stamp(Stamper& s) const override;
   bool is_nonlinear() const override { return true; }
-  void add_nonlinear(const Eigen::VectorXd& y, Eigen::VectorXd& g,
+  void add_nonlinear(const Eigen::VectorXd& y, int branch_offset, Eigen::VectorXd& g,
                      std::vector<Eigen::Triplet<double>>* jacobian) const override;
 
   /// F = k_F·u² for a given capacitor voltage u.

@@ -42,7 +42,8 @@ struct BeamMesh {
 };
 
 /// The positions of the scene's attachments that are not part of the beam itself: DEA ends and
-/// loads (the beam's masses, springs and sections are in its BeamSpec).
+/// loads (the beam's masses, springs and sections are in its BeamSpec), and with large kinematics
+/// the beam probes' positions.
 std::vector<double> scene_attachment_points(const Scene& scene);
 
 /// The nodes of `beam` with beam.segments segments (the resolved count; > 0) and a node at each

@@ -67,7 +67,11 @@ struct BeamLayout {
   std::vector<double> shear_parameter;
   std::vector<NodeId> velocity;          ///< translational node per position (ground if held)
   std::vector<NodeId> angular_velocity;  ///< rotational node per position (ground if held)
-  int raised_from = 0;                   ///< BeamMesh::raised_from
+  /// beam.kinematics: with large kinematics `velocity` is the fixed-frame y velocity and
+  /// `axial_velocity` the x velocity per position (ground if held); empty for small.
+  BeamKinematics kinematics = BeamKinematics::small;
+  std::vector<NodeId> axial_velocity;
+  int raised_from = 0;  ///< BeamMesh::raised_from
   /// The segment's shape functions over the segment holding x (cubic Hermite; with shear the
   /// shear-corrected cubics of the same exact massless segment):
   /// w(x) = Σ c·(w, ψ at the segment's ends); the same coefficients map v, Ω to v(x).

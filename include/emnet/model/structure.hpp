@@ -46,12 +46,17 @@ enum class ElementPart {
   rotational_compliance,     ///< segment: n_R = l/EI [rad/(N·m)], an inductor
   translational_compliance,  ///< segment: n_T = l³/(12·EI) [m/N], an inductor
   lever,                     ///< segment: the ideal transformer adding (l/2)·(Ω_k + Ω_k+1)
-  nodal_load,                ///< load: its share on one node [N or N·m], a current source
-  electrode_resistance,      ///< DEA: R_e between source and capacitor [Ω], a conductance
-  transducer,                ///< DEA: capacitor C₀ and force k_F·u² (the Dea element)
-  source_voltage,            ///< drive source: the DEA's source voltage V(t), a voltage source
-  ideal_force,               ///< drive source: one part of k_F·V(t)² on one coupling node
-  point_mass,                ///< [[mass]]: m [kg], a capacitor from the velocity node to ground
+  /// segment (large kinematics): chord, translational and axial compliance in the chord's frame
+  corotational_segment,
+  axial_mass,        ///< beam node (large kinematics): ρA·l share [kg] on the x velocity node
+  axial_damper,      ///< beam node (large kinematics): c·l share [N·s/m] on the x velocity node
+  point_axial_mass,  ///< [[mass]] (large kinematics): m [kg] on the x velocity node
+  nodal_load,        ///< load: its share on one node [N or N·m], a current source
+  electrode_resistance,  ///< DEA: R_e between source and capacitor [Ω], a conductance
+  transducer,            ///< DEA: capacitor C₀ and force k_F·u² (the Dea element)
+  source_voltage,        ///< drive source: the DEA's source voltage V(t), a voltage source
+  ideal_force,           ///< drive source: one part of k_F·V(t)² on one coupling node
+  point_mass,            ///< [[mass]]: m [kg], a capacitor from the velocity node to ground
   point_rotary_inertia,  ///< [[mass]]: J [kg·m²], a capacitor from the rotation node to ground
   spring_compliance,     ///< [[spring]]: n = 1/k [m/N or rad/(N·m)], an inductor
   spring_damper,         ///< [[spring]]: its dashpot [N·s/m or N·m·s/rad], a conductance
@@ -82,6 +87,7 @@ struct ElementRecord {
 enum class NodeRole {
   beam_velocity,          ///< v_k: translational velocity at beam node k [m/s]
   beam_angular_velocity,  ///< r_k: angular velocity at beam node k [rad/s]
+  beam_axial_velocity,    ///< u_k: fixed-frame x velocity at beam node k [m/s] (large kinematics)
   segment_middle,         ///< m_k: segment k between its spring and its lever [m/s]
   dea_source,             ///< s_X: DEA X's source terminal [V]
   dea_electrode,          ///< e_X: DEA X's capacitor voltage [V]

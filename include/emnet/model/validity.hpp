@@ -17,6 +17,9 @@
 //   against dea[].breakdown_field (default kDefaultBreakdownField, emnet/scene/scene.hpp). Above it
 //   the film breaks down and the DEA is a short, not a capacitor.
 //
+// With beam.kinematics = "large" the beam has no small-deflection assumption, and the deflection
+// check does not apply (the summary says so).
+//
 // A check fails only strictly above its limit ("at most" the limit is inside). The checks
 // judge the values handed to them, so each command passes what it computed: static the state
 // at t = 0 (drive_voltages_at_start), the others every level the drive applies

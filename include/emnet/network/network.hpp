@@ -81,7 +81,9 @@ class Element {
   virtual bool is_nonlinear() const { return false; }
   /// Nonlinear part: adds g(y) to `g` and, when `jacobian` is given, ∂g/∂y to it (as entries
   /// added into the triplet list). Linear elements do nothing.
-  virtual void add_nonlinear(const Eigen::VectorXd& /*y*/, Eigen::VectorXd& /*g*/,
+  /// @param branch_offset  the index in y of the element's first branch unknown
+  virtual void add_nonlinear(const Eigen::VectorXd& /*y*/, int /*branch_offset*/,
+                             Eigen::VectorXd& /*g*/,
                              std::vector<Eigen::Triplet<double>>* /*jacobian*/) const {}
 
  private:
@@ -156,6 +158,8 @@ class System {
   Eigen::SparseMatrix<double> C;  ///< capacitance / mass-like part
   /// Elements with a nonlinear part g(y), shared with the Network they came from.
   std::vector<std::shared_ptr<const Element>> nonlinear_elements;
+  /// The index in y of each nonlinear element's first branch unknown, as nonlinear_elements.
+  std::vector<int> nonlinear_branch_offsets;
 
   using SourceTerm = Excitation::SourceTerm;
   /// The sources: stamped by assemble(), replaced only through set_excitation, which checks it.

@@ -28,6 +28,12 @@ enum class BeamTheory { euler_bernoulli, timoshenko };
 /// The name a scene file writes for `theory`.
 const char* beam_theory_name(BeamTheory theory);
 
+/// beam.kinematics: small deflections (the linear beam network), or large ones (planar,
+/// geometrically exact co-rotational segments; docs/model.md, Large deflection).
+enum class BeamKinematics { small, large };
+/// The name a scene file writes for `kinematics`.
+const char* beam_kinematics_name(BeamKinematics kinematics);
+
 /// [[section]]: a uniform stretch of the beam, in order from x = 0; the sections' lengths add up
 /// to beam.length. A beam without sections is one uniform section of the [beam] values.
 struct SectionSpec {
@@ -37,6 +43,8 @@ struct SectionSpec {
   double rotary_inertia_per_length = 0.0;  ///< section[].rotary_inertia_per_length ρI [kg·m]
   /// section[].shear_stiffness κGA [N] (Timoshenko); unset: beam.shear_stiffness.
   std::optional<double> shear_stiffness;
+  /// section[].axial_stiffness EA [N] (large kinematics); unset: beam.axial_stiffness.
+  std::optional<double> axial_stiffness;
   /// section[].viscous_per_length [N·s/m²] and section[].kelvin_voigt_time τ [s]; unset: the
   /// [damping] table's.
   std::optional<double> viscous_per_length;
@@ -86,6 +94,9 @@ struct BeamSpec {
   EndCondition right = EndCondition::free;          ///< beam.right (x = length)
   BeamTheory theory = BeamTheory::euler_bernoulli;  ///< beam.theory
   double shear_stiffness = 0.0;  ///< beam.shear_stiffness κGA [N] (Timoshenko); 0: not given
+  BeamKinematics kinematics = BeamKinematics::small;  ///< beam.kinematics
+  /// beam.axial_stiffness EA [N] (large kinematics); 0: not given, the beam is inextensible.
+  double axial_stiffness = 0.0;
   /// The structure on the beam, read from [[section]], [[mass]] and [[spring]]. With sections,
   /// bending_stiffness, mass_per_length and rotary_inertia_per_length above are unused (0).
   std::vector<SectionSpec> sections;

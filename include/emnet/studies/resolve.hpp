@@ -80,15 +80,31 @@ bool asks_for_dea_electrics(const std::string& probe_text);
 /// Whether any of `probe_texts` does.
 bool asks_for_dea_electrics(const std::vector<std::string>& probe_texts);
 
+/// What the analysis a model is prepared for does with beam.kinematics = "large" (docs/model.md,
+/// Large deflection): prepare_model refuses a scene the analysis does not serve, naming the key,
+/// so that no analysis runs the co-rotational network it has not been checked on.
+enum class LargeKinematicsUse {
+  refused,       ///< not served yet (the switching sweep, studies, SPICE decks, ...)
+  static_state,  ///< the static analysis: any beam, inextensible included
+  /// modes, AC and IDA transients: every segment needs an axial stiffness EA, because an
+  /// inextensible beam with masses is a constrained mechanism (a DAE of index 3) that the time
+  /// integration and the poles' error bounds do not take
+  dynamics,
+};
+
 struct PrepareOptions {
-  bool electrical_probe_requested = false;  // as ResolveOptions
+  bool electrical_probe_requested = false;                            // as ResolveOptions
+  LargeKinematicsUse large_kinematics = LargeKinematicsUse::refused;  ///< see LargeKinematicsUse
 };
 
 /// The PrepareOptions of a run that asks for `probe_texts`: the RC dynamics kept when one of
 /// them asks for a DEA's electrical quantity (asks_for_dea_electrics).
 PrepareOptions prepare_options_for_probes(const std::vector<std::string>& probe_texts);
 
-// resolve_scene (everything) then build_model: the model of any read scene.
+/// resolve_scene (everything) then build_model: the model of any read scene.
+/// @throws InputError naming beam.kinematics for a large-kinematics scene the analysis does not
+///   serve (options.large_kinematics), beam.axial_stiffness for an inextensible one it serves
+///   only with EA, and as resolve_scene and build_model
 Model prepare_model(const Scene& scene, const PrepareOptions& options = {});
 
 }  // namespace emnet

@@ -3,9 +3,11 @@
 // beam node, each probe's static value (static_probe_value) and the validity of the deflections
 // (the nodes' largest and each deflection probe's) with the drive's voltages at t = 0.
 // Nodal values are exact for any N (Hermite statics); between nodes the segment's shape
-// functions.
+// functions. With large kinematics the deflection check does not apply (the model has no small-
+// deflection assumption) and the nodal values carry an error of order N⁻².
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "emnet/analysis/analysis.hpp"
@@ -16,10 +18,16 @@ namespace emnet {
 
 /// What the static study reports of a static state.
 struct StaticStudyValues {
-  std::vector<std::vector<double>> nodes;  ///< per beam node: {x [m], w [m], φ [rad]}
-  std::vector<double> probe_values;        ///< one per probe, in the probe's unit
+  /// per beam node: {x [m], w [m], φ [rad]}, and with large kinematics the x displacement u [m]
+  std::vector<std::vector<double>> nodes;
+  std::vector<double> probe_values;  ///< one per probe, in the probe's unit
   Validity validity;  ///< the deflections and the drive's voltages at t = 0 against their limits
 };
+
+/// What the nodal values' discretisation error is, in words: none for small kinematics
+/// (Hermite statics), of order N⁻² in the deflected shape for large (docs/model.md, Large
+/// deflection).
+std::string static_discretisation(const Model& model);
 
 /// The study's values from a solved static state `rest` of `system` (model.network.assemble()).
 StaticStudyValues static_study_values(const Model& model, const System& system,

@@ -76,6 +76,21 @@ SceneTableKeys beam_table_keys() {
   keys.back().default_note =
       "required with beam.theory = \"timoshenko\" (unless every section "
       "gives its own)";
+
+  keys.add(choice("beam", "kinematics", {"small", "large"}, false, "beam",
+                  "small: the linear beam network (small deflections and rotations); large: "
+                  "planar, geometrically exact co-rotational segments (any rotation, dead loads)"))
+      .text = [](const Scene& scene, std::size_t) {
+    return std::string(beam_kinematics_name(scene.beam.kinematics));
+  };
+  plain_field(keys.add(quantity("beam", "axial_stiffness", dim::force, positive(), false,
+                                "beam kinematics 'large'",
+                                "EA, the axial stiffness (Young's modulus times cross-section) "
+                                "of the segments' axial compliance l/EA")),
+              &Scene::beam, &BeamSpec::axial_stiffness);
+  keys.back().sensitivity = true;
+  keys.back().constraint = "with beam.kinematics = \"large\"";
+  keys.back().default_note = "unset: the beam is inextensible (each chord keeps its length)";
   return keys;
 }
 
@@ -110,6 +125,12 @@ SceneTableKeys section_table_keys() {
   keys.back().sensitivity = true;
   keys.back().constraint = "with beam.theory = \"timoshenko\"";
   keys.back().default_note = "unset: beam.shear_stiffness";
+  beam_entry_field(keys.add(quantity("section", "axial_stiffness", dim::force, positive(), false,
+                                     section_users, "EA of the section (large kinematics)")),
+                   &BeamSpec::sections, &SectionSpec::axial_stiffness);
+  keys.back().sensitivity = true;
+  keys.back().constraint = "with beam.kinematics = \"large\"";
+  keys.back().default_note = "unset: beam.axial_stiffness";
   beam_entry_field(keys.add(quantity("section", "viscous_per_length", dim::damping_per_length,
                                      non_negative(), false, section_users,
                                      "the section's viscous damping to ground per length")),

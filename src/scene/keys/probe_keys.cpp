@@ -5,6 +5,18 @@
 namespace emnet {
 namespace scene_keys {
 
+namespace {
+
+// The names of probe_quantities(), in their order.
+std::vector<std::string> probe_quantity_names() {
+  std::vector<std::string> names;
+  for (ProbeQuantity quantity : probe_quantities())
+    names.emplace_back(probe_quantity_name(quantity));
+  return names;
+}
+
+}  // namespace
+
 // [[probe]]
 SceneTableKeys probe_table_keys() {
   SceneTableKeys keys =
@@ -16,14 +28,12 @@ SceneTableKeys probe_table_keys() {
   keys.back().text = [](const Scene& scene, std::size_t entry) { return scene.probes[entry].name; };
   keys
       .add(choice(
-          "probe", "quantity",
-          {"deflection", "velocity", "rotation", "angular_velocity", "dea_voltage", "dea_current",
-           "reaction_force", "reaction_moment", "spring_force", "strain", "dea_force"},
-          true, "probes",
+          "probe", "quantity", probe_quantity_names(), true, "probes",
           "what the probe measures: a beam quantity at probe[].at (reaction_force and "
           "reaction_moment: the support's force or moment on the beam at a held end, at = 0 "
           "or beam.length; strain: at a face, probe[].face and probe[].distance), a spring's "
-          "force (probe[].spring), or a DEA's voltage, current or force k_F*u^2 (probe[].dea)"))
+          "force (probe[].spring), a DEA's voltage, current or force k_F*u^2 (probe[].dea), or "
+          "with beam.kinematics = \"large\" the x displacement axial_displacement"))
       .text = [](const Scene& scene, std::size_t entry) {
     return std::string(probe_quantity_name(scene.probes[entry].quantity));
   };

@@ -1,0 +1,304 @@
+// Static large deflection (beam.kinematics = "large") against exact solutions.
+//
+// References:
+//   - the circular arc of a cantilever under an end moment M (exact, any rotation): radius
+//     R = EI/M, tip at x = R·sin(L/R), y = R·(1 − cos(L/R)); rotation ψ(x) = M·x/EI.
+//     The network's own exact answer: the moment is M in every segment, so ψ at the nodes is
+//     exact, each chord's angle is the mean of its ends' (no shear force) and the tip is the sum
+//     of the chords, l·(cos θ_k, sin θ_k): the midpoint rule of ∫(cos ψ, sin ψ)dx, converging
+//     as N⁻².
+//   - the elastica under a dead tip load P (Bisshopp and Drucker, Q. Appl. Math. 3 (1945) 272):
+//     with k² = (1 + sin ψ₀)/2, sin φ₁ = 1/(k·√2) and α = P·L²/EI,
+//       √α = K(k) − F(k, φ₁),  y_tip/L = 1 − 2·(E(k) − E(k, φ₁))/√α,  x_tip/L = √(2·sin ψ₀/α),
+//     ψ₀ the tip rotation (the root in k by bisection to rounding).
+//   - the small-kinematics network in the small-load limit: the two agree to the geometric
+//     nonlinearity, of relative order (w/L)².
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <tuple>
+
+#include "elastica.hpp"
+#include "emnet/elements/corotational_segment.hpp"
+#include "emnet/scene/scene_reader.hpp"
+#include "fixtures.hpp"
+
+namespace emnet {
+namespace {
+
+using testing::beam_probe;
+using testing::cantilever_scene;
+using testing::load;
+
+constexpr double kLength = 0.5, kBendingStiffness = 2.0;
+
+struct Tip {
+  double x, y, rotation;  ///< x along the undeformed beam from the clamp [m], y [m], ψ [rad]
+};
+
+// The static tip of a large-kinematics cantilever of N segments under `loads`.
+Tip large_tip(int segments, const std::vector<LoadSpec>& loads, StaticResult* solved = nullptr) {
+  Scene scene = cantilever_scene(segments, kLength, kBendingStiffness);
+  scene.beam.kinematics = BeamKinematics::large;
+  scene.loads = loads;
+  scene.probes = {beam_probe("u", ProbeQuantity::axial_displacement, kLength),
+                  beam_probe("w", ProbeQuantity::deflection, kLength),
+                  beam_probe("psi", ProbeQuantity::rotation, kLength)};
+  const Model model = build_model(scene);
+  const System system = model.network.assemble();
+  const StaticResult result = solve_static(system);
+  EXPECT_TRUE(result.status.ok()) << result.status.message;
+  if (solved) *solved = result;
+  return {kLength + static_probe_value(system, result, model.probes[0]),
+          static_probe_value(system, result, model.probes[1]),
+          static_probe_value(system, result, model.probes[2])};
+}
+
+// ---- the circular arc ---------------------------------------------------------------------
+
+class CircularArc : public ::testing::TestWithParam<double> {};
+
+// The network's tip is the midpoint rule of the arc to rounding (its own exact solution), and
+// the rotation is exact: the only error is rounding in Newton's last step (tolerance 1e-12 on
+// the step), so 1e-10 of L.
+TEST_P(CircularArc, TipIsTheMidpointRuleOfTheArcAndTheRotationIsExact) {
+  const double tip_angle = GetParam(), moment = tip_angle * kBendingStiffness / kLength;
+  for (int segments : {8, 32}) {
+    const Tip tip = large_tip(segments, {load(LoadKind::moment, kLength, moment)});
+    const double l = kLength / segments;
+    double x = 0.0, y = 0.0;
+    for (int k = 0; k < segments; ++k) {
+      const double chord_angle = moment * (k + 0.5) * l / kBendingStiffness;
+      x += l * std::cos(chord_angle);
+      y += l * std::sin(chord_angle);
+    }
+    EXPECT_NEAR(tip.rotation, tip_angle, 1e-10 * std::max(1.0, tip_angle)) << "N=" << segments;
+    EXPECT_NEAR(tip.x, x, 1e-10 * kLength) << "N=" << segments;
+    EXPECT_NEAR(tip.y, y, 1e-10 * kLength) << "N=" << segments;
+  }
+}
+
+// Against the continuum arc: the error falls as N⁻² (the midpoint rule's order, measured from
+// N = 16, 32, 64 between 1.95 and 2.05: its next term is of relative order N⁻²), and at N = 64
+// it is within 1.2 times the Richardson estimate |f_64 − f_32|/3 that the N⁻² law gives.
+TEST_P(CircularArc, ConvergesToTheArcAsNToTheMinusTwo) {
+  const double tip_angle = GetParam(), moment = tip_angle * kBendingStiffness / kLength;
+  const double radius = kBendingStiffness / moment;
+  const double exact_x = radius * std::sin(tip_angle), exact_y = radius * (1 - std::cos(tip_angle));
+  std::vector<double> error_x, error_y, tip_x, tip_y;
+  for (int segments : {16, 32, 64}) {
+    const Tip tip = large_tip(segments, {load(LoadKind::moment, kLength, moment)});
+    tip_x.push_back(tip.x);
+    tip_y.push_back(tip.y);
+    error_x.push_back(tip.x - exact_x);
+    error_y.push_back(tip.y - exact_y);
+  }
+  for (const auto& [error, values, name] :
+       {std::tuple{error_x, tip_x, "x"}, std::tuple{error_y, tip_y, "y"}}) {
+    if (std::abs(error[2]) < 1e-12 * kLength) continue;  // a tip coordinate that is exact
+    const double order = std::log2(error[1] / error[2]);
+    EXPECT_GT(order, 1.95) << name << " angle " << tip_angle;
+    EXPECT_LT(order, 2.05) << name << " angle " << tip_angle;
+    const double estimate = std::abs(values[2] - values[1]) / 3.0;
+    EXPECT_LE(std::abs(error[2]), 1.2 * estimate) << name << " angle " << tip_angle;
+  }
+}
+
+// Up to a full circle: a quarter, a half (tip above the clamp), and the whole (tip on it).
+INSTANTIATE_TEST_SUITE_P(TipAngles, CircularArc, ::testing::Values(0.5, M_PI / 2, M_PI, 2 * M_PI));
+
+// ---- the elastica under a dead tip load ------------------------------------------------------
+
+struct Elastica {
+  double x, y, rotation;  ///< the tip, relative to L, and ψ₀
+};
+
+// Bisshopp and Drucker's solution for α = P·L²/EI (see the top of the file).
+Elastica elastica(double alpha) {
+  auto length_parameter = [](double k) {
+    const double phi1 = std::asin(1.0 / (k * std::sqrt(2.0)));
+    return std::comp_ellint_1(k) - std::ellint_1(k, phi1);
+  };
+  double low = 1.0 / std::sqrt(2.0), high = 1.0;
+  for (int i = 0; i < 200 && high - low > 1e-16; ++i) {
+    const double middle = 0.5 * (low + high);
+    (length_parameter(middle) < std::sqrt(alpha) ? low : high) = middle;
+  }
+  const double k = 0.5 * (low + high), phi1 = std::asin(1.0 / (k * std::sqrt(2.0)));
+  const double sin_tip = 2 * k * k - 1;
+  return {std::sqrt(2 * sin_tip / alpha),
+          1 - 2 * (std::comp_ellint_2(k) - std::ellint_2(k, phi1)) / std::sqrt(alpha),
+          std::asin(sin_tip)};
+}
+
+// The elliptic-integral reference against the shooting solution (elastica.hpp: EI·ψ'' = −P·cos ψ,
+// Runge-Kutta, independent of the elliptic integrals), and against the linear limit
+// (tip deflection α/3, rotation α/2; the next terms are of relative order α²).
+TEST(ElasticaReference, EllipticIntegralsMatchShootingAndTheLinearLimit) {
+  const Elastica tiny = elastica(1e-4);
+  EXPECT_NEAR(tiny.y, 1e-4 / 3, 1e-11);
+  EXPECT_NEAR(tiny.rotation, 1e-4 / 2, 1e-11);
+  for (double alpha : {0.5, 1.0, 2.0, 5.0, 10.0}) {
+    const Elastica elliptic = elastica(alpha);
+    const testing::ElasticaTip shot = testing::elastica_by_shooting(0.0, alpha);
+    EXPECT_NEAR(elliptic.x, shot.x, 1e-9) << alpha;
+    EXPECT_NEAR(elliptic.y, shot.y, 1e-9) << alpha;
+    EXPECT_NEAR(elliptic.rotation, shot.rotation, 1e-9) << alpha;
+  }
+}
+
+class ElasticaTipLoad : public ::testing::TestWithParam<double> {};
+
+// The network converges to the elastica as N⁻² (measured order from N = 16, 32, 64 between 1.9
+// and 2.1) and at N = 64 its error is within 1.2 times the Richardson estimate.
+TEST_P(ElasticaTipLoad, ConvergesToBisshoppAndDrucker) {
+  const double alpha = GetParam(), force = alpha * kBendingStiffness / (kLength * kLength);
+  const Elastica exact = elastica(alpha);
+  std::vector<Tip> tips;
+  for (int segments : {16, 32, 64})
+    tips.push_back(large_tip(segments, {load(LoadKind::force, kLength, force)}));
+  auto check = [&](double Tip::*coordinate, double reference, const char* name) {
+    const double e16 = tips[0].*coordinate - reference, e32 = tips[1].*coordinate - reference,
+                 e64 = tips[2].*coordinate - reference;
+    const double order = std::log2(e32 / e64);
+    EXPECT_GT(order, 1.9) << name << " alpha " << alpha << " e16 " << e16;
+    EXPECT_LT(order, 2.1) << name << " alpha " << alpha;
+    EXPECT_LE(std::abs(e64), 1.2 * std::abs(tips[2].*coordinate - tips[1].*coordinate) / 3.0)
+        << name << " alpha " << alpha;
+  };
+  check(&Tip::x, exact.x * kLength, "x");
+  check(&Tip::y, exact.y * kLength, "y");
+  check(&Tip::rotation, exact.rotation, "rotation");
+}
+
+INSTANTIATE_TEST_SUITE_P(LoadParameters, ElasticaTipLoad,
+                         ::testing::Values(0.5, 1.0, 2.0, 5.0, 10.0));
+
+// ---- the small-load limit ---------------------------------------------------------------
+
+// The nodal deflections and rotations of `scene` with small and with large kinematics.
+struct BothKinematics {
+  std::vector<double> small, large;
+  double largest_deflection = 0.0;
+};
+
+// At the large model's nodes (it has one at every probe, which the small model may lack; the
+// small model's shape functions are exact between its nodes).
+BothKinematics solve_both(Scene scene) {
+  BothKinematics both;
+  std::vector<double> positions;
+  for (BeamKinematics kinematics : {BeamKinematics::large, BeamKinematics::small}) {
+    scene.beam.kinematics = kinematics;
+    const Model model = build_model(scene);
+    const System system = model.network.assemble();
+    const StaticResult result = solve_static(system);
+    EXPECT_TRUE(result.status.ok()) << scene.name << ": " << result.status.message;
+    if (kinematics == BeamKinematics::large) positions = model.beam.x;
+    std::vector<double>& values = kinematics == BeamKinematics::small ? both.small : both.large;
+    for (double x : positions)
+      for (ProbeQuantity quantity : {ProbeQuantity::deflection, ProbeQuantity::rotation}) {
+        values.push_back(
+            static_probe_value(system, result, model.make_probe(beam_probe("p", quantity, x))));
+        if (quantity == ProbeQuantity::deflection)
+          both.largest_deflection = std::max(both.largest_deflection, std::abs(values.back()));
+      }
+  }
+  return both;
+}
+
+// Under loads that deflect the beam by about 1e-5 of its length, the large network's nodal
+// deflections and rotations equal the small network's: the two differ by the geometric
+// nonlinearity, of relative order (w/L)² = 1e-10, and by Newton's rounding (1e-12 on the step):
+// 1e-8 of the largest value leaves room for both and for nothing else. Where both ends hold the
+// beam along x, stretching stiffens it by a relative EA·w²/EI (the membrane effect), so those
+// scenes are loaded to w ~ 1e-8 m, where that is 1e-11. Every end condition that
+// has a static state, and every component of the beam: sections, Timoshenko shear, point masses,
+// translational and rotational springs, Kelvin-Voigt damping (no static effect), an axial
+// stiffness, loads and a DEA's moment pair (the fish fin, driven at 4 V instead of 4 kV).
+TEST(LargeKinematicsSmallLoadLimit, EqualsTheSmallNetworkForEveryEndAndComponent) {
+  std::vector<Scene> scenes;
+  {
+    Scene tip = cantilever_scene(8);
+    tip.name = "clamped-free, tip force and moment";
+    tip.loads = {load(LoadKind::force, 0.5, 1e-4), load(LoadKind::moment, 0.5, 2e-5)};
+    scenes.push_back(tip);
+  }
+  {
+    Scene shear = cantilever_scene(6);
+    shear.name = "Timoshenko, axial stiffness, Kelvin-Voigt";
+    shear.beam.theory = BeamTheory::timoshenko;
+    shear.beam.shear_stiffness = 50.0;
+    shear.beam.axial_stiffness = 1e4;
+    shear.damping.kelvin_voigt_time = 1e-3;
+    shear.loads = {load(LoadKind::force, 0.3, 1e-4)};
+    scenes.push_back(shear);
+  }
+  {
+    Scene parts = cantilever_scene(10);
+    parts.name = "sections, a point mass and springs";
+    SectionSpec stiff, soft;
+    stiff.length = 0.2, stiff.bending_stiffness = 5.0, stiff.mass_per_length = 0.4;
+    soft.length = 0.3, soft.bending_stiffness = 1.0, soft.mass_per_length = 0.2;
+    parts.beam.sections = {stiff, soft};
+    MassSpec mass;
+    mass.at = 0.35, mass.mass = 0.01, mass.rotary_inertia = 1e-6;
+    parts.beam.masses = {mass};
+    SpringSpec translational, rotational;
+    translational.at = 0.25, translational.stiffness = 30.0;
+    rotational.at = 0.5, rotational.kind = SpringKind::rotational, rotational.stiffness = 0.5;
+    parts.beam.springs = {translational, rotational};
+    parts.loads = {load(LoadKind::force, 0.45, -1e-4)};
+    scenes.push_back(parts);
+  }
+  for (const auto& [left, right] : {std::pair{EndCondition::pinned, EndCondition::pinned},
+                                    std::pair{EndCondition::clamped, EndCondition::clamped},
+                                    std::pair{EndCondition::clamped, EndCondition::sliding},
+                                    std::pair{EndCondition::pinned, EndCondition::sliding}}) {
+    Scene ends = cantilever_scene(9);
+    ends.beam.left = left, ends.beam.right = right;
+    ends.name = std::string(end_condition_name(left)) + "-" + end_condition_name(right);
+    ends.loads = {load(LoadKind::force, 0.3, 1e-6), load(LoadKind::moment, 0.4, 1e-8)};
+    ends.beam.axial_stiffness = 1e5;  // held along x at both ends: needs EA (see below)
+    scenes.push_back(ends);
+  }
+  scenes.push_back(read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml",
+                              {"drive.voltage=4 V", "drive.electrical_dynamics=false"}));
+  for (const Scene& scene : scenes) {
+    const BothKinematics both = solve_both(scene);
+    ASSERT_EQ(both.small.size(), both.large.size()) << scene.name;
+    EXPECT_GT(both.largest_deflection, 0.0) << scene.name;
+    double largest = 0.0;
+    for (double value : both.small) largest = std::max(largest, std::abs(value));
+    for (size_t k = 0; k < both.small.size(); ++k)
+      EXPECT_NEAR(both.large[k], both.small[k], 1e-8 * largest) << scene.name << " value " << k;
+  }
+}
+
+// An inextensible beam held along x at both ends cannot deflect: refused, naming the key.
+TEST(LargeKinematicsEnds, InextensibleBetweenTwoHeldEndsIsRefused) {
+  Scene scene = cantilever_scene(4);
+  scene.beam.kinematics = BeamKinematics::large;
+  scene.beam.right = EndCondition::pinned;
+  try {
+    build_model(scene);
+    FAIL() << "accepted";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.key(), "beam.axial_stiffness");
+  }
+  scene.beam.axial_stiffness = 1e5;
+  EXPECT_NO_THROW(build_model(scene));
+}
+
+// A small-kinematics scene that asks for the axial displacement is refused (it has none at first
+// order); a large one answers it.
+TEST(LargeKinematicsProbes, AxialDisplacementNeedsLargeKinematics) {
+  Scene scene = cantilever_scene(4);
+  scene.probes = {beam_probe("u", ProbeQuantity::axial_displacement, 0.5)};
+  EXPECT_THROW(build_model(scene), InputError);
+  scene.beam.kinematics = BeamKinematics::large;
+  EXPECT_NO_THROW(build_model(scene));
+}
+
+}  // namespace
+}  // namespace emnet
