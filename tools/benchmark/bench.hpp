@@ -263,5 +263,7 @@ std::string reduction_section(const Settings& settings);
 
 // crosscheck.cpp: `emnet crosscheck` on the shipped scenes, its differences and wall times.
 std::string crosscheck_section(const Settings& settings);
+// large_deflection.cpp: 7, large kinematics against small (static, IDA).
+std::string large_deflection_section(const Settings& settings);
 
 }  // namespace emnet_bench

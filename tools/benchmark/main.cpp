@@ -8,19 +8,19 @@
 // and whole process, errors) is the report's "How it is measured", written here.
 //
 //   emnet_bench [--root DIR] [--out DIR] [--emnet PROGRAM] [--report FILE] [--figures DIR]
-//               [--quick] [--only 0|4|5a|5b|6]
+//               [--quick] [--only 0|4|5a|5b|6|7]
 //
 // --out: the scratch directory (data *.dat and gnuplot scripts *.gp of the plots, decks/*.cir);
 // --report: the report (default out/report.md, or out/report-<section>.md with --only);
 // --figures: where the plots' scripts put their images, bench-<name>.png (default out), linked
 // from the report relative to its directory. --quick: reduced sizes, a smoke run, not a
 // measurement. --only: that section alone (0 limits, 4 scale, 5a simplifications, 5b modal
-// reduction, 6 design studies), without plots.
+// reduction, 6 design studies, 7 large deflection), without plots.
 //
 // The sections are in tools/benchmark/: limits.cpp (0), discretisation.cpp (1, 4b), ac.cpp and
 // transient.cpp (2, 3), sweep.cpp (the switching sweep), scale.cpp (4), simplifications.cpp (5a,
-// 5b), study.cpp (6), crosscheck.cpp (the cross-check); the pieces they share in common.cpp
-// (bench.hpp); the report and the command line here.
+// 5b), study.cpp (6), crosscheck.cpp (the cross-check), large_deflection.cpp (7); the pieces
+// they share in common.cpp (bench.hpp); the report and the command line here.
 #include <filesystem>
 
 #include "bench.hpp"
@@ -214,6 +214,8 @@ int run(const Settings& settings) {
         settings.only == "5a"
             ? Part{"Simplifications: what each costs and saves", simplification_section(settings)}
         : settings.only == "6" ? Part{"Design studies", study_section(settings)}
+        : settings.only == "7" ? Part{"Large deflection: cost against small kinematics",
+                                      large_deflection_section(settings)}
         : settings.only == "0"
             ? Part{"Limits: each analysis against its arithmetic", limits_section(settings)}
         : settings.only == "4"
@@ -254,6 +256,8 @@ int run(const Settings& settings) {
   const std::string study = study_section(settings);
   std::cerr << "emnet_bench: cross-check\n";
   const std::string crosscheck = crosscheck_section(settings);
+  std::cerr << "emnet_bench: large deflection\n";
+  const std::string large_deflection = large_deflection_section(settings);
   write_pareto_plot(settings, "discretisation", "cantilever: discretisation error against cost",
                     discretisation_points);
   write_pareto_plot(settings, "ac", "fish fin AC, 1000 points: error against time", ac_points);
@@ -292,7 +296,8 @@ int run(const Settings& settings) {
       {"Simplifications: what each costs and saves", simplifications},
       {"Modal reduction: speed gained and error", reduction},
       {"Design studies", study},
-      {"Cross-check against ngspice: differences and wall times", crosscheck}};
+      {"Cross-check against ngspice: differences and wall times", crosscheck},
+      {"Large deflection: cost against small kinematics", large_deflection}};
 
   std::ostringstream md;
   md << "What emnet costs and how accurate it is, measured in one run on one machine: each "
@@ -349,9 +354,9 @@ int main(int argc, char** argv) {
     } else if (argument == "--only") {
       settings.only = value();
       if (settings.only != "0" && settings.only != "4" && settings.only != "5a" &&
-          settings.only != "5b" && settings.only != "6") {
+          settings.only != "5b" && settings.only != "6" && settings.only != "7") {
         std::cerr << "emnet_bench: --only takes 0 (limits), 4 (scale), 5a (simplifications), 5b "
-                     "(modal reduction) or 6 (design studies)\n";
+                     "(modal reduction), 6 (design studies) or 7 (large deflection)\n";
         return 2;
       }
     } else if (argument == "--scale-point") {
@@ -359,7 +364,7 @@ int main(int argc, char** argv) {
       scale_segments = std::stoi(value());
     } else {
       std::cerr << "usage: emnet_bench [--root DIR] [--out DIR] [--emnet PROGRAM] [--report FILE] "
-                   "[--figures DIR] [--quick] [--only 0|4|5a|5b|6]\n";
+                   "[--figures DIR] [--quick] [--only 0|4|5a|5b|6|7]\n";
       return 2;
     }
   }
