@@ -179,14 +179,20 @@ void add_springs(Network& network, const BeamSpec& spec, const BeamLayout& beam,
     const SpringSpec& spring = spec.springs[n];
     const std::string id = spring.name.empty() ? std::to_string(n) : spring.name;
     const bool rotational = spring.kind == SpringKind::rotational;
-    const std::vector<NodeId>& nodes = rotational ? beam.angular_velocity : beam.velocity;
+    const bool axial = spring.kind == SpringKind::axial;  // along x: large kinematics only
+    if (axial && beam.axial_velocity.empty())
+      throw std::logic_error("add_beam: an axial spring needs large kinematics");
+    const std::vector<NodeId>& nodes =
+        rotational ? beam.angular_velocity : (axial ? beam.axial_velocity : beam.velocity);
     const NodeId a = nodes[attachment_node(beam, spring.at, "spring " + id)];
     const NodeId b = spring.to ? nodes[attachment_node(beam, *spring.to, "spring " + id)] : ground;
     if (a == b) continue;  // both ends held (or the same node): no force
     const Domain domain = rotational ? Domain::rotational : Domain::translational;
     const std::string where = "spring " + id + " (" +
-                              (rotational ? "rotational" : "translational") + ") at " +
-                              millimetres(spring.at);
+                              (rotational ? "rotational"
+                               : axial    ? "axial"
+                                          : "translational") +
+                              ") at " + millimetres(spring.at);
     add_recorded<Inductor>(
         network, structure,
         {Component::spring, ElementPart::spring_compliance, static_cast<int>(n), "", -1, -1,

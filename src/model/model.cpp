@@ -392,11 +392,14 @@ void add_probes(const Scene& scene, Model& model) {
 void require_deflectable(const Scene& scene) {
   const BeamSpec& beam = scene.beam;
   if (beam.kinematics != BeamKinematics::large) return;
-  if (beam.left == EndCondition::free && beam.right == EndCondition::free)
+  const bool held_along_x =
+      std::any_of(beam.springs.begin(), beam.springs.end(),
+                  [](const SpringSpec& spring) { return spring.kind == SpringKind::axial; });
+  if (beam.left == EndCondition::free && beam.right == EndCondition::free && !held_along_x)
     throw InputError(scene.file, "beam.left",
                      "is free, and so is beam.right: with beam.kinematics = \"large\" nothing "
-                     "would hold the beam along x (springs act along y and on the rotation); hold "
-                     "one end (clamped, pinned or sliding)");
+                     "would hold the beam along x; hold one end (clamped, pinned or sliding) or "
+                     "give a [[spring]] of kind \"axial\"");
   if (beam.left == EndCondition::free || beam.right == EndCondition::free) return;
   bool inextensible = !(beam.axial_stiffness > 0.0);
   for (const SectionSpec& section : beam.sections)

@@ -302,7 +302,12 @@ void SceneReader::read_springs(const toml::table& root, Scene& scene) const {
     }
     spring.at = reader.position_on_beam(key("at"), scene.beam.length);
     spring.kind = reader.choice(
-        key("kind"), std::vector<SpringKind>{SpringKind::translational, SpringKind::rotational});
+        key("kind"), std::vector<SpringKind>{SpringKind::translational, SpringKind::rotational,
+                                             SpringKind::axial});
+    if (spring.kind == SpringKind::axial && scene.beam.kinematics != BeamKinematics::large)
+      reader.fail("kind",
+                  "\"axial\" acts along the beam's x, which only beam.kinematics = \"large\" "
+                  "has (small deflections have no axial motion)");
     const ParameterInfo& stiffness = key("stiffness");
     spring.stiffness = reader.quantity(stiffness, parameter_dimension(stiffness, scene, index));
     const ParameterInfo& damping = key("damping");

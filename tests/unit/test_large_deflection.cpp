@@ -275,6 +275,55 @@ TEST(LargeKinematicsSmallLoadLimit, EqualsTheSmallNetworkForEveryEndAndComponent
   }
 }
 
+// An elastic clamp (a free end held by translational, rotational and axial springs at x = 0,
+// the tweezer's and the gripper's holder) with large kinematics: its small-load limit is the
+// small network with the same translational and rotational springs (the axial one acts along x
+// only, which the small network does not have), to 1e-8 as above. Without the axial spring the
+// beam would be free along x and is refused; the small network refuses an axial spring.
+TEST(LargeKinematicsEnds, AnElasticClampNeedsItsAxialSpring) {
+  Scene scene = cantilever_scene(6);
+  scene.beam.left = EndCondition::free;
+  SpringSpec translational, rotational, axial;
+  translational.stiffness = 500.0;
+  rotational.kind = SpringKind::rotational;
+  rotational.stiffness = 20.0;
+  axial.kind = SpringKind::axial;
+  axial.stiffness = 1e4;
+  scene.beam.springs = {translational, rotational};
+  scene.loads = {load(LoadKind::force, 0.5, 1e-4)};
+  const BothKinematics without_axial_spring = [&] {
+    Scene small = scene;
+    small.beam.kinematics = BeamKinematics::small;
+    BothKinematics both;
+    const Model model = build_model(small);
+    const System system = model.network.assemble();
+    const StaticResult result = solve_static(system);
+    EXPECT_TRUE(result.status.ok()) << result.status.message;
+    for (double x : model.beam.x)
+      for (ProbeQuantity quantity : {ProbeQuantity::deflection, ProbeQuantity::rotation})
+        both.small.push_back(
+            static_probe_value(system, result, model.make_probe(beam_probe("p", quantity, x))));
+    return both;
+  }();
+  scene.beam.kinematics = BeamKinematics::large;
+  EXPECT_THROW(build_model(scene), InputError);  // free along x
+  scene.beam.springs.push_back(axial);
+  const Model model = build_model(scene);
+  const System system = model.network.assemble();
+  const StaticResult result = solve_static(system);
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
+  double largest = 0.0;
+  for (double value : without_axial_spring.small) largest = std::max(largest, std::abs(value));
+  size_t k = 0;
+  for (double x : model.beam.x)
+    for (ProbeQuantity quantity : {ProbeQuantity::deflection, ProbeQuantity::rotation})
+      EXPECT_NEAR(
+          static_probe_value(system, result, model.make_probe(beam_probe("p", quantity, x))),
+          without_axial_spring.small[k++], 1e-8 * largest);
+  scene.beam.kinematics = BeamKinematics::small;
+  EXPECT_THROW(build_model(scene), std::logic_error);  // the reader refuses it first
+}
+
 // An inextensible beam held along x at both ends cannot deflect: refused, naming the key.
 TEST(LargeKinematicsEnds, InextensibleBetweenTwoHeldEndsIsRefused) {
   Scene scene = cantilever_scene(4);
@@ -288,6 +337,45 @@ TEST(LargeKinematicsEnds, InextensibleBetweenTwoHeldEndsIsRefused) {
   }
   scene.beam.axial_stiffness = 1e5;
   EXPECT_NO_THROW(build_model(scene));
+}
+
+// The reader refuses a spring of kind "axial" with small kinematics, naming the key, and reads it
+// with large.
+TEST(LargeKinematicsProbes, AnAxialSpringNeedsLargeKinematics) {
+  const std::string scene_text = R"([scene]
+name = "clamp"
+[beam]
+length = 0.5
+segments = 4
+bending_stiffness = 2.0
+mass_per_length = 0.3
+left = "free"
+KINEMATICS
+[[spring]]
+at = 0
+kind = "translational"
+stiffness = 100.0
+[[spring]]
+at = 0
+kind = "rotational"
+stiffness = 10.0
+[[spring]]
+at = 0
+kind = "axial"
+stiffness = 1000.0
+)";
+  auto with = [&](const std::string& kinematics) {
+    std::string text = scene_text;
+    text.replace(text.find("KINEMATICS"), 10, kinematics);
+    return text;
+  };
+  try {
+    read_scene_text(with(""), "clamp.toml");
+    FAIL() << "accepted";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.key(), "spring[2].kind");
+  }
+  EXPECT_NO_THROW(build_model(read_scene_text(with("kinematics = \"large\""), "clamp.toml")));
 }
 
 // A small-kinematics scene that asks for the axial displacement is refused (it has none at first

@@ -65,8 +65,9 @@ struct MassSpec {
 
 /// [[spring]]: a linear spring (and dashpot in parallel) from the beam at `at` to ground, or to
 /// the beam at `to`. Translational: a force k·(w(at) − w(to)); rotational: a moment
-/// k·(φ(at) − φ(to)). An elastic clamp is a free (or pinned) end with springs at x = 0.
-enum class SpringKind { translational, rotational };
+/// k·(φ(at) − φ(to)); axial (beam.kinematics = "large" only): a force along the fixed frame's x,
+/// k·(u(at) − u(to)). An elastic clamp is a free (or pinned) end with springs at x = 0.
+enum class SpringKind { translational, rotational, axial };
 /// A [[spring]] entry (see SpringKind).
 struct SpringSpec {
   std::string name;                             ///< spring[].name (optional)

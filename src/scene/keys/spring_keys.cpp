@@ -21,11 +21,19 @@ SceneTableKeys spring_table_keys() {
                                      "where the spring holds the beam (a node is put there)")),
                    &BeamSpec::springs, &SpringSpec::at);
   keys.back().constraint = "on the beam: 0 <= at <= beam.length";
-  keys.add(choice("spring", "kind", {"translational", "rotational"}, true, "springs",
-                  "a force k*(w(at) - w(to)) or a moment k*(phi(at) - phi(to))"))
+  keys.add(choice("spring", "kind", {"translational", "rotational", "axial"}, true, "springs",
+                  "a force k*(w(at) - w(to)), a moment k*(phi(at) - phi(to)), or with "
+                  "beam.kinematics = \"large\" a force along x k*(u(at) - u(to))"))
       .text = [](const Scene& scene, std::size_t entry) {
-    return std::string(scene.beam.springs[entry].kind == SpringKind::rotational ? "rotational"
-                                                                                : "translational");
+    switch (scene.beam.springs[entry].kind) {
+      case SpringKind::rotational:
+        return std::string("rotational");
+      case SpringKind::axial:
+        return std::string("axial");
+      case SpringKind::translational:
+        break;
+    }
+    return std::string("translational");
   };
   beam_entry_field(keys.add(quantity("spring", "stiffness", dim::stiffness, positive(), true,
                                      "springs", "k: N/m (translational) or N*m/rad (rotational)")),
