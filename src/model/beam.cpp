@@ -338,7 +338,7 @@ SegmentValues segment_values(const BeamSpec& spec, const BeamMesh& mesh,
   values.sheared = beam.shear_parameter[a] > 0.0;
   if (values.sheared)
     values.translational_compliance += l / section.shear_stiffness.value_or(spec.shear_stiffness);
-  const double axial_stiffness = section.axial_stiffness.value_or(spec.axial_stiffness);
+  const double axial_stiffness = effective_axial_stiffness(spec, section);
   values.axial_compliance = axial_stiffness > 0.0 ? l / axial_stiffness : 0.0;
   return values;
 }

@@ -382,8 +382,6 @@ void add_probes(const Scene& scene, Model& model) {
   }
 }
 
-}  // namespace
-
 // Large kinematics: an inextensible beam whose two ends both hold x (clamped, pinned or sliding)
 // cannot deflect at all (any deflection would lengthen it), and its axial force is not
 // determined: refused, naming the key that makes it extensible.
@@ -401,10 +399,7 @@ void require_deflectable(const Scene& scene) {
                      "would hold the beam along x; hold one end (clamped, pinned or sliding) or "
                      "give a [[spring]] of kind \"axial\"");
   if (beam.left == EndCondition::free || beam.right == EndCondition::free) return;
-  bool inextensible = !(beam.axial_stiffness > 0.0);
-  for (const SectionSpec& section : beam.sections)
-    inextensible = inextensible || !(section.axial_stiffness.value_or(beam.axial_stiffness) > 0.0);
-  if (inextensible)
+  if (!extensible(beam))
     throw InputError(scene.file, "beam.axial_stiffness",
                      "is needed: with beam.kinematics = \"large\" both ends hold the beam along "
                      "x (" +
@@ -413,6 +408,8 @@ void require_deflectable(const Scene& scene) {
                          "), and an inextensible beam between them cannot deflect; give the "
                          "axial stiffness EA (here or for every section)");
 }
+
+}  // namespace
 
 Model build_model(const Scene& scene) {
   require_resolved(scene);

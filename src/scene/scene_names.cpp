@@ -36,6 +36,16 @@ std::vector<SectionSpec> effective_sections(const BeamSpec& beam) {
   return {uniform};
 }
 
+double effective_axial_stiffness(const BeamSpec& beam, const SectionSpec& section) {
+  return section.axial_stiffness.value_or(beam.axial_stiffness);
+}
+
+bool extensible(const BeamSpec& beam) {
+  for (const SectionSpec& section : effective_sections(beam))
+    if (!(effective_axial_stiffness(beam, section) > 0.0)) return false;
+  return true;
+}
+
 namespace {
 
 bool same_section(const SectionSpec& a, const SectionSpec& b) {

@@ -247,14 +247,6 @@ bool asks_for_dea_electrics(const std::vector<std::string>& probe_texts) {
 
 namespace {
 
-// Whether every segment of `beam` has an axial stiffness (its own section's or the beam's).
-bool extensible(const BeamSpec& beam) {
-  if (beam.sections.empty()) return beam.axial_stiffness > 0.0;
-  for (const SectionSpec& section : beam.sections)
-    if (!(section.axial_stiffness.value_or(beam.axial_stiffness) > 0.0)) return false;
-  return true;
-}
-
 // Refuses a large-kinematics scene the analysis does not serve (LargeKinematicsUse).
 void require_served_kinematics(const Scene& scene, LargeKinematicsUse use) {
   if (scene.beam.kinematics != BeamKinematics::large) return;

@@ -337,6 +337,18 @@ TEST(LargeKinematicsEnds, InextensibleBetweenTwoHeldEndsIsRefused) {
   }
   scene.beam.axial_stiffness = 1e5;
   EXPECT_NO_THROW(build_model(scene));
+  // Sections that each give their own EA make the beam extensible without beam.axial_stiffness;
+  // one section without it leaves that section inextensible.
+  SectionSpec first, second;
+  first.length = second.length = 0.25;
+  first.bending_stiffness = second.bending_stiffness = 2.0;
+  first.mass_per_length = second.mass_per_length = 0.3;
+  first.axial_stiffness = second.axial_stiffness = 1e5;
+  scene.beam.axial_stiffness = 0.0;
+  scene.beam.sections = {first, second};
+  EXPECT_NO_THROW(build_model(scene));
+  scene.beam.sections[1].axial_stiffness.reset();
+  EXPECT_THROW(build_model(scene), InputError);
 }
 
 // The reader refuses a spring of kind "axial" with small kinematics, naming the key, and reads it

@@ -108,6 +108,11 @@ struct BeamSpec {
 /// The beam's sections as built: its [[section]] entries, or one section of the [beam] values
 /// (with the [damping] table's defaults left unset).
 std::vector<SectionSpec> effective_sections(const BeamSpec& beam);
+/// EA [N] of `section` of `beam`: its own, else beam.axial_stiffness; 0 when neither is given.
+double effective_axial_stiffness(const BeamSpec& beam, const SectionSpec& section);
+/// Whether every section of `beam` has an axial stiffness (effective_axial_stiffness > 0): with
+/// large kinematics, whether no segment is inextensible.
+bool extensible(const BeamSpec& beam);
 /// Whether two beams are the same structure (every field, sections, masses and springs).
 bool same_beam(const BeamSpec& a, const BeamSpec& b);
 
