@@ -286,7 +286,6 @@ StaticResult solve_static(const System& system, const StaticOptions& options) {
                     "state is beyond what the network can follow"));
     increment *= 0.5;
   }
-  result.load_factor = reached;
   result.state = z;
   result.operating_point = rest_state(z, linear.mechanical());
   const double b_norm = b.norm();

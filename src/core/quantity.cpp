@@ -14,6 +14,12 @@ const std::vector<ProbeQuantity>& probe_quantities() {
   return all;
 }
 
+bool is_beam_motion(ProbeQuantity quantity) {
+  return quantity == ProbeQuantity::deflection || quantity == ProbeQuantity::velocity ||
+         quantity == ProbeQuantity::rotation || quantity == ProbeQuantity::angular_velocity ||
+         quantity == ProbeQuantity::axial_displacement;
+}
+
 const char* probe_quantity_name(ProbeQuantity quantity) {
   switch (quantity) {
     case ProbeQuantity::deflection:

@@ -21,11 +21,7 @@ std::vector<double> scene_attachment_points(const Scene& scene) {
   // Large kinematics: a probe reads a node's own unknowns (no shape functions between nodes).
   if (scene.beam.kinematics == BeamKinematics::large)
     for (const ProbeSpec& probe : scene.probes)
-      if (probe.quantity == ProbeQuantity::deflection ||
-          probe.quantity == ProbeQuantity::velocity || probe.quantity == ProbeQuantity::rotation ||
-          probe.quantity == ProbeQuantity::angular_velocity ||
-          probe.quantity == ProbeQuantity::axial_displacement)
-        points.push_back(probe.at);
+      if (is_beam_motion(probe.quantity)) points.push_back(probe.at);
   return points;
 }
 

@@ -633,11 +633,6 @@ void spring_force_terms(const Model& model, const ProbeSpec& spec, Probe& probe)
 // Returns true when it filled `probe`; false for quantities that are not the beam's.
 // @throws InputError for a position between nodes or a quantity not yet carried
 bool large_kinematics_probe(const BeamLayout& beam, const ProbeSpec& spec, Probe& probe) {
-  const bool on_beam = spec.quantity == ProbeQuantity::deflection ||
-                       spec.quantity == ProbeQuantity::velocity ||
-                       spec.quantity == ProbeQuantity::rotation ||
-                       spec.quantity == ProbeQuantity::angular_velocity ||
-                       spec.quantity == ProbeQuantity::axial_displacement;
   const std::string who = "probe " + spec.name;
   if (spec.quantity == ProbeQuantity::strain || spec.quantity == ProbeQuantity::reaction_force ||
       spec.quantity == ProbeQuantity::reaction_moment ||
@@ -646,7 +641,7 @@ bool large_kinematics_probe(const BeamLayout& beam, const ProbeSpec& spec, Probe
                      std::string("'") + probe_quantity_name(spec.quantity) +
                          "' is not available with beam.kinematics = \"large\" yet (deflection, "
                          "axial_displacement, rotation and their rates are)");
-  if (!on_beam) return false;
+  if (!is_beam_motion(spec.quantity)) return false;
   const int node = beam.node_at(spec.at);
   if (node < 0)
     throw InputError(who, "at",

@@ -112,8 +112,9 @@ Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& d
   const DeflectionPeak* largest = nullptr;
   // Large kinematics has no small-deflection assumption: the deflections are not limited.
   const bool large = scene.beam.kinematics == BeamKinematics::large;
-  for (const DeflectionPeak& deflection : deflections) {
-    if (large) break;
+  const std::vector<DeflectionPeak> none;
+  const std::vector<DeflectionPeak>& checked = large ? none : deflections;
+  for (const DeflectionPeak& deflection : checked) {
     if (!largest || deflection.peak > largest->peak) largest = &deflection;
     if (!(deflection.peak > limit)) continue;
     ValidityViolation violation;

@@ -58,7 +58,6 @@ struct StaticResult {
   double relative_residual = 0.0;  ///< ‖K·z + g − b‖ / ‖b‖ (above kResidualLimit: failed)
   int newton_iterations = 0;       ///< over every load step
   int load_steps = 0;              ///< load steps solved (1: the whole load at once)
-  double load_factor = 0.0;        ///< the fraction of the load solved (1 on success)
   double seconds = 0.0;            ///< [s]
 };
 

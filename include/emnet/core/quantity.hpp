@@ -23,6 +23,9 @@ enum class ProbeQuantity {
   /// u [m]: the fixed-frame x displacement (along the undeformed beam; large kinematics only)
   axial_displacement
 };
+/// Whether `quantity` is the motion of a point of the beam: a displacement (deflection,
+/// axial_displacement), a rotation, or one of their rates.
+bool is_beam_motion(ProbeQuantity quantity);
 /// Every quantity, in the order scene files and messages list them.
 const std::vector<ProbeQuantity>& probe_quantities();
 /// "deflection", …
