@@ -13,14 +13,6 @@
 
 namespace emnet {
 
-namespace {
-
-void show_phase(Progress* progress, const char* what) {
-  if (progress) progress->report(0, 0, what);
-}
-
-}  // namespace
-
 std::string no_ac_input_reason(const Scene& scene) {
   const auto& drive = scene.drive;
   std::string why;
@@ -94,7 +86,7 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
     return result;
   };
   if (options.reduction) {
-    show_phase(options.progress, "modal reduction and its check");
+    report_phase(options.progress, "modal reduction and its check");
     result.reduction = run_ac_reduced(system, operating_point, grid, probes, *options.reduction);
     if (!result.reduction->status.ok())
       return fail(AcStudyStage::reduction, result.reduction->status);
@@ -132,7 +124,7 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
     ModalOptions modal_options;
     modal_options.keep_vectors = false;
     if (system.size() > modal_options.dense_limit) modal_options.count = 10;
-    show_phase(options.progress, "modes for the resonance markers");
+    report_phase(options.progress, "modes for the resonance markers");
     const ModalResult modes = run_modes(system, operating_point, modal_options);
     if (modes.status.ok())
       for (const auto& mode : modes.modes)

@@ -18,10 +18,6 @@ namespace emnet {
 
 namespace {
 
-void show_phase(Progress* progress, const char* what) {
-  if (progress) progress->report(0, 0, what);
-}
-
 // A mode of the 2N mesh: its frequency and its shape at the N mesh's beam nodes.
 struct RefinedMode {
   double frequency_hz = 0.0;
@@ -62,7 +58,7 @@ Status refined_modes(const Scene& scene, const ModesStudyOptions& options, int c
                      const std::vector<double>& x, std::vector<RefinedMode>& refined) {
   Scene doubled = scene;
   doubled.beam.refinement = 2;  // every segment of N halved: the nested 2N mesh
-  show_phase(options.progress, "building the network");
+  report_phase(options.progress, "building the network");
   const Model fine_model = prepare_model(doubled, options.prepare);
   const System fine_system = fine_model.network.assemble();
   OperatingPointOptions point_options;
@@ -177,7 +173,7 @@ namespace {
 void build_the_network(const Scene& scene, const ModesStudyOptions& options,
                        ModesStudyResult& result) {
   const Stopwatch stopwatch;
-  show_phase(options.progress, "building the network");
+  report_phase(options.progress, "building the network");
   result.model = prepare_model(scene, options.prepare);
   result.system = result.model.network.assemble();
   result.seconds_model = stopwatch.seconds();

@@ -37,6 +37,11 @@ inline bool keep_going(Progress* progress, long done, long total, std::string_vi
   return !progress->cancelled();
 }
 
+/// Reports a phase with no count (a study's "building the model"); nothing when `progress` is null.
+inline void report_phase(Progress* progress, std::string_view what) {
+  if (progress != nullptr) progress->report(0, 0, what);
+}
+
 /// The Status of an analysis stopped by its Progress: code StatusCode::cancelled, message
 /// "cancelled" (the one place that builds it).
 inline Status cancelled_status() {
