@@ -12,16 +12,11 @@
 #include "emnet/elements/transformer.hpp"
 #include "emnet/model/mesh.hpp"
 #include "emnet/model/model.hpp"
+#include "position_text.hpp"
 
 namespace emnet {
 
 namespace {
-
-std::string millimetres(double x) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "x = %.4g mm", x * 1e3);
-  return buffer;
-}
 
 // Segment index and local coordinate ξ ∈ [0, 1] of position x.
 std::pair<int, double> locate(const BeamLayout& beam, double x) {
@@ -136,7 +131,7 @@ namespace {
 size_t attachment_node(const BeamLayout& beam, double position, const std::string& what) {
   const int node = beam.node_at(position);
   if (node < 0)
-    throw std::logic_error("add_beam: no node at " + millimetres(position) + " for " + what);
+    throw std::logic_error("add_beam: no node at " + position_text(position) + " for " + what);
   return static_cast<size_t>(node);
 }
 
@@ -155,7 +150,7 @@ void add_point_masses(Network& network, const BeamSpec& spec, const BeamLayout& 
                            "",
                            -1,
                            -1,
-                           what + " of point mass " + id + " at " + millimetres(mass.at)};
+                           what + " of point mass " + id + " at " + position_text(mass.at)};
     };
     if (beam.velocity[k] != ground && mass.mass > 0.0)
       add_recorded<Capacitor>(network, structure, record(ElementPart::point_mass, "mass [kg]"),
@@ -192,7 +187,7 @@ void add_springs(Network& network, const BeamSpec& spec, const BeamLayout& beam,
                               (rotational ? "rotational"
                                : axial    ? "axial"
                                           : "translational") +
-                              ") at " + millimetres(spring.at);
+                              ") at " + position_text(spring.at);
     add_recorded<Inductor>(
         network, structure,
         {Component::spring, ElementPart::spring_compliance, static_cast<int>(n), "", -1, -1,
@@ -244,7 +239,7 @@ void add_beam_nodes(Network& network, const BeamSpec& spec, BeamLayout& beam,
     // Large kinematics: a clamped, pinned or sliding end holds x too (a sliding end slides
     // across the beam, not along it).
     const bool hold_x = at_end && end != EndCondition::free;
-    const std::string where = millimetres(x);
+    const std::string where = position_text(x);
     if (beam.kinematics == BeamKinematics::large)
       beam.axial_velocity.push_back(
           hold_x ? ground
