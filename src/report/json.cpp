@@ -192,9 +192,11 @@ Json to_json(const Model& model, const StaticResult& rest,
   out["automatic_choices"] = to_json(model.automatic_choices);
   add_mesh_json(out, model);
   out["nodes"] = Json::array();
+  const std::vector<std::string> columns = static_node_columns(model);
   for (const auto& row : nodes) {
-    out["nodes"].push_back({{"x_m", row[0]}, {"deflection_m", row[1]}, {"rotation_rad", row[2]}});
-    if (row.size() > 3) out["nodes"].back()["axial_displacement_m"] = row[3];  // large kinematics
+    Json node = Json::object();
+    for (size_t c = 0; c < columns.size() && c < row.size(); ++c) node[columns[c]] = row[c];
+    out["nodes"].push_back(std::move(node));
   }
   out["probes"] = Json::array();
   for (size_t k = 0; k < probes.size(); ++k)

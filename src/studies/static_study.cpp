@@ -8,6 +8,12 @@
 
 namespace emnet {
 
+std::vector<std::string> static_node_columns(const Model& model) {
+  std::vector<std::string> columns = {"x_m", "deflection_m", "rotation_rad"};
+  if (model.beam.kinematics == BeamKinematics::large) columns.push_back("axial_displacement_m");
+  return columns;
+}
+
 std::string static_discretisation(const Model& model) {
   return model.beam.kinematics == BeamKinematics::large
              ? "large kinematics: chords of constant length between the nodes, an error of order "

@@ -59,10 +59,7 @@ int run_static(const CommonOptions& options) {
   const double total = stopwatch.seconds();
   end_progress(options);
   auto write_files = [&] {
-    if (options.csv.empty()) return;
-    std::vector<std::string> header = {"x_m", "deflection_m", "rotation_rad"};
-    if (!rows.empty() && rows[0].size() > 3) header.push_back("axial_displacement_m");
-    write_csv(options.csv, header, rows);
+    if (!options.csv.empty()) write_csv(options.csv, emnet::static_node_columns(p.model), rows);
   };
   if (options.json) {
     std::cout << json_text(
@@ -80,7 +77,7 @@ int run_static(const CommonOptions& options) {
             << emnet::static_discretisation(p.model) << "\n"
             << "cost: solve " << milliseconds(p.rest.seconds) << ", total " << milliseconds(total)
             << "\n\n";
-  const bool axial = !rows.empty() && rows[0].size() > 3;  // large kinematics
+  const bool axial = emnet::static_node_columns(p.model).size() > 3;  // large kinematics
   std::printf("%8s %12s %16s %16s%s\n", "node", "x [mm]", "deflection [m]", "rotation [rad]",
               axial ? "      x displ. [m]" : "");
   for (size_t k = 0; k < rows.size(); ++k) {

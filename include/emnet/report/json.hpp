@@ -64,7 +64,7 @@ Json to_json(const SensitivityResult& result, const Scene& scene, bool with_chec
              double total_seconds);
 
 /// The static state of `model`: scene, automatic_choices, segments, nodes [{x_m, deflection_m,
-/// rotation_rad}] from `nodes` (one {x [m], w [m], φ [rad]} per beam node), probes [{name,
+/// rotation_rad[, axial_displacement_m]}] from `nodes` (static_node_columns), probes [{name,
 /// description, unit, value}] with `probe_values` (one per probe), accuracy (relative_residual,
 /// newton_iterations, discretisation), cost (solve and `total_seconds`), validity.
 /// @param total_seconds  the whole command, from its start [s]

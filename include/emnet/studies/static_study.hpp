@@ -24,6 +24,11 @@ struct StaticStudyValues {
   Validity validity;  ///< the deflections and the drive's voltages at t = 0 against their limits
 };
 
+/// The names of the columns of StaticStudyValues::nodes for `model`, as the JSON and CSV of
+/// `emnet static` write them: x_m, deflection_m, rotation_rad, and with large kinematics
+/// axial_displacement_m.
+std::vector<std::string> static_node_columns(const Model& model);
+
 /// What the nodal values' discretisation error is, in words: none for small kinematics
 /// (Hermite statics), of order N⁻² in the deflected shape for large (docs/model.md, Large
 /// deflection).
