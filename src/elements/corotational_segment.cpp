@@ -91,88 +91,126 @@ void CoRotationalSegment::stamp(Stamper& s) const {
   s.g(b_.rotation, q, 0.5 * l);
 }
 
+// The segment's geometry at y, and where its unknowns and its nodes' rows are.
+struct CoRotationalSegment::ChordState {
+  int dx, dy, theta, n, q, p;  // indices in y of d_x, d_y, θ, N, the transverse and axial forces
+  double c, s;                 // cos θ, sin θ
+  double chord;                // ℓ = cos θ·(l + d_x) + sin θ·d_y
+  double normal;               // h = −sin θ·(l + d_x) + cos θ·d_y, zero on the chord
+  double ratio;                // l/ℓ
+  double ratio_theta, ratio_dx, ratio_dy;  // ∂(l/ℓ) = −(l/ℓ²)·∂ℓ, ∂ℓ/∂(θ, d_x, d_y) = (h, c, s)
+  double dvx, dvy;                         // v_b − v_a
+  double normal_rate;                      // e₂·(v_b − v_a)
+};
+
+// Adds g's entries (and, with a jacobian, ∂g/∂y) row by row; ground rows and columns are dropped.
+struct CoRotationalSegment::NonlinearSink {
+  Eigen::VectorXd& g;
+  std::vector<Eigen::Triplet<double>>* jacobian;
+  void value(int row, double v) const {
+    if (row != ground) g[row] += v;
+  }
+  void derivative(int row, int column, double v) const {
+    if (jacobian && row != ground && column != ground) jacobian->emplace_back(row, column, v);
+  }
+};
+
 void CoRotationalSegment::add_nonlinear(const Eigen::VectorXd& y, int branch_offset,
                                         Eigen::VectorXd& g,
                                         std::vector<Eigen::Triplet<double>>* jacobian) const {
-  const double l = length_;
-  const int dx = branch_offset + chord_x, dy = branch_offset + chord_y;
-  const int theta = branch_offset + chord_angle, n = branch_offset + axial_force;
-  const int q = branch_offset + force_branch(), p = branch_offset + axial_branch();
-  const double c = std::cos(y[theta]), s = std::sin(y[theta]);
-  const double chord_x_length = l + y[dx], chord_y_length = y[dy];
-  const double chord = c * chord_x_length + s * chord_y_length;    // ℓ
-  const double normal = -s * chord_x_length + c * chord_y_length;  // h, zero on the chord
-  const double force = y[q], tension = y[p];
-  const double ratio = l / chord;  // l/ℓ
-  // ∂ℓ/∂(θ, d_x, d_y) = (h, cos θ, sin θ); ∂(l/ℓ) = −(l/ℓ²)·∂ℓ.
-  const double ratio_theta = -ratio / chord * normal, ratio_dx = -ratio / chord * c,
-               ratio_dy = -ratio / chord * s;
-  auto add = [&](int row, int column, double value) {
-    if (jacobian && row != ground && column != ground) jacobian->emplace_back(row, column, value);
-  };
-  // The chord's angle: h − (−l·θ + d_y).
-  g[theta] += normal + l * y[theta] - y[dy];
-  add(theta, theta, l - chord);
-  add(theta, dx, -s);
-  add(theta, dy, c - 1.0);
-  // The axial row: −(ℓ − l) + d_x.
-  g[n] += -(chord - l) + y[dx];
-  add(n, theta, -normal);
-  add(n, dx, 1.0 - c);
-  add(n, dy, -s);
+  ChordState state;
+  state.dx = branch_offset + chord_x;
+  state.dy = branch_offset + chord_y;
+  state.theta = branch_offset + chord_angle;
+  state.n = branch_offset + axial_force;
+  state.q = branch_offset + force_branch();
+  state.p = branch_offset + axial_branch();
+  state.c = std::cos(y[state.theta]);
+  state.s = std::sin(y[state.theta]);
+  const double chord_x_length = length_ + y[state.dx], chord_y_length = y[state.dy];
+  state.chord = state.c * chord_x_length + state.s * chord_y_length;
+  state.normal = -state.s * chord_x_length + state.c * chord_y_length;
+  state.ratio = length_ / state.chord;
+  state.ratio_theta = -state.ratio / state.chord * state.normal;
+  state.ratio_dx = -state.ratio / state.chord * state.c;
+  state.ratio_dy = -state.ratio / state.chord * state.s;
   auto velocity = [&](NodeId node) { return node == ground ? 0.0 : y[node]; };
-  const double dvx = velocity(b_.x) - velocity(a_.x), dvy = velocity(b_.y) - velocity(a_.y);
-  const double normal_rate = -s * dvx + c * dvy;  // e₂·(v_b − v_a)
+  state.dvx = velocity(b_.x) - velocity(a_.x);
+  state.dvy = velocity(b_.y) - velocity(a_.y);
+  state.normal_rate = -state.s * state.dvx + state.c * state.dvy;
+  const NonlinearSink sink{g, jacobian};
+  add_chord_rows(y, state, sink);
+  add_damper_rows(state, sink);
+  add_node_forces(y[state.q], y[state.p], state, sink);
+}
+
+void CoRotationalSegment::add_chord_rows(const Eigen::VectorXd& y, const ChordState& st,
+                                         const NonlinearSink& sink) const {
+  const double l = length_;
+  // The chord's angle: h − (−l·θ + d_y).
+  sink.value(st.theta, st.normal + l * y[st.theta] - y[st.dy]);
+  sink.derivative(st.theta, st.theta, l - st.chord);
+  sink.derivative(st.theta, st.dx, -st.s);
+  sink.derivative(st.theta, st.dy, st.c - 1.0);
+  // The axial row: −(ℓ − l) + d_x.
+  sink.value(st.n, -(st.chord - l) + y[st.dx]);
+  sink.derivative(st.n, st.theta, -st.normal);
+  sink.derivative(st.n, st.dx, 1.0 - st.c);
+  sink.derivative(st.n, st.dy, -st.s);
+}
+
+void CoRotationalSegment::add_damper_rows(const ChordState& st, const NonlinearSink& sink) const {
   // The axial damper's share of P: −(τ/n_A)·(e₁·(v_b − v_a) − (v_bx − v_ax)).
-  if (p != n) {
+  if (st.p != st.n) {
     const double damper = kelvin_voigt_time_ / axial_compliance_;
-    g[p] += -damper * (c * dvx + s * dvy - dvx);
-    add(p, b_.x, -damper * (c - 1.0));
-    add(p, a_.x, damper * (c - 1.0));
-    add(p, b_.y, -damper * s);
-    add(p, a_.y, damper * s);
-    add(p, theta, -damper * normal_rate);
+    sink.value(st.p, -damper * (st.c * st.dvx + st.s * st.dvy - st.dvx));
+    sink.derivative(st.p, b_.x, -damper * (st.c - 1.0));
+    sink.derivative(st.p, a_.x, damper * (st.c - 1.0));
+    sink.derivative(st.p, b_.y, -damper * st.s);
+    sink.derivative(st.p, a_.y, damper * st.s);
+    sink.derivative(st.p, st.theta, -damper * st.normal_rate);
   }
-  // The transverse damper's share of Q: (τ/n_T)·(l·θ' − (v_by − v_ay)), l·θ' = (l/ℓ)·e₂·(v_b −
-  // v_a).
+  // The transverse damper's share of Q: (τ/n_T)·(l·θ' − (v_by − v_ay)), with
+  // l·θ' = (l/ℓ)·e₂·(v_b − v_a).
   if (kelvin_voigt_time_ > 0.0) {
     const double damper = kelvin_voigt_time_ / transverse_compliance_;
-    g[q] += damper * (ratio * normal_rate - dvy);
-    add(q, b_.x, -damper * ratio * s);
-    add(q, a_.x, damper * ratio * s);
-    add(q, b_.y, damper * (ratio * c - 1.0));
-    add(q, a_.y, -damper * (ratio * c - 1.0));
-    add(q, theta, damper * (ratio_theta * normal_rate + ratio * (-c * dvx - s * dvy)));
-    add(q, dx, damper * ratio_dx * normal_rate);
-    add(q, dy, damper * ratio_dy * normal_rate);
+    const double ratio = st.ratio, c = st.c, s = st.s;
+    sink.value(st.q, damper * (ratio * st.normal_rate - st.dvy));
+    sink.derivative(st.q, b_.x, -damper * ratio * s);
+    sink.derivative(st.q, a_.x, damper * ratio * s);
+    sink.derivative(st.q, b_.y, damper * (ratio * c - 1.0));
+    sink.derivative(st.q, a_.y, -damper * (ratio * c - 1.0));
+    sink.derivative(
+        st.q, st.theta,
+        damper * (st.ratio_theta * st.normal_rate + ratio * (-c * st.dvx - s * st.dvy)));
+    sink.derivative(st.q, st.dx, damper * st.ratio_dx * st.normal_rate);
+    sink.derivative(st.q, st.dy, damper * st.ratio_dy * st.normal_rate);
   }
-  // The force on end a, f_a = Q·(l/ℓ)·e₂ − P·e₁, less its part at rest (−P, Q); end b the opposite.
-  const double fx = -force * ratio * s - tension * c + tension;
-  const double fy = force * ratio * c - tension * s - force;
-  const double fx_q = -ratio * s, fx_n = 1.0 - c;
-  const double fx_theta = -force * (ratio_theta * s + ratio * c) + tension * s;
-  const double fx_dx = -force * s * ratio_dx, fx_dy = -force * s * ratio_dy;
-  const double fy_q = ratio * c - 1.0, fy_n = -s;
-  const double fy_theta = force * (ratio_theta * c - ratio * s) - tension * c;
-  const double fy_dx = force * c * ratio_dx, fy_dy = force * c * ratio_dy;
-  for (const auto& [end, sign] : {std::pair{a_, 1.0}, std::pair{b_, -1.0}}) {
-    if (end.x != ground) {
-      g[end.x] += sign * fx;
-      add(end.x, q, sign * fx_q);
-      add(end.x, p, sign * fx_n);
-      add(end.x, theta, sign * fx_theta);
-      add(end.x, dx, sign * fx_dx);
-      add(end.x, dy, sign * fx_dy);
+}
+
+void CoRotationalSegment::add_node_forces(double force, double tension, const ChordState& st,
+                                          const NonlinearSink& sink) const {
+  // The force on end a, f_a = Q·(l/ℓ)·e₂ − P·e₁, less its part at rest (−P, Q); end b the
+  // opposite. Each component with its derivatives in (Q, P, θ, d_x, d_y).
+  const double ratio = st.ratio, c = st.c, s = st.s;
+  struct Component {
+    double value;
+    double derivative[5];
+  };
+  const Component x = {
+      -force * ratio * s - tension * c + tension,
+      {-ratio * s, 1.0 - c, -force * (st.ratio_theta * s + ratio * c) + tension * s,
+       -force * s * st.ratio_dx, -force * s * st.ratio_dy}};
+  const Component y = {force * ratio * c - tension * s - force,
+                       {ratio * c - 1.0, -s, force * (st.ratio_theta * c - ratio * s) - tension * c,
+                        force * c * st.ratio_dx, force * c * st.ratio_dy}};
+  const int columns[5] = {st.q, st.p, st.theta, st.dx, st.dy};
+  for (const auto& [end, sign] : {std::pair{a_, 1.0}, std::pair{b_, -1.0}})
+    for (const auto& [row, component] : {std::pair{end.x, x}, std::pair{end.y, y}}) {
+      if (row == ground) continue;
+      sink.value(row, sign * component.value);
+      for (int k = 0; k < 5; ++k) sink.derivative(row, columns[k], sign * component.derivative[k]);
     }
-    if (end.y != ground) {
-      g[end.y] += sign * fy;
-      add(end.y, q, sign * fy_q);
-      add(end.y, p, sign * fy_n);
-      add(end.y, theta, sign * fy_theta);
-      add(end.y, dx, sign * fy_dx);
-      add(end.y, dy, sign * fy_dy);
-    }
-  }
 }
 
 }  // namespace emnet

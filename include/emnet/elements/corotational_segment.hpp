@@ -87,6 +87,16 @@ class CoRotationalSegment : public Element {
   double kelvin_voigt_time() const { return kelvin_voigt_time_; }
 
  private:
+  struct ChordState;     // the geometry at y (corotational_segment.cpp)
+  struct NonlinearSink;  // where g and ∂g/∂y go
+  // add_nonlinear's phases: the chord's angle and axial rows, the dampers' rates, the forces on
+  // the nodes (see above), at the state `st` add_nonlinear computes once.
+  void add_chord_rows(const Eigen::VectorXd& y, const ChordState& st,
+                      const NonlinearSink& sink) const;
+  void add_damper_rows(const ChordState& st, const NonlinearSink& sink) const;
+  void add_node_forces(double force, double tension, const ChordState& st,
+                       const NonlinearSink& sink) const;
+
   End a_, b_;
   double length_;
   double transverse_compliance_;
