@@ -113,7 +113,6 @@ py::dict run_modes(const SceneHandle& handle, int count, bool dense, bool error_
     options.error_estimate = error_estimate;
     options.shapes = shapes;
     options.prepare = prepare_options_for_probes(probe_texts);
-    options.prepare.large_kinematics = emnet::LargeKinematicsUse::dynamics;
     options.progress = progress;
     study = emnet::run_modes_study(with_segments(handle.scene), options);
     require(study.status, "modes: ");
@@ -205,7 +204,6 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
     options.start = start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
     options.outputs = outputs;
     options.prepare = prepare_options_for_probes(outputs);
-    options.prepare.large_kinematics = emnet::LargeKinematicsUse::dynamics;
     options.progress = progress;
     study = emnet::run_transient_study(with_segments(handle.scene), options);
     require(study.status, "");

@@ -54,12 +54,20 @@ double modal_assurance(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b) {
 // The modes of `scene` with every segment halved (2N segments), each as its frequency and its shape
 // at the coarse beam nodes `x` (empty when its modal analysis fails: the estimate is then left out,
 // not the study); a failed operating point of the refined model fails the study.
+// The prepare options of the study's models: the modal analysis serves large kinematics
+// linearised about the deflected state (LargeKinematicsUse::dynamics).
+PrepareOptions modes_prepare_options(const ModesStudyOptions& options) {
+  PrepareOptions prepare = options.prepare;
+  prepare.large_kinematics = LargeKinematicsUse::dynamics;
+  return prepare;
+}
+
 Status refined_modes(const Scene& scene, const ModesStudyOptions& options, int count,
                      const std::vector<double>& x, std::vector<RefinedMode>& refined) {
   Scene doubled = scene;
   doubled.beam.refinement = 2;  // every segment of N halved: the nested 2N mesh
   report_phase(options.progress, "building the network");
-  const Model fine_model = prepare_model(doubled, options.prepare);
+  const Model fine_model = prepare_model(doubled, modes_prepare_options(options));
   const System fine_system = fine_model.network.assemble();
   OperatingPointOptions point_options;
   point_options.static_options.progress = options.progress;
@@ -174,7 +182,7 @@ void build_the_network(const Scene& scene, const ModesStudyOptions& options,
                        ModesStudyResult& result) {
   const Stopwatch stopwatch;
   report_phase(options.progress, "building the network");
-  result.model = prepare_model(scene, options.prepare);
+  result.model = prepare_model(scene, modes_prepare_options(options));
   result.system = result.model.network.assemble();
   result.seconds_model = stopwatch.seconds();
 }

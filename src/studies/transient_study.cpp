@@ -81,7 +81,9 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
   if (options.switching_hz)
     set_switching_frequency(scene, *options.switching_hz);  // drive and periodic sources
   TransientStudyResult study;
-  study.model = prepare_model(scene, options.prepare);
+  PrepareOptions prepare = options.prepare;
+  prepare.large_kinematics = LargeKinematicsUse::dynamics;  // IDA serves it (the exact method not)
+  study.model = prepare_model(scene, prepare);
   study.system = study.model.network.assemble();
   const Model& model = study.model;
   study.frequency_hz = model.scene.drive.frequency;

@@ -167,7 +167,6 @@ int run_modes_command(const CommonOptions& options, const emnet::ModesStudyOptio
   const emnet::Scene scene = load_scene(options);
   emnet::ModesStudyOptions study_options = asked;
   study_options.prepare.electrical_probe_requested = electrical_probe_requested(options);
-  study_options.prepare.large_kinematics = emnet::LargeKinematicsUse::dynamics;
   study_options.progress = progress_of(options);
   const emnet::ModesStudyResult study = emnet::run_modes_study(scene, study_options);
   stop_if_interrupted();

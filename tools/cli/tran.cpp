@@ -93,7 +93,6 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   study_options.outputs = options.probes;
   study_options.outputs.insert(study_options.outputs.end(), plot_only.begin(), plot_only.end());
   study_options.prepare.electrical_probe_requested = electrical_probe_requested(options);
-  study_options.prepare.large_kinematics = emnet::LargeKinematicsUse::dynamics;
   study_options.progress = progress_of(options);
   show_phase(options, "building the network");
   emnet::TransientStudyResult study = emnet::run_transient_study(std::move(scene), study_options);

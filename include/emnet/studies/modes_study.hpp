@@ -43,11 +43,13 @@ constexpr int kModesErrorEstimateSegmentLimit = 1000;
 constexpr double kModeShapeMatchLimit = 0.9;
 
 struct ModesStudyOptions {
-  int count = 0;                 // oscillatory modes kept (0: the analysis's default request)
-  bool dense = false;            // every pole by the dense method, up to kDenseModesLimit unknowns
-  bool error_estimate = true;    // the N/2N discretisation error estimate
-  bool shapes = false;           // the mode shapes along the beam
-  PrepareOptions prepare;        // how the scene's remaining "auto" keys are resolved
+  int count = 0;               // oscillatory modes kept (0: the analysis's default request)
+  bool dense = false;          // every pole by the dense method, up to kDenseModesLimit unknowns
+  bool error_estimate = true;  // the N/2N discretisation error estimate
+  bool shapes = false;         // the mode shapes along the beam
+  // how the scene's remaining "auto" keys are resolved; the study prepares large kinematics
+  // for dynamics itself (LargeKinematicsUse::dynamics, whatever large_kinematics says here)
+  PrepareOptions prepare;
   Progress* progress = nullptr;  // the phases, the static solve and the modal analysis
 
   /// The checks of the options alone, as run_modes_study makes them first.

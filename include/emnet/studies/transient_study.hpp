@@ -44,6 +44,8 @@ struct TransientStudyOptions {
   // Output texts: a name of transient_output_list (dx4, u_A) or any probe parse_probe takes;
   // empty: transient_output_list.
   std::vector<std::string> outputs;
+  /// How the scene's remaining "auto" keys are resolved; the study prepares large kinematics for
+  /// dynamics itself (LargeKinematicsUse::dynamics, whatever large_kinematics says here).
   PrepareOptions prepare;
   Progress* progress = nullptr;  // one report per output time
 
