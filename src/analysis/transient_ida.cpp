@@ -179,11 +179,15 @@ Eigen::VectorXd absolute_tolerances(const DisplacementForm& form, const StaticRe
                                     double rtol, double frequency) {
   const System& system = form.system();
   const int n = system.size();
+  // Six kinds (domain × across/through) and a seventh for the unknowns whose tolerance follows
+  // the displacements' (Unknown::tolerance_per_displacement), kept out of the others' scales.
+  constexpr int follows_displacement = 6;
   auto kind = [&](int k) {
     const Unknown& u = system.unknowns[static_cast<size_t>(k)];
+    if (u.tolerance_per_displacement > 0.0) return follows_displacement;
     return static_cast<int>(u.domain) * 2 + (u.kind == Unknown::Kind::node_across ? 0 : 1);
   };
-  double largest[6] = {0, 0, 0, 0, 0, 0};
+  double largest[7] = {0, 0, 0, 0, 0, 0, 0};
   if (rest.status.ok())
     for (int k = 0; k < n; ++k)
       largest[kind(k)] = std::max(largest[kind(k)], std::abs(rest.state[k]));
@@ -213,9 +217,15 @@ Eigen::VectorXd absolute_tolerances(const DisplacementForm& form, const StaticRe
     const double floor = 1e-10 * std::max(largest[2 * domain], largest[2 * domain + 1]);
     for (int k = 2 * domain; k < 2 * domain + 2; ++k) largest[k] = std::max(largest[k], floor);
   }
+  const double displacement = largest[static_cast<int>(Domain::translational) * 2];
   Eigen::VectorXd atol(form.size());
   for (int k = 0; k < n; ++k) {
-    const double scale = largest[kind(k)] > 0.0 ? largest[kind(k)] : 1.0;
+    const double per_displacement =
+        system.unknowns[static_cast<size_t>(k)].tolerance_per_displacement;
+    const double kind_scale = kind(k) == follows_displacement
+                                  ? (displacement > 0.0 ? displacement : 1.0) * per_displacement
+                                  : largest[kind(k)];
+    const double scale = kind_scale > 0.0 ? kind_scale : 1.0;
     atol[k] = rtol * scale;
     if (form.velocity_of(k) >= 0) atol[form.velocity_of(k)] = rtol * scale * omega;
   }

@@ -28,16 +28,21 @@ CoRotationalSegment::CoRotationalSegment(std::string name, End a, End b, double 
 
 std::vector<Unknown> CoRotationalSegment::branch_unknowns() const {
   const std::string& id = name();
+  using Kind = Unknown::Kind;
+  // Each is fixed by the chord's change d through the segment's geometry or a compliance:
+  // their IDA tolerances follow d's (Unknown::tolerance_per_displacement).
+  const double per_force = 1.0 / transverse_compliance_;
+  const double per_tension = axial_compliance_ > 0.0 ? 1.0 / axial_compliance_ : 0.0;
   std::vector<Unknown> unknowns = {
-      {"dx_" + id, Unknown::Kind::branch_through, Domain::translational},
-      {"dy_" + id, Unknown::Kind::branch_through, Domain::translational},
-      {"th_" + id, Unknown::Kind::branch_through, Domain::rotational},
-      {"F_" + id, Unknown::Kind::branch_through, Domain::translational},
-      {"N_" + id, Unknown::Kind::branch_through, Domain::translational}};
+      {"dx_" + id, Kind::branch_through, Domain::translational, 1.0},
+      {"dy_" + id, Kind::branch_through, Domain::translational, 1.0},
+      {"th_" + id, Kind::branch_through, Domain::rotational, 1.0 / length_},
+      {"F_" + id, Kind::branch_through, Domain::translational, per_force},
+      {"N_" + id, Kind::branch_through, Domain::translational, per_tension}};
   if (kelvin_voigt_time_ > 0.0)
-    unknowns.push_back({"Q_" + id, Unknown::Kind::branch_through, Domain::translational});
+    unknowns.push_back({"Q_" + id, Kind::branch_through, Domain::translational, per_force});
   if (axial_branch() == total_axial_force)
-    unknowns.push_back({"P_" + id, Unknown::Kind::branch_through, Domain::translational});
+    unknowns.push_back({"P_" + id, Kind::branch_through, Domain::translational, per_tension});
   return unknowns;
 }
 

@@ -61,6 +61,13 @@ struct Unknown {
   /// A node's across value, or a branch's through quantity.
   enum class Kind { node_across, branch_through } kind;
   Domain domain;  ///< of the node, or of the branch's through quantity
+  /// For an error-controlled integrator (IDA): when > 0, this unknown is fixed by the
+  /// mechanical displacements through a stiffness, and its absolute tolerance is the
+  /// translational displacement's times this factor [unknown's unit per m] (a chord's change:
+  /// 1; its angle: 1/l; a compliance's force: 1/n). Then an unknown that a stiff compliance
+  /// amplifies (an axial force, EA/l times a chord's change) is held to what its displacement
+  /// allows, not to the scale of the other forces, which no step could meet. 0: by its kind.
+  double tolerance_per_displacement = 0.0;
 };
 
 class Stamper;
