@@ -148,6 +148,11 @@ TEST(ResidualLimit, AboveOrNotFiniteIsAFailure) {
   EXPECT_NE(above.message.find("the AC solve: relative residual 2e-08"), std::string::npos)
       << above.message;
   EXPECT_NE(above.message.find("at most 1e-8"), std::string::npos) << above.message;
+  // An integrator's result is held to its own limit (shooting: 1000 times its rtol).
+  EXPECT_TRUE(check_residual(2e-8, "shooting", 1e-6).ok());
+  const Status above_own = check_residual(2e-6, "shooting", 1e-6);
+  EXPECT_FALSE(above_own.ok());
+  EXPECT_NE(above_own.message.find("at most 1e-6"), std::string::npos) << above_own.message;
   EXPECT_FALSE(check_residual(std::numeric_limits<double>::infinity(), "x").ok());
   EXPECT_FALSE(check_residual(std::numeric_limits<double>::quiet_NaN(), "x").ok());
 }

@@ -22,9 +22,10 @@ namespace emnet {
 /// state), never a result. Rounding of the equilibrated systems is 1e-16..1e-13; 1e-8 leaves
 /// room for ill-conditioned but meaningful networks and none for a garbage answer.
 inline constexpr double kResidualLimit = 1e-8;
-/// The failed Status for `residual` of `what` above kResidualLimit or not finite; success
-/// otherwise.
-Status check_residual(double residual, const std::string& what);
+/// The failed Status for `residual` of `what` above `limit` or not finite; success otherwise.
+/// @param limit  kResidualLimit for a direct solve; an integrator's result is held to what its
+///               tolerance allows (run_periodic_shooting)
+Status check_residual(double residual, const std::string& what, double limit = kResidualLimit);
 
 // ---- static / operating point -----------------------------------------------------------
 //

@@ -44,7 +44,10 @@ struct PeriodicResult {
   std::vector<std::vector<double>> values;         ///< [probe][sample]
   double periodicity_residual = 0.0;  ///< ‖x(T) − x(0)‖ / ‖x(0)‖; above 1e-8: failed
   int newton_iterations = 0;          ///< shooting
-  double seconds = 0.0;               ///< [s]
+  /// Shooting: the network's unknowns at t = 0 of the periodic state, a start for the next
+  /// period of a sweep (run_periodic_shooting's `start_guess`).
+  Eigen::VectorXd start_state;
+  double seconds = 0.0;  ///< [s]
 };
 
 /// The exact method (see above) for one network, reused over periods and drives.
@@ -68,14 +71,18 @@ class PeriodicSolver {
   Status status_;
 };
 
-/// Shooting with IDA at relative tolerance `rtol`. `progress` is for cancellation only (Status
-/// "cancelled"): the one-period IDA runs of a solve do not report, a sweep over frequencies does.
-/// A periodicity residual ‖x(T) − x(0)‖/‖x(0)‖ above kResidualLimit (analysis.hpp) is a failure.
-/// @param period   T [s]
-/// @param samples  samples over one period, at t = T·s/samples
+/// Shooting with IDA at relative tolerance `rtol` (periodic_shooting.cpp: Newton–Broyden from
+/// the linearisation's Jacobian). `progress` is for cancellation only (Status "cancelled"): the
+/// one-period IDA runs of a solve do not report, a sweep over frequencies does. A periodicity
+/// residual ‖x(T) − x(0)‖/‖x(0)‖ above kResidualLimit (analysis.hpp) is a failure.
+/// @param period       T [s]
+/// @param samples      samples over one period, at t = T·s/samples
+/// @param start_guess  the unknowns at t = 0 to start Newton from (a neighbouring period's
+///                     PeriodicResult::start_state); null: rest
 PeriodicResult run_periodic_shooting(const System& system, const std::vector<Probe>& probes,
                                      double period, double rtol = 1e-9, int samples = 256,
-                                     const Progress* progress = nullptr);
+                                     const Progress* progress = nullptr,
+                                     const Eigen::VectorXd* start_guess = nullptr);
 
 /// Memory of the exact periodic method's dense eigen-decomposition of the state matrix, measured
 /// on the fish fin: 31 MB at 306 unknowns, 104 MB at 606, 393 MB at 1206, 1.47 GB at 2406, about

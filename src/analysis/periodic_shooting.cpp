@@ -1,0 +1,245 @@
+// Periodic steady state by shooting (any network, with IDA): Newton on the state ξ at the
+// period's start for ξ(T; ξ) − ξ = 0, each residual one period of IDA.
+//
+// The Jacobian of the period map starts as the linearisation's: Φ(T) − I of the state equation
+// x' = M·x linearised about the static state (src/analysis/state_space.hpp), exact for a linear
+// network (one step). Each step improves it by Broyden's update of its inverse, so a weakly
+// nonlinear network (large kinematics at a swing of a tenth of its length, DEAs' back-coupling)
+// converges in a few one-period runs. Where the contraction stalls (a strongly nonlinear state
+// far from the linearisation) the Jacobian is formed again by finite differences of one-period
+// runs, one per state. ξ are the linearisation's states restricted to the hidden constraints'
+// null space: x = P·ξ, P orthonormal, and IDA starts from u = U·x (U: the state's unknowns).
+#include <Eigen/SVD>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "core/timed.hpp"
+#include "displacement_form.hpp"
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/analysis/transient.hpp"
+#include "exponential_series.hpp"
+#include "state_space.hpp"
+
+namespace emnet {
+
+namespace {
+
+// A one-period run stopped by the caller's cancellation (its Status code), out of the shooting
+// iteration.
+struct ShootingCancelled {};
+
+// Iterations of the Newton–Broyden loop, and how many of them may contract by less than half
+// before the Jacobian is formed again by finite differences (once).
+constexpr int kShootingIterations = 30;
+constexpr int kSlowStepsBeforeFiniteDifferences = 3;
+// A step below this many relative tolerances of ξ that no longer shrinks is the integration's
+// noise (Shooting::at_the_integrations_noise), and ξ periodic to IDA's accuracy: the periodicity
+// residual is then held to this many tolerances, or kResidualLimit if that is larger.
+constexpr double kNoiseSteps = 1000.0;
+
+// The shooting unknowns ξ: the states of the network's linearisation about its static state
+// (or rest, where that fails) that satisfy the hidden constraints, with the linearisation's
+// Jacobian Φ(T) − I on them.
+class ShootingCoordinates {
+ public:
+  ShootingCoordinates(const System& system, const DisplacementForm& form, double period) {
+    const StaticResult rest = solve_static(system);
+    const Eigen::VectorXd u =
+        rest.status.ok() ? form.from_static(rest.state) : Eigen::VectorXd::Zero(form.size());
+    Eigen::SparseMatrix<double> d_u, d_up;
+    form.linearised(u, Eigen::VectorXd::Zero(form.size()), d_u, d_up);
+    space_ = std::make_unique<LinearStateSpace>(form, d_u, d_up, 2 * M_PI / period);
+    basis_ = constrained_basis(space_->hidden_constraints_on_state(), space_->state_size());
+    u_of_xi_ = space_->u_of_state() * basis_;
+    const LinearStateSpace::Propagator propagator = space_->propagator(period);
+    jacobian_ = basis_.transpose() * propagator.gamma * space_->m() * basis_;
+  }
+  Eigen::Index size() const { return basis_.cols(); }
+  /// The network's unknowns u to start IDA from at ξ.
+  Eigen::VectorXd start(const Eigen::VectorXd& xi) const { return u_of_xi_ * xi; }
+  /// ξ of the network's unknowns u.
+  Eigen::VectorXd of(const Eigen::VectorXd& u) const {
+    return basis_.transpose() * space_->state_of(u);
+  }
+  /// Φ(T) − I of the linearisation, on ξ.
+  const Eigen::MatrixXd& linear_jacobian() const { return jacobian_; }
+
+ private:
+  // An orthonormal basis of the null space of `constraints` (the identity without rows).
+  static Eigen::MatrixXd constrained_basis(const Eigen::MatrixXd& constraints, Eigen::Index n) {
+    if (constraints.rows() == 0) return Eigen::MatrixXd::Identity(n, n);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(constraints, Eigen::ComputeFullV);
+    const Eigen::VectorXd& sv = svd.singularValues();
+    Eigen::Index rank = 0;
+    while (rank < sv.size() && sv[rank] > 1e-12 * sv[0]) ++rank;
+    return svd.matrixV().rightCols(n - rank);
+  }
+
+  std::unique_ptr<LinearStateSpace> space_;
+  Eigen::MatrixXd basis_, u_of_xi_, jacobian_;
+};
+
+// Sampled extremes refined by a parabola through the neighbouring samples (`step` apart).
+void fill_sampled_extremes(PeriodicResult& result, double step) {
+  fill_extremes(result, [&](size_t p, size_t s, bool) {
+    const auto& v = result.values[p];
+    const size_t n = v.size();
+    const double left = v[(s + n - 1) % n], middle = v[s], right = v[(s + 1) % n];
+    const double curvature = left - 2 * middle + right;
+    if (curvature == 0.0) return std::pair<double, double>(result.times[s], middle);
+    const double offset = 0.5 * (left - right) / curvature;
+    return std::pair<double, double>(result.times[s] + offset * step,
+                                     middle - 0.25 * (left - right) * offset);
+  });
+}
+
+// One shooting solve: the period map, the Newton–Broyden iteration, the sampled last period.
+class Shooting {
+ public:
+  // The run from the converged ξ (a step below the tolerance: the last) samples `probes` at
+  // `samples` points, the result's period.
+  Shooting(const System& system, const std::vector<Probe>& probes, double period, double rtol,
+           int samples, const Progress* progress)
+      : system_(system),
+        probes_(probes),
+        form_(system),
+        coordinates_(system, form_, period),
+        cancellation_(progress),
+        rtol_(rtol) {
+    options_.end_time = period;
+    options_.relative_tolerance = rtol;
+    options_.progress = &cancellation_;
+    for (int s = 0; s < samples; ++s) sample_times_.push_back(period * s / samples);
+  }
+
+  // The periodic ξ (its period is last_period()); `iterations` and `residual`
+  // (‖ξ(T) − ξ‖/‖ξ‖) say how it converged.
+  // @throws std::runtime_error when IDA fails; ShootingCancelled
+  Eigen::VectorXd solve(const Eigen::VectorXd* start_guess, int& iterations, double& residual) {
+    Eigen::VectorXd xi = start_guess && start_guess->size() == form_.size()
+                             ? coordinates_.of(*start_guess)
+                             : Eigen::VectorXd::Zero(coordinates_.size());
+    Eigen::VectorXd r = period_residual(xi);
+    Eigen::MatrixXd inverse = inverse_of(coordinates_.linear_jacobian());
+    int slow_steps = 0;
+    bool refreshed = false;
+    double previous_step = 0.0;
+    for (iterations = 1; iterations <= kShootingIterations; ++iterations) {
+      const Eigen::VectorXd step = -(inverse * r);
+      xi += step;
+      const double size = std::max(xi.norm(), 1e-300), step_norm = step.norm();
+      const bool converged = step_norm <= 10 * rtol_ * size ||
+                             at_the_integrations_noise(step_norm, previous_step, size);
+      previous_step = step_norm;
+      const Eigen::VectorXd r_next = period_residual(xi, converged);
+      residual = r_next.norm() / size;
+      if (converged) return xi;
+      // Broyden's ("good") update of the inverse: the secant condition on this step.
+      const Eigen::VectorXd change = r_next - r;
+      const Eigen::VectorXd inverse_change = inverse * change;
+      const double denominator = step.dot(inverse_change);
+      if (std::abs(denominator) > 1e-300)
+        inverse += (step - inverse_change) * (step.transpose() * inverse) / denominator;
+      slow_steps = r_next.norm() > 0.5 * r.norm() ? slow_steps + 1 : 0;
+      r = r_next;
+      if (slow_steps >= kSlowStepsBeforeFiniteDifferences && !refreshed) {
+        inverse = inverse_of(finite_difference_jacobian(xi, r));
+        refreshed = true;
+        slow_steps = 0;
+      }
+    }
+    iterations = kShootingIterations;
+    return xi;  // not converged: the residual says so
+  }
+
+  // The network's unknowns IDA starts from at ξ.
+  Eigen::VectorXd start(const Eigen::VectorXd& xi) const { return coordinates_.start(xi); }
+  // The last period run: from the ξ solve returned, with the probes' samples when it converged.
+  const TransientResult& last_period() const { return last_run_; }
+
+ private:
+  // ξ(T; ξ) − ξ by one period of IDA, `sampled` or not (the samples cost a return from IDA each:
+  // 15 % of a sweep's time when every run took them).
+  Eigen::VectorXd period_residual(const Eigen::VectorXd& xi, bool sampled = false) {
+    options_.initial_state = coordinates_.start(xi);
+    options_.output_times = sampled ? sample_times_ : std::vector<double>{};
+    last_run_ = run_transient_ida(system_, sampled ? probes_ : std::vector<Probe>{}, options_);
+    if (last_run_.status.cancelled()) throw ShootingCancelled{};
+    if (!last_run_.status.ok()) throw std::runtime_error(last_run_.status.message);
+    return coordinates_.of(last_run_.final_state) - xi;
+  }
+
+  // ∂(ξ(T) − ξ)/∂ξ at ξ (with residual r there) by forward differences, one period per column.
+  Eigen::MatrixXd finite_difference_jacobian(const Eigen::VectorXd& xi, const Eigen::VectorXd& r) {
+    const double scale = std::max({xi.norm(), (xi + r).norm(), 1e-300});
+    const double h = std::sqrt(rtol_) * scale;
+    Eigen::MatrixXd jacobian(xi.size(), xi.size());
+    for (Eigen::Index k = 0; k < xi.size(); ++k) {
+      Eigen::VectorXd perturbed = xi;
+      perturbed[k] += h;
+      jacobian.col(k) = (period_residual(perturbed) - r) / h;
+    }
+    return jacobian;
+  }
+
+  // The period map is IDA's, as accurate as its tolerance: steps that stop shrinking (by half)
+  // below kNoiseSteps·rtol of ξ are its noise, which no further step removes. Its size depends
+  // on IDA's absolute tolerances (from the static state and the AC input's scale): 1e-7 of ξ at
+  // rtol 1e-9 on the fish fin driven at 400 V with large kinematics.
+  bool at_the_integrations_noise(double step, double previous_step, double size) const {
+    return previous_step > 0.0 && step >= 0.5 * previous_step && step <= kNoiseSteps * rtol_ * size;
+  }
+
+  static Eigen::MatrixXd inverse_of(const Eigen::MatrixXd& jacobian) {
+    return jacobian.fullPivLu().inverse();
+  }
+
+  const System& system_;
+  const std::vector<Probe>& probes_;
+  const DisplacementForm form_;
+  const ShootingCoordinates coordinates_;
+  CancellationOnly cancellation_;
+  TransientOptions options_;
+  double rtol_;
+  std::vector<double> sample_times_;
+  TransientResult last_run_;
+};
+
+}  // namespace
+
+PeriodicResult run_periodic_shooting(const System& given, const std::vector<Probe>& probes,
+                                     double period, double rtol, int samples,
+                                     const Progress* progress, const Eigen::VectorXd* start_guess) {
+  const std::optional<System> steady = steady_period_system(given, period);
+  const System& system = steady ? *steady : given;
+  Timed<PeriodicResult> timed;
+  PeriodicResult& result = timed.result;
+  result.method = Method::shooting;
+  result.period = period;
+  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
+  try {
+    Shooting shooting(system, probes, period, rtol, samples, progress);
+    const Eigen::VectorXd xi =
+        shooting.solve(start_guess, result.newton_iterations, result.periodicity_residual);
+    if (Status periodic = check_residual(result.periodicity_residual, "shooting: x(T) = x(0)",
+                                         std::max(kResidualLimit, kNoiseSteps * rtol));
+        !periodic.ok())
+      return finish(periodic);
+    const TransientResult& run = shooting.last_period();
+    result.start_state = shooting.start(xi);
+    result.times = run.times;
+    result.values = run.values;
+    fill_sampled_extremes(result, period / samples);
+    return finish(Status::success());
+  } catch (const ShootingCancelled&) {
+    return finish(cancelled_status());
+  } catch (const std::exception& e) {
+    return finish(Status::failure(std::string("shooting: ") + e.what()));
+  }
+}
+
+}  // namespace emnet
