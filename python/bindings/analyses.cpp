@@ -224,7 +224,7 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
 py::dict run_sweep(const SceneHandle& handle, std::vector<double> frequencies, double from_hz,
                    double to_hz, double step_hz, const std::string& method, int samples,
                    double rtol, const std::vector<std::string>& outputs,
-                   const std::vector<std::string>& sources) {
+                   const std::vector<std::string>& sources, int shape_instants) {
   emnet::Stopwatch stopwatch;
   emnet::SwitchingSweepResult result;
   emnet::SweptModel swept;
@@ -243,6 +243,7 @@ py::dict run_sweep(const SceneHandle& handle, std::vector<double> frequencies, d
     options.samples = samples;
     options.rtol = rtol;
     options.sources = sources;
+    options.shape_instants = shape_instants;
     options.validate();
     const auto grid = emnet::switching_frequencies(options);
     swept = emnet::prepare_swept_model(with_segments(handle.scene), options.method, outputs,
@@ -398,7 +399,8 @@ void bind_analyses(py::module_& m) {
         arg("start") = "rest", arg("points_per_period") = 100, arg("outputs") = none);
   m.def("sweep_switching", &run_sweep, arg("scene"), arg("frequencies") = std::vector<double>{},
         arg("from_hz") = 1.0, arg("to_hz") = 7.0, arg("step_hz") = 0.1, arg("method") = "exact",
-        arg("samples") = 0, arg("rtol") = 1e-9, arg("outputs") = none, arg("sources") = none);
+        arg("samples") = 0, arg("rtol") = 1e-9, arg("outputs") = none, arg("sources") = none,
+        arg("shape_instants") = 0);
   m.def("identify", &run_identify, arg("scene"), arg("target_hz"),
         arg("parameter") = "beam.bending_stiffness", arg("mode") = 1);
   m.def("sensitivity", &run_sensitivity, arg("scene"), arg("modes") = 3, arg("parameters") = none,

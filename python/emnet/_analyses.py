@@ -76,7 +76,8 @@ def tran(scene, periods=10.0, switching_hz=None, method="ida", rtol=1e-6, atol=0
 
 
 def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1,
-                    method="auto", samples=0, rtol=1e-9, outputs=None, sources=None):
+                    method="auto", samples=0, rtol=1e-9, outputs=None, sources=None,
+                    shape_instants=0):
     """Periodic steady-state extremes against the switching frequency (as `emnet sweep-switching`).
 
     frequencies [Hz] (or from_hz, to_hz, step_hz); method "auto" (exact for a linear network,
@@ -84,7 +85,9 @@ def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1
     notes), "exact" (linear networks; DEAs as ideal voltage-driven forces, with a note) or
     "shooting" (IDA, any network; rtol). sources:
     the [[circuit]] sources whose frequency is swept (default every periodic one), each keeping
-    its levels, duty, rise/fall and its delay as a fraction of the period.
+    its levels, duty, rise/fall and its delay as a fraction of the period. shape_instants > 0:
+    the beam's deformed shape at that many instants over one period at the sweep peak (shape:
+    frequency_hz, period_s, times_s, reference_x_m, x_m and y_m [instant, node] in metres).
 
     Returns a Result with scene, automatic_choices, method, notes, frequencies_hz [Hz]; outputs
     (name, description, unit, left, right: the periodic minimum (left) and maximum (right) per
@@ -96,7 +99,8 @@ def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1
     """
     return Result(_emnet.sweep_switching(as_scene(scene)._handle, numbers(frequencies, "frequencies"),
                                          from_hz, to_hz, step_hz, method, samples, rtol,
-                                         _probes(outputs), _probes(sources)))
+                                         _probes(outputs), _probes(sources),
+                                         int(shape_instants)))
 
 
 def identify(scene, target_hz, parameter="beam.bending_stiffness", mode=1):

@@ -114,3 +114,14 @@ def test_crosscheck_op_passes_as_the_command(cantilever):
     reference = cli_json("crosscheck", CANTILEVER, "--analysis", "op")
     assert result["pass"] == reference["pass"] is True
     assert list(result.rows["quantity"]) == [r["quantity"] for r in reference["rows"]]
+
+
+def test_sweep_shape_equals_the_command(fishfin, tmp_path):
+    result = emnet.sweep_switching(fishfin, frequencies=[6.4], shape_instants=4)
+    reference = cli_json("sweep-switching", FISHFIN, "--from", "6.4", "--to", "6.4",
+                         "--shape", str(tmp_path / "shape.csv"), "--shape-instants", "4")
+    import numpy
+    shape = result["shape"]
+    assert numpy.asarray(shape["times_s"]).tolist() == reference["shape"]["times_s"]
+    assert numpy.asarray(shape["y_m"]).tolist() == reference["shape"]["y_m"]
+    assert numpy.asarray(shape["y_m"]).shape == (4, 8)

@@ -50,7 +50,7 @@ std::string lowercase(std::string text) {
 
 }  // namespace
 
-Status plot_files_for(const std::string& image_path, PlotFiles& files) {
+Status plot_files_for(const std::string& image_path, PlotFiles& files, bool animation) {
   // A name reaches the script (its header, `set output`, the data file's name): a control
   // character there would end a line of the script, so such a name is refused outright.
   for (const char c : image_path) {
@@ -69,9 +69,12 @@ Status plot_files_for(const std::string& image_path, PlotFiles& files) {
     files.format = ImageFormat::png;
   } else if (extension == ".svg") {
     files.format = ImageFormat::svg;
+  } else if (extension == ".gif" && animation) {
+    files.format = ImageFormat::gif;
   } else {
     return Status::failure("plot file '" + image_path +
-                           "' must end in .png (PNG image) or .svg (SVG image)");
+                           "' must end in .png (PNG image) or .svg (SVG image)" +
+                           (animation ? " or .gif (an animation)" : ""));
   }
   if (path.filename().empty())
     return Status::failure("plot path '" + image_path + "' names no file");
@@ -121,11 +124,14 @@ std::ostringstream classic_stream() {
   return stream;
 }
 
-std::string gnuplot_terminal_line(const PlotFiles& files, int width, int height) {
+std::string gnuplot_terminal_line(const PlotFiles& files, int width, int height, int frame_delay) {
   std::ostringstream out;
   if (files.format == ImageFormat::png) {
     out << "set terminal pngcairo size " << width << "," << height
         << " enhanced font 'Sans,11' background rgb 'white'\n";
+  } else if (files.format == ImageFormat::gif) {
+    out << "set terminal gif animate delay " << frame_delay << " loop 0 optimize size " << width
+        << "," << height << " background rgb 'white'\n";
   } else {
     out << "set terminal svg size " << width << "," << height
         << " dynamic enhanced font 'Sans,11' background rgb 'white'\n";
@@ -176,7 +182,9 @@ Status write_script_and_run(const PlotFiles& files, const std::string& preamble,
   if (Status made = work.create(files.directory.string(), ".emnet-plot-"); !made.ok())
     return Status::failure("cannot write '" + image_path + "': " + made.message);
   const std::string drawing_name =
-      std::string("drawing") + (files.format == ImageFormat::png ? ".png" : ".svg");
+      std::string("drawing") + (files.format == ImageFormat::png   ? ".png"
+                                : files.format == ImageFormat::gif ? ".gif"
+                                                                   : ".svg");
   const std::string drawing = work.path() + "/" + drawing_name;
   if (Status status = write_output_file(work.path() + "/data", data); !status.ok()) return status;
   if (Status status = write_output_file(

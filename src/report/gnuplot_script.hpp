@@ -13,7 +13,7 @@
 
 namespace emnet::gnuplot {
 
-enum class ImageFormat { png, svg };
+enum class ImageFormat { png, svg, gif };
 
 // The image's directory and the names of the image, its data and its script.
 struct PlotFiles {
@@ -27,8 +27,9 @@ struct PlotFiles {
   std::string image_path;
 };
 
-// Splits the image path into directory and file names; fails on an unknown extension.
-Status plot_files_for(const std::string& image_path, PlotFiles& files);
+// Splits the image path into directory and file names; fails on an unknown extension (".gif",
+// an animation, only where `animation` allows it).
+Status plot_files_for(const std::string& image_path, PlotFiles& files, bool animation = false);
 
 // `text` on one line: each control character (newline, tab, ...) becomes a space.
 std::string one_line(const std::string& text);
@@ -41,7 +42,9 @@ std::string number_text(double value);
 std::ostringstream classic_stream();
 
 // Terminal line of a script; `height` in pixels. The output line follows it (`set output`).
-std::string gnuplot_terminal_line(const PlotFiles& files, int width, int height);
+// A GIF is animated, each plot command a frame shown for `frame_delay` hundredths of a second.
+std::string gnuplot_terminal_line(const PlotFiles& files, int width, int height,
+                                  int frame_delay = 10);
 // The comment that opens a saved script: what it draws, its data, how to re-draw.
 std::string script_header(const PlotFiles& files, const std::string& what,
                           const std::string& title);

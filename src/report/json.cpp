@@ -12,6 +12,12 @@ std::string json_text(const Json& json) {
   return json.dump(2, ' ', false, Json::error_handler_t::replace);
 }
 
+Json to_json(const DeformedShape& shape) {
+  return {
+      {"frequency_hz", shape.frequency},    {"period_s", shape.period}, {"times_s", shape.times},
+      {"reference_x_m", shape.reference_x}, {"x_m", shape.x},           {"y_m", shape.y}};
+}
+
 Json to_json(const Validity& validity) {
   Json violations = Json::array();
   for (const auto& v : validity.violations)

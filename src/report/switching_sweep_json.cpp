@@ -53,6 +53,7 @@ Json to_json(const SwitchingSweepResult& result, const Model& model,
                  {"solve_seconds", result.solve_seconds},
                  {"total_seconds", total_seconds}};
   if (result.reduction) out["reduction"] = reduction_check_json(*result.reduction, result);
+  if (result.shape) out["shape"] = to_json(*result.shape);
   out["validity"] = to_json(result.validity);
   return out;
 }

@@ -75,6 +75,14 @@ void check_swept_drive(const Scene& scene, const std::vector<std::string>& sourc
 
 namespace {
 
+// The swept model's PrepareOptions: `given`, with large kinematics served (by shooting; the exact
+// method refuses them itself).
+PrepareOptions served_by_the_sweep(const Scene& scene, PrepareOptions given) {
+  if (scene.beam.kinematics == BeamKinematics::large)
+    given.large_kinematics = LargeKinematicsUse::dynamics;
+  return given;
+}
+
 // `options` with SwitchingSweepMethod::automatic replaced by what it chooses (the header), the
 // reason in `notes`.
 SwitchingSweepOptions resolve_sweep_method(const Model& model, const SwitchingSweepOptions& given,
@@ -82,10 +90,16 @@ SwitchingSweepOptions resolve_sweep_method(const Model& model, const SwitchingSw
   SwitchingSweepOptions options = given;
   if (options.method != SwitchingSweepMethod::automatic) return options;
   const System system = model.network.assemble();
+  const bool large = model.scene.beam.kinematics == BeamKinematics::large;
+  if (large && options.reduce)
+    throw InputError(model.scene.file, "beam.kinematics",
+                     "is \"large\": a nonlinear network, which the reduced (modal) periodic "
+                     "method cannot solve; the shooting method (the automatic choice) can");
   if (system.is_nonlinear() && !options.reduce) {
     options.method = SwitchingSweepMethod::shooting;
     notes.push_back("method: shooting, since the network is nonlinear (" +
-                    std::string(model.scene.circuit.empty()
+                    std::string(large ? "large kinematics"
+                                : model.scene.circuit.empty()
                                     ? "the DEAs' RC loops"
                                     : "DEAs driven through the [[circuit]]") +
                     "); the exact method needs a linear one");
@@ -120,6 +134,8 @@ void SwitchingSweepOptions::validate() const {
                                "{reduce} replaces the exact method, not shooting");
   if (!valid_relative_tolerance(rtol)) throw OptionError("rtol", kRelativeToleranceRange);
   if (dense_limit < 0) throw OptionError("dense_limit", "must be >= 0 (a number of unknowns)");
+  if (shape_instants != 0 && (shape_instants < 2 || shape_instants > 100000))
+    throw OptionError("shape_instants", "must be 0 (no shape) or from 2 to 100000 (inclusive)");
 }
 
 SwitchingSweepResult run_switching_sweep(const Model& model, const SwitchingSweepOptions& options) {
@@ -244,6 +260,9 @@ class SwitchingSweepRun {
     check_validity_of_the_deflection_peaks();
     if (check_ && !result_.frequencies.empty())
       if (const std::optional<Status> stopped = check_the_reduction()) return stopped_by(*stopped);
+    if (options_.shape_instants > 0 && !result_.frequencies.empty())
+      if (const std::optional<Status> stopped = find_the_deformed_shape())
+        return stopped_by(*stopped);
     if (options_.first_mode) find_the_first_mode_for_the_resonance_marker();
     return finished();
   }
@@ -313,7 +332,7 @@ class SwitchingSweepRun {
       const Stopwatch model_stopwatch;
       Scene at = scene_;
       set_switching_frequency(at, f, options_.sources);
-      swept_ = prepare_model(at).network.assemble();
+      swept_ = prepare_model(at, served_by_the_sweep(at, PrepareOptions{})).network.assemble();
       result_.model_seconds += model_stopwatch.seconds();
     }
     return swept_;
@@ -322,6 +341,10 @@ class SwitchingSweepRun {
   // The reduced periodic state at frequency f (the sweep and its check); nullopt when the
   // reduction failed (the message in reduction_failure_).
   std::optional<PeriodicResult> reduced_solution_at(const System& system, double f) {
+    return reduced_solution_at(system, f, probes_, samples_);
+  }
+  std::optional<PeriodicResult> reduced_solution_at(const System& system, double f,
+                                                    const std::vector<Probe>& probes, int samples) {
     if (!reduced_) {
       phase("modal reduction (" + std::to_string(system.size()) + " unknowns)");
       const Stopwatch build_stopwatch;
@@ -334,7 +357,25 @@ class SwitchingSweepRun {
           "switching sweep, reduced model: " + reduced_->reduction().status.message;
       return std::nullopt;
     }
-    return reduced_->solve(system, probes_, 1.0 / f, samples_);
+    return reduced_->solve(system, probes, 1.0 / f, samples);
+  }
+
+  // The beam's shape over one period at the sweep peak (options.shape_instants): the periodic
+  // state there again, with every node's deflection (and x displacement) as its probes.
+  std::optional<Status> find_the_deformed_shape() {
+    phase("the deformed shape at the sweep peak");
+    const double f = result_.peak_frequency;
+    const ShapeProbes shape = shape_probes(model_);
+    const std::optional<PeriodicResult> solved =
+        periodic_solution_at(system_at(f), f, &shape.probes, options_.shape_instants);
+    if (!solved) return Status::failure(reduction_failure_);
+    if (!solved->status.ok())
+      return Status::failure("deformed shape at " + format_with_unit(f, "Hz") + ": " +
+                             solved->status.message);
+    result_.shape = deformed_shape(shape, solved->times, solved->values);
+    result_.shape->frequency = f;
+    result_.shape->period = 1.0 / f;
+    return std::nullopt;
   }
 
   void decompose_the_state_matrix_once(const System& system) {
@@ -345,12 +386,21 @@ class SwitchingSweepRun {
     result_.decomposition_seconds += decomposition_stopwatch.seconds();
   }
 
-  // By the reduced, exact or shooting method; nullopt as reduced_solution_at.
-  std::optional<PeriodicResult> periodic_solution_at(const System& system, double f) {
-    if (options_.reduce) return reduced_solution_at(system, f);
-    if (exact_) return solver_->solve(system, probes_, 1.0 / f, samples_);
-    return run_periodic_shooting(system, probes_, 1.0 / f, options_.rtol, samples_,
-                                 options_.progress);
+  // By the reduced, exact or shooting method; nullopt as reduced_solution_at. `probes` and
+  // `samples`: the sweep's own unless given (the deformed shape's).
+  std::optional<PeriodicResult> periodic_solution_at(const System& system, double f,
+                                                     const std::vector<Probe>* probes = nullptr,
+                                                     int samples = 0) {
+    const std::vector<Probe>& outputs = probes ? *probes : probes_;
+    if (samples == 0) samples = samples_;
+    if (options_.reduce) return reduced_solution_at(system, f, outputs, samples);
+    if (exact_) return solver_->solve(system, outputs, 1.0 / f, samples);
+    // Continuation: Newton starts from the previous frequency's periodic state.
+    PeriodicResult solution =
+        run_periodic_shooting(system, outputs, 1.0 / f, options_.rtol, samples, options_.progress,
+                              previous_start_.size() ? &previous_start_ : nullptr);
+    if (solution.status.ok()) previous_start_ = solution.start_state;
+    return solution;
   }
 
   std::optional<Status> failure_of_the_periodic_solution(const PeriodicResult& r, double f) const {
@@ -540,6 +590,7 @@ class SwitchingSweepRun {
   std::optional<SwitchingSweepReductionCheck> check_;
   std::string reduction_failure_;
   std::vector<double> solve_seconds_at_;  // per frequency, for the reduction check
+  Eigen::VectorXd previous_start_;        // shooting: the last periodic state's, at t = 0
   SwitchingSweepResult result_;
 };
 
@@ -559,9 +610,15 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
 SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
                                const std::vector<std::string>& probe_texts,
                                const PrepareOptions& prepare, double highest_hz) {
-  SweptModel swept{prepare_model(scene, prepare), scene, {}};
+  // Large kinematics make the network nonlinear: shooting serves it, the exact method cannot.
+  const bool large = scene.beam.kinematics == BeamKinematics::large;
+  if (large && method == SwitchingSweepMethod::exact)
+    throw InputError(scene.file, "beam.kinematics",
+                     "is \"large\": a nonlinear network, which the exact periodic method cannot "
+                     "solve; the shooting method (the automatic choice) can");
+  SweptModel swept{prepare_model(scene, served_by_the_sweep(scene, prepare)), scene, {}};
   check_swept_drive(swept.model.scene);
-  if (method == SwitchingSweepMethod::shooting) return swept;
+  if (method == SwitchingSweepMethod::shooting || large) return swept;
   const bool automatic = method == SwitchingSweepMethod::automatic;
   for (const auto& text : probe_texts)
     if (asks_for_dea_electrics(text)) {

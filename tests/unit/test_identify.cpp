@@ -20,22 +20,18 @@
 #include <sstream>
 #include <string>
 
+#include "cli_json.hpp"
 #include "cli_run.hpp"
 #include "emnet/scene/scene_reader.hpp"
 
 namespace {
 
 using emnet::testing::run_emnet;
+using emnet::testing::run_json;
 using Json = nlohmann::json;
 
 std::string scene(const std::string& name) {
   return std::string(EMNET_SOURCE_DIR) + "/netlists/" + name;
-}
-
-Json run_json(const std::string& arguments) {
-  const auto run = run_emnet(arguments + " --json");
-  EXPECT_EQ(run.status, 0) << arguments << "\n" << run.err;
-  return run.status == 0 ? Json::parse(run.out) : Json();
 }
 
 std::string number(double value) {

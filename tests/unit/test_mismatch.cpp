@@ -18,20 +18,16 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_json.hpp"
 #include "cli_run.hpp"
 
 namespace {
 
 using emnet::testing::run_emnet;
+using emnet::testing::run_json;
 using Json = nlohmann::json;
 
 const std::string kScene = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin-measured.toml";
-
-Json run_json(const std::string& arguments) {
-  const auto run = run_emnet(arguments + " --json");
-  EXPECT_EQ(run.status, 0) << arguments << "\n" << run.err;
-  return run.status == 0 ? Json::parse(run.out) : Json();
-}
 
 TEST(Mismatch, ForceMismatchesShiftTheSwingByTheStaticDeflectionOfOneDea) {
   const Json mismatch = run_json("mismatch " + kScene + " --change 0.05");

@@ -12,6 +12,7 @@
 
 #include "cli/common.hpp"
 #include "cli/option_names.hpp"
+#include "cli/shape_output.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/core/stopwatch.hpp"
@@ -34,6 +35,7 @@ struct SweepOptions {
   bool reduce = false;
   std::string tolerance, band;       // --reduce
   std::vector<std::string> sources;  // --source: the circuit sources switched (default all)
+  ShapeOptions shape;                // --shape at the sweep peak
 };
 
 int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
@@ -49,6 +51,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   study.rtol = sweep.rtol;
   study.reduce = sweep.reduce;
   study.sources = sweep.sources;
+  study.shape_instants = shape_instants(sweep.shape);
   study.validate();
   check_plot_options(sweep.plot, sweep.plot_script);
   if (!sweep.reduce && (!sweep.tolerance.empty() || !sweep.band.empty()))
@@ -81,6 +84,7 @@ int run_sweep_command(CommonOptions options, const SweepOptions& sweep) {
   SweepReportInput report{options, model, result, notes};
   report.plot = sweep.plot;
   report.plot_script = sweep.plot_script;
+  report.shape = sweep.shape;
   report.plotted = plotted;
   report.total_seconds = stopwatch.seconds();
   return report_switching_sweep(report);
@@ -136,6 +140,8 @@ Command add_sweep_switching_command(CLI::App& app, CommonOptions& options) {
                                         "rise/fall and its delay as a fraction of the period"),
               {"sources"});
   add_reduction_tolerance_and_band(sweep_command, sweep_options->tolerance, sweep_options->band);
+  add_shape_options(sweep_command, sweep_options->shape,
+                    "over one period at the sweep peak (the largest swing)");
 
   return {sweep_command,
           [sweep_options, &options] { return run_sweep_command(options, *sweep_options); }};

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/shape_output.hpp"
 #include "emnet/studies/switching_sweep.hpp"
 
 namespace emnet_cli {
@@ -20,6 +21,7 @@ struct SweepReportInput {
   std::string plot;            // --plot path, or empty
   bool plot_script = false;    // --plot-script: the plot's .dat and .gp too
   PlottedOutputs plotted;      // what --plot draws
+  ShapeOptions shape;          // --shape, or an empty path
   double total_seconds = 0.0;  // the command from its start
 };
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/model/deformed_shape.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/model/validity.hpp"
 #include "emnet/network/output.hpp"
@@ -31,6 +32,11 @@ std::string json_text(const Json& json);
 /// "validity": status ("within" or "OUTSIDE"), summary, the two fractions of their limits, and
 /// each violation (check, subject, key, value, limit, message).
 Json to_json(const Validity& validity);
+
+/// "shape": the beam's deformed shape (emnet/model/deformed_shape.hpp): frequency_hz and
+/// period_s (0 for a transient), times_s, reference_x_m (the nodes along the undeformed beam),
+/// x_m and y_m ([instant][node], the fixed frame's).
+Json to_json(const DeformedShape& shape);
 
 /// "automatic_choices": what each "auto" key became (key, value, reason, estimated_error,
 /// tolerance, band_hz [from, to], seconds).

@@ -8,7 +8,8 @@
 // check_reference ("full" or "wider reduction"), check_frequencies_hz, edge_estimates, errors,
 // measured_error, cost {reduce_seconds, reduced_seconds_per_frequency, reference_build_seconds,
 // reference_seconds_per_frequency, reduced_sweep_seconds, and against the full sweep
-// full_sweep_seconds_estimated}); validity.
+// full_sweep_seconds_estimated}); shape when asked (SwitchingSweepOptions::shape_instants; its
+// keys: emnet/report/json.hpp); validity.
 #pragma once
 
 #include <string>

@@ -33,6 +33,7 @@
 #include "emnet/analysis/periodic.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/progress.hpp"
+#include "emnet/model/deformed_shape.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/model/validity.hpp"
 #include "emnet/scene/scene.hpp"
@@ -76,10 +77,13 @@ struct SwitchingSweepOptions {
   // Unknowns up to which `automatic` takes the dense exact method (above: the reduction) and a
   // reduction is checked against the full exact method (above: against a wider reduction).
   int dense_limit = kPeriodicDenseAutomaticUnknowns;
+  // > 0: the beam's deformed shape at this many instants over one period of the periodic state
+  // at the sweep peak (result.shape), from 2 to 100000; 0: none.
+  int shape_instants = 0;
 
   /// The checks of the options alone (the frequencies, samples from 8 to 1000000 after the
-  /// default, reduce with the exact method only, rtol, dense_limit), as run_switching_sweep
-  /// makes them first.
+  /// default, reduce with the exact method only, rtol, dense_limit, shape_instants), as
+  /// run_switching_sweep makes them first.
   /// @throws OptionError naming the field ("samples"; "step" for from/to/step)
   void validate() const;
 };
@@ -124,6 +128,8 @@ struct SwitchingSweepResult {
   size_t peak_output = 0;                                 // outputs.size() - 1
   std::optional<SwitchingSweepReductionCheck> reduction;  // with `reduce`
   std::optional<double> first_mode_hz;                    // f1, when asked and found
+  // With options.shape_instants: the beam over one period at the sweep peak.
+  std::optional<DeformedShape> shape;
   // The exact method's solver (made here or given), for another sweep of the same network.
   std::shared_ptr<const PeriodicSolver> solver;
   Validity validity;  // of the deflection peaks over the sweep and the drive's voltages

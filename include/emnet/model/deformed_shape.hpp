@@ -1,0 +1,40 @@
+// The beam's deformed shape in the plane, for pictures and animations of a periodic state or a
+// transient: at each node k of the beam, the undeformed position x_k along the beam plus the
+// fixed-frame x displacement (large kinematics; with small kinematics the beam has no axial
+// motion, so x = x_k) and the y deflection w_k. Lengths in metres.
+#pragma once
+
+#include <vector>
+
+#include "emnet/model/model.hpp"
+#include "emnet/network/output.hpp"
+
+namespace emnet {
+
+/// The probes a deformed shape reads: every node's deflection, then (large kinematics) every
+/// node's x displacement, in the order of `positions`.
+struct ShapeProbes {
+  std::vector<double> positions;  ///< x_k of the beam's nodes [m]
+  std::vector<Probe> probes;      ///< deflection at each node, then x displacement (large)
+  bool axial = false;             ///< whether the x displacements are among `probes`
+};
+
+/// The shape's probes of `model`'s beam.
+ShapeProbes shape_probes(const Model& model);
+
+/// The beam's curve at several instants.
+struct DeformedShape {
+  std::vector<double> reference_x;        ///< the undeformed beam: x_k [m], at y = 0
+  std::vector<double> times;              ///< the instants [s]
+  double period = 0.0;                    ///< of the periodic state [s]; 0 for a transient
+  double frequency = 0.0;                 ///< the switching frequency [Hz]; 0 for a transient
+  std::vector<std::vector<double>> x, y;  ///< [instant][node], the fixed frame's [m]
+};
+
+/// The shape at `times` from the values of shape_probes' probes there.
+/// @param values  [probe][instant], as a transient or a periodic result holds them
+/// @throws std::invalid_argument when `values` does not match `probes` and `times`
+DeformedShape deformed_shape(const ShapeProbes& probes, const std::vector<double>& times,
+                             const std::vector<std::vector<double>>& values);
+
+}  // namespace emnet

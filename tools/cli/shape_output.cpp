@@ -1,0 +1,75 @@
+// --shape (cli/shape_output.hpp).
+#include "cli/shape_output.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "cli/option_names.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/core/units.hpp"
+#include "emnet/report/shape_plot.hpp"
+
+namespace emnet_cli {
+
+namespace {
+
+std::string extension_of(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+}  // namespace
+
+void add_shape_options(CLI::App* command, ShapeOptions& shape, const std::string& what) {
+  command->add_option("--shape", shape.path,
+                      "write the beam's deformed shape " + what +
+                          ": .csv (x, y per node and instant), .png or .svg (the beam in the "
+                          "plane at true aspect ratio, every instant coloured by its phase, the "
+                          "undeformed beam faint) or .gif (an animation of one period); e.g. "
+                          "--shape fin.gif");
+  sets_fields(command->add_option("--shape-instants", shape.instants,
+                                  "instants over one period for --shape (default 36 for a .gif, "
+                                  "8 otherwise; from 2, at most 1000 frames in a .gif)"),
+              {"shape_instants"});
+}
+
+int shape_instants(const ShapeOptions& shape) {
+  if (shape.path.empty()) {
+    if (shape.instants != 0)
+      throw emnet::InputError("--shape-instants", "--shape",
+                              "--shape-instants sets the instants of --shape: give --shape PATH");
+    return 0;
+  }
+  const std::string extension = extension_of(shape.path);
+  if (extension != ".csv" && extension != ".png" && extension != ".svg" && extension != ".gif")
+    throw emnet::InputError(
+        "--shape", "--shape",
+        "'" + shown(shape.path) + "' must end in .csv, .png, .svg or .gif (an animation)");
+  if (shape.instants != 0) return shape.instants;
+  return extension == ".gif" ? 36 : 8;
+}
+
+void write_shape(const ShapeOptions& shape, const emnet::DeformedShape& result,
+                 const std::string& title, const CommonOptions& options) {
+  if (extension_of(shape.path) == ".csv") {
+    const size_t nodes = result.reference_x.size();
+    write_csv_rows(shape.path, {"time_s", "node", "reference_x_m", "x_m", "y_m"},
+                   result.times.size() * nodes, [&](size_t i, auto& row) {
+                     const size_t t = i / nodes, k = i % nodes;
+                     row.insert(row.end(), {result.times[t], static_cast<double>(k),
+                                            result.reference_x[k], result.x[t][k], result.y[t][k]});
+                   });
+  } else {
+    check_plot(emnet::write_shape_plot(shape.path, title, result, plot_output(options, false)));
+  }
+}
+
+std::string shape_written_text(const ShapeOptions& shape, const emnet::DeformedShape& result) {
+  return "shape written to " + shown(shape.path) + " (" + std::to_string(result.times.size()) +
+         " instants over one period at " + emnet::format_number("%.6g", result.frequency) + " Hz)";
+}
+
+}  // namespace emnet_cli

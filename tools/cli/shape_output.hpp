@@ -1,0 +1,33 @@
+// --shape: the beam's deformed shape as a CSV table, a picture (.png, .svg) or an animated GIF,
+// for the commands that compute one (sweep-switching: at the sweep peak).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "cli/common.hpp"
+#include "emnet/model/deformed_shape.hpp"
+
+namespace emnet_cli {
+
+struct ShapeOptions {
+  std::string path;  // --shape: .csv, .png, .svg or .gif
+  int instants = 0;  // --shape-instants; 0: 36 for a GIF, 8 otherwise
+};
+
+// Adds --shape and --shape-instants to `command`; `what` says where the shape is taken.
+void add_shape_options(CLI::App* command, ShapeOptions& shape, const std::string& what);
+
+// The instants to compute: 0 without --shape.
+// @throws InputError naming --shape for an unknown extension, --shape-instants without --shape
+int shape_instants(const ShapeOptions& shape);
+
+// Writes the shape to shape.path (CSV: one row per instant and node; otherwise the picture or
+// animation, emnet/report/shape_plot.hpp).
+// @throws FileError when it cannot be written
+void write_shape(const ShapeOptions& shape, const emnet::DeformedShape& result,
+                 const std::string& title, const CommonOptions& options);
+// "shape written to PATH (8 instants over one period at 6.4 Hz)"
+std::string shape_written_text(const ShapeOptions& shape, const emnet::DeformedShape& result);
+
+}  // namespace emnet_cli
