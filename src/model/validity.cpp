@@ -81,6 +81,13 @@ std::string percent(double fraction) {
   return format_number("%.3g %%", 100.0 * fraction);
 }
 
+// The small beam's geometric error at a largest |deflection| `peak` of a beam of `length`
+// (validity.hpp): (w/L)², the tip-force elastica's.
+double geometric_error_estimate(double peak, double length) {
+  const double fraction = peak / length;
+  return fraction * fraction;
+}
+
 }  // namespace
 
 const char* validity_check_name(ValidityCheck check) {
@@ -128,16 +135,20 @@ Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& d
                         share(deflection.peak / length, "beam.length " + length_text(length)) +
                         "; a small-deflection linear beam is trusted with at most " +
                         percent(scene.model.deflection_limit) + " (" + length_text(limit) +
-                        ", model.deflection_limit)";
+                        ", model.deflection_limit); its geometric error is estimated at " +
+                        percent(geometric_error_estimate(deflection.peak, length)) +
+                        ", which beam.kinematics = \"large\" does not have";
     validity.violations.push_back(violation);
   }
   std::string deflection_text =
       large ? "deflection not limited (beam.kinematics = \"large\")" : "no deflection computed";
   if (largest) {
     validity.deflection_fraction = largest->peak / limit;
+    validity.geometric_error = geometric_error_estimate(largest->peak, length);
     deflection_text = "largest |deflection| " + length_text(largest->peak) + " (" +
                       largest->output + ") = " + share(largest->peak / length, "L") + ", limit " +
-                      percent(scene.model.deflection_limit);
+                      percent(scene.model.deflection_limit) + ", geometric error ~" +
+                      percent(validity.geometric_error) + " (estimate (w/L)^2)";
   }
 
   std::string field_text = "no DEA driven";

@@ -31,6 +31,7 @@ Json to_json(const Validity& validity) {
           {"summary", validity.summary},
           {"deflection_fraction_of_limit", validity.deflection_fraction},
           {"field_fraction_of_breakdown", validity.field_fraction},
+          {"geometric_error_estimate", validity.geometric_error},
           {"violations", violations}};
 }
 

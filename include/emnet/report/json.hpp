@@ -29,7 +29,8 @@ using Json = nlohmann::ordered_json;
 /// written with U+FFFD instead of failing.
 std::string json_text(const Json& json);
 
-/// "validity": status ("within" or "OUTSIDE"), summary, the two fractions of their limits, and
+/// "validity": status ("within" or "OUTSIDE"), summary, the two fractions of their limits, the
+/// small beam's geometric_error_estimate (emnet/model/validity.hpp; 0 with large kinematics), and
 /// each violation (check, subject, key, value, limit, message).
 Json to_json(const Validity& validity);
 
