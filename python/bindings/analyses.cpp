@@ -185,7 +185,7 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
 py::dict run_tran(const SceneHandle& handle, double periods, std::optional<double> switching_hz,
                   const std::string& method, double rtol, double atol, double max_step,
                   const std::string& start, int points_per_period,
-                  const std::vector<std::string>& outputs) {
+                  const std::vector<std::string>& outputs, int shape_instants) {
   emnet::TransientStudyResult study;
   emnet::TransientStudyOptions options;
   run_interruptible(kOutputsKeywords, [&](emnet::Progress* progress) {
@@ -203,6 +203,7 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
     options.max_step = max_step;
     options.start = start == "static" ? emnet::StartState::static_ : emnet::StartState::rest;
     options.outputs = outputs;
+    options.shape_instants = shape_instants;
     options.prepare = prepare_options_for_probes(outputs);
     options.progress = progress;
     study = emnet::run_transient_study(with_segments(handle.scene), options);
@@ -215,7 +216,8 @@ py::dict run_tran(const SceneHandle& handle, double periods, std::optional<doubl
                                            periods,
                                            rtol,
                                            study.validity,
-                                           study.seconds};
+                                           study.seconds,
+                                           study.shape};
   return to_dict(emnet::to_json(study.result, study.outputs, run));
 }
 
@@ -396,7 +398,8 @@ void bind_analyses(py::module_& m) {
         arg("reduce") = false, arg("tolerance") = py::none(), arg("band_hz") = py::none());
   m.def("tran", &run_tran, arg("scene"), arg("periods") = 10.0, arg("switching_hz") = py::none(),
         arg("method") = "ida", arg("rtol") = 1e-6, arg("atol") = 0.0, arg("max_step") = 0.0,
-        arg("start") = "rest", arg("points_per_period") = 100, arg("outputs") = none);
+        arg("start") = "rest", arg("points_per_period") = 100, arg("outputs") = none,
+        arg("shape_instants") = 0);
   m.def("sweep_switching", &run_sweep, arg("scene"), arg("frequencies") = std::vector<double>{},
         arg("from_hz") = 1.0, arg("to_hz") = 7.0, arg("step_hz") = 0.1, arg("method") = "exact",
         arg("samples") = 0, arg("rtol") = 1e-9, arg("outputs") = none, arg("sources") = none,

@@ -60,19 +60,22 @@ def ac(scene, from_hz=None, to_hz=None, points=None, log=None, probes=None, redu
 
 
 def tran(scene, periods=10.0, switching_hz=None, method="ida", rtol=1e-6, atol=0.0, max_step=0.0,
-         start="rest", points_per_period=100, outputs=None):
+         start="rest", points_per_period=100, outputs=None, shape_instants=0):
     """The time response to the scene's drive (as `emnet tran`).
 
     periods of the drive's frequency (or switching_hz [Hz]); method "ida" (SUNDIALS IDA, any
     network; rtol, atol, max_step [s]) or "exact" (linear networks under piecewise-linear
     sources); start "rest" or "static"; points_per_period output times per period; outputs:
     output names (dx4, u_A) or probe texts (default: the scene's recorded outputs).
+    shape_instants > 0: the beam's deformed shape at that many of the last period's output
+    times (shape: times_s, reference_x_m, x_m and y_m [instant, node] in metres).
 
     Returns a Result with times_s [s], outputs (name, description, unit, values [output,
     time]), statistics (IDA's steps, residual and Jacobian evaluations, ...), cost, validity.
     """
     return Result(_emnet.tran(as_scene(scene)._handle, periods, switching_hz, method, rtol, atol,
-                              max_step, start, points_per_period, _probes(outputs)))
+                              max_step, start, points_per_period, _probes(outputs),
+                              int(shape_instants)))
 
 
 def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1,

@@ -125,3 +125,12 @@ def test_sweep_shape_equals_the_command(fishfin, tmp_path):
     assert numpy.asarray(shape["times_s"]).tolist() == reference["shape"]["times_s"]
     assert numpy.asarray(shape["y_m"]).tolist() == reference["shape"]["y_m"]
     assert numpy.asarray(shape["y_m"]).shape == (4, 8)
+
+
+def test_tran_shape_equals_the_command(fishfin, tmp_path):
+    import numpy
+    result = emnet.tran(fishfin, periods=1, shape_instants=4)
+    reference = cli_json("tran", FISHFIN, "--periods", "1", "--shape", str(tmp_path / "s.csv"),
+                         "--shape-instants", "4")
+    assert numpy.asarray(result["shape"]["y_m"]).tolist() == reference["shape"]["y_m"]
+    assert numpy.asarray(result["shape"]["y_m"]).shape == (4, 8)

@@ -50,10 +50,10 @@ ShapeFrame shape_frame(const DeformedShape& shape) {
   return frame;
 }
 
-// Each instant's phase: t/T over a period, or t over the last instant of a transient.
+// Each instant's phase: t/T modulo 1 over a period, or t over the last instant of a transient.
 double phase_of(const DeformedShape& shape, size_t t) {
-  const double span = shape.period > 0.0 ? shape.period : shape.times.back();
-  return span > 0.0 ? shape.times[t] / span : 0.0;
+  if (shape.period > 0.0) return std::fmod(shape.times[t] / shape.period, 1.0);
+  return shape.times.back() > 0.0 ? shape.times[t] / shape.times.back() : 0.0;
 }
 
 // Block 0 the undeformed beam, block 1 + t the instant t: x [mm], y [mm], phase.

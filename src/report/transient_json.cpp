@@ -29,6 +29,7 @@ Json to_json(const TransientResult& result, const std::vector<Probe>& probes,
                        {"convergence_failures", statistics.convergence_failures},
                        {"restarts", statistics.restarts}};
   out["cost"] = {{"integration_seconds", result.seconds}, {"total_seconds", run.total_seconds}};
+  if (run.shape) out["shape"] = to_json(*run.shape);
   out["validity"] = to_json(run.validity);
   return out;
 }

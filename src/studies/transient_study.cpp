@@ -70,7 +70,39 @@ void TransientStudyOptions::validate() const {
     refuse("max_step", "must be >= 0 (0: no limit)");
   if (points_per_period < 2 || points_per_period > 100000)
     refuse("points_per_period", "must be from 2 to 100000 (inclusive)");
+  if (shape_instants != 0 && (shape_instants < 2 || shape_instants > points_per_period))
+    refuse("shape_instants", "must be 0 (no shape) or from 2 to the points per period (" +
+                                 std::to_string(points_per_period) +
+                                 "): the shape is drawn at output times");
 }
+
+namespace {
+
+// The shape at `instants` of the last period's output times (evenly among them), from the shape
+// probes' values at every output time.
+DeformedShape last_period_shape(const ShapeProbes& probes, const std::vector<double>& times,
+                                const std::vector<std::vector<double>>& values, int per_period,
+                                int instants, double period) {
+  const size_t last = times.size() - 1;
+  const size_t first = last >= static_cast<size_t>(per_period) ? last - per_period : 0;
+  const size_t span = last - first;
+  std::vector<size_t> picked;
+  for (int s = 0; s < instants; ++s) {
+    const size_t k = first + (span * static_cast<size_t>(s) + instants / 2) / instants + 1;
+    if (picked.empty() || k != picked.back()) picked.push_back(std::min(k, last));
+  }
+  std::vector<double> at;
+  std::vector<std::vector<double>> picked_values(values.size());
+  for (size_t k : picked) at.push_back(times[k]);
+  for (size_t p = 0; p < values.size(); ++p)
+    for (size_t k : picked) picked_values[p].push_back(values[p][k]);
+  DeformedShape shape = deformed_shape(probes, at, picked_values);
+  shape.period = period;
+  shape.frequency = 1.0 / period;
+  return shape;
+}
+
+}  // namespace
 
 TransientStudyResult run_transient_study(Scene scene, const TransientStudyOptions& options) {
   const Stopwatch stopwatch;
@@ -105,7 +137,9 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
   if (count < 1.0)
     refuse("periods",
            "periods x points-per-period must be >= 0.5, for at least one output step after t = 0");
-  const double stored = (count + 1.0) * (static_cast<double>(study.outputs.size()) + 1.0);
+  const ShapeProbes shape = options.shape_instants > 0 ? shape_probes(model) : ShapeProbes{};
+  const double stored =
+      (count + 1.0) * (static_cast<double>(study.outputs.size() + shape.probes.size()) + 1.0);
   if (stored > kTransientMaximumStoredValues) {
     char text[320];
     std::snprintf(text, sizeof text,
@@ -132,9 +166,18 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
   const std::vector<CircuitDeaVoltageProbe> judged = circuit_dea_voltage_probes(model);
   std::vector<Probe> computed = study.outputs;
   for (const CircuitDeaVoltageProbe& one : judged) computed.push_back(one.probe);
+  computed.insert(computed.end(), shape.probes.begin(), shape.probes.end());
   study.result = options.method == TransientMethod::exact
                      ? run_transient_exact(study.system, computed, transient)
                      : run_transient_ida(study.system, computed, transient);
+  if (study.result.status.ok() && !shape.probes.empty()) {
+    auto& values = study.result.values;
+    const std::vector<std::vector<double>> shape_values(
+        values.end() - static_cast<long>(shape.probes.size()), values.end());
+    values.resize(values.size() - shape.probes.size());
+    study.shape = last_period_shape(shape, study.result.times, shape_values,
+                                    options.points_per_period, options.shape_instants, period);
+  }
   std::vector<std::vector<double>> judged_values;
   if (study.result.status.ok() && !judged.empty()) {
     judged_values.assign(study.result.values.end() - static_cast<long>(judged.size()),

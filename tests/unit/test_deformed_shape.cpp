@@ -7,6 +7,7 @@
 // the beam.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -15,9 +16,11 @@
 
 #include "cli_run.hpp"
 #include "emnet/analysis/periodic.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "emnet/studies/switching_sweep.hpp"
+#include "emnet/studies/transient_study.hpp"
 #include "file_contents.hpp"
 #include "gnuplot_on_path.hpp"
 #include "shipped_scenes.hpp"
@@ -88,6 +91,34 @@ TEST(DeformedShape, LargeKinematicsChordsKeepTheirLength) {
   EXPECT_LT(shortest_tip_x, shape.reference_x.back() - 1e-4);
 }
 
+// tran: the shape at 4 of the last period's 16 output times; the tip's y there is the transient's
+// own tip output at those times (the same run).
+TEST(DeformedShape, TransientShapeIsTheLastPeriodsOutputs) {
+  TransientStudyOptions options;
+  options.periods = 2;
+  options.points_per_period = 16;
+  options.method = TransientMethod::exact;
+  options.outputs = {"tip"};
+  options.shape_instants = 4;
+  const TransientStudyResult study = run_transient_study(
+      read_scene(testing::kFishfin, {"drive.electrical_dynamics=false"}), options);
+  ASSERT_TRUE(study.status.ok()) << study.status.message;
+  ASSERT_TRUE(study.shape.has_value());
+  const DeformedShape& shape = *study.shape;
+  ASSERT_EQ(shape.times.size(), 4u);
+  ASSERT_EQ(study.result.values.size(), 1u);  // the shape's probes are not among the outputs
+  const double period = 1.0 / study.frequency_hz;
+  for (size_t t = 0; t < 4; ++t) {
+    EXPECT_GT(shape.times[t], study.end_time - period);
+    EXPECT_LE(shape.times[t], study.end_time);
+    const auto at = std::find(study.result.times.begin(), study.result.times.end(), shape.times[t]);
+    ASSERT_NE(at, study.result.times.end());
+    EXPECT_EQ(shape.y[t].back(), study.result.values[0][at - study.result.times.begin()]);
+  }
+  options.shape_instants = 17;
+  EXPECT_THROW(options.validate(), OptionError);
+}
+
 class CliShape : public testing::TestDirectory {
  protected:
   CliShape() : TestDirectory("emnet_shape_") {}
@@ -111,6 +142,15 @@ TEST_F(CliShape, WritesTheShapeAsCsvPictureAndAnimation) {
   const auto wrong = testing::run_emnet(sweep + "--shape " + path("s.txt"));
   EXPECT_EQ(wrong.status, 2);
   EXPECT_NE(wrong.err.find("--shape"), std::string::npos) << wrong.err;
+  const auto tran = testing::run_emnet("tran " + testing::kFishfin + " --periods 1 --shape " +
+                                       path("t.csv") + " --shape-instants 4");
+  ASSERT_EQ(tran.status, 0) << tran.err;
+  const std::string tran_table = testing::file_contents(path("t.csv"));
+  EXPECT_EQ(std::count(tran_table.begin(), tran_table.end(), '\n'), 1 + 4 * 8);
+  const auto too_many = testing::run_emnet("tran " + testing::kFishfin + " --periods 1 --shape " +
+                                           path("t.csv") + " --shape-instants 500");
+  EXPECT_EQ(too_many.status, 2);
+  EXPECT_NE(too_many.err.find("--shape-instants"), std::string::npos) << too_many.err;
   const auto alone = testing::run_emnet(sweep + "--shape-instants 5");
   EXPECT_EQ(alone.status, 2);
   EXPECT_NE(alone.err.find("--shape"), std::string::npos) << alone.err;

@@ -112,7 +112,7 @@ Command add_sweep_switching_command(CLI::App& app, CommonOptions& options) {
                   ->add_option("--method", sweep_options->method,
                                "auto (default: exact for a linear network, reduced above 1000 "
                                "unknowns, shooting where the DEAs are driven through a nonlinear "
-                               "[[circuit]]), exact or shooting")
+                               "[[circuit]] or the beam has large kinematics), exact or shooting")
                   ->check(CLI::IsMember({"auto", "exact", "shooting"})),
               {"method"});
   sets_fields(sweep_command->add_option("--samples", sweep_options->samples,

@@ -93,6 +93,7 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   study_options.outputs = options.probes;
   study_options.outputs.insert(study_options.outputs.end(), plot_only.begin(), plot_only.end());
   study_options.prepare.electrical_probe_requested = electrical_probe_requested(options);
+  study_options.shape_instants = shape_instants(tran.shape);
   study_options.progress = progress_of(options);
   show_phase(options, "building the network");
   emnet::TransientStudyResult study = emnet::run_transient_study(std::move(scene), study_options);
@@ -115,8 +116,8 @@ int run_tran_command(CommonOptions options, const TranOptions& tran) {
   const double total = stopwatch.seconds();
   end_progress(options);
   return report_tran({options, tran, study.model, study.system, shown_probes, study.outputs,
-                      plotted, study.result, plot_only_values, study.validity, study.start_text,
-                      study.end_time, total});
+                      plotted, study.result, study.shape, plot_only_values, study.validity,
+                      study.start_text, study.end_time, total});
 }
 
 Command add_tran_command(CLI::App& app, CommonOptions& options) {
@@ -160,6 +161,9 @@ Command add_tran_command(CLI::App& app, CommonOptions& options) {
                    "the response over time (the deflections, or the --probe outputs, one panel "
                    "per unit) over a panel of the drive: the DEA voltages and the source "
                    "voltages [V]");
+  add_shape_options(tran_command, tran_options->shape,
+                    "over the last period, at output times (--shape-instants at most "
+                    "--points-per-period)");
 
   return {tran_command,
           [tran_options, &options] { return run_tran_command(options, *tran_options); }};

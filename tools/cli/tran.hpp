@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/common.hpp"
+#include "cli/shape_output.hpp"
 #include "emnet/analysis/transient.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/model/validity.hpp"
@@ -25,6 +26,7 @@ struct TranOptions {
   int points_per_period = 100;
   std::string plot;
   bool plot_script = false;  // --plot-script: the plot's .dat and .gp too
+  ShapeOptions shape;        // --shape: the last period's
 };
 
 // What the report needs: the command's options, the model, the outputs and the result.
@@ -38,7 +40,8 @@ struct TranReportInput {
   // --probe); `plotted` indexes these.
   const std::vector<emnet::Probe>& plot_probes;
   const PlottedOutputs& plotted;
-  const emnet::TransientResult& result;  // of `probes`
+  const emnet::TransientResult& result;              // of `probes`
+  const std::optional<emnet::DeformedShape>& shape;  // with --shape
   // The values of the plot-only outputs, [plot-only output][time].
   const std::vector<std::vector<double>>& plot_only_values;
   const emnet::Validity& validity;

@@ -6,6 +6,7 @@
 // Every value written is finite: the transient analyses fail (Status) on a non-finite output.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,13 +28,14 @@ struct TransientRunDescription {
   double relative_tolerance = 0.0;                 ///< IDA's rtol (written for both methods)
   Validity validity;                               ///< the run's validity, written as "validity"
   double total_seconds = 0.0;                      ///< the whole command, from its start [s]
+  std::optional<DeformedShape> shape;  ///< the last period's shape, written as "shape" if set
 };
 
 /// Keys in this order: scene, automatic_choices, method, start_state, switching_frequency_hz,
 /// periods, rtol, times_s, outputs [{name, description, unit, values}] (one per probe, values
 /// per output time), statistics (steps, residual_evaluations, jacobian_evaluations,
 /// newton_iterations, error_test_failures, convergence_failures, restarts), cost
-/// (integration_seconds, total_seconds), validity.
+/// (integration_seconds, total_seconds), shape (when asked: emnet/report/json.hpp), validity.
 Json to_json(const TransientResult& result, const std::vector<Probe>& probes,
              const TransientRunDescription& run);
 

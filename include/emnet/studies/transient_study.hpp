@@ -20,6 +20,7 @@
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/transient.hpp"
 #include "emnet/core/progress.hpp"
+#include "emnet/model/deformed_shape.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/model/validity.hpp"
 #include "emnet/scene/scene.hpp"
@@ -47,6 +48,9 @@ struct TransientStudyOptions {
   /// How the scene's remaining "auto" keys are resolved; the study prepares large kinematics for
   /// dynamics itself (LargeKinematicsUse::dynamics, whatever large_kinematics says here).
   PrepareOptions prepare;
+  // > 0: the beam's deformed shape (result.shape) at this many of the last period's output
+  // times, evenly among them; from 2 to points_per_period. 0: none.
+  int shape_instants = 0;
   Progress* progress = nullptr;  // one report per output time
 
   /// The checks of the options alone, as run_transient_study makes them first.
@@ -62,9 +66,10 @@ struct TransientStudyResult {
   TransientResult result;
   Validity validity;
   double frequency_hz = 0.0;
-  double end_time = 0.0;   // [s]
-  std::string start_text;  // the start state in words
-  double seconds = 0.0;    // the whole study
+  double end_time = 0.0;               // [s]
+  std::string start_text;              // the start state in words
+  std::optional<DeformedShape> shape;  // with options.shape_instants
+  double seconds = 0.0;                // the whole study
 };
 
 // The outputs of `texts` (see TransientStudyOptions::outputs) for `model`.
