@@ -129,6 +129,7 @@ std::vector<std::string> unresolved_keys(const Scene& scene) {
       !fluid_resonance_current(scene))
     keys.push_back("environment.frequency");
   if (scene.drive.electrical_dynamics_auto) keys.push_back("drive.electrical_dynamics");
+  if (scene.beam.kinematics_auto) keys.push_back("beam.kinematics");
   return keys;
 }
 

@@ -222,7 +222,7 @@ std::string parameter_unused_reason(const ParameterInfo& info, const Scene& scen
       scene.beam.theory != BeamTheory::timoshenko)
     return "is only used with beam.theory = \"timoshenko\"";
   if ((info.table == "beam" || info.table == "section") && info.name == "axial_stiffness" &&
-      scene.beam.kinematics != BeamKinematics::large)
+      scene.beam.kinematics != BeamKinematics::large && !scene.beam.kinematics_auto)
     return "is only used with beam.kinematics = \"large\" (small deflections have no axial "
            "motion)";
   if (info.table == "environment" && info.name != "fluid" && scene.environment.fluid == Fluid::none)

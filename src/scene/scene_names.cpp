@@ -81,7 +81,8 @@ bool same_beam(const BeamSpec& a, const BeamSpec& b) {
          a.bending_stiffness == b.bending_stiffness && a.mass_per_length == b.mass_per_length &&
          a.rotary_inertia_per_length == b.rotary_inertia_per_length && a.left == b.left &&
          a.right == b.right && a.theory == b.theory && a.shear_stiffness == b.shear_stiffness &&
-         a.kinematics == b.kinematics && a.axial_stiffness == b.axial_stiffness &&
+         a.kinematics == b.kinematics && a.kinematics_auto == b.kinematics_auto &&
+         a.axial_stiffness == b.axial_stiffness &&
          same_lists(a.sections, b.sections, same_section) &&
          same_lists(a.masses, b.masses, same_mass) && same_lists(a.springs, b.springs, same_spring);
 }

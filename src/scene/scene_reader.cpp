@@ -165,11 +165,14 @@ void SceneReader::read_beam(const toml::table& root, Scene& scene) const {
           .value_or(BeamSpec{}.theory);
   reader.reject_if_unused(key("shear_stiffness"), scene, 0);
   beam.shear_stiffness = reader.optional_quantity(key("shear_stiffness")).value_or(0.0);
+  // "auto" reads as small until the resolve step chooses (BeamSpec::kinematics_auto).
   beam.kinematics =
       reader
-          .optional_choice(key("kinematics"), std::vector<BeamKinematics>{BeamKinematics::small,
-                                                                          BeamKinematics::large})
+          .optional_choice(key("kinematics"),
+                           std::vector<BeamKinematics>{BeamKinematics::small, BeamKinematics::large,
+                                                       BeamKinematics::small})
           .value_or(BeamSpec{}.kinematics);
+  beam.kinematics_auto = reader.optional_string("kinematics") == std::optional<std::string>("auto");
   reader.reject_if_unused(key("axial_stiffness"), scene, 0);
   beam.axial_stiffness = reader.optional_quantity(key("axial_stiffness")).value_or(0.0);
 }
@@ -304,7 +307,8 @@ void SceneReader::read_springs(const toml::table& root, Scene& scene) const {
     spring.kind = reader.choice(
         key("kind"), std::vector<SpringKind>{SpringKind::translational, SpringKind::rotational,
                                              SpringKind::axial});
-    if (spring.kind == SpringKind::axial && scene.beam.kinematics != BeamKinematics::large)
+    if (spring.kind == SpringKind::axial && scene.beam.kinematics != BeamKinematics::large &&
+        !scene.beam.kinematics_auto)
       reader.fail("kind",
                   "\"axial\" acts along the beam's x, which only beam.kinematics = \"large\" "
                   "has (small deflections have no axial motion)");

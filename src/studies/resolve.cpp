@@ -12,6 +12,7 @@
 #include "emnet/core/errors.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/studies/segment_selection.hpp"
+#include "kinematics_choice.hpp"
 
 namespace emnet {
 
@@ -213,6 +214,14 @@ ResolvedScene resolve_scene(const Scene& scene, const ResolveOptions& options) {
     out.drive.electrical_dynamics = resolved.automatic_choices.back().value == "true";
     out.drive.electrical_dynamics_auto = false;
   }
+  if (options.kinematics && scene.beam.kinematics_auto && !out.beam.auto_segments &&
+      !out.drive.electrical_dynamics_auto) {
+    resolved.automatic_choices.push_back(choose_kinematics(out, options.large_kinematics));
+    out.beam.kinematics = resolved.automatic_choices.back().value == "large"
+                              ? BeamKinematics::large
+                              : BeamKinematics::small;
+    out.beam.kinematics_auto = false;
+  }
   for (const AutomaticChoice& choice : resolved.automatic_choices)
     out.automatic_choices.push_back(choice);
   if (resonance_found) {  // its note(s), as the model prints them
@@ -276,6 +285,7 @@ Model prepare_model(const Scene& scene, const PrepareOptions& options) {
   require_served_kinematics(scene, options.large_kinematics);
   ResolveOptions resolve;
   resolve.electrical_probe_requested = options.electrical_probe_requested;
+  resolve.large_kinematics = options.large_kinematics;
   return build_model(resolve_scene(scene, resolve).scene);
 }
 

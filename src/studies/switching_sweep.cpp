@@ -75,10 +75,12 @@ void check_swept_drive(const Scene& scene, const std::vector<std::string>& sourc
 
 namespace {
 
-// The swept model's PrepareOptions: `given`, with large kinematics served (by shooting; the exact
-// method refuses them itself).
-PrepareOptions served_by_the_sweep(const Scene& scene, PrepareOptions given) {
-  if (scene.beam.kinematics == BeamKinematics::large)
+// The swept model's PrepareOptions: `given`, with large kinematics served (by shooting) unless
+// the method is the exact one (then "auto" stays small; an explicit "large" is refused).
+PrepareOptions served_by_the_sweep(const Scene& scene, PrepareOptions given,
+                                   SwitchingSweepMethod method = SwitchingSweepMethod::automatic) {
+  const bool asked = scene.beam.kinematics == BeamKinematics::large || scene.beam.kinematics_auto;
+  if (asked && method != SwitchingSweepMethod::exact)
     given.large_kinematics = LargeKinematicsUse::dynamics;
   return given;
 }
@@ -607,6 +609,18 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   return sweep.run();
 }
 
+namespace {
+
+// beam.kinematics = "auto" is chosen once, by the swept model: a model prepared per frequency
+// (switched circuit sources) takes the same kinematics.
+SweptModel with_kinematics_chosen(SweptModel swept) {
+  swept.scene.beam.kinematics = swept.model.scene.beam.kinematics;
+  swept.scene.beam.kinematics_auto = false;
+  return swept;
+}
+
+}  // namespace
+
 SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
                                const std::vector<std::string>& probe_texts,
                                const PrepareOptions& prepare, double highest_hz) {
@@ -616,13 +630,17 @@ SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
     throw InputError(scene.file, "beam.kinematics",
                      "is \"large\": a nonlinear network, which the exact periodic method cannot "
                      "solve; the shooting method (the automatic choice) can");
-  SweptModel swept{prepare_model(scene, served_by_the_sweep(scene, prepare)), scene, {}};
+  SweptModel swept{prepare_model(scene, served_by_the_sweep(scene, prepare, method)), scene, {}};
   check_swept_drive(swept.model.scene);
-  if (method == SwitchingSweepMethod::shooting || large) return swept;
+  const bool built_large = swept.model.scene.beam.kinematics == BeamKinematics::large;
+  if (method == SwitchingSweepMethod::shooting || built_large)
+    return with_kinematics_chosen(std::move(swept));
   const bool automatic = method == SwitchingSweepMethod::automatic;
   for (const auto& text : probe_texts)
     if (asks_for_dea_electrics(text)) {
-      if (automatic) return swept;  // the RC loop is asked for: shooting (run_switching_sweep)
+      if (automatic)
+        return with_kinematics_chosen(
+            std::move(swept));  // the RC loop is asked for: shooting (run_switching_sweep)
       throw OptionError("probe",
                         "the exact periodic method models the DEAs as ideal voltage-driven "
                         "forces, without the RC loop whose voltage and current this probe asks "
@@ -630,7 +648,8 @@ SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
                         text);
     }
   const bool nonlinear = swept.model.network.assemble().is_nonlinear();
-  if (nonlinear && !swept.model.scene.circuit.empty() && automatic) return swept;
+  if (nonlinear && !swept.model.scene.circuit.empty() && automatic)
+    return with_kinematics_chosen(std::move(swept));
   if (nonlinear && !swept.model.scene.circuit.empty())
     throw InputError(swept.model.scene.file, "circuit",
                      "the exact periodic method models the DEAs as ideal voltage-driven forces, "
@@ -656,7 +675,7 @@ SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
                                }),
                 notes.end());
   }
-  return swept;
+  return with_kinematics_chosen(std::move(swept));
 }
 
 std::vector<Probe> switching_sweep_outputs(const Model& model,

@@ -114,7 +114,11 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
     set_switching_frequency(scene, *options.switching_hz);  // drive and periodic sources
   TransientStudyResult study;
   PrepareOptions prepare = options.prepare;
-  prepare.large_kinematics = LargeKinematicsUse::dynamics;  // IDA serves it (the exact method not)
+  // IDA serves large kinematics; the exact method not, so "auto" stays small for it (explicit
+  // "large" is refused below, naming the method).
+  const bool exact_auto = options.method == TransientMethod::exact && scene.beam.kinematics_auto;
+  prepare.large_kinematics =
+      exact_auto ? LargeKinematicsUse::refused : LargeKinematicsUse::dynamics;
   study.model = prepare_model(scene, prepare);
   study.system = study.model.network.assemble();
   const Model& model = study.model;

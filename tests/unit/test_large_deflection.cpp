@@ -17,12 +17,16 @@
 
 #include <array>
 #include <cmath>
+#include <string>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "elastica.hpp"
 #include "emnet/elements/corotational_segment.hpp"
 #include "emnet/model/validity.hpp"
 #include "emnet/scene/scene_reader.hpp"
+#include "emnet/studies/resolve.hpp"
 #include "fixtures.hpp"
 
 namespace emnet {
@@ -427,6 +431,71 @@ TEST(LargeKinematicsProbes, AxialDisplacementNeedsLargeKinematics) {
   EXPECT_THROW(build_model(scene), InputError);
   scene.beam.kinematics = BeamKinematics::large;
   EXPECT_NO_THROW(build_model(scene));
+}
+
+}  // namespace
+}  // namespace emnet
+
+namespace emnet {
+namespace {
+
+// ---- beam.kinematics = "auto" ---------------------------------------------------------------
+
+// The kinematics "auto" chose for `overrides` of `path` (beam.kinematics=auto added), prepared
+// for `use`, and the choice.
+std::pair<BeamKinematics, AutomaticChoice> automatic_kinematics(const std::string& path,
+                                                                std::vector<std::string> overrides,
+                                                                LargeKinematicsUse use) {
+  overrides.push_back("beam.kinematics=auto");
+  PrepareOptions options;
+  options.large_kinematics = use;
+  const Model model = prepare_model(read_scene(path, overrides), options);
+  for (const AutomaticChoice& choice : model.automatic_choices)
+    if (choice.key == "beam.kinematics") return {model.scene.beam.kinematics, choice};
+  ADD_FAILURE() << "no choice for beam.kinematics";
+  return {model.scene.beam.kinematics, {}};
+}
+
+// Large where the small beam's (w/L)² exceeds model.tolerance: the reference cantilever's tip
+// load deflects it 4.17 % of L (1.7e-3 > 1e-3), 40 N 167 %; with model.tolerance = 0.01 the
+// default load stays small. The fish fin's swing at resonance is estimated from its AC response
+// (4/pi x 10.40 mm = 13.24 mm, within 1 % of the periodic swing's 13.16 mm): large for the
+// dynamics with EA, small without EA, for an analysis that refuses large kinematics, and at a
+// hundredth of the drive's force (400 V).
+TEST(KinematicsAuto, LargeWhereTheSmallBeamsGeometricErrorExceedsTheTolerance) {
+  const std::string cantilever = std::string(EMNET_SOURCE_DIR) + "/netlists/cantilever.toml";
+  const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+  const auto stat = LargeKinematicsUse::static_state, dyn = LargeKinematicsUse::dynamics;
+  const auto [loaded, choice] = automatic_kinematics(cantilever, {}, stat);
+  EXPECT_EQ(loaded, BeamKinematics::large);
+  EXPECT_NEAR(choice.estimated_error, 0.0417 * 0.0417, 1e-4);
+  EXPECT_EQ(automatic_kinematics(cantilever, {"load[0].value=40 N"}, stat).first,
+            BeamKinematics::large);
+  EXPECT_EQ(automatic_kinematics(cantilever, {"model.tolerance=0.01"}, stat).first,
+            BeamKinematics::small);
+  const auto [resonant, fin_choice] =
+      automatic_kinematics(fin, {"beam.axial_stiffness=200 kN"}, dyn);
+  EXPECT_EQ(resonant, BeamKinematics::large);
+  EXPECT_NEAR(std::sqrt(fin_choice.estimated_error) * 0.1225, 13.16e-3, 0.01 * 13.16e-3);
+  const auto without_ea = automatic_kinematics(fin, {}, dyn);
+  EXPECT_EQ(without_ea.first, BeamKinematics::small);
+  EXPECT_NE(without_ea.second.reason.find("beam.axial_stiffness"), std::string::npos);
+  EXPECT_EQ(
+      automatic_kinematics(fin, {"beam.axial_stiffness=200 kN"}, LargeKinematicsUse::refused).first,
+      BeamKinematics::small);
+  EXPECT_EQ(
+      automatic_kinematics(fin, {"beam.axial_stiffness=200 kN", "drive.voltage=400 V"}, dyn).first,
+      BeamKinematics::small);
+}
+
+// "auto" is read as a value of beam.kinematics, and the keys only large kinematics use
+// (beam.axial_stiffness, a spring of kind "axial") are accepted with it.
+TEST(KinematicsAuto, TheLargeOnlyKeysAreAcceptedWithAuto) {
+  const std::string fin = std::string(EMNET_SOURCE_DIR) + "/netlists/fishfin.toml";
+  const Scene scene = read_scene(fin, {"beam.kinematics=auto", "beam.axial_stiffness=1 kN"});
+  EXPECT_TRUE(scene.beam.kinematics_auto);
+  EXPECT_EQ(scene.beam.kinematics, BeamKinematics::small);
+  EXPECT_EQ(unresolved_keys(scene), std::vector<std::string>{"beam.kinematics"});
 }
 
 }  // namespace

@@ -96,6 +96,8 @@ struct BeamSpec {
   BeamTheory theory = BeamTheory::euler_bernoulli;  ///< beam.theory
   double shear_stiffness = 0.0;  ///< beam.shear_stiffness κGA [N] (Timoshenko); 0: not given
   BeamKinematics kinematics = BeamKinematics::small;  ///< beam.kinematics
+  /// beam.kinematics = "auto": resolve_scene chooses `kinematics` (small until it does).
+  bool kinematics_auto = false;
   /// beam.axial_stiffness EA [N] (large kinematics); 0: not given, the beam is inextensible.
   double axial_stiffness = 0.0;
   /// The structure on the beam, read from [[section]], [[mass]] and [[spring]]. With sections,

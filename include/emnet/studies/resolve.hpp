@@ -39,6 +39,18 @@
 
 namespace emnet {
 
+/// What the analysis a model is prepared for does with beam.kinematics = "large" (docs/model.md,
+/// Large deflection): prepare_model refuses a scene the analysis does not serve, naming the key,
+/// so that no analysis runs the co-rotational network it has not been checked on.
+enum class LargeKinematicsUse {
+  refused,       ///< not served yet (studies, identify, SPICE decks, ...)
+  static_state,  ///< the static analysis: any beam, inextensible included
+  /// modes, AC and IDA transients: every segment needs an axial stiffness EA, because an
+  /// inextensible beam with masses is a constrained mechanism (a DAE of index 3) that the time
+  /// integration and the poles' error bounds do not take
+  dynamics,
+};
+
 struct ResolveOptions {
   // A probe outside the scene (the command line's --probe) asks for dea_voltage, dea_current or
   // dea_force, which drive.electrical_dynamics = "auto" must then keep.
@@ -49,6 +61,9 @@ struct ResolveOptions {
   bool segments = true;
   bool fluid_resonance = true;
   bool electrical_dynamics = true;
+  bool kinematics = true;
+  // What the analysis serves, for beam.kinematics = "auto" (small where large is refused).
+  LargeKinematicsUse large_kinematics = LargeKinematicsUse::refused;
 };
 
 struct ResolvedScene {
@@ -79,18 +94,6 @@ Scene resolve_segments(const Scene& scene);
 bool asks_for_dea_electrics(const std::string& probe_text);
 /// Whether any of `probe_texts` does.
 bool asks_for_dea_electrics(const std::vector<std::string>& probe_texts);
-
-/// What the analysis a model is prepared for does with beam.kinematics = "large" (docs/model.md,
-/// Large deflection): prepare_model refuses a scene the analysis does not serve, naming the key,
-/// so that no analysis runs the co-rotational network it has not been checked on.
-enum class LargeKinematicsUse {
-  refused,       ///< not served yet (the switching sweep, studies, SPICE decks, ...)
-  static_state,  ///< the static analysis: any beam, inextensible included
-  /// modes, AC and IDA transients: every segment needs an axial stiffness EA, because an
-  /// inextensible beam with masses is a constrained mechanism (a DAE of index 3) that the time
-  /// integration and the poles' error bounds do not take
-  dynamics,
-};
 
 struct PrepareOptions {
   bool electrical_probe_requested = false;                            // as ResolveOptions

@@ -77,11 +77,14 @@ SceneTableKeys beam_table_keys() {
       "required with beam.theory = \"timoshenko\" (unless every section "
       "gives its own)";
 
-  keys.add(choice("beam", "kinematics", {"small", "large"}, false, "beam",
+  keys.add(choice("beam", "kinematics", {"small", "large", "auto"}, false, "beam",
                   "small: the linear beam network (small deflections and rotations); large: "
-                  "planar, geometrically exact co-rotational segments (any rotation, dead loads)"))
+                  "planar, geometrically exact co-rotational segments (any rotation, dead loads); "
+                  "auto: large where the small beam's geometric error (w/L)^2, from its static "
+                  "state and its AC response to the drive, exceeds model.tolerance"))
       .text = [](const Scene& scene, std::size_t) {
-    return std::string(beam_kinematics_name(scene.beam.kinematics));
+    return std::string(scene.beam.kinematics_auto ? "auto"
+                                                  : beam_kinematics_name(scene.beam.kinematics));
   };
   plain_field(keys.add(quantity("beam", "axial_stiffness", dim::force, positive(), false,
                                 "beam kinematics 'large'",

@@ -1,0 +1,138 @@
+// beam.kinematics = "auto" (kinematics_choice.hpp).
+//
+// The estimate is that of every small-kinematics result (emnet/model/validity.hpp): (w/L)² of
+// the largest deflection. The deflection is the small network's, before any analysis: the
+// static state under the loads and the drive at t = 0, and the AC response to the drive's
+// alternating part over the band of interest, at every node, the AC amplitude times 4/π for a
+// square-wave drive (its fundamental: at the fish fin's resonance 13.24 mm against the periodic
+// swing's 13.16 mm).
+#include "kinematics_choice.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "emnet/analysis/analysis.hpp"
+#include "emnet/core/errors.hpp"
+#include "emnet/core/units.hpp"
+#include "emnet/model/deformed_shape.hpp"
+#include "emnet/model/model.hpp"
+#include "emnet/studies/segment_selection.hpp"
+
+namespace emnet {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The largest deflection [m] and where it comes from, in words.
+struct LargestDeflection {
+  double value = 0.0;
+  std::string where = "no load or drive deflects the beam";
+};
+
+void take(LargestDeflection& largest, double value, const std::string& where) {
+  if (std::isfinite(value) && value > largest.value) largest = {value, where};
+}
+
+// The AC response's largest amplitude over the band, at the lowest modes in it and on a grid.
+void take_ac_response(const Scene& scene, const System& system, const StaticResult& rest,
+                      const std::vector<Probe>& nodes, LargestDeflection& largest) {
+  if (system.b_ac().norm() == 0.0) return;
+  BandOfInterest band;
+  try {
+    band = band_of_interest(scene, "beam.kinematics");
+  } catch (const InputError&) {
+    return;  // no band: the static state alone (the reason says which it took)
+  }
+  const Eigen::VectorXd point =
+      rest.status.ok() ? rest.operating_point : Eigen::VectorXd::Zero(system.size());
+  std::vector<double> frequencies;
+  for (int k = 0; k <= 200; ++k) frequencies.push_back(band.from + (band.to - band.from) * k / 200);
+  ModalOptions modal;
+  modal.keep_vectors = false;
+  modal.error_bounds = false;
+  const ModalResult modes = run_modes(system, point, modal);
+  if (modes.status.ok())
+    for (const auto& mode : modes.modes)
+      if (mode.frequency_hz >= band.from && mode.frequency_hz <= band.to)
+        frequencies.push_back(mode.frequency_hz);
+  std::sort(frequencies.begin(), frequencies.end());
+  frequencies.erase(
+      std::remove_if(frequencies.begin(), frequencies.end(), [](double f) { return !(f > 0.0); }),
+      frequencies.end());
+  if (frequencies.empty()) return;
+  const AcResult ac = run_ac(system, point, frequencies, nodes);
+  if (!ac.status.ok()) return;
+  const bool square =
+      scene.drive.kind == DriveKind::antagonistic || scene.drive.kind == DriveKind::switched;
+  const double factor = square ? 4.0 / kPi : 1.0;
+  for (size_t p = 0; p < nodes.size(); ++p)
+    for (size_t k = 0; k < frequencies.size(); ++k)
+      take(largest, factor * std::abs(ac.values[p][k]),
+           std::string(square ? "4/pi x " : "") + "the AC amplitude at " +
+               format_number("%.5g", frequencies[k]) + " Hz (band " + band.source + ")");
+}
+
+LargestDeflection largest_small_deflection(const Scene& scene) {
+  Scene small = scene;
+  small.beam.kinematics = BeamKinematics::small;
+  small.beam.kinematics_auto = false;
+  const Model model = build_model(small);
+  const System system = model.network.assemble();
+  const ShapeProbes nodes = shape_probes(model);
+  LargestDeflection largest;
+  const StaticResult rest = solve_static(system);
+  if (rest.status.ok())
+    for (const Probe& probe : nodes.probes)
+      take(largest, std::abs(static_probe_value(system, rest, probe)), "the static state");
+  take_ac_response(scene, system, rest, nodes.probes, largest);
+  return largest;
+}
+
+// Why `scene` cannot take large kinematics for `use` ("" when it can).
+std::string why_not_large(const Scene& scene, LargeKinematicsUse use) {
+  if (use == LargeKinematicsUse::refused)
+    return "this analysis takes small kinematics only (its result states the geometric error)";
+  if (use == LargeKinematicsUse::dynamics && !extensible(scene.beam))
+    return "the dynamic analyses need beam.axial_stiffness (EA) with large kinematics";
+  Scene large = scene;
+  large.beam.kinematics = BeamKinematics::large;
+  large.beam.kinematics_auto = false;
+  try {
+    build_model(large);
+  } catch (const InputError& error) {
+    return std::string("the beam cannot take large kinematics: ") + error.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+AutomaticChoice choose_kinematics(const Scene& scene, LargeKinematicsUse use) {
+  const auto start = std::chrono::steady_clock::now();
+  AutomaticChoice choice;
+  choice.key = "beam.kinematics";
+  choice.tolerance = scene.model.tolerance;
+  const LargestDeflection largest = largest_small_deflection(scene);
+  const double fraction = largest.value / scene.beam.length;
+  choice.estimated_error = fraction * fraction;
+  const bool wanted = choice.estimated_error > scene.model.tolerance;
+  const std::string obstacle = wanted ? why_not_large(scene, use) : "";
+  const bool large = wanted && obstacle.empty();
+  choice.value = large ? "large" : "small";
+  choice.reason =
+      "beam.kinematics = \"auto\": " + choice.value + ": the small beam's largest " +
+      "deflection " + format_number("%.4g", largest.value * 1e3) + " mm (" + largest.where +
+      ") = " + format_number("%.3g", 100 * fraction) +
+      " % of L, a geometric error ~(w/L)^2 = " + format_number("%.3g", choice.estimated_error) +
+      (wanted ? " > " : " <= ") + "model.tolerance " +
+      format_number("%.3g", scene.model.tolerance) +
+      (obstacle.empty() ? "" : "; small all the same: " + obstacle);
+  choice.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return choice;
+}
+
+}  // namespace emnet
