@@ -43,16 +43,6 @@ std::vector<double> frequency_grid(double from, double to, int points, bool log)
   return grid;
 }
 
-std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y, double omega) {
-  if (!is_linear(probe))
-    throw std::invalid_argument("probe_phasor: probe '" + probe.name +
-                                "' has squares; take linearised_probe about the operating point");
-  std::complex<double> sum = 0.0;
-  for (const auto& [index, coefficient] : probe.terms) sum += coefficient * y[index];
-  for (int k = 0; k < probe.integrations; ++k) sum /= std::complex<double>(0.0, omega);
-  return sum;
-}
-
 namespace {
 
 // The direct solve (G + J_g + jω·C)·Y = B_ac at one frequency at a time, KLU's symbolic analysis

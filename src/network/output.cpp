@@ -2,6 +2,7 @@
 #include "emnet/network/output.hpp"
 
 #include <cstdio>
+#include <stdexcept>
 
 namespace emnet {
 
@@ -37,6 +38,16 @@ Probe linearised_probe(const Probe& probe, const Eigen::VectorXd& operating_poin
   linear.description +=
       " (small signal: linearised about the operating point, 2*k*u0*U with u0 = " + levels + ")";
   return linear;
+}
+
+std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y, double omega) {
+  if (!is_linear(probe))
+    throw std::invalid_argument("probe_phasor: probe '" + probe.name +
+                                "' has squares; take linearised_probe about the operating point");
+  std::complex<double> sum = 0.0;
+  for (const auto& [index, coefficient] : probe.terms) sum += coefficient * y[index];
+  for (int k = 0; k < probe.integrations; ++k) sum /= std::complex<double>(0.0, omega);
+  return sum;
 }
 
 }  // namespace emnet

@@ -261,10 +261,11 @@ void require_served_kinematics(const Scene& scene, LargeKinematicsUse use) {
   if (scene.beam.kinematics != BeamKinematics::large) return;
   if (use == LargeKinematicsUse::refused)
     throw InputError(scene.file, "beam.kinematics",
-                     "is \"large\", which the static analysis, modes, AC, IDA transients and "
-                     "the switching sweep (by shooting) serve so far; the exact transient, "
-                     "identify, mismatch, sensitivity, studies, SPICE decks and the cross-check "
-                     "need beam.kinematics = \"small\"");
+                     "is \"large\", which the static analysis, modes, AC, IDA transients, "
+                     "the switching sweep (by shooting) and identify by a resonance serve so "
+                     "far; the exact transient, identify by a peak, mismatch, sensitivity, "
+                     "studies, SPICE decks and the cross-check need beam.kinematics = "
+                     "\"small\"");
   if (use == LargeKinematicsUse::dynamics && !extensible(scene.beam))
     throw InputError(scene.file, "beam.axial_stiffness",
                      "is needed for modes, AC and transients with beam.kinematics = \"large\": "

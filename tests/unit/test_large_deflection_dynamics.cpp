@@ -11,15 +11,19 @@
 //   - a rigid bar on a torsion spring k with a tip mass m under a step moment M: the exact angle
 //     θ(t) = (M/k)·(1 − cos ωt), ω² = k/(m·L²), at any amplitude (the mass moves on the circle,
 //     its inertia about the pivot is m·L² at every angle), the tip at L·(cos θ, sin θ);
-//   - the energy of an undamped free vibration, constant.
+//   - the energy of an undamped free vibration, constant;
+//   - identify's round trip: the stiffness whose deflected state has a given first mode.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 
 #include "elastica.hpp"
+#include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/transient.hpp"
 #include "emnet/elements/corotational_segment.hpp"
+#include "emnet/scene/parameters.hpp"
+#include "emnet/studies/identify.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "fixtures.hpp"
 
@@ -265,6 +269,56 @@ TEST(LargeKinematicsAnalyses, EachServesOrRefusesNamingTheKey) {
   EXPECT_EQ(refused_key(LargeKinematicsUse::refused), "beam.kinematics");
   scene.beam.axial_stiffness = 1e4;
   EXPECT_EQ(refused_key(LargeKinematicsUse::dynamics), "");
+}
+
+}  // namespace
+}  // namespace emnet
+
+namespace emnet {
+namespace {
+
+// ---- identify with large kinematics --------------------------------------------------------
+
+// identify by a resonance fits EI to the first mode about the deflected static state. Round
+// trip: the tip-mass cantilever bent by α = 3 (at the true EI) has its first mode f; identify
+// from EI/2 gives back the EI whose deflected state (the dead load fixed, so α moves with EI)
+// has that mode, to the fit's 1e-10 in frequency, and the large model at that EI is the large
+// model at the true EI (the same computation, 1e-8 in EI: f is smooth in EI). Without the load
+// the large model's EI is the small model's (its linearisation at rest is the small network).
+TEST(IdentifyLargeKinematics, FitsTheBendingStiffnessToTheModeAboutTheDeflectedState) {
+  Scene scene = tip_mass_cantilever(16, 3.0);
+  ModalOptions modal;
+  modal.keep_vectors = false;
+  PrepareOptions dynamics;
+  dynamics.large_kinematics = LargeKinematicsUse::dynamics;
+  auto first_mode = [&](const Scene& s) {
+    const Model model = prepare_model(s, dynamics);
+    const System system = model.network.assemble();
+    return run_modes(system, solve_static(system).operating_point, modal).modes[0].frequency_hz;
+  };
+  const double target = first_mode(scene);
+  Scene start = scene;
+  set_parameter(start, "beam.bending_stiffness", kBeamStiffness / 2);
+  IdentifyOptions options;
+  options.target_hz = target;
+  const IdentifyResult result = identify(start, options);
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
+  EXPECT_NEAR(result.achieved_hz, target, 1e-10 * target);
+  EXPECT_NEAR(result.bending_stiffness, kBeamStiffness, 1e-8 * kBeamStiffness);
+  // Unloaded: the small model's identification.
+  Scene unloaded = tip_mass_cantilever(16, 0.0);
+  set_parameter(unloaded, "beam.bending_stiffness", kBeamStiffness / 2);
+  Scene small = unloaded;
+  small.beam.kinematics = BeamKinematics::small;
+  small.beam.axial_stiffness = 0.0;
+  small.probes = {beam_probe("w", ProbeQuantity::deflection, kBeamLength)};
+  options.target_hz = 0.9 * target;
+  const IdentifyResult large_fit = identify(unloaded, options),
+                       small_fit = identify(small, options);
+  ASSERT_TRUE(large_fit.status.ok()) << large_fit.status.message;
+  ASSERT_TRUE(small_fit.status.ok()) << small_fit.status.message;
+  EXPECT_NEAR(large_fit.bending_stiffness, small_fit.bending_stiffness,
+              1e-8 * small_fit.bending_stiffness);
 }
 
 }  // namespace

@@ -144,11 +144,7 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
                 const std::vector<double>& frequencies, const std::vector<Probe>& probes,
                 const AcOptions& options = {});
 /// Probes with squares are linearised about `operating_point` (linearised_probe) by run_ac;
-/// probe_phasor takes linear probes only (std::invalid_argument otherwise).
-/// @param y      the phasors of the system's unknowns
-/// @param omega  angular frequency [rad/s], for the probe's integrations
-/// @throws std::invalid_argument when `probe` has squares
-std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y, double omega);
+/// probe_phasor (emnet/network/output.hpp) takes linear probes only.
 
 // ---- modal -------------------------------------------------------------------------------
 //

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <complex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -60,5 +61,10 @@ double squares_value(const Probe& probe, const Eigen::VectorXd& y);
 /// linear terms 2·factor·u₀·d, the description says so with u₀. A linear probe is returned as
 /// it is.
 Probe linearised_probe(const Probe& probe, const Eigen::VectorXd& operating_point);
+
+/// The phasor of a linear probe from the phasors `y` of the system's unknowns.
+/// @param omega  angular frequency [rad/s], for the probe's integrations
+/// @throws std::invalid_argument when `probe` has squares (take linearised_probe first)
+std::complex<double> probe_phasor(const Probe& probe, const Eigen::VectorXcd& y, double omega);
 
 }  // namespace emnet
