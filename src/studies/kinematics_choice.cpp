@@ -2,10 +2,11 @@
 //
 // The estimate is that of every small-kinematics result (emnet/model/validity.hpp): (w/L)² of
 // the largest deflection. The deflection is the small network's, before any analysis: the
-// static state under the loads and the drive at t = 0, and the AC response to the drive's
-// alternating part at every node, at the band's ends and its damped modes, times 4/π for a
-// square-wave drive (its fundamental: at the fish fin's resonance 13.24 mm against the periodic
-// swing's 13.16 mm).
+// static state under the loads and the drive at t = 0 and, for the dynamic analyses, the AC
+// response to the drive's alternating part at every node, at the band's ends and its damped
+// modes, times 4/π for a square-wave drive (its fundamental: at the fish fin's resonance
+// 13.24 mm against the periodic swing's 13.16 mm). An analysis that refuses large kinematics
+// computes nothing: it stays small.
 #include "kinematics_choice.hpp"
 
 #include <Eigen/SparseLU>
@@ -88,7 +89,8 @@ void take_ac_response(const Scene& scene, const System& system, const StaticResu
   }
 }
 
-LargestDeflection largest_small_deflection(const Scene& scene) {
+// `with_ac`: the dynamic analyses' swing too (the static analysis has the static state only).
+LargestDeflection largest_small_deflection(const Scene& scene, bool with_ac) {
   Scene small = scene;
   small.beam.kinematics = BeamKinematics::small;
   small.beam.kinematics_auto = false;
@@ -100,14 +102,12 @@ LargestDeflection largest_small_deflection(const Scene& scene) {
   if (rest.status.ok())
     for (const Probe& probe : nodes.probes)
       take(largest, std::abs(static_probe_value(system, rest, probe)), "the static state");
-  take_ac_response(scene, system, rest, nodes.probes, largest);
+  if (with_ac) take_ac_response(scene, system, rest, nodes.probes, largest);
   return largest;
 }
 
 // Why `scene` cannot take large kinematics for `use` ("" when it can).
 std::string why_not_large(const Scene& scene, LargeKinematicsUse use) {
-  if (use == LargeKinematicsUse::refused)
-    return "this analysis takes small kinematics only (its result states the geometric error)";
   if (use == LargeKinematicsUse::dynamics && !extensible(scene.beam))
     return "the dynamic analyses need beam.axial_stiffness (EA) with large kinematics";
   Scene large = scene;
@@ -128,7 +128,15 @@ AutomaticChoice choose_kinematics(const Scene& scene, LargeKinematicsUse use) {
   AutomaticChoice choice;
   choice.key = "beam.kinematics";
   choice.tolerance = scene.model.tolerance;
-  const LargestDeflection largest = largest_small_deflection(scene);
+  if (use == LargeKinematicsUse::refused) {  // nothing to choose: no estimate is computed
+    choice.value = "small";
+    choice.reason =
+        "beam.kinematics = \"auto\": small: this analysis takes small kinematics "
+        "only (its result states its geometric error)";
+    return choice;
+  }
+  const LargestDeflection largest =
+      largest_small_deflection(scene, use == LargeKinematicsUse::dynamics);
   const double fraction = largest.value / scene.beam.length;
   choice.estimated_error = fraction * fraction;
   const bool wanted = choice.estimated_error > scene.model.tolerance;
