@@ -9,7 +9,6 @@
 // far from the linearisation) the Jacobian is formed again by finite differences of one-period
 // runs, one per state. ξ are the linearisation's states restricted to the hidden constraints'
 // null space: x = P·ξ, P orthonormal, and IDA starts from u = U·x (U: the state's unknowns).
-#include <Eigen/SVD>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -17,6 +16,7 @@
 #include <string>
 
 #include "core/timed.hpp"
+#include "dense_decompositions.hpp"
 #include "displacement_form.hpp"
 #include "emnet/analysis/analysis.hpp"
 #include "emnet/analysis/periodic.hpp"
@@ -72,11 +72,11 @@ class ShootingCoordinates {
   // An orthonormal basis of the null space of `constraints` (the identity without rows).
   static Eigen::MatrixXd constrained_basis(const Eigen::MatrixXd& constraints, Eigen::Index n) {
     if (constraints.rows() == 0) return Eigen::MatrixXd::Identity(n, n);
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(constraints, Eigen::ComputeFullV);
-    const Eigen::VectorXd& sv = svd.singularValues();
+    const RealSingularValueDecomposition svd = jacobi_svd(constraints, Eigen::ComputeFullV);
+    const Eigen::VectorXd& sv = svd.singular_values;
     Eigen::Index rank = 0;
     while (rank < sv.size() && sv[rank] > 1e-12 * sv[0]) ++rank;
-    return svd.matrixV().rightCols(n - rank);
+    return svd.v.rightCols(n - rank);
   }
 
   std::unique_ptr<LinearStateSpace> space_;

@@ -1,7 +1,9 @@
 // Static analysis: displacements at rest from the s → 0 expansion of the pencil.
 // See include/emnet/analysis/analysis.hpp for the method.
+#include <Eigen/SparseLU>
 #include <chrono>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <limits>
 
@@ -72,6 +74,23 @@ Eigen::SparseMatrix<double> linearised_g(const System& system, const Eigen::Vect
   Eigen::SparseMatrix<double> sum = system.G + jacobian;
   sum.makeCompressed();
   return sum;
+}
+
+Eigen::VectorXcd small_signal_phasors(const System& system,
+                                      const Eigen::SparseMatrix<double>& g_matrix, double omega,
+                                      double* relative_residual) {
+  using Complex = std::complex<double>;
+  if (relative_residual) *relative_residual = std::numeric_limits<double>::infinity();
+  Eigen::SparseMatrix<Complex> matrix =
+      g_matrix.cast<Complex>() + Complex(0.0, omega) * system.C.cast<Complex>();
+  matrix.makeCompressed();
+  Eigen::SparseLU<Eigen::SparseMatrix<Complex>> lu(matrix);
+  if (lu.info() != Eigen::Success) return {};
+  const Eigen::VectorXcd input = system.b_ac();
+  Eigen::VectorXcd y = lu.solve(input);
+  if (relative_residual && y.allFinite())
+    *relative_residual = (matrix * y - input).norm() / input.norm();
+  return y;
 }
 
 RowClassification classify_rows(const System& system, const Eigen::SparseMatrix<double>& g_matrix) {

@@ -192,17 +192,11 @@ Eigen::VectorXd absolute_tolerances(const DisplacementForm& form, const StaticRe
     for (int k = 0; k < n; ++k)
       largest[kind(k)] = std::max(largest[kind(k)], std::abs(rest.state[k]));
   const double omega = 2 * M_PI * frequency;
-  const Eigen::VectorXcd rhs = system.b_ac();
-  if (rhs.norm() > 0.0) {
-    using Complex = std::complex<double>;
+  if (system.b_ac().norm() > 0.0) {
     const Eigen::SparseMatrix<double> g =
         linearised_g(system, rest.status.ok() ? rest.operating_point : Eigen::VectorXd::Zero(n));
-    Eigen::SparseMatrix<Complex> matrix =
-        g.cast<Complex>() + Complex(0.0, omega) * system.C.cast<Complex>();
-    matrix.makeCompressed();
-    Eigen::SparseLU<Eigen::SparseMatrix<Complex>> lu(matrix);
-    if (lu.info() == Eigen::Success) {
-      const Eigen::VectorXcd y = lu.solve(rhs);
+    const Eigen::VectorXcd y = small_signal_phasors(system, g, omega);
+    if (y.size() == n) {
       for (int k = 0; k < n; ++k) {
         const bool displacement = form.mechanical(k);
         const double amplitude = std::abs(y[k]) / (displacement ? omega : 1.0);

@@ -81,14 +81,12 @@ std::string percent(double fraction) {
   return format_number("%.3g %%", 100.0 * fraction);
 }
 
-// The small beam's geometric error at a largest |deflection| `peak` of a beam of `length`
-// (validity.hpp): (w/L)², the tip-force elastica's.
+}  // namespace
+
 double geometric_error_estimate(double peak, double length) {
   const double fraction = peak / length;
   return fraction * fraction;
 }
-
-}  // namespace
 
 const char* validity_check_name(ValidityCheck check) {
   switch (check) {

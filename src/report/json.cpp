@@ -13,9 +13,12 @@ std::string json_text(const Json& json) {
 }
 
 Json to_json(const DeformedShape& shape) {
-  return {
-      {"frequency_hz", shape.frequency},    {"period_s", shape.period}, {"times_s", shape.times},
-      {"reference_x_m", shape.reference_x}, {"x_m", shape.x},           {"y_m", shape.y}};
+  return {{"frequency_hz", shape.frequency},
+          {"period_s", shape.period()},
+          {"times_s", shape.times},
+          {"reference_x_m", shape.reference_x},
+          {"x_m", shape.x},
+          {"y_m", shape.y}};
 }
 
 Json to_json(const Validity& validity) {

@@ -52,7 +52,7 @@ ShapeFrame shape_frame(const DeformedShape& shape) {
 
 // Each instant's phase: t/T modulo 1 over a period, or t over the last instant of a transient.
 double phase_of(const DeformedShape& shape, size_t t) {
-  if (shape.period > 0.0) return std::fmod(shape.times[t] / shape.period, 1.0);
+  if (shape.period() > 0.0) return std::fmod(shape.times[t] / shape.period(), 1.0);
   return shape.times.back() > 0.0 ? shape.times[t] / shape.times.back() : 0.0;
 }
 
@@ -105,7 +105,7 @@ std::string animation_body(const std::string& data_name, const DeformedShape& sh
   for (size_t t = 0; t < shape.times.size(); ++t) {
     std::ostringstream when = classic_stream();
     when << title << ", t = " << number_text(shape.times[t]) << " s";
-    if (shape.period > 0.0) when << " (" << number_text(phase_of(shape, t)) << " T)";
+    if (shape.period() > 0.0) when << " (" << number_text(phase_of(shape, t)) << " T)";
     script << "set title " << gnuplot_string(when.str()) << " noenhanced\n"
            << "plot " << undeformed(data_name) << ", " << gnuplot_string(data_name) << " index "
            << t + 1 << " using 1:2:3 with lines lw 3 lc palette notitle\n";
@@ -144,7 +144,7 @@ Status write_shape_plot(const std::string& path, const std::string& title,
       gnuplot::script_header(files, animation ? "Shape animation" : "Shape plot", title) +
       gnuplot::gnuplot_terminal_line(files, kShapeWidthPx, frame.height_px, delay);
   const gnuplot::ScriptBody body = [&](const std::string& data_name) {
-    return frame_settings(frame, title, shape.period > 0.0) +
+    return frame_settings(frame, title, shape.period() > 0.0) +
            (animation ? animation_body(data_name, shape, title) : picture_body(data_name, shape));
   };
   return gnuplot::write_script_and_run(files, preamble, body, shape_data(shape), path, output);

@@ -9,7 +9,6 @@
 // computes nothing: it stays small.
 #include "kinematics_choice.hpp"
 
-#include <Eigen/SparseLU>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,17 +17,17 @@
 #include <string>
 
 #include "emnet/analysis/analysis.hpp"
+#include "emnet/core/constants.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/model/deformed_shape.hpp"
 #include "emnet/model/model.hpp"
+#include "emnet/model/validity.hpp"
 #include "emnet/studies/segment_selection.hpp"
 
 namespace emnet {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The largest deflection [m] and where it comes from, in words.
 struct LargestDeflection {
@@ -45,8 +44,7 @@ void take(LargestDeflection& largest, double value, const std::string& where) {
 // modes in the band: a grid would cost an LU per point at every size of network).
 void take_ac_response(const Scene& scene, const System& system, const StaticResult& rest,
                       const std::vector<Probe>& nodes, LargestDeflection& largest) {
-  const Eigen::VectorXcd input = system.b_ac();
-  if (input.norm() == 0.0) return;
+  if (system.b_ac().norm() == 0.0) return;
   BandOfInterest band;
   try {
     band = band_of_interest(scene, "beam.kinematics");
@@ -67,21 +65,16 @@ void take_ac_response(const Scene& scene, const System& system, const StaticResu
       if (mode.frequency_hz >= band.from && mode.frequency_hz <= band.to &&
           mode.damping_ratio > 1e-6)
         frequencies.push_back(mode.frequency_hz);
-  using Complex = std::complex<double>;
-  const Eigen::SparseMatrix<Complex> g = linearised_g(system, point).cast<Complex>();
-  const Eigen::SparseMatrix<Complex> c = system.C.cast<Complex>();
+  const Eigen::SparseMatrix<double> g = linearised_g(system, point);
   const bool square =
       scene.drive.kind == DriveKind::antagonistic || scene.drive.kind == DriveKind::switched;
   const double factor = square ? 4.0 / kPi : 1.0;
   for (const double f : frequencies) {
     if (!(f > 0.0)) continue;
-    const double omega = 2 * kPi * f;
-    Eigen::SparseMatrix<Complex> matrix = g + Complex(0.0, omega) * c;
-    matrix.makeCompressed();
-    Eigen::SparseLU<Eigen::SparseMatrix<Complex>> lu(matrix);
-    if (lu.info() != Eigen::Success) continue;
-    const Eigen::VectorXcd y = lu.solve(input);
-    if (!y.allFinite() || (matrix * y - input).norm() > kResidualLimit * input.norm()) continue;
+    const double omega = kTwoPi * f;
+    double residual = 0.0;
+    const Eigen::VectorXcd y = small_signal_phasors(system, g, omega, &residual);
+    if (!(residual <= kResidualLimit)) continue;
     for (const Probe& probe : nodes)
       take(largest, factor * std::abs(probe_phasor(probe, y, omega)),
            std::string(square ? "4/pi x " : "") + "the AC amplitude at " +
@@ -138,7 +131,7 @@ AutomaticChoice choose_kinematics(const Scene& scene, LargeKinematicsUse use) {
   const LargestDeflection largest =
       largest_small_deflection(scene, use == LargeKinematicsUse::dynamics);
   const double fraction = largest.value / scene.beam.length;
-  choice.estimated_error = fraction * fraction;
+  choice.estimated_error = geometric_error_estimate(largest.value, scene.beam.length);
   const bool wanted = choice.estimated_error > scene.model.tolerance;
   const std::string obstacle = wanted ? why_not_large(scene, use) : "";
   const bool large = wanted && obstacle.empty();

@@ -376,7 +376,6 @@ class SwitchingSweepRun {
                              solved->status.message);
     result_.shape = deformed_shape(shape, solved->times, solved->values);
     result_.shape->frequency = f;
-    result_.shape->period = 1.0 / f;
     return std::nullopt;
   }
 

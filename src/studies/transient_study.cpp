@@ -82,7 +82,7 @@ namespace {
 // probes' values at every output time.
 DeformedShape last_period_shape(const ShapeProbes& probes, const std::vector<double>& times,
                                 const std::vector<std::vector<double>>& values, int per_period,
-                                int instants, double period) {
+                                int instants, double frequency) {
   const size_t last = times.size() - 1;
   const size_t first = last >= static_cast<size_t>(per_period) ? last - per_period : 0;
   const size_t span = last - first;
@@ -97,8 +97,7 @@ DeformedShape last_period_shape(const ShapeProbes& probes, const std::vector<dou
   for (size_t p = 0; p < values.size(); ++p)
     for (size_t k : picked) picked_values[p].push_back(values[p][k]);
   DeformedShape shape = deformed_shape(probes, at, picked_values);
-  shape.period = period;
-  shape.frequency = 1.0 / period;
+  shape.frequency = frequency;
   return shape;
 }
 
@@ -179,8 +178,9 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
     const std::vector<std::vector<double>> shape_values(
         values.end() - static_cast<long>(shape.probes.size()), values.end());
     values.resize(values.size() - shape.probes.size());
-    study.shape = last_period_shape(shape, study.result.times, shape_values,
-                                    options.points_per_period, options.shape_instants, period);
+    study.shape =
+        last_period_shape(shape, study.result.times, shape_values, options.points_per_period,
+                          options.shape_instants, study.frequency_hz);
   }
   std::vector<std::vector<double>> judged_values;
   if (study.result.status.ok() && !judged.empty()) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <iostream>
 
 #include "cli/option_names.hpp"
 #include "emnet/core/errors.hpp"
@@ -52,24 +53,29 @@ int shape_instants(const ShapeOptions& shape) {
   return extension == ".gif" ? 36 : 8;
 }
 
-void write_shape(const ShapeOptions& shape, const emnet::DeformedShape& result,
-                 const std::string& title, const CommonOptions& options) {
+void write_shape(const ShapeOptions& shape, const std::optional<emnet::DeformedShape>& result,
+                 const emnet::Model& model, const std::string& what, const CommonOptions& options,
+                 bool say) {
+  if (shape.path.empty() || !result) return;
+  const emnet::DeformedShape& drawn = *result;
+  const std::string frequency = emnet::format_number("%.6g", drawn.frequency) + " Hz";
   if (extension_of(shape.path) == ".csv") {
-    const size_t nodes = result.reference_x.size();
+    const size_t nodes = drawn.reference_x.size();
     write_csv_rows(shape.path, {"time_s", "node", "reference_x_m", "x_m", "y_m"},
-                   result.times.size() * nodes, [&](size_t i, auto& row) {
+                   drawn.times.size() * nodes, [&](size_t i, auto& row) {
                      const size_t t = i / nodes, k = i % nodes;
-                     row.insert(row.end(), {result.times[t], static_cast<double>(k),
-                                            result.reference_x[k], result.x[t][k], result.y[t][k]});
+                     row.insert(row.end(), {drawn.times[t], static_cast<double>(k),
+                                            drawn.reference_x[k], drawn.x[t][k], drawn.y[t][k]});
                    });
   } else {
-    check_plot(emnet::write_shape_plot(shape.path, title, result, plot_output(options, false)));
+    const bool large = model.scene.beam.kinematics == emnet::BeamKinematics::large;
+    const std::string title = model.scene.name + ": " + what + " at " + frequency + ", " +
+                              (large ? "large" : "small") + " kinematics";
+    check_plot(emnet::write_shape_plot(shape.path, title, drawn, plot_output(options, false)));
   }
-}
-
-std::string shape_written_text(const ShapeOptions& shape, const emnet::DeformedShape& result) {
-  return "shape written to " + shown(shape.path) + " (" + std::to_string(result.times.size()) +
-         " instants over one period at " + emnet::format_number("%.6g", result.frequency) + " Hz)";
+  if (say)
+    std::cout << "shape written to " << shown(shape.path) << " (" << drawn.times.size()
+              << " instants over one period at " << frequency << ")\n";
 }
 
 }  // namespace emnet_cli

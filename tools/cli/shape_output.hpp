@@ -3,10 +3,12 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 
 #include "cli/common.hpp"
 #include "emnet/model/deformed_shape.hpp"
+#include "emnet/model/model.hpp"
 
 namespace emnet_cli {
 
@@ -22,12 +24,14 @@ void add_shape_options(CLI::App* command, ShapeOptions& shape, const std::string
 // @throws InputError naming --shape for an unknown extension, --shape-instants without --shape
 int shape_instants(const ShapeOptions& shape);
 
-// Writes the shape to shape.path (CSV: one row per instant and node; otherwise the picture or
-// animation, emnet/report/shape_plot.hpp).
+// With --shape, writes `result` to shape.path (CSV: one row per instant and node; otherwise the
+// picture or animation, emnet/report/shape_plot.hpp, titled with the scene, `what` and the
+// kinematics of `model`) and, when `say`, prints "shape written to PATH (8 instants over one
+// period at 6.4 Hz)". Nothing without --shape or without a result.
+// @param what  the state drawn, e.g. "periodic state"
 // @throws FileError when it cannot be written
-void write_shape(const ShapeOptions& shape, const emnet::DeformedShape& result,
-                 const std::string& title, const CommonOptions& options);
-// "shape written to PATH (8 instants over one period at 6.4 Hz)"
-std::string shape_written_text(const ShapeOptions& shape, const emnet::DeformedShape& result);
+void write_shape(const ShapeOptions& shape, const std::optional<emnet::DeformedShape>& result,
+                 const emnet::Model& model, const std::string& what, const CommonOptions& options,
+                 bool say);
 
 }  // namespace emnet_cli

@@ -80,19 +80,6 @@ void write_sweep_files(const SweepReportInput& input,
   if (!input.plot.empty()) write_sweep_plot(input, markers);
 }
 
-// --shape: the beam over one period at the sweep peak; `say` prints where it went.
-void write_sweep_shape(const SweepReportInput& input, bool say) {
-  if (input.shape.path.empty() || !input.result.shape) return;
-  const emnet::DeformedShape& shape = *input.result.shape;
-  const bool large = input.model.scene.beam.kinematics == emnet::BeamKinematics::large;
-  write_shape(input.shape, shape,
-              input.model.scene.name + ": periodic state at " +
-                  emnet::format_number("%.6g", shape.frequency) + " Hz, " +
-                  (large ? "large" : "small") + " kinematics",
-              input.options);
-  if (say) std::cout << shape_written_text(input.shape, shape) << "\n";
-}
-
 // The reduced model, its check's errors against the reference and the costs, in text.
 void print_reduction_check(const emnet::SwitchingSweepReductionCheck& check,
                            const emnet::SwitchingSweepResult& result) {
@@ -200,7 +187,7 @@ int report_switching_sweep(const SweepReportInput& input) {
   if (options.json) {
     std::cout << json_text(emnet::to_json(result, model, input.notes, total)) << "\n";
     write_sweep_files(input, markers);
-    write_sweep_shape(input, false);
+    write_shape(input.shape, input.result.shape, input.model, "periodic state", options, false);
     return validity_exit(result.validity);
   }
   const std::string method = emnet::method_name(result.method);  // exact, shooting, reduced
@@ -223,7 +210,7 @@ int report_switching_sweep(const SweepReportInput& input) {
   for (const auto& m : markers) std::cout << "marker: " << m.label << "\n";
   write_sweep_files(input, markers);
   if (!input.plot.empty()) std::cout << "plot written to " << shown(input.plot) << "\n";
-  write_sweep_shape(input, true);
+  write_shape(input.shape, input.result.shape, input.model, "periodic state", options, true);
   print_validity(result.validity);
   return validity_exit(result.validity);
 }

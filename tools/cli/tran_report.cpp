@@ -114,18 +114,6 @@ void write_tran_files(const TranReportInput& input) {
   if (!input.tran.plot.empty()) write_tran_plot(input);
 }
 
-// --shape: the beam over the last period; `say` prints where it went.
-void write_tran_shape(const TranReportInput& input, bool say) {
-  if (input.tran.shape.path.empty() || !input.shape) return;
-  const bool large = input.model.scene.beam.kinematics == emnet::BeamKinematics::large;
-  write_shape(input.tran.shape, *input.shape,
-              input.model.scene.name + ": last period of the transient at " +
-                  emnet::format_number("%.6g", input.shape->frequency) + " Hz, " +
-                  (large ? "large" : "small") + " kinematics",
-              input.options);
-  if (say) std::cout << shape_written_text(input.tran.shape, *input.shape) << "\n";
-}
-
 }  // namespace
 
 int report_tran(const TranReportInput& input) {
@@ -142,7 +130,8 @@ int report_tran(const TranReportInput& input) {
         tran.rtol,        input.validity,          input.total_seconds, input.shape};
     std::cout << json_text(emnet::to_json(result, probes, run)) << "\n";
     write_tran_files(input);
-    write_tran_shape(input, false);
+    write_shape(input.tran.shape, input.shape, input.model, "last period of the transient",
+                input.options, false);
     return validity_exit(input.validity);
   }
   print_header(model, input.system);
@@ -181,7 +170,8 @@ int report_tran(const TranReportInput& input) {
   }
   write_tran_files(input);
   if (!tran.plot.empty()) std::cout << "plot written to " << shown(tran.plot) << "\n";
-  write_tran_shape(input, true);
+  write_shape(input.tran.shape, input.shape, input.model, "last period of the transient",
+              input.options, true);
   print_validity(input.validity);
   return validity_exit(input.validity);
 }

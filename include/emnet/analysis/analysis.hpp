@@ -79,6 +79,16 @@ RowClassification classify_rows(const System& system, const Eigen::SparseMatrix<
 /// G + ∂g/∂y at y.
 Eigen::SparseMatrix<double> linearised_g(const System& system, const Eigen::VectorXd& y);
 
+/// The phasors Y of (g_matrix + jω·C)·Y = b_ac() by a sparse LU, for a quick estimate of the
+/// small-signal response at one frequency (IDA's tolerance scales, the automatic kinematics'
+/// swing); run_ac is the analysis, with its residual checks. Empty when the factorisation fails.
+/// @param g_matrix           linearised_g at the operating point
+/// @param omega              angular frequency [rad/s]
+/// @param relative_residual  when given, ‖A·Y − b‖/‖b‖ of the solve (infinity when it failed)
+Eigen::VectorXcd small_signal_phasors(const System& system,
+                                      const Eigen::SparseMatrix<double>& g_matrix, double omega,
+                                      double* relative_residual = nullptr);
+
 // ---- AC ----------------------------------------------------------------------------------
 //
 // Small-signal response about the operating point: (G + J_g + jω·C)·Y = B_ac with B_ac the

@@ -16,8 +16,10 @@
 // extremes whatever the number of samples. M and its eigen-decomposition depend only on
 // the network, not on the drive, so a sweep over switching frequencies decomposes once.
 //
-// Shooting (any network, with IDA): Newton on x(0) for x(T; x(0)) − x(0) = 0, the Jacobian by
-// finite differences of one-period integrations, then one more period sampled for the peaks.
+// Shooting (any network, with IDA): Newton on x(0) for x(T; x(0)) − x(0) = 0, each residual one
+// period of IDA, the Jacobian that of the linearisation improved by Broyden's update (finite
+// differences where that stalls); the converged period is sampled for the peaks
+// (periodic_shooting.cpp).
 #pragma once
 
 #include <memory>

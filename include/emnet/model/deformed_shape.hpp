@@ -24,11 +24,14 @@ ShapeProbes shape_probes(const Model& model);
 
 /// The beam's curve at several instants.
 struct DeformedShape {
-  std::vector<double> reference_x;        ///< the undeformed beam: x_k [m], at y = 0
-  std::vector<double> times;              ///< the instants [s]
-  double period = 0.0;                    ///< of the periodic state [s]; 0 for a transient
-  double frequency = 0.0;                 ///< the switching frequency [Hz]; 0 for a transient
+  std::vector<double> reference_x;  ///< the undeformed beam: x_k [m], at y = 0
+  std::vector<double> times;        ///< the instants [s]
+  /// The switching frequency [Hz] whose period the instants are phases of; 0: they are not (a
+  /// picture colours them by t over the last instant).
+  double frequency = 0.0;
   std::vector<std::vector<double>> x, y;  ///< [instant][node], the fixed frame's [m]
+  /// The period 1/frequency [s]; 0 without a frequency.
+  double period() const { return frequency > 0.0 ? 1.0 / frequency : 0.0; }
 };
 
 /// The shape at `times` from the values of shape_probes' probes there.

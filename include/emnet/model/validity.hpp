@@ -59,6 +59,10 @@ struct DeaVoltage {
   std::string bound;
 };
 
+/// The small beam's geometric error (above): (w/L)² at a largest |deflection| `peak` [m] of a beam
+/// of `length` [m], the tip-force elastica's, relative.
+double geometric_error_estimate(double peak, double length);
+
 /// The limits a result is checked against.
 enum class ValidityCheck { deflection, electric_field };
 /// "deflection", "electric_field"
