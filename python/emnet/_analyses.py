@@ -133,7 +133,8 @@ def mismatch(scene, frequency_hz=None, output="", change=0.05):
     """Left/right asymmetry of the periodic peaks when one DEA differs by ±change (as `emnet
     mismatch`): electrode area, film thickness, overlap.
 
-    Returns a Result with automatic_choices, output, frequency_hz, nominal (left_m, right_m,
+    Returns a Result with automatic_choices, output, frequency_hz, method ("exact", or
+    "shooting" with large kinematics), nominal (left_m, right_m,
     asymmetry [-]), cases (label, key, change, left_m, right_m, asymmetry [-],
     asymmetry_per_unit_change),
     total_seconds, validity, notes (when there are any).

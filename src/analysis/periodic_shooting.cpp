@@ -40,6 +40,11 @@ constexpr int kSlowStepsBeforeFiniteDifferences = 3;
 // noise (Shooting::at_the_integrations_noise), and ξ periodic to IDA's accuracy: the periodicity
 // residual is then held to this many tolerances, or kResidualLimit if that is larger.
 constexpr double kNoiseSteps = 1000.0;
+// A Newton step whose period run fails, or whose residual is more than kResidualGrowth times the
+// last, is halved, at most kStepHalvings times (the last one is taken as it is, its failure
+// reported).
+constexpr double kResidualGrowth = 2.0;
+constexpr int kStepHalvings = 8;
 
 // The shooting unknowns ξ: the states of the network's linearisation about its static state
 // (or rest, where that fails) that satisfy the hidden constraints, with the linearisation's
@@ -129,13 +134,33 @@ class Shooting {
     bool refreshed = false;
     double previous_step = 0.0;
     for (iterations = 1; iterations <= kShootingIterations; ++iterations) {
-      const Eigen::VectorXd step = -(inverse * r);
+      Eigen::VectorXd step = -(inverse * r);
+      Eigen::VectorXd r_next;
+      bool converged = false;
+      double size = 0.0;
+      for (int halving = 0;; ++halving) {
+        const Eigen::VectorXd trial = xi + step;
+        size = std::max(trial.norm(), 1e-300);
+        const double step_norm = step.norm();
+        converged = step_norm <= 10 * rtol_ * size ||
+                    at_the_integrations_noise(step_norm, previous_step, size);
+        if (converged || halving == kStepHalvings) {
+          r_next = period_residual(trial, converged);
+          break;
+        }
+        // Far from the periodic state (a strongly nonlinear one, the linearisation's first
+        // guess far off) a full step can start IDA where it cannot integrate, or multiply the
+        // residual: the step is halved (a backtracking line search), Broyden's update then
+        // taking the step made.
+        std::optional<Eigen::VectorXd> tried = period_residual_if_integrable(trial);
+        if (tried && tried->norm() <= kResidualGrowth * r.norm()) {
+          r_next = std::move(*tried);
+          break;
+        }
+        step *= 0.5;
+      }
       xi += step;
-      const double size = std::max(xi.norm(), 1e-300), step_norm = step.norm();
-      const bool converged = step_norm <= 10 * rtol_ * size ||
-                             at_the_integrations_noise(step_norm, previous_step, size);
-      previous_step = step_norm;
-      const Eigen::VectorXd r_next = period_residual(xi, converged);
+      previous_step = step.norm();
       residual = r_next.norm() / size;
       if (converged) return xi;
       // Broyden's ("good") update of the inverse: the secant condition on this step.
@@ -171,6 +196,15 @@ class Shooting {
     if (last_run_.status.cancelled()) throw ShootingCancelled{};
     if (!last_run_.status.ok()) throw std::runtime_error(last_run_.status.message);
     return coordinates_.of(last_run_.final_state) - xi;
+  }
+
+  // period_residual, or nothing where IDA fails (not where it was cancelled).
+  std::optional<Eigen::VectorXd> period_residual_if_integrable(const Eigen::VectorXd& xi) {
+    try {
+      return period_residual(xi);
+    } catch (const std::runtime_error&) {
+      return std::nullopt;
+    }
   }
 
   // ∂(ξ(T) − ξ)/∂ξ at ξ (with residual r there) by forward differences, one period per column.

@@ -34,9 +34,9 @@ std::vector<Unknown> CoRotationalSegment::branch_unknowns() const {
   const double per_force = 1.0 / transverse_compliance_;
   const double per_tension = axial_compliance_ > 0.0 ? 1.0 / axial_compliance_ : 0.0;
   std::vector<Unknown> unknowns = {
-      {"dx_" + id, Kind::branch_through, Domain::translational, 1.0},
-      {"dy_" + id, Kind::branch_through, Domain::translational, 1.0},
-      {"th_" + id, Kind::branch_through, Domain::rotational, 1.0 / length_},
+      {"dx_" + id, Kind::branch_through, Domain::translational, 1.0, true},
+      {"dy_" + id, Kind::branch_through, Domain::translational, 1.0, true},
+      {"th_" + id, Kind::branch_through, Domain::rotational, 1.0 / length_, true},
       {"F_" + id, Kind::branch_through, Domain::translational, per_force},
       {"N_" + id, Kind::branch_through, Domain::translational, per_tension}};
   if (kelvin_voigt_time_ > 0.0)

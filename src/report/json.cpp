@@ -187,6 +187,7 @@ Json to_json(const SensitivityResult& result, const Scene& scene, bool with_chec
     out["parameters"].push_back(entry);
   }
   out["left_vector_residual"] = result.left_vector_residual;
+  if (!result.notes.empty()) out["notes"] = result.notes;
   out["cost"] = {{"sensitivity_seconds", result.seconds - result.check_seconds},
                  {"check_seconds", result.check_seconds},
                  {"total_seconds", total_seconds}};

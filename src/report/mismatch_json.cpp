@@ -8,6 +8,7 @@ Json to_json(const MismatchResult& result, const std::vector<AutomaticChoice>& a
   Json out = {{"automatic_choices", to_json(automatic_choices)},
               {"output", result.output},
               {"frequency_hz", result.frequency_hz},
+              {"method", method_name(result.method)},
               {"nominal",
                {{"left_m", result.nominal_left},
                 {"right_m", result.nominal_right},

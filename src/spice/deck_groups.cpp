@@ -35,8 +35,11 @@ GroupTitle beam_segment_title(const ElementRecord& record, const Model& model) {
                          " N (Timoshenko)"
                    : std::string()) +
           " [m/N]",
-      "  lever: ideal transformer, v_right - m = (l/2)*(Omega_left + Omega_right); "
-      "its force F returns as torques (l/2)*F into both rotation nodes"};
+      model.scene.beam.kinematics == BeamKinematics::large
+          ? "  co-rotational: the chord's change, angle and forces as B sources in the chord's "
+            "frame (its own comment below)"
+          : "  lever: ideal transformer, v_right - m = (l/2)*(Omega_left + Omega_right); "
+            "its force F returns as torques (l/2)*F into both rotation nodes"};
   if (tau > 0.0)
     title.lines.push_back(
         "  Kelvin-Voigt damping: a resistor n/tau (a damper tau/n) across each "

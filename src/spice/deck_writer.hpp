@@ -143,6 +143,30 @@ class DeckWriter {
     deck_.unknowns.at(static_cast<size_t>(index)) = {
         spice_element.empty() ? "" : lower(spice_element) + "#branch", sign};
   }
+  // Where ngspice holds the k-th branch unknown of element `element`: the voltage of the deck's
+  // node `spice_node`, times `sign`.
+  void branch_node(const std::string& element, int k, const std::string& spice_node, double sign) {
+    const int index = system_.branch_index(element, k);
+    deck_.unknowns.at(static_cast<size_t>(index)) = {lower(spice_node), sign};
+  }
+  // An integrator node of a tran deck: V(node) = ∫ rate dt, a B source of current `rate` into
+  // 1 F with the outputs' 1e9 Ω leak; from the static state, held at `static_value` by .ic.
+  void integrator(const std::string& spice_node, const std::string& rate, double static_value) {
+    body_ << element_name('B', spice_node) << " 0 " << spice_node << " I = " << rate << "\n";
+    body_ << element_name('C', spice_node) << " " << spice_node << " 0 1\n";
+    body_ << element_name('R', spice_node) << " " << spice_node << " 0 "
+          << number(integrator_leak_resistance) << "\n";
+    if (tran_ && options_.start == StartState::static_)
+      initial_conditions_.emplace_back(spice_node, static_value);
+  }
+  // The static operating point's value of the k-th branch unknown of `element` (y at rest:
+  // what a tran deck from the static state starts from); 0 without a static state.
+  double static_branch_value(const std::string& element, int k) const {
+    if (!options_.static_state || !options_.static_state->status.ok()) return 0.0;
+    return options_.static_state->operating_point[system_.branch_index(element, k)];
+  }
+  // The scene's file or name, for errors naming a key.
+  const Scene& scene() const { return scene_; }
   // An element (or part) the op deck leaves out of the current group: no force at rest.
   void leave_out(const std::string& name) { left_out_.push_back(name); }
   // A source's SPICE value: its time function (tran), or its value at t = 0 and AC phasor.

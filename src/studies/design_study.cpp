@@ -104,12 +104,24 @@ bool has(const std::vector<StudyAnalysis>& analyses, StudyAnalysis analysis) {
   return std::find(analyses.begin(), analyses.end(), analysis) != analyses.end();
 }
 
+// What the study's analyses do with large kinematics: the static state alone takes any beam;
+// modes (about the deflected state) and the sweep (by shooting) need the dynamics' EA.
+PrepareOptions study_prepare_options(const DesignStudyOptions& options) {
+  PrepareOptions prepare;
+  prepare.large_kinematics = has(options.analyses, StudyAnalysis::modes) ||
+                                     has(options.analyses, StudyAnalysis::switching_sweep)
+                                 ? LargeKinematicsUse::dynamics
+                                 : LargeKinematicsUse::static_state;
+  return prepare;
+}
+
 // The analyses of one variant, appending to `values` in the layout's order.
 Status run_analyses(const Scene& scene, const ColumnLayout& layout,
                     const DesignStudyOptions& options, std::vector<double>& values,
                     Validity& validity, VariantCost& cost) {
   Stopwatch stopwatch;
-  const Model model = prepare_model(scene);
+  const PrepareOptions prepare = study_prepare_options(options);
+  const Model model = prepare_model(scene, prepare);
   const System system = model.network.assemble();
   cost.build += stopwatch.seconds();
   stopwatch.restart();
@@ -152,12 +164,14 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
       // As `emnet sweep-switching` chooses (SwitchingSweepMethod::automatic): the exact
       // method's model, the DEAs as ideal voltage-driven forces, where the scene has their
       // electrical model through [drive]; shooting on the model as it is where a [[circuit]]
-      // drives them (the nominal scene passed prepare_swept_model's checks in column_layout).
+      // drives them (the nominal scene passed prepare_swept_model's checks in column_layout);
+      // shooting on the model as it is with large kinematics.
       std::optional<Model> ideal;
-      if (system.is_nonlinear() && model.scene.circuit.empty()) {
+      if (system.is_nonlinear() && model.scene.circuit.empty() &&
+          model.scene.beam.kinematics != BeamKinematics::large) {
         Scene ideal_scene = model.scene;
         set_electrical_dynamics(ideal_scene, false);
-        ideal = prepare_model(ideal_scene);
+        ideal = prepare_model(ideal_scene, prepare);
       }
       const Model& swept = ideal ? *ideal : model;
       // The sweep peak needs the last output at every frequency; the other outputs are columns
@@ -204,7 +218,8 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
   return Status::success();
 }
 
-ColumnLayout column_layout(const Model& model, const DesignStudyOptions& options) {
+ColumnLayout column_layout(const Model& model, const DesignStudyOptions& options,
+                           const PrepareOptions& prepare) {
   ColumnLayout layout;
   for (StudyAnalysis analysis : options.analyses) {
     if (analysis == StudyAnalysis::modes) {
@@ -242,7 +257,7 @@ ColumnLayout column_layout(const Model& model, const DesignStudyOptions& options
             layout.sweep_frequencies.begin()));
       layout.sweep_outputs =
           switching_sweep_outputs(prepare_swept_model(model.scene, SwitchingSweepMethod::automatic,
-                                                      {}, {}, layout.sweep_frequencies.back())
+                                                      {}, prepare, layout.sweep_frequencies.back())
                                       .model,
                                   {});
       layout.columns.push_back("sweep.peak_hz");
@@ -632,13 +647,19 @@ void refuse_a_table_that_does_not_fit(const VariantTable& table) {
       throw std::invalid_argument("run_design_study: a variant's values do not match its keys");
 }
 
-// The nominal scene, with the mesh resolved once for every variant; the keys' units in `result`.
+// The nominal scene, with the mesh and the kinematics resolved once for every variant; the keys'
+// units in `result`.
 Scene prepare_the_nominal_scene(const Scene& scene, const VariantTable& table,
-                                DesignStudyResult& result) {
-  const Scene nominal = resolve_segments(scene);
+                                const DesignStudyOptions& options, DesignStudyResult& result) {
+  Scene nominal = resolve_segments(scene);
   if (scene.beam.auto_segments)
     result.notes.push_back("beam.segments = \"auto\" was resolved once, on the nominal scene: " +
                            std::to_string(nominal.beam.segments) + " segments for every variant");
+  const std::size_t before = result.notes.size();
+  nominal =
+      resolve_kinematics(nominal, study_prepare_options(options).large_kinematics, &result.notes);
+  if (result.notes.size() > before)
+    result.notes.back() += " (chosen once, on the nominal scene, for every variant)";
   for (const std::string& key : table.keys) {
     const SceneParameterAddress address = find_option_parameter(nominal, key, "variations");
     result.key_units.push_back(parameter_unit(*address.info, nominal, address.entry));
@@ -649,10 +670,11 @@ Scene prepare_the_nominal_scene(const Scene& scene, const VariantTable& table,
 
 ColumnLayout lay_out_the_columns(const Scene& nominal, const DesignStudyOptions& options,
                                  DesignStudyResult& result) {
-  const Model nominal_model = prepare_model(nominal);
+  const PrepareOptions prepare = study_prepare_options(options);
+  const Model nominal_model = prepare_model(nominal, prepare);
   result.unknowns = static_cast<int>(nominal_model.network.assemble().size());
   result.segments = nominal.beam.segments;
-  ColumnLayout layout = column_layout(nominal_model, options);
+  ColumnLayout layout = column_layout(nominal_model, options, prepare);
   result.columns = layout.columns;
   result.units = layout.units;
   return layout;
@@ -774,7 +796,7 @@ DesignStudyResult run_design_study(const Scene& scene, const VariantTable& table
   DesignStudyResult result;
   result.keys = table.keys;
   result.variants = table.rows;
-  const Scene nominal = prepare_the_nominal_scene(scene, table, result);
+  const Scene nominal = prepare_the_nominal_scene(scene, table, options, result);
   const ColumnLayout layout = lay_out_the_columns(nominal, options, result);
   result.rows.assign(table.rows.size(), VariantResult{});
   const unsigned threads = thread_count(options, table.rows.size());

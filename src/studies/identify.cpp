@@ -66,8 +66,8 @@ class Identification {
   // fixed point converges slowly (30 iterations to 2e-6 on an elastica at α = 3): Brent's
   // method on the root instead.
   ResonanceFit fit_resonance(const Scene& scene) {
-    const bool fixed_point = parameter_.key == kBendingStiffness &&
-                             scene.beam.kinematics != BeamKinematics::large;
+    const bool fixed_point =
+        parameter_.key == kBendingStiffness && scene.beam.kinematics != BeamKinematics::large;
     return fixed_point ? fit_bending_stiffness(scene) : fit_by_root(scene);
   }
 
@@ -288,11 +288,10 @@ class Identification {
 
  private:
   // The damped frequency of mode mode_number about the scene's operating point (with large
-  // kinematics the deflected static state: modes serve it; a peak target's periodic state
-  // needs the exact method, which does not).
+  // kinematics the deflected static state, as the modes study).
   double mode_frequency(const Scene& scene) {
     PrepareOptions prepare;
-    if (!options_.peak) prepare.large_kinematics = LargeKinematicsUse::dynamics;
+    prepare.large_kinematics = LargeKinematicsUse::dynamics;
     const Model model = prepare_model(scene, prepare);
     const System system = model.network.assemble();
     const OperatingPoint point = operating_point(system);
@@ -414,10 +413,64 @@ void IdentifyOptions::validate() const {
   }
 }
 
-IdentifyResult identify(const Scene& scene, const IdentifyOptions& options) {
+namespace {
+
+// The options a fit of `scene` holds itself to: with large kinematics a peak target's periodic
+// state is shot, to about 1e-7 of the peak (residual limit 1e-6 of the state), and near the
+// resonance the peak goes as 1/η: bisecting η below kShotPeakRatio, or asking the rounds for
+// less than kShotRoundTolerance, would chase IDA's noise.
+constexpr double kShotPeakRatio = 1e-6;
+constexpr double kShotRoundTolerance = 1e-5;
+
+IdentifyOptions options_for(const Scene& scene, const IdentifyOptions& given,
+                            std::vector<std::string>& notes) {
+  IdentifyOptions options = given;
+  if (!options.peak || scene.beam.kinematics != BeamKinematics::large) return options;
+  options.bisection_ratio = std::max(options.bisection_ratio, kShotPeakRatio);
+  options.round_tolerance = std::max(options.round_tolerance, kShotRoundTolerance);
+  notes.push_back(
+      "identify by the peak with large kinematics: each periodic peak is shot (IDA "
+      "rtol 1e-9, about 1e-7 of the peak), so the loss factor is bisected to " +
+      format_number("%.3g", options.bisection_ratio) + " and the rounds end at " +
+      format_number("%.3g", options.round_tolerance) + " (relative)");
+  return options;
+}
+
+// Narrows [low, high] to a bracket of the loss factor around `start`: each end moved from it by
+// `factor`, squared after each step, until the peak there is on its side of `target` or the
+// options' end is reached. Whether it brackets the target.
+template <class PeakAt>
+bool bracket_from(double start, double factor, double target, PeakAt& peak_at, double& low,
+                  double& high) {
+  const double lowest = low, highest = high;
+  double step = factor;
+  low = std::clamp(start / step, lowest, highest);
+  bool low_found = peak_at(low) >= target;
+  while (!low_found && low > lowest) {
+    step *= step;
+    low = std::max(lowest, start / step);
+    low_found = peak_at(low) >= target;
+  }
+  step = factor;
+  high = std::clamp(start * step, lowest, highest);
+  bool high_found = peak_at(high) <= target;
+  while (!high_found && high < highest) {
+    step *= step;
+    high = std::min(highest, start * step);
+    high_found = peak_at(high) <= target;
+  }
+  return low_found && high_found;
+}
+
+}  // namespace
+
+IdentifyResult identify(const Scene& given_scene, const IdentifyOptions& given_options) {
   const Stopwatch stopwatch;
-  const SceneParameterAddress parameter = check_inputs(scene, options);
   IdentifyResult result;
+  // One kinematics for every trial of the fit.
+  const Scene scene = resolve_kinematics(given_scene, LargeKinematicsUse::dynamics, &result.notes);
+  const IdentifyOptions options = options_for(scene, given_options, result.notes);
+  const SceneParameterAddress parameter = check_inputs(scene, options);
   result.parameter = {parameter.key, parameter_unit(*parameter.info, scene, parameter.entry),
                       get_parameter(scene, parameter.key)};
   Identification identification(options, result, parameter, result.parameter.unit);
@@ -451,8 +504,14 @@ IdentifyResult identify(const Scene& scene, const IdentifyOptions& options) {
             throw FitStopped{cancelled_status()};
           return identification.periodic_peak(with(eta, fit.value));
         };
-        // The peak falls monotonically with the loss factor: bisection in log η.
-        if (peak_at(low) < peak.value || peak_at(high) > peak.value)
+        // The peak falls monotonically with the loss factor: bisection in log η, over the
+        // options' bracket, or with large kinematics over one grown from the last η (at the
+        // bracket's far ends a shot beam would swing around its clamp or barely move).
+        const bool bracketed = scene.beam.kinematics == BeamKinematics::large
+                                   ? bracket_from(loss_factor, round == 1 ? 4.0 : 1.001, peak.value,
+                                                  peak_at, low, high)
+                                   : !(peak_at(low) < peak.value || peak_at(high) > peak.value);
+        if (!bracketed)
           stop("identify by the peak: no loss factor in [" + short_number(low) + ", " +
                short_number(high) + "] gives the peak " + format_with_unit(peak.value, "m") +
                " at " + format_with_unit(options.target_hz, "Hz"));

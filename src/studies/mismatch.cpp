@@ -42,7 +42,9 @@ MismatchResult run_mismatch(const Scene& scene, const MismatchOptions& options) 
     throw InputError(scene.file, "drive.frequency", "must be a positive frequency in Hz (> 0)");
   result.output = options.output;
   if (result.output.empty()) {
-    const Model model = prepare_model(scene);
+    PrepareOptions prepare;
+    prepare.large_kinematics = LargeKinematicsUse::dynamics;  // as periodic_extremes
+    const Model model = prepare_model(scene, prepare);
     const std::vector<ModelOutput> outputs = transient_output_list(model);
     const ModelOutput* chosen = default_deflection_output(outputs);
     if (!chosen) throw InputError(scene.file, "probe", "the scene has no deflection output");
@@ -80,6 +82,7 @@ MismatchResult run_mismatch(const Scene& scene, const MismatchOptions& options) 
     }
     const PeriodicExtremesResult extremes = periodic_extremes(changed, extremes_options);
     ++result.periodic_solves;
+    result.method = extremes.method;
     if (!extremes.status.ok()) {
       result.status = extremes.status;
       return false;

@@ -28,9 +28,12 @@ PeriodicExtremesResult periodic_extremes(Scene scene, const PeriodicExtremesOpti
   scene.drive.electrical_dynamics = false;
   scene.drive.electrical_dynamics_auto = false;
   scene.drive.frequency = options.frequency_hz;
-  const Model model = prepare_model(scene);
+  PrepareOptions prepare;
+  prepare.large_kinematics = LargeKinematicsUse::dynamics;  // served by shooting
+  const Model model = prepare_model(scene, prepare);
   const System system = model.network.assemble();
-  check_periodic_memory(system.size(), "segments");
+  const bool shooting = system.is_nonlinear();
+  if (!shooting) check_periodic_memory(system.size(), "segments");
   // The model's recorded outputs first (dx_k replaces P_k there), then the scene's own probes
   // (P4 is still a probe of the scene).
   std::vector<Probe> probes;
@@ -40,8 +43,11 @@ PeriodicExtremesResult periodic_extremes(Scene scene, const PeriodicExtremesOpti
     if (probes.empty() && probe.name == options.output) probes.push_back(probe);
   if (probes.empty())
     throw OptionError(options.field, "no deflection output named '" + options.output + "'");
-  const PeriodicSolver solver(system);
-  const PeriodicResult periodic = solver.solve(system, probes, 1.0 / options.frequency_hz, 256);
+  const double period = 1.0 / options.frequency_hz;
+  const PeriodicResult periodic = shooting
+                                      ? run_periodic_shooting(system, probes, period, 1e-9, 256)
+                                      : PeriodicSolver(system).solve(system, probes, period, 256);
+  result.method = periodic.method;
   result.seconds = stopwatch.seconds();
   if (!periodic.status.ok()) {
     result.status = periodic.status.with_context("periodic state: ");

@@ -244,6 +244,24 @@ Scene resolve_segments(const Scene& scene) {
   return resolve_scene(scene, segments_only).scene;
 }
 
+Scene resolve_kinematics(const Scene& scene, LargeKinematicsUse use,
+                         std::vector<std::string>* notes) {
+  if (!scene.beam.kinematics_auto) return scene;
+  // The choice needs the rest resolved (it runs the small network); only it is kept.
+  ResolveOptions everything;
+  everything.large_kinematics = use;
+  const ResolvedScene resolved = resolve_scene(scene, everything);
+  Scene chosen = scene;
+  for (const AutomaticChoice& choice : resolved.automatic_choices)
+    if (choice.key == "beam.kinematics") {
+      chosen.beam.kinematics = resolved.scene.beam.kinematics;
+      chosen.beam.kinematics_auto = false;
+      chosen.automatic_choices.push_back(choice);
+      if (notes) notes->push_back(choice.reason);
+    }
+  return chosen;
+}
+
 bool asks_for_dea_electrics(const std::string& probe_text) {
   return probe_text.rfind("dea_voltage", 0) == 0 || probe_text.rfind("dea_current", 0) == 0;
 }
@@ -261,11 +279,8 @@ void require_served_kinematics(const Scene& scene, LargeKinematicsUse use) {
   if (scene.beam.kinematics != BeamKinematics::large) return;
   if (use == LargeKinematicsUse::refused)
     throw InputError(scene.file, "beam.kinematics",
-                     "is \"large\", which the static analysis, modes, AC, IDA transients, "
-                     "the switching sweep (by shooting) and identify by a resonance serve so "
-                     "far; the exact transient, identify by a peak, mismatch, sensitivity, "
-                     "studies, SPICE decks and the cross-check need beam.kinematics = "
-                     "\"small\"");
+                     "is \"large\", a nonlinear network, which this analysis does not serve "
+                     "(the exact transient needs a linear one: IDA serves it)");
   if (use == LargeKinematicsUse::dynamics && !extensible(scene.beam))
     throw InputError(scene.file, "beam.axial_stiffness",
                      "is needed for modes, AC and transients with beam.kinematics = \"large\": "

@@ -68,10 +68,13 @@ struct Linearised {
 };
 
 // As the program's modes: a linear network without a static state (a free body) is analysed
-// about zero; a nonlinear one needs its operating point.
+// about zero; a nonlinear one needs its operating point (with large kinematics the deflected
+// static state, as the modes study).
 Linearised linearise(const Scene& scene) {
   Linearised result;
-  result.system = prepare_model(scene).network.assemble();
+  PrepareOptions prepare;
+  prepare.large_kinematics = LargeKinematicsUse::dynamics;
+  result.system = prepare_model(scene, prepare).network.assemble();
   const OperatingPoint point = operating_point(result.system);
   if (!point.status.ok()) {
     result.status = point.status;
@@ -270,11 +273,13 @@ double seconds_since(std::chrono::steady_clock::time_point since) {
 
 }  // namespace
 
-SensitivityResult run_sensitivity(const Scene& scene, const std::vector<std::string>& keys,
+SensitivityResult run_sensitivity(const Scene& given, const std::vector<std::string>& keys,
                                   const SensitivityOptions& options) {
   options.validate();
   const auto start = std::chrono::steady_clock::now();
   SensitivityResult result;
+  // One kinematics for the nominal scene and every step of it.
+  const Scene scene = resolve_kinematics(given, LargeKinematicsUse::dynamics, &result.notes);
   auto finish = [&](Status status) {
     result.status = std::move(status);
     result.seconds = seconds_since(start);

@@ -226,7 +226,10 @@ void CrosscheckSession::tran() {
   if (ideal_drive)
     report_.notes.push_back(
         "tran: compared with the ideal drive (drive.electrical_dynamics = false: force "
-        "k_F*V(t)^2 from the source), the linear network emnet's exact method solves");
+        "k_F*V(t)^2 from the source), " +
+        std::string(scene.beam.kinematics == BeamKinematics::large
+                        ? "as the small network's check (large kinematics keep it nonlinear)"
+                        : "the linear network emnet's exact method solves"));
   const double mode_period = first_mode_period(sys);
   std::string period_from;
   const double period = run_period(scene, mode_period, period_from);

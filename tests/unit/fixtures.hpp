@@ -42,6 +42,29 @@ inline LoadSpec load(LoadKind kind, double at, double value) {
   return spec;
 }
 
+// ---- the tip-mass elastica (large kinematics) ----------------------------------------------
+
+inline constexpr double kBeamLength = 0.5, kBeamStiffness = 2.0, kTipMass = 0.01;
+
+// A nearly massless cantilever (ρA = 1e-10 kg/m: its mass moves the first frequency by ~1e-9 of
+// the tip mass's 0.01 kg) with a tip mass and a nearly rigid axis (EA = 1e11 N: the axial
+// compliance adds L/EA = 5e-12 m/N to the tip's compliance, against the N = 64 discretisation
+// error of 2e-8 m/N), with large kinematics, under the dead tip load α·EI/L².
+inline Scene tip_mass_cantilever(int segments, double alpha) {
+  Scene scene = cantilever_scene(segments, kBeamLength, kBeamStiffness, 1e-10);
+  scene.beam.kinematics = BeamKinematics::large;
+  scene.beam.axial_stiffness = 1e11;
+  MassSpec mass;
+  mass.at = kBeamLength;
+  mass.mass = kTipMass;
+  scene.beam.masses = {mass};
+  scene.loads = {
+      load(LoadKind::force, kBeamLength, alpha * kBeamStiffness / (kBeamLength * kBeamLength))};
+  scene.probes = {beam_probe("u", ProbeQuantity::axial_displacement, kBeamLength),
+                  beam_probe("w", ProbeQuantity::deflection, kBeamLength)};
+  return scene;
+}
+
 // One mass m on a spring k and a damper c to ground, driven by a force of AC magnitude 1:
 // X(s) = 1/(m·s² + c·s + k). `velocity` is the mass's node.
 struct OneMass {

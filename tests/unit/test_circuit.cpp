@@ -23,6 +23,7 @@
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/spice/spice_netlist.hpp"
 #include "emnet/studies/resolve.hpp"
+#include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
@@ -401,9 +402,7 @@ TEST(CircuitSpice, DeckHoldsTheCircuitElements) {
   EXPECT_EQ(deck.text.find("V_V_A "), std::string::npos) << deck.text;
 }
 
-bool ngspice_available() {
-  return std::system("command -v ngspice > /dev/null 2>&1") == 0;
-}
+using emnet::testing::ngspice_available;
 
 // The whole cross-check (op, ac, modal, tran) of the shipped circuit example against ngspice,
 // with the tolerances include/emnet/verification/crosscheck.hpp justifies.

@@ -17,6 +17,7 @@
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/verification/crosscheck.hpp"
+#include "shipped_scenes.hpp"
 
 namespace {
 
@@ -26,9 +27,7 @@ std::string source_path(const std::string& relative) {
   return std::string(EMNET_SOURCE_DIR) + "/" + relative;
 }
 
-bool ngspice_available() {
-  return std::system("command -v ngspice > /dev/null 2>&1") == 0;
-}
+using emnet::testing::ngspice_available;
 
 // The whole cross-check of the fish fin (op, ac, modal, tran at the defaults).
 TEST(Crosscheck, FishFinPassesAgainstNgspice) {

@@ -32,7 +32,11 @@ namespace {
 
 using testing::beam_probe;
 using testing::cantilever_scene;
+using testing::kBeamLength;
+using testing::kBeamStiffness;
+using testing::kTipMass;
 using testing::load;
+using testing::tip_mass_cantilever;
 
 // ---- the tangent stiffness of the elastica ------------------------------------------------
 
@@ -48,27 +52,6 @@ std::array<double, 4> elastica_tip_compliance(double alpha) {
                              y_minus = elastica_by_shooting(0, alpha - h);
   return {(x_plus.x - x_minus.x) / (2 * h), (y_plus.x - y_minus.x) / (2 * h),
           (x_plus.y - x_minus.y) / (2 * h), (y_plus.y - y_minus.y) / (2 * h)};
-}
-
-constexpr double kBeamLength = 0.5, kBeamStiffness = 2.0, kTipMass = 0.01;
-
-// A nearly massless cantilever (ρA = 1e-10 kg/m: its mass moves the first frequency by ~1e-9 of
-// the tip mass's 0.01 kg) with a tip mass and a nearly rigid axis (EA = 1e11 N: the axial
-// compliance adds L/EA = 5e-12 m/N to the tip's compliance, against the N = 64 discretisation
-// error of 2e-8 m/N), under the dead tip load α·EI/L².
-Scene tip_mass_cantilever(int segments, double alpha) {
-  Scene scene = cantilever_scene(segments, kBeamLength, kBeamStiffness, 1e-10);
-  scene.beam.kinematics = BeamKinematics::large;
-  scene.beam.axial_stiffness = 1e11;
-  MassSpec mass;
-  mass.at = kBeamLength;
-  mass.mass = kTipMass;
-  scene.beam.masses = {mass};
-  scene.loads = {
-      load(LoadKind::force, kBeamLength, alpha * kBeamStiffness / (kBeamLength * kBeamLength))};
-  scene.probes = {beam_probe("u", ProbeQuantity::axial_displacement, kBeamLength),
-                  beam_probe("w", ProbeQuantity::deflection, kBeamLength)};
-  return scene;
 }
 
 // The first frequency [Hz] of the deflected network, and its AC tip response (x, y) per unit

@@ -151,8 +151,8 @@ TEST(Json, IdentifyAndMismatchHaveTheProgramsKeysInOrder) {
       {"electrode area of A", "dea.A.electrode_width", -0.05, -1e-3, 1e-3, 0.0, 0.0});
   const Json table = to_json(mismatch, {}, 0.1);
   EXPECT_EQ(keys_of(table),
-            (std::vector<std::string>{"automatic_choices", "output", "frequency_hz", "nominal",
-                                      "cases", "total_seconds", "validity"}));
+            (std::vector<std::string>{"automatic_choices", "output", "frequency_hz", "method",
+                                      "nominal", "cases", "total_seconds", "validity"}));
   EXPECT_EQ(keys_of(table["nominal"]),
             (std::vector<std::string>{"left_m", "right_m", "asymmetry"}));
   EXPECT_EQ(keys_of(table["cases"][0]),

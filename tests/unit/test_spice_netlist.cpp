@@ -26,6 +26,7 @@
 #include "emnet/spice/spice_netlist.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "fixtures.hpp"
+#include "shipped_scenes.hpp"
 
 namespace {
 
@@ -349,9 +350,7 @@ struct RawFile {
   std::map<std::string, std::vector<std::complex<double>>> vectors;
 };
 
-bool ngspice_available() {
-  return std::system("command -v ngspice > /dev/null 2>&1") == 0;
-}
+using emnet::testing::ngspice_available;
 
 RawFile run_ngspice(const std::string& deck, const std::string& tag) {
   const std::string base =

@@ -150,6 +150,11 @@ void write_pareto_plot(const Settings& settings, const std::string& name, const 
 // 1..8 (colours that read on white).
 std::string plot_preamble(const std::string& png, const std::string& title);
 
+// run_transient_ida of `system` timed by `measure` (its own seconds); `last` keeps a run's result.
+Timing measure_ida(const emnet::System& system, const std::vector<emnet::Probe>& probes,
+                   const emnet::TransientOptions& options, emnet::TransientResult& last,
+                   int repetitions, double budget_seconds);
+
 // Largest |a − b| over outputs and kept times, relative to each output's peak |b|.
 double run_error(const std::vector<std::vector<double>>& values,
                  const std::vector<std::vector<double>>& reference,

@@ -234,6 +234,17 @@ std::string plot_preamble(const std::string& png, const std::string& title) {
 }
 
 // Largest |a − b| over outputs and kept times, relative to each output's peak |b|.
+Timing measure_ida(const emnet::System& system, const std::vector<emnet::Probe>& probes,
+                   const emnet::TransientOptions& options, emnet::TransientResult& last,
+                   int repetitions, double budget_seconds) {
+  return measure(
+      [&] {
+        last = emnet::run_transient_ida(system, probes, options);
+        return last.seconds;
+      },
+      repetitions, budget_seconds);
+}
+
 double run_error(const std::vector<std::vector<double>>& values,
                  const std::vector<std::vector<double>>& reference, const std::vector<bool>& keep) {
   double worst = 0.0;

@@ -151,12 +151,7 @@ std::string ida_against_ngspice(const Settings& settings) {
     emnet::TransientOptions at = options;
     at.relative_tolerance = rtol;
     emnet::TransientResult result;
-    const Timing t = measure(
-        [&] {
-          result = emnet::run_transient_ida(system, probes, at);
-          return result.seconds;
-        },
-        7, 3.0);
+    const Timing t = measure_ida(system, probes, at, result, 7, 3.0);
     const double error = result.status.ok() && reference.status.ok()
                              ? run_error(result.values, reference.values)
                              : NAN;

@@ -139,9 +139,13 @@ bool electrical_probe_requested(const CommonOptions& options) {
   return emnet::asks_for_dea_electrics(options.probes);
 }
 
-// The model of `scene` with its remaining "auto" keys resolved for the command's probes.
-emnet::Model resolved_model(const emnet::Scene& scene, const CommonOptions& options) {
-  return emnet::prepare_model(scene, emnet::prepare_options_for_probes(options.probes));
+// The model of `scene` with its remaining "auto" keys resolved for the command's probes and
+// its use of large kinematics.
+emnet::Model resolved_model(const emnet::Scene& scene, const CommonOptions& options,
+                            emnet::LargeKinematicsUse use) {
+  emnet::PrepareOptions prepare = emnet::prepare_options_for_probes(options.probes);
+  prepare.large_kinematics = use;
+  return emnet::prepare_model(scene, prepare);
 }
 
 std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const CommonOptions& options) {

@@ -117,7 +117,8 @@ emnet::Scene load_scene(const CommonOptions& options);
 // RC dynamics for it).
 bool electrical_probe_requested(const CommonOptions& options);
 // The model of `scene` with its remaining "auto" keys resolved for the command's probes.
-emnet::Model resolved_model(const emnet::Scene& scene, const CommonOptions& options);
+emnet::Model resolved_model(const emnet::Scene& scene, const CommonOptions& options,
+                            emnet::LargeKinematicsUse use);
 std::vector<emnet::Probe> selected_probes(const emnet::Model& model, const CommonOptions& options);
 
 // The drive in words (header line), what the AC input is (every AC result):

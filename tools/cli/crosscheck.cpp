@@ -83,7 +83,11 @@ int run_crosscheck_command(CommonOptions options, const CrosscheckCommandOptions
   check.tran_reltol = cross.reltol;
   check.tran_points_per_period = cross.points_per_period;
   check.overrides = overrides_with_segments(options);
-  const emnet::Model model = resolved_model(load_scene(options), options);
+  const bool static_only =
+      check.analyses == std::vector<emnet::CrosscheckAnalysis>{emnet::CrosscheckAnalysis::op};
+  const emnet::Model model = resolved_model(
+      load_scene(options), options,
+      static_only ? emnet::LargeKinematicsUse::static_state : emnet::LargeKinematicsUse::dynamics);
   show_phase(options, "ngspice and emnet analyses");
   const emnet::CrosscheckReport report = emnet::run_crosscheck(model, check);
   stop_if_interrupted();

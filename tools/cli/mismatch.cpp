@@ -56,7 +56,12 @@ int run_mismatch_command(const CommonOptions& options, const MismatchCommandOpti
       shown(scene.name).c_str(), shown(result.output).c_str(),
       si(result.frequency_hz, "Hz").c_str());
   std::printf("asymmetry = (|left| - right) / mean, > 0: larger to the left (negative) side\n");
-  std::printf("accuracy: exact periodic states, extremes to 1e-11 of the peak\n");
+  if (result.method == emnet::Method::shooting)
+    std::printf(
+        "accuracy: periodic states by shooting (large kinematics), IDA rtol 1e-9, "
+        "periodicity residual below 1e-6\n");
+  else
+    std::printf("accuracy: exact periodic states, extremes to 1e-11 of the peak\n");
   std::printf("cost: %d periodic solves, total %s\n", result.periodic_solves,
               milliseconds(total).c_str());
   for (const auto& choice : scene.automatic_choices)

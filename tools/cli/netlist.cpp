@@ -98,7 +98,12 @@ int run_netlist_command(CommonOptions options, const NetlistOptions& netlist) {
   if (deck_options.analysis == emnet::SpiceAnalysis::ac)
     deck_options.ac = checked_ac_spec(scene.ac, netlist.from_text, netlist.to_text, netlist.points,
                                       netlist.scale);
-  const emnet::Model model = resolved_model(scene, options);
+  // Large kinematics: the op deck takes what the static analysis takes, the others the dynamics'
+  // EA (the writer refuses what it does not write, naming the key).
+  const emnet::Model model = resolved_model(scene, options,
+                                            deck_options.analysis == emnet::SpiceAnalysis::op
+                                                ? emnet::LargeKinematicsUse::static_state
+                                                : emnet::LargeKinematicsUse::dynamics);
   deck_options.overrides = shown_overrides;
   if (!options.probes.empty()) deck_options.outputs = selected_probes(model, options);
   if (deck_options.analysis == emnet::SpiceAnalysis::tran) {

@@ -87,6 +87,7 @@ int run_sensitivity_command(const CommonOptions& options, const SensitivityComma
             << "): " << scene.beam.segments << " segments\n";
   for (const auto& choice : scene.automatic_choices)
     std::cout << "note: " << shown(choice.reason) << "\n";
+  for (const auto& note : result.notes) std::cout << "note: " << shown(note) << "\n";
   std::cout << "modes:";
   for (size_t k = 0; k < modes.size(); ++k)
     std::printf(" f%zu = %.7g Hz (natural %.7g Hz)%s", k + 1, modes[k].frequency_hz,

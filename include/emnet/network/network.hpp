@@ -68,6 +68,10 @@ struct Unknown {
   /// amplifies (an axial force, EA/l times a chord's change) is held to what its displacement
   /// allows, not to the scale of the other forces, which no step could meet. 0: by its kind.
   double tolerance_per_displacement = 0.0;
+  /// A branch unknown that is a geometric state, not a through quantity: a displacement [m]
+  /// (translational) or an angle [rad] (rotational), as a co-rotational chord's change and angle.
+  /// Reports group it apart from the forces.
+  bool geometric = false;
 };
 
 class Stamper;

@@ -31,6 +31,14 @@
 //                   voltage); with back-coupling a B source drawing 2·k_F·u·ẋ from e+ to e−,
 //                   ẋ = Σ c_k·V(k). Its direct AC force (antagonistic drive) is an AC-only
 //                   current source c_k·ac_force into each coupling node (ac deck only).
+//   CoRotationalSegment (beam.kinematics = "large") its unknowns as nodes and its geometry and
+//                   forces as B sources (deck/corotational_segment.cpp): the chord's change
+//                   (op: V(b) − V(a) of the displacement nodes; tran: an integrator of v_b − v_a,
+//                   1 F ‖ 1 GΩ as the outputs), its angle θ by its constraint
+//                   sin θ·(l + d_x) − cos θ·d_y = 0, the extension ℓ − l, the forces F (tran: an
+//                   integrator of F'), N = (ℓ − l)/n_A, with τ Q and P, and the forces on the end
+//                   nodes. op and tran decks only: an ac deck and an inextensible segment are
+//                   refused naming the key (beam.kinematics, beam.axial_stiffness).
 // Independent sources: op and ac decks hold their value at t = 0 (what emnet's static and its
 // AC operating point use, System::b(0)) and, in the ac deck, their AC phasor (System::b_ac);
 // tran decks hold the time function: DC, SIN, PULSE or PWL. A pulse with zero rise and fall

@@ -26,7 +26,10 @@
 // Each variant changes only the varied fields of the nominal scene (set_parameter: no TOML is
 // read again), and is then resolved and built as any scene (prepare_model). beam.segments = "auto"
 // is resolved once, on the nominal scene, so that every variant has the same mesh (a note says
-// so); the other "auto" keys are resolved per variant. Analyses, each a group of columns:
+// so), and so is beam.kinematics = "auto"; the other "auto" keys are resolved per variant. With
+// beam.kinematics = "large" the modes are about the deflected static state and the sweep is shot
+// (as `emnet modes` and `emnet sweep-switching`): seconds per variant instead of milliseconds.
+// Analyses, each a group of columns:
 //   modes            f<k>_hz, zeta<k>, f<k>_error_hz for the k = 1..mode_count lowest oscillatory
 //                    modes about the operating point (run_modes; the error is the pole's rounding
 //                    bound over 2π: a mode whose error cannot be bounded fails the variant);

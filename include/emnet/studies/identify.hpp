@@ -31,6 +31,11 @@
 //    frequency a little), and the two alternate until both change by at most round_tolerance
 //    (relative).
 //
+// With beam.kinematics = "large" the mode is the one about the deflected static state, and a
+// peak's periodic state is shot (periodic_peak.hpp, about 1e-7 of the peak): the bisection then
+// stops at bisection_ratio ≥ 1e-6 and the rounds at round_tolerance ≥ 1e-5 (a note says so).
+// "auto" kinematics are chosen once, on the given scene, for every trial.
+//
 // Every trial sets its values on a copy of the given scene (set_parameter,
 // emnet/scene/parameters.hpp), so beam.segments = "auto" chosen before the call stays one
 // network for the whole fit.

@@ -12,12 +12,15 @@
 // force to the symmetric square wave, every extreme becoming ±(1 + x_F/2)·P + (x_F/2)·S (P the
 // symmetric peak, S the static deflection with A alone on): a static offset that the resonance
 // does not amplify, so asymmetry = x_F·|S| / ((1 + x_F/2)·P), linear in small changes.
+// With large kinematics the superposition no longer holds: each periodic state is shot
+// (periodic_peak.hpp), at about 0.1-1 s each on the fin instead of milliseconds.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "emnet/analysis/method.hpp"
 #include "emnet/core/errors.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/model/validity.hpp"
@@ -56,6 +59,9 @@ struct MismatchResult {
   std::vector<MismatchRow> rows;
   Validity validity;  // of every peak computed, at the drive's levels
   int periodic_solves = 0;
+  /// How the periodic states were found (periodic_peak.hpp): exact (a linear network) or
+  /// shooting (beam.kinematics = "large").
+  Method method = Method::exact;
   std::vector<std::string> notes;
   double seconds = 0.0;
 };

@@ -43,7 +43,7 @@ namespace emnet {
 /// Large deflection): prepare_model refuses a scene the analysis does not serve, naming the key,
 /// so that no analysis runs the co-rotational network it has not been checked on.
 enum class LargeKinematicsUse {
-  refused,       ///< not served yet (studies, identify, SPICE decks, ...)
+  refused,       ///< not served (the exact transient: it needs a linear network)
   static_state,  ///< the static analysis: any beam, inextensible included
   /// modes, AC and IDA transients: every segment needs an axial stiffness EA, because an
   /// inextensible beam with masses is a constrained mechanism (a DAE of index 3) that the time
@@ -88,6 +88,15 @@ ResolvedScene resolve_scene(const Scene& scene, const ResolveOptions& options = 
 /// "auto" segments is returned as it is.
 /// @throws InputError as resolve_scene, when N cannot be chosen
 Scene resolve_segments(const Scene& scene);
+
+/// The scene with beam.kinematics = "auto" chosen for an analysis that serves `use` and nothing
+/// else resolved: what a study does once on its nominal scene, so that every scene it derives
+/// (finite differences, variants, fits) keeps the same network instead of choosing again near
+/// the threshold. A scene without "auto" kinematics is returned as it is.
+/// @param notes  when given, the choice's reason is appended
+/// @throws InputError as resolve_scene
+Scene resolve_kinematics(const Scene& scene, LargeKinematicsUse use,
+                         std::vector<std::string>* notes = nullptr);
 
 /// Whether a probe text asks for a DEA's electrical quantity, "dea_voltage…" or "dea_current…"
 /// (emnet/model/model.hpp, Model::parse_probe): the RC loop of the DEA must then be modelled.

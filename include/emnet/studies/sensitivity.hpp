@@ -28,6 +28,11 @@
 // centrally, with h = 1e-4 and 2h; Richardson's estimate |D(2h) − D(h)|/3 bounds the truncation
 // error of D(h), and ε·|s|/h its rounding.
 //
+// With beam.kinematics = "large" the network is linearised about its deflected static state,
+// found again at every step: ∂(G + J_g)/∂p then includes the state's own change (the
+// geometric stiffness of a pre-bent beam moves with EI under dead loads), and the static
+// state's Newton residual enters the difference as residual/δ.
+//
 // Parameters are the keys the parameter table marks `sensitivity` (emnet/scene/parameters.hpp:
 // continuous parameters of the linearised network's matrices) that the scene uses, named as
 // `--set` names them: "beam.bending_stiffness", "damping.loss_factor", "dea[A].lever_arm" (also
@@ -100,8 +105,9 @@ struct SensitivityResult {
   std::vector<ParameterSensitivity> parameters;
   // Largest ‖(Ĝ + ŝĈ)ᴴ·ŷ‖ / ((‖Ĝ‖ + |ŝ|·‖Ĉ‖)·‖ŷ‖) of the left eigenvectors (unit-free).
   double left_vector_residual = 0.0;
-  double seconds = 0.0;        // everything
-  double check_seconds = 0.0;  // of which the finite-difference check
+  double seconds = 0.0;            // everything
+  double check_seconds = 0.0;      // of which the finite-difference check
+  std::vector<std::string> notes;  // beam.kinematics = "auto": the choice, made once
 };
 
 // Sensitivities of the first options.modes oscillatory poles to the named parameters (all of

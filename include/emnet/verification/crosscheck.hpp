@@ -61,6 +61,9 @@
 //    wrong element or sign (≥ 1e-2). ngspice's error is not proportional to reltol (cantilever:
 //    8.6e-5 at reltol 1e-5), so other --reltol values keep the multiple without a measurement.
 //
+// With beam.kinematics = "large" op and tran are compared (the chords' changes and angles in
+// groups of their own); ac and modal are not, and a note says why (deck/corotational_segment.cpp).
+//
 // Wall times: ngspice's (loading and running the deck and reading the vectors back,
 // NgspiceResult::ngspice_seconds) and emnet's analysis of the same question, measured in the
 // same run.

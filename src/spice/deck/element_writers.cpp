@@ -15,6 +15,7 @@
 
 #include "emnet/elements/capacitor.hpp"
 #include "emnet/elements/conductance.hpp"
+#include "emnet/elements/corotational_segment.hpp"
 #include "emnet/elements/current_source.hpp"
 #include "emnet/elements/dea.hpp"
 #include "emnet/elements/gyrator.hpp"
@@ -27,6 +28,7 @@ namespace emnet::spice_deck {
 
 void write_capacitor(const Capacitor& element, DeckWriter& deck);
 void write_conductance(const Conductance& element, DeckWriter& deck);
+void write_corotational_segment(const CoRotationalSegment& element, DeckWriter& deck);
 void write_current_source(const CurrentSource& element, DeckWriter& deck);
 void write_dea(const Dea& element, DeckWriter& deck);
 void write_gyrator(const Gyrator& element, DeckWriter& deck);
@@ -53,6 +55,7 @@ const std::unordered_map<std::type_index, ElementWriter>& element_writers() {
   static const std::unordered_map<std::type_index, ElementWriter> writers = {
       entry<Capacitor, write_capacitor>(),
       entry<Conductance, write_conductance>(),
+      entry<CoRotationalSegment, write_corotational_segment>(),
       entry<CurrentSource, write_current_source>(),
       entry<Dea, write_dea>(),
       entry<Gyrator, write_gyrator>(),
