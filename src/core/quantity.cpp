@@ -4,13 +4,19 @@
 namespace emnet {
 
 const std::vector<ProbeQuantity>& probe_quantities() {
-  static const std::vector<ProbeQuantity> all = {
-      ProbeQuantity::deflection,     ProbeQuantity::velocity,
-      ProbeQuantity::rotation,       ProbeQuantity::angular_velocity,
-      ProbeQuantity::dea_voltage,    ProbeQuantity::dea_current,
-      ProbeQuantity::reaction_force, ProbeQuantity::reaction_moment,
-      ProbeQuantity::spring_force,   ProbeQuantity::strain,
-      ProbeQuantity::dea_force,      ProbeQuantity::axial_displacement};
+  static const std::vector<ProbeQuantity> all = {ProbeQuantity::deflection,
+                                                 ProbeQuantity::velocity,
+                                                 ProbeQuantity::rotation,
+                                                 ProbeQuantity::angular_velocity,
+                                                 ProbeQuantity::dea_voltage,
+                                                 ProbeQuantity::dea_current,
+                                                 ProbeQuantity::reaction_force,
+                                                 ProbeQuantity::reaction_moment,
+                                                 ProbeQuantity::spring_force,
+                                                 ProbeQuantity::strain,
+                                                 ProbeQuantity::dea_force,
+                                                 ProbeQuantity::axial_displacement,
+                                                 ProbeQuantity::axial_reaction_force};
   return all;
 }
 
@@ -46,6 +52,8 @@ const char* probe_quantity_name(ProbeQuantity quantity) {
       return "dea_force";
     case ProbeQuantity::axial_displacement:
       return "axial_displacement";
+    case ProbeQuantity::axial_reaction_force:
+      return "axial_reaction_force";
   }
   return "?";
 }
@@ -66,6 +74,7 @@ const char* probe_unit(ProbeQuantity quantity) {
     case ProbeQuantity::dea_current:
       return "A";
     case ProbeQuantity::reaction_force:
+    case ProbeQuantity::axial_reaction_force:
     case ProbeQuantity::spring_force:
     case ProbeQuantity::dea_force:
       return "N";

@@ -2,6 +2,7 @@
 // signs and sources.
 #include "emnet/elements/corotational_segment.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -9,14 +10,15 @@ namespace emnet {
 
 CoRotationalSegment::CoRotationalSegment(std::string name, End a, End b, double length,
                                          double transverse_compliance, double axial_compliance,
-                                         double kelvin_voigt_time)
+                                         double kelvin_voigt_time, EndForce end_force)
     : Element(std::move(name)),
       a_(a),
       b_(b),
       length_(length),
       transverse_compliance_(transverse_compliance),
       axial_compliance_(axial_compliance),
-      kelvin_voigt_time_(kelvin_voigt_time) {
+      kelvin_voigt_time_(kelvin_voigt_time),
+      end_force_(end_force) {
   if (!(length > 0.0) || !(transverse_compliance > 0.0) || !(axial_compliance >= 0.0) ||
       !(kelvin_voigt_time >= 0.0) || !std::isfinite(length) ||
       !std::isfinite(transverse_compliance) || !std::isfinite(axial_compliance) ||
@@ -43,7 +45,23 @@ std::vector<Unknown> CoRotationalSegment::branch_unknowns() const {
     unknowns.push_back({"Q_" + id, Kind::branch_through, Domain::translational, per_force});
   if (axial_branch() == total_axial_force)
     unknowns.push_back({"P_" + id, Kind::branch_through, Domain::translational, per_tension});
+  if (end_force_ != EndForce::none) {
+    const double per_end_force = std::max(per_force, per_tension);
+    const std::string end = end_force_ == EndForce::a ? "a_" : "b_";
+    unknowns.push_back(
+        {"fx" + end + id, Kind::branch_through, Domain::translational, per_end_force});
+    unknowns.push_back(
+        {"fy" + end + id, Kind::branch_through, Domain::translational, per_end_force});
+  }
   return unknowns;
+}
+
+int CoRotationalSegment::end_force_branch() const {
+  if (end_force_ == EndForce::none) return -1;
+  int offset = axial_force + 1;
+  if (kelvin_voigt_time_ > 0.0) ++offset;
+  if (axial_branch() == total_axial_force) ++offset;
+  return offset;
 }
 
 void CoRotationalSegment::stamp(Stamper& s) const {
@@ -94,6 +112,15 @@ void CoRotationalSegment::stamp(Stamper& s) const {
   s.g(b_.x, p, 1.0);
   s.g(a_.rotation, q, 0.5 * l);
   s.g(b_.rotation, q, 0.5 * l);
+  // The end force's unknowns at rest: f_a = (−P, Q), f_b = −f_a.
+  if (end_force_ != EndForce::none) {
+    const int fx = s.branch(end_force_branch()), fy = s.branch(end_force_branch() + 1);
+    const double sign = end_force_ == EndForce::a ? 1.0 : -1.0;
+    s.g(fx, fx, 1.0);
+    s.g(fx, p, sign);
+    s.g(fy, fy, 1.0);
+    s.g(fy, q, -sign);
+  }
 }
 
 // The segment's geometry at y, and where its unknowns and its nodes' rows are.
@@ -146,7 +173,8 @@ void CoRotationalSegment::add_nonlinear(const Eigen::VectorXd& y, int branch_off
   const NonlinearSink sink{g, jacobian};
   add_chord_rows(y, state, sink);
   add_damper_rows(state, sink);
-  add_node_forces(y[state.q], y[state.p], state, sink);
+  add_node_forces(y[state.q], y[state.p], state, sink,
+                  end_force_ == EndForce::none ? -1 : branch_offset + end_force_branch());
 }
 
 void CoRotationalSegment::add_chord_rows(const Eigen::VectorXd& y, const ChordState& st,
@@ -194,7 +222,7 @@ void CoRotationalSegment::add_damper_rows(const ChordState& st, const NonlinearS
 }
 
 void CoRotationalSegment::add_node_forces(double force, double tension, const ChordState& st,
-                                          const NonlinearSink& sink) const {
+                                          const NonlinearSink& sink, int end_force_x) const {
   // The force on end a, f_a = Q·(l/ℓ)·e₂ − P·e₁, less its part at rest (−P, Q); end b the
   // opposite. Each component with its derivatives in (Q, P, θ, d_x, d_y).
   const double ratio = st.ratio, c = st.c, s = st.s;
@@ -216,6 +244,13 @@ void CoRotationalSegment::add_node_forces(double force, double tension, const Ch
       sink.value(row, sign * component.value);
       for (int k = 0; k < 5; ++k) sink.derivative(row, columns[k], sign * component.derivative[k]);
     }
+  // The end force's rows, f − (its part at rest + the rest): −(sign)·component.
+  if (end_force_x < 0) return;
+  const double sign = end_force_ == EndForce::a ? 1.0 : -1.0;
+  for (const auto& [row, component] : {std::pair{end_force_x, x}, std::pair{end_force_x + 1, y}}) {
+    sink.value(row, -sign * component.value);
+    for (int k = 0; k < 5; ++k) sink.derivative(row, columns[k], -sign * component.derivative[k]);
+  }
 }
 
 }  // namespace emnet

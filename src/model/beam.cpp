@@ -363,10 +363,23 @@ void add_rotational_compliance(Network& network, const BeamLayout& beam,
 // chord's frame and axial compliance l/EA (none: inextensible); see corotational_segment.hpp.
 void add_corotational_segments(Network& network, const BeamSpec& spec, const BeamMesh& mesh,
                                const std::vector<SectionSpec>& sections, const DampingSpec& damping,
-                               const BeamLayout& beam, ModelStructure* structure) {
+                               const BeamLayout& beam, ModelStructure* structure,
+                               ReactionEnds reactions) {
+  // A held end whose reaction force is an output: its segment carries the force it draws from
+  // it (only then: two more algebraic unknowns change IDA's steps).
+  auto held = [&](size_t node) {
+    return beam.axial_velocity[node] == ground || beam.velocity[node] == ground;
+  };
+  const size_t last = static_cast<size_t>(mesh.segments());
+  const bool left_force = reactions.left && held(0);
+  const bool right_force = reactions.right && held(last) && !(left_force && last == 1);
   for (int k = 0; k < mesh.segments(); ++k) {
     const size_t a = static_cast<size_t>(k), b = a + 1;
     const SegmentValues segment = segment_values(spec, mesh, sections, damping, beam, k);
+    const CoRotationalSegment::EndForce end_force =
+        a == 0 && left_force       ? CoRotationalSegment::EndForce::a
+        : b == last && right_force ? CoRotationalSegment::EndForce::b
+                                   : CoRotationalSegment::EndForce::none;
     add_rotational_compliance(network, beam, segment, k, structure);
     add_recorded<CoRotationalSegment>(
         network, structure,
@@ -380,7 +393,7 @@ void add_corotational_segments(Network& network, const BeamSpec& spec, const Bea
         CoRotationalSegment::End{beam.axial_velocity[b], beam.velocity[b],
                                  beam.angular_velocity[b]},
         segment.length, segment.translational_compliance, segment.axial_compliance,
-        segment.kelvin_voigt_time);
+        segment.kelvin_voigt_time, end_force);
   }
 }
 
@@ -388,9 +401,10 @@ void add_corotational_segments(Network& network, const BeamSpec& spec, const Bea
 // shear) to its middle node, and the lever (l/2)·(Ω_k + Ω_k+1) from there to the next node.
 void add_segment_elements(Network& network, const BeamSpec& spec, const BeamMesh& mesh,
                           const std::vector<SectionSpec>& sections, const DampingSpec& damping,
-                          const BeamLayout& beam, ModelStructure* structure) {
+                          const BeamLayout& beam, ModelStructure* structure,
+                          ReactionEnds reactions) {
   if (spec.kinematics == BeamKinematics::large) {
-    add_corotational_segments(network, spec, mesh, sections, damping, beam, structure);
+    add_corotational_segments(network, spec, mesh, sections, damping, beam, structure, reactions);
     return;
   }
   for (int k = 0; k < mesh.segments(); ++k) {
@@ -426,7 +440,8 @@ void add_segment_elements(Network& network, const BeamSpec& spec, const BeamMesh
 }  // namespace
 
 BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& damping,
-                    const std::vector<double>& attachments, ModelStructure* structure) {
+                    const std::vector<double>& attachments, ModelStructure* structure,
+                    ReactionEnds reactions) {
   BeamLayout beam;
   beam.kinematics = spec.kinematics;
   const BeamMesh mesh = mesh_beam(spec, attachments);
@@ -434,7 +449,7 @@ BeamLayout add_beam(Network& network, const BeamSpec& spec, const DampingSpec& d
   lay_out_segments(spec, mesh, sections, beam);
   add_beam_nodes(network, spec, beam, structure);
   add_lumped_node_elements(network, mesh, sections, damping, beam, structure);
-  add_segment_elements(network, spec, mesh, sections, damping, beam, structure);
+  add_segment_elements(network, spec, mesh, sections, damping, beam, structure, reactions);
   add_point_masses(network, spec, beam, structure);
   add_springs(network, spec, beam, structure);
   return beam;

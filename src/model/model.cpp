@@ -402,6 +402,17 @@ void require_deflectable(const Scene& scene) {
                          "axial stiffness EA (here or for every section)");
 }
 
+// The ends at which the scene's [[probe]] entries ask for a reaction force (large kinematics
+// carries it as unknowns of the end segment only there).
+ReactionEnds reaction_force_ends(const Scene& scene) {
+  ReactionEnds ends;
+  for (const ProbeSpec& probe : scene.probes)
+    if (probe.quantity == ProbeQuantity::reaction_force ||
+        probe.quantity == ProbeQuantity::axial_reaction_force)
+      (probe.at < 0.5 * scene.beam.length ? ends.left : ends.right) = true;
+  return ends;
+}
+
 }  // namespace
 
 Model build_model(const Scene& scene) {
@@ -416,8 +427,8 @@ Model build_model(const Scene& scene) {
     model.fluid = apply_fluid_loading(scene, beam_spec, damping, model.notes);
   for (const AutomaticChoice& choice : model.automatic_choices)
     model.notes.push_back(choice.reason);
-  model.beam =
-      add_beam(model.network, beam_spec, damping, scene_attachment_points(scene), &model.structure);
+  model.beam = add_beam(model.network, beam_spec, damping, scene_attachment_points(scene),
+                        &model.structure, reaction_force_ends(scene));
   note_beam_mesh(model);
   add_point_loads(scene, model);
   add_deas(scene, model);

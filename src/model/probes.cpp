@@ -12,6 +12,7 @@
 #include "emnet/core/errors.hpp"
 #include "emnet/core/option_error.hpp"
 #include "emnet/core/units.hpp"
+#include "emnet/elements/corotational_segment.hpp"
 #include "emnet/elements/inductor.hpp"
 #include "emnet/model/model.hpp"
 #include "position_text.hpp"
@@ -64,10 +65,14 @@ int spring_index(const Model& model, const ProbeSpec& spec) {
 
 // The through quantity a spring element of record index n sends from the held node `held`
 // into the rest of the network, for the reaction at `held` (see reaction_terms).
-void add_spring_share(const Model& model, int n, double end_x, Domain domain, Probe& probe) {
+void add_spring_share(const Model& model, int n, double end_x, ProbeQuantity quantity,
+                      Probe& probe) {
   const SpringSpec& spring = model.scene.beam.springs[static_cast<std::size_t>(n)];
-  const bool rotational = spring.kind == SpringKind::rotational;
-  if (rotational != (domain == Domain::rotational)) return;
+  const ProbeQuantity carried =
+      spring.kind == SpringKind::rotational ? ProbeQuantity::reaction_moment
+      : spring.kind == SpringKind::axial    ? ProbeQuantity::axial_reaction_force
+                                            : ProbeQuantity::reaction_force;
+  if (carried != quantity) return;
   const int node_index = model.beam.node_at(end_x);
   const bool at_held = model.beam.node_at(spring.at) == node_index;
   const bool to_held = spring.to && model.beam.node_at(*spring.to) == node_index;
@@ -84,6 +89,84 @@ void add_spring_share(const Model& model, int n, double end_x, Domain domain, Pr
   if (spring.damping > 0.0 && other != ground) probe.terms.emplace_back(other, -spring.damping);
 }
 
+// The held end a reaction probe names (at = 0 or L), checked: the support takes the quantity
+// (a force: clamped or pinned; an axial force: clamped, pinned or sliding, large kinematics only;
+// a moment: clamped or sliding), no load acts on it.
+struct HeldEnd {
+  int node = 0;
+  bool left = true;
+  std::string name;
+};
+
+HeldEnd held_end(const Model& model, const ProbeSpec& spec) {
+  const BeamLayout& beam = model.beam;
+  const bool moment = spec.quantity == ProbeQuantity::reaction_moment;
+  const bool axial = spec.quantity == ProbeQuantity::axial_reaction_force;
+  const int node = beam.node_at(spec.at);
+  const int last = static_cast<int>(beam.x.size()) - 1;
+  if (node != 0 && node != last)
+    throw InputError("probe " + spec.name, "at",
+                     std::string("a reaction is measured at a held end: at = 0 or beam.length (") +
+                         format_number("%.6g", beam.length) + " m), not at " +
+                         position_text(spec.at));
+  const bool left = node == 0;
+  const EndCondition end = left ? model.scene.beam.left : model.scene.beam.right;
+  const std::string end_key = left ? "beam.left" : "beam.right";
+  const std::string end_name = end_condition_name(end);
+  const bool holds = moment  ? end == EndCondition::clamped || end == EndCondition::sliding
+                     : axial ? end != EndCondition::free
+                             : end == EndCondition::clamped || end == EndCondition::pinned;
+  if (!holds) {
+    std::string why = "the end at " + position_text(spec.at) + " is " + end_name + " (" + end_key +
+                      "): its support takes no " +
+                      (moment  ? "moment"
+                       : axial ? "force along x"
+                               : "force");
+    if (end == EndCondition::free)
+      why += "; a spring support there carries it: probe quantity spring_force with probe[].spring";
+    throw InputError("probe " + spec.name, "quantity", why);
+  }
+  if (beam.kinematics == BeamKinematics::large && last == 1 && beam.axial_velocity[0] == ground &&
+      beam.axial_velocity[1] == ground)
+    throw InputError("probe " + spec.name, "quantity",
+                     "a reaction of a one-segment beam held at both ends is not an output with "
+                     "beam.kinematics = \"large\": give beam.segments >= 2");
+  int load_index = 0;
+  for (const LoadSpec& load : model.scene.loads) {
+    if ((load.kind == LoadKind::moment) == moment && load.value != 0.0 &&
+        beam.node_at(load.at) == node)
+      throw InputError("probe " + spec.name, "at",
+                       "load " + std::to_string(load_index) + " (a " +
+                           (moment ? "moment" : "force") + " at " + position_text(load.at) +
+                           ") acts on the held end and goes straight into the support; the "
+                           "reaction probe leaves such loads out: move the load off the end");
+    ++load_index;
+  }
+  return {node, left, end_name};
+}
+
+// A DEA with an end on the held rotation node `node` adds −c_H·k_F·u² to its reaction moment
+// (c_H = ∓z, its coupling there), a square of its capacitor voltage.
+void add_dea_moments_at(const Model& model, const ProbeSpec& spec, int node, Probe& probe) {
+  const BeamLayout& beam = model.beam;
+  for (const DeaSpec& dea : model.scene.deas) {
+    const bool from_here = beam.node_at(dea.from) == node, to_here = beam.node_at(dea.to) == node;
+    if (!from_here && !to_here) continue;
+    const DeaLayout* layout = model.find_dea(dea.name);
+    if (!layout || layout->electrode_node == ground)
+      throw InputError("probe " + spec.name, "quantity",
+                       electrical_dynamics_missing(
+                           model, "DEA '" + dea.name +
+                                      "' ends on the held end; its moment there is the "
+                                      "ideal drive's k_F*V(t)^2, no output of the network"));
+    // Coupling at the held rotation node (ψ there has coefficient 1): −s·z at `from`, +s·z at
+    // `to`, s = −1 on the top face (model.cpp dea_layout).
+    const double face_sign = dea.face == Face::top ? -1.0 : 1.0;
+    const double coupling = (to_here ? 1.0 : -1.0) * face_sign * dea.lever_arm;
+    probe.squares.push_back({-coupling * layout->force_constant, {{layout->electrode_node, 1.0}}});
+  }
+}
+
 // The support's force (translational) or moment (rotational) on the beam at the held end x = 0
 // or L: the through quantities of the elements attached to the held node, which the support
 // takes (R = Σ through quantities leaving the held node into elements − loads on it; see
@@ -97,83 +180,60 @@ void add_spring_share(const Model& model, int n, double end_x, Domain domain, Pr
 // quantity g_p·(y_a − y_b) is entered from the across values (the held one is zero); springs with
 // an end on the held node add their force; a DEA with an end on the held rotation node adds
 // −c_H·k_F·u² (c_H = ∓z, its coupling there), a square.
+// With large kinematics the end segment's co-rotational element carries the force it draws from
+// the held node in the fixed frame (f_x, f_y, corotational_segment.hpp): R_y = f_y,
+// R_x = f_x (axial_reaction_force), and the moment's lever share is +(l/2)·Q at either end.
 void reaction_terms(const Model& model, const ProbeSpec& spec, Probe& probe) {
   const BeamLayout& beam = model.beam;
-  const BeamSpec& beam_spec = model.scene.beam;
   const bool moment = spec.quantity == ProbeQuantity::reaction_moment;
-  const int node = beam.node_at(spec.at);
-  const int last = static_cast<int>(beam.x.size()) - 1;
-  if (node != 0 && node != last)
-    throw InputError("probe " + spec.name, "at",
-                     std::string("a reaction is measured at a held end: at = 0 or beam.length (") +
-                         format_number("%.6g", beam.length) + " m), not at " +
-                         position_text(spec.at));
-  const bool left = node == 0;
-  const EndCondition end = left ? beam_spec.left : beam_spec.right;
-  const std::string end_key = left ? "beam.left" : "beam.right";
-  const std::string end_name = end_condition_name(end);
-  const bool holds = moment ? end == EndCondition::clamped || end == EndCondition::sliding
-                            : end == EndCondition::clamped || end == EndCondition::pinned;
-  if (!holds) {
-    std::string why = "the end at " + position_text(spec.at) + " is " + end_name + " (" + end_key +
-                      "): its support takes no " + (moment ? "moment" : "force");
-    if (end == EndCondition::free)
-      why += "; a spring support there carries it: probe quantity spring_force with probe[].spring";
-    throw InputError("probe " + spec.name, "quantity", why);
-  }
-  const std::string kind = moment ? "moment" : "force";
-  int load_index = 0;
-  for (const LoadSpec& load : model.scene.loads) {
-    if ((load.kind == LoadKind::moment) == moment && load.value != 0.0 &&
-        beam.node_at(load.at) == node)
-      throw InputError("probe " + spec.name, "at",
-                       "load " + std::to_string(load_index) + " (a " + kind + " at " +
-                           position_text(load.at) +
-                           ") acts on the held end and goes straight into the support; the "
-                           "reaction probe leaves such loads out: move the load off the end");
-    ++load_index;
-  }
-  const int segment = left ? 0 : last - 1;
-  const int lever = recorded_branch(model, Component::beam_segment, ElementPart::lever, segment);
+  const bool axial = spec.quantity == ProbeQuantity::axial_reaction_force;
+  const bool large = beam.kinematics == BeamKinematics::large;
+  const HeldEnd held = held_end(model, spec);
+  const int segment = held.left ? 0 : held.node - 1;
   const double half = 0.5 * beam.segment_lengths[static_cast<std::size_t>(segment)];
-  const Domain domain = moment ? Domain::rotational : Domain::translational;
-  if (!moment) {
-    probe.terms.emplace_back(lever, left ? -1.0 : 1.0);
-  } else {
+  if (large) {
+    const int element = recorded_element(model, Component::beam_segment,
+                                         ElementPart::corotational_segment, segment);
+    const auto& chord = static_cast<const CoRotationalSegment&>(
+        *model.network.elements()[static_cast<std::size_t>(element)]);
+    const int first = model.network.branch_unknown_index(static_cast<std::size_t>(element));
+    if (!moment && chord.end_force_branch() < 0)
+      throw InputError("probe " + spec.name, "quantity",
+                       "a reaction force with beam.kinematics = \"large\" is an output of the "
+                       "scene's [[probe]] entries only (the end segment then carries the force "
+                       "as unknowns of its own): add it there");
+    if (moment)
+      probe.terms.emplace_back(first + chord.force_branch(), half);
+    else
+      probe.terms.emplace_back(first + chord.end_force_branch() + (axial ? 0 : 1), 1.0);
+  } else if (!moment) {
+    const int lever = recorded_branch(model, Component::beam_segment, ElementPart::lever, segment);
+    probe.terms.emplace_back(lever, held.left ? -1.0 : 1.0);
+  }
+  if (moment) {
     const int element = recorded_element(model, Component::beam_segment,
                                          ElementPart::rotational_compliance, segment);
     const auto& compliance =
         static_cast<const Inductor&>(*model.network.elements()[static_cast<std::size_t>(element)]);
     probe.terms.emplace_back(model.network.branch_unknown_index(static_cast<std::size_t>(element)),
-                             left ? 1.0 : -1.0);
-    const NodeId other = left ? compliance.b() : compliance.a();
+                             held.left ? 1.0 : -1.0);
+    const NodeId other = held.left ? compliance.b() : compliance.a();
     if (compliance.parallel_conductance() != 0.0 && other != ground)
       probe.terms.emplace_back(other, -compliance.parallel_conductance());
-    probe.terms.emplace_back(lever, -half);
+    if (!large)
+      probe.terms.emplace_back(
+          recorded_branch(model, Component::beam_segment, ElementPart::lever, segment), -half);
   }
-  for (std::size_t n = 0; n < beam_spec.springs.size(); ++n)
-    add_spring_share(model, static_cast<int>(n), spec.at, domain, probe);
-  if (moment)
-    for (const DeaSpec& dea : model.scene.deas) {
-      const bool from_here = beam.node_at(dea.from) == node, to_here = beam.node_at(dea.to) == node;
-      if (!from_here && !to_here) continue;
-      const DeaLayout* layout = model.find_dea(dea.name);
-      if (!layout || layout->electrode_node == ground)
-        throw InputError("probe " + spec.name, "quantity",
-                         electrical_dynamics_missing(
-                             model, "DEA '" + dea.name +
-                                        "' ends on the held end; its moment there is the "
-                                        "ideal drive's k_F*V(t)^2, no output of the network"));
-      // Coupling at the held rotation node (ψ there has coefficient 1): −s·z at `from`, +s·z at
-      // `to`, s = −1 on the top face (model.cpp dea_layout).
-      const double face_sign = dea.face == Face::top ? -1.0 : 1.0;
-      const double coupling = (to_here ? 1.0 : -1.0) * face_sign * dea.lever_arm;
-      probe.squares.push_back(
-          {-coupling * layout->force_constant, {{layout->electrode_node, 1.0}}});
-    }
-  probe.description = std::string("reaction ") + kind + " of the " + end_name + " support at " +
+  for (std::size_t n = 0; n < model.scene.beam.springs.size(); ++n)
+    add_spring_share(model, static_cast<int>(n), spec.at, spec.quantity, probe);
+  if (moment) add_dea_moments_at(model, spec, held.node, probe);
+  const std::string kind = moment ? "moment" : axial ? "axial force" : "force";
+  probe.description = std::string("reaction ") + kind + " of the " + held.name + " support at " +
                       position_text(spec.at) + " on the beam (" +
-                      (moment ? "positive as +psi" : "positive along +w") + ")";
+                      (moment  ? "positive as +psi"
+                       : axial ? "positive along +x, fixed frame"
+                               : "positive along +w") +
+                      ")";
 }
 
 // A spring's force (a rotational spring: its moment) for probe[].spring: its compliance's branch
@@ -212,13 +272,11 @@ void spring_force_terms(const Model& model, const ProbeSpec& spec, Probe& probe)
 // @throws InputError for a position between nodes or a quantity not yet carried
 bool large_kinematics_probe(const BeamLayout& beam, const ProbeSpec& spec, Probe& probe) {
   const std::string who = "probe " + spec.name;
-  if (spec.quantity == ProbeQuantity::strain || spec.quantity == ProbeQuantity::reaction_force ||
-      spec.quantity == ProbeQuantity::reaction_moment ||
-      spec.quantity == ProbeQuantity::spring_force)
+  if (spec.quantity == ProbeQuantity::strain || spec.quantity == ProbeQuantity::spring_force)
     throw InputError(who, "quantity",
                      std::string("'") + probe_quantity_name(spec.quantity) +
                          "' is not available with beam.kinematics = \"large\" yet (deflection, "
-                         "axial_displacement, rotation and their rates are)");
+                         "axial_displacement, rotation, their rates and the reactions are)");
   if (!is_beam_motion(spec.quantity)) return false;
   const int node = beam.node_at(spec.at);
   if (node < 0)
@@ -302,6 +360,12 @@ Probe make_probe_on(const Model& model, const ProbeSpec& spec, const DeaLayout* 
                           " on its face (k_F = " + format_number("%.6g", dea->force_constant) +
                           " N/V^2)";
       break;
+    case ProbeQuantity::axial_reaction_force:
+      if (beam.kinematics != BeamKinematics::large)
+        throw InputError("probe " + spec.name, "quantity",
+                         "'axial_reaction_force' needs beam.kinematics = \"large\": with small "
+                         "deflections the beam carries no axial force");
+      [[fallthrough]];
     case ProbeQuantity::reaction_force:
     case ProbeQuantity::reaction_moment:
       reaction_terms(model, spec, probe);

@@ -21,7 +21,9 @@ enum class ProbeQuantity {
   strain,        ///< ε [-] at a face: ∓z·dψ/dx (top face compressed bending toward +w)
   dea_force,     ///< k_F·u² [N] a DEA pushes its face with
   /// u [m]: the fixed-frame x displacement (along the undeformed beam; large kinematics only)
-  axial_displacement
+  axial_displacement,
+  /// R_x [N]: the force a support exerts on the beam along +x (large kinematics only)
+  axial_reaction_force
 };
 /// Whether `quantity` is the motion of a point of the beam: a displacement (deflection,
 /// axial_displacement), a rotation, or one of their rates.

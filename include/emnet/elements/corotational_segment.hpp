@@ -19,6 +19,9 @@
 //                     both a state and fixed by the displacements: the DAE stays index 1)
 //   P               with τ and an axial compliance: the total axial force
 //                     P = N + (τ/n_A)·ℓ' = N + τ·N', ℓ' = e₁·(v_b − v_a)
+//   f_x, f_y        only at a held end (the model's reaction probes read them): the force the
+//                     segment draws from that end's node, in the fixed frame [N] (below), an
+//                     algebraic unknown equal to its expression
 // Forces on the nodes (KCL rows, the through quantity the element draws from each node):
 //   (v_x, v_y)_a: +Q·(l/ℓ)·e₂ − P·e₁,   (v_x, v_y)_b: the opposite,   Ω_a, Ω_b: +(l/2)·Q,
 // with e₁ = (cos θ, sin θ), e₂ = (−sin θ, cos θ). They are the gradient of the stored energy
@@ -49,10 +52,14 @@ class CoRotationalSegment : public Element {
   /// @param length                 l [m], the undeformed chord, along +x
   /// @param transverse_compliance  n_T [m/N] (> 0)
   /// @param axial_compliance       n_A = l/EA [m/N]; 0: inextensible
+  /// Which end's force the segment carries as unknowns f_x, f_y (a held end's: its reaction).
+  enum class EndForce { none, a, b };
   /// @param kelvin_voigt_time      τ [s] of the transverse compliance (0: none)
+  /// @param end_force              the end whose force is an unknown (EndForce::none: neither)
   /// @throws std::invalid_argument for a non-positive length or compliance, a negative one
   CoRotationalSegment(std::string name, End a, End b, double length, double transverse_compliance,
-                      double axial_compliance, double kelvin_voigt_time);
+                      double axial_compliance, double kelvin_voigt_time,
+                      EndForce end_force = EndForce::none);
   const char* kind() const override { return "corotational_segment"; }
   std::vector<Unknown> branch_unknowns() const override;
   void stamp(Stamper& s) const override;
@@ -60,7 +67,7 @@ class CoRotationalSegment : public Element {
   void add_nonlinear(const Eigen::VectorXd& y, int branch_offset, Eigen::VectorXd& g,
                      std::vector<Eigen::Triplet<double>>* jacobian) const override;
 
-  /// Branch unknowns, in order (offsets from the element's first).
+  /// Branch unknowns, in order (offsets from the element's first; the totals only with τ).
   enum Branch : int {
     chord_x = 0,
     chord_y = 1,
@@ -70,6 +77,9 @@ class CoRotationalSegment : public Element {
     total_transverse_force = 5,
     total_axial_force = 6
   };
+  /// The offset of the end force's x component (f_y follows), or −1 without one.
+  int end_force_branch() const;
+  EndForce end_force() const { return end_force_; }
   /// The branch unknown that carries the transverse force into the nodes: Q with τ, else F.
   int force_branch() const {
     return kelvin_voigt_time_ > 0.0 ? total_transverse_force : transverse_force;
@@ -95,13 +105,14 @@ class CoRotationalSegment : public Element {
                       const NonlinearSink& sink) const;
   void add_damper_rows(const ChordState& st, const NonlinearSink& sink) const;
   void add_node_forces(double force, double tension, const ChordState& st,
-                       const NonlinearSink& sink) const;
+                       const NonlinearSink& sink, int end_force_x) const;
 
   End a_, b_;
   double length_;
   double transverse_compliance_;
   double axial_compliance_;
   double kelvin_voigt_time_;
+  EndForce end_force_;
 };
 
 }  // namespace emnet

@@ -84,13 +84,21 @@ struct BeamLayout {
   int node_at(double x) const;
 };
 
+/// The held ends whose reaction force is an output: with large kinematics their end segment
+/// carries the force it draws from the end as two unknowns (corotational_segment.hpp), which the
+/// reaction probes read; other networks have no such unknowns.
+struct ReactionEnds {
+  bool left = false, right = false;
+};
+
 /// Adds the beam chain, its point masses and springs to `network` (nodes from mesh_beam(beam,
 /// attachments)), and the record of each node and element to `structure` when given.
 /// @param attachments  positions along the beam that get a node [m]
+/// @param reactions    large kinematics: the ends whose reaction force is an output
 /// @throws std::logic_error as mesh_beam does
 BeamLayout add_beam(Network& network, const BeamSpec& beam, const DampingSpec& damping,
                     const std::vector<double>& attachments = {},
-                    ModelStructure* structure = nullptr);
+                    ModelStructure* structure = nullptr, ReactionEnds reactions = {});
 
 /// A DEA as the model builder built it: its nodes, values and coupling to the beam.
 struct DeaLayout {

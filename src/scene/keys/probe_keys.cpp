@@ -33,14 +33,17 @@ SceneTableKeys probe_table_keys() {
           "reaction_moment: the support's force or moment on the beam at a held end, at = 0 "
           "or beam.length; strain: at a face, probe[].face and probe[].distance), a spring's "
           "force (probe[].spring), a DEA's voltage, current or force k_F*u^2 (probe[].dea), or "
-          "with beam.kinematics = \"large\" the x displacement axial_displacement"))
+          "with beam.kinematics = \"large\" the x displacement axial_displacement and the "
+          "support's force along x axial_reaction_force"))
       .text = [](const Scene& scene, std::size_t entry) {
     return std::string(probe_quantity_name(scene.probes[entry].quantity));
   };
-  entry_field(keys.add(quantity("probe", "at", dim::length, unbounded(), true,
-                                "probes of beam quantities (deflection, velocity, rotation, "
-                                "angular_velocity, strain, reaction_force, reaction_moment)",
-                                "where along the beam the probe measures")),
+  entry_field(keys.add(quantity(
+                  "probe", "at", dim::length, unbounded(), true,
+                  "probes of beam quantities (deflection, velocity, rotation, "
+                  "angular_velocity, strain, reaction_force, reaction_moment, axial_displacement, "
+                  "axial_reaction_force)",
+                  "where along the beam the probe measures")),
               &Scene::probes, &ProbeSpec::at);
   keys.back().constraint =
       "on the beam: 0 <= at <= beam.length; a reaction: at a held end, 0 or beam.length";

@@ -13,6 +13,7 @@
 //   Q, P    with Kelvin–Voigt damping τ (tran deck): Q = F + τ·F', P = N + (τ/n_A)·e₁·(v_b − v_a)
 // and the forces each node gives the segment, B sources from the node to ground:
 //   (x, y)_a: +Q·(l/ℓ)·e₂ − P·e₁,   (x, y)_b: the opposite,   Ω_a, Ω_b: (l/2)·Q,
+// a held end's force (f_x, f_y) left out (see write_node_forces),
 // e₁ = (cos θ, sin θ), e₂ = (−sin θ, cos θ). Node voltages are velocities in the tran deck and
 // displacements in the op deck (rates are zero at rest there). The ac deck is refused: ngspice
 // linearises about its own operating point of the velocity deck, at which the integrators cannot
@@ -150,6 +151,10 @@ void write_node_forces(const CoRotationalSegment& s, const SegmentNodes& n, Deck
   draw(s.end_b().y, "by", "-" + fy);
   draw(s.end_a().rotation, "ra", half + "*" + q);
   draw(s.end_b().rotation, "rb", half + "*" + q);
+  // A held end's force (f_x, f_y: the reaction probes' unknowns) is not written: a node near zero
+  // (the axial reaction of a cantilever) would be held to vntol against the rounding of the large
+  // forces it is the difference of, which stops ngspice's Newton; the crosscheck skips unknowns
+  // without a vector.
 }
 
 }  // namespace
