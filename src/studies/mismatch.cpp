@@ -29,14 +29,16 @@ void MismatchOptions::validate() const {
     throw OptionError("frequency_hz", "must be a positive frequency in Hz (> 0)");
 }
 
-MismatchResult run_mismatch(const Scene& scene, const MismatchOptions& options) {
+MismatchResult run_mismatch(const Scene& given, const MismatchOptions& options) {
   const Stopwatch stopwatch;
   options.validate();
-  if (scene.drive.kind != DriveKind::antagonistic || scene.drive.deas.size() != 2)
-    throw InputError(scene.file, "drive.kind",
+  if (given.drive.kind != DriveKind::antagonistic || given.drive.deas.size() != 2)
+    throw InputError(given.file, "drive.kind",
                      "mismatch needs the antagonistic drive of two DEAs (drive.kind = "
                      "\"antagonistic\", drive.deas = [A, B])");
   MismatchResult result;
+  // One kinematics for the nominal scene and every changed one.
+  const Scene scene = resolve_kinematics(given, LargeKinematicsUse::dynamics, &result.notes);
   result.frequency_hz = options.frequency_hz.value_or(scene.drive.frequency);
   if (!(result.frequency_hz > 0.0) || !std::isfinite(result.frequency_hz))
     throw InputError(scene.file, "drive.frequency", "must be a positive frequency in Hz (> 0)");

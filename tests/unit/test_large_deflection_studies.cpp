@@ -108,6 +108,21 @@ TEST(LargeKinematicsMismatch, AtASmallDriveIsTheSmallNetworksMismatch) {
   }
 }
 
+// With beam.kinematics = "auto" at 4 kV (the fin swings 11 % of L) mismatch chooses large
+// kinematics once, for every case, and says so in a note.
+TEST(LargeKinematicsMismatch, AutoKinematicsIsChosenOnceAndSaid) {
+  const Scene scene = read_scene(
+      testing::kFishfin,
+      {"drive.electrical_dynamics=false", "beam.kinematics=auto", "beam.axial_stiffness=200 kN"});
+  MismatchOptions options;
+  options.output = "tip";
+  const MismatchResult result = run_mismatch(scene, options);
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
+  EXPECT_EQ(result.method, Method::shooting);
+  ASSERT_EQ(result.notes.size(), 1u);
+  EXPECT_EQ(result.notes[0].rfind("beam.kinematics = \"auto\": large", 0), 0u) << result.notes[0];
+}
+
 // A design study of two stiffnesses, modes + static + the sweep at 6.0 and 6.4 Hz: each value
 // of the large network's row is the small network's (f1 to 2e-6: the deflected state's
 // geometric stiffness is of order (w/L)², measured 7e-11; the static probes to 1e-6 of

@@ -13,7 +13,8 @@
 // symmetric peak, S the static deflection with A alone on): a static offset that the resonance
 // does not amplify, so asymmetry = x_F·|S| / ((1 + x_F/2)·P), linear in small changes.
 // With large kinematics the superposition no longer holds: each periodic state is shot
-// (periodic_peak.hpp), at about 0.1-1 s each on the fin instead of milliseconds.
+// (periodic_peak.hpp), at about 0.1-1 s each on the fin instead of milliseconds; "auto"
+// kinematics are chosen once, on the given scene, for every case.
 #pragma once
 
 #include <optional>
