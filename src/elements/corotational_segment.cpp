@@ -115,7 +115,7 @@ void CoRotationalSegment::stamp(Stamper& s) const {
   // The end force's unknowns at rest: f_a = (−P, Q), f_b = −f_a.
   if (end_force_ != EndForce::none) {
     const int fx = s.branch(end_force_branch()), fy = s.branch(end_force_branch() + 1);
-    const double sign = end_force_ == EndForce::a ? 1.0 : -1.0;
+    const double sign = end_force_sign();
     s.g(fx, fx, 1.0);
     s.g(fx, p, sign);
     s.g(fy, fy, 1.0);
@@ -246,7 +246,7 @@ void CoRotationalSegment::add_node_forces(double force, double tension, const Ch
     }
   // The end force's rows, f − (its part at rest + the rest): −(sign)·component.
   if (end_force_x < 0) return;
-  const double sign = end_force_ == EndForce::a ? 1.0 : -1.0;
+  const double sign = end_force_sign();
   for (const auto& [row, component] : {std::pair{end_force_x, x}, std::pair{end_force_x + 1, y}}) {
     sink.value(row, -sign * component.value);
     for (int k = 0; k < 5; ++k) sink.derivative(row, columns[k], -sign * component.derivative[k]);

@@ -183,47 +183,66 @@ void add_dea_moments_at(const Model& model, const ProbeSpec& spec, int node, Pro
 // With large kinematics the end segment's co-rotational element carries the force it draws from
 // the held node in the fixed frame (f_x, f_y, corotational_segment.hpp): R_y = f_y,
 // R_x = f_x (axial_reaction_force), and the moment's lever share is +(l/2)·Q at either end.
-void reaction_terms(const Model& model, const ProbeSpec& spec, Probe& probe) {
-  const BeamLayout& beam = model.beam;
-  const bool moment = spec.quantity == ProbeQuantity::reaction_moment;
-  const bool axial = spec.quantity == ProbeQuantity::axial_reaction_force;
-  const bool large = beam.kinematics == BeamKinematics::large;
-  const HeldEnd held = held_end(model, spec);
-  const int segment = held.left ? 0 : held.node - 1;
-  const double half = 0.5 * beam.segment_lengths[static_cast<std::size_t>(segment)];
-  if (large) {
-    const int element = recorded_element(model, Component::beam_segment,
-                                         ElementPart::corotational_segment, segment);
-    const auto& chord = static_cast<const CoRotationalSegment&>(
-        *model.network.elements()[static_cast<std::size_t>(element)]);
-    const int first = model.network.branch_unknown_index(static_cast<std::size_t>(element));
-    if (!moment && chord.end_force_branch() < 0)
-      throw InputError("probe " + spec.name, "quantity",
-                       "a reaction force with beam.kinematics = \"large\" is an output of the "
-                       "scene's [[probe]] entries only (the end segment then carries the force "
-                       "as unknowns of its own): add it there");
-    if (moment)
-      probe.terms.emplace_back(first + chord.force_branch(), half);
-    else
-      probe.terms.emplace_back(first + chord.end_force_branch() + (axial ? 0 : 1), 1.0);
-  } else if (!moment) {
+// The large-kinematics end segment at the held end and its first branch unknown's index.
+std::pair<const CoRotationalSegment*, int> corotational_segment_at(const Model& model,
+                                                                   int segment) {
+  const int element =
+      recorded_element(model, Component::beam_segment, ElementPart::corotational_segment, segment);
+  return {static_cast<const CoRotationalSegment*>(
+              model.network.elements()[static_cast<std::size_t>(element)].get()),
+          model.network.branch_unknown_index(static_cast<std::size_t>(element))};
+}
+
+// The end segment's force on the support: small kinematics ∓j_lever; large kinematics the
+// segment's end force unknown (f_x for the axial reaction, f_y for the transverse one).
+void add_segment_force(const Model& model, const ProbeSpec& spec, const HeldEnd& held, int segment,
+                       Probe& probe) {
+  if (model.beam.kinematics != BeamKinematics::large) {
     const int lever = recorded_branch(model, Component::beam_segment, ElementPart::lever, segment);
     probe.terms.emplace_back(lever, held.left ? -1.0 : 1.0);
+    return;
   }
-  if (moment) {
-    const int element = recorded_element(model, Component::beam_segment,
-                                         ElementPart::rotational_compliance, segment);
-    const auto& compliance =
-        static_cast<const Inductor&>(*model.network.elements()[static_cast<std::size_t>(element)]);
-    probe.terms.emplace_back(model.network.branch_unknown_index(static_cast<std::size_t>(element)),
-                             held.left ? 1.0 : -1.0);
-    const NodeId other = held.left ? compliance.b() : compliance.a();
-    if (compliance.parallel_conductance() != 0.0 && other != ground)
-      probe.terms.emplace_back(other, -compliance.parallel_conductance());
-    if (!large)
-      probe.terms.emplace_back(
-          recorded_branch(model, Component::beam_segment, ElementPart::lever, segment), -half);
+  const auto [chord, first] = corotational_segment_at(model, segment);
+  if (chord->end_force_branch() < 0)
+    throw InputError("probe " + spec.name, "quantity",
+                     "a reaction force with beam.kinematics = \"large\" is an output of the "
+                     "scene's [[probe]] entries only (the end segment then carries the force "
+                     "as unknowns of its own): add it there");
+  const bool axial = spec.quantity == ProbeQuantity::axial_reaction_force;
+  probe.terms.emplace_back(first + chord->end_force_branch() + (axial ? 0 : 1), 1.0);
+}
+
+// The end segment's moment on the support: its rotational compliance's ±j_R and damper, and the
+// translational force's lever share, −(l/2)·j_lever (small) or +(l/2)·Q (large).
+void add_segment_moment(const Model& model, const HeldEnd& held, int segment, Probe& probe) {
+  const int element =
+      recorded_element(model, Component::beam_segment, ElementPart::rotational_compliance, segment);
+  const auto& compliance =
+      static_cast<const Inductor&>(*model.network.elements()[static_cast<std::size_t>(element)]);
+  probe.terms.emplace_back(model.network.branch_unknown_index(static_cast<std::size_t>(element)),
+                           held.left ? 1.0 : -1.0);
+  const NodeId other = held.left ? compliance.b() : compliance.a();
+  if (compliance.parallel_conductance() != 0.0 && other != ground)
+    probe.terms.emplace_back(other, -compliance.parallel_conductance());
+  const double half = 0.5 * model.beam.segment_lengths[static_cast<std::size_t>(segment)];
+  if (model.beam.kinematics == BeamKinematics::large) {
+    const auto [chord, first] = corotational_segment_at(model, segment);
+    probe.terms.emplace_back(first + chord->force_branch(), half);
+  } else {
+    probe.terms.emplace_back(
+        recorded_branch(model, Component::beam_segment, ElementPart::lever, segment), -half);
   }
+}
+
+void reaction_terms(const Model& model, const ProbeSpec& spec, Probe& probe) {
+  const bool moment = spec.quantity == ProbeQuantity::reaction_moment;
+  const bool axial = spec.quantity == ProbeQuantity::axial_reaction_force;
+  const HeldEnd held = held_end(model, spec);
+  const int segment = held.left ? 0 : held.node - 1;
+  if (moment)
+    add_segment_moment(model, held, segment, probe);
+  else
+    add_segment_force(model, spec, held, segment, probe);
   for (std::size_t n = 0; n < model.scene.beam.springs.size(); ++n)
     add_spring_share(model, static_cast<int>(n), spec.at, spec.quantity, probe);
   if (moment) add_dea_moments_at(model, spec, held.node, probe);

@@ -153,11 +153,7 @@ class DeckWriter {
   // 1 F with the outputs' 1e9 Ω leak; from the static state, held at `static_value` by .ic.
   void integrator(const std::string& spice_node, const std::string& rate, double static_value) {
     body_ << element_name('B', spice_node) << " 0 " << spice_node << " I = " << rate << "\n";
-    body_ << element_name('C', spice_node) << " " << spice_node << " 0 1\n";
-    body_ << element_name('R', spice_node) << " " << spice_node << " 0 "
-          << number(integrator_leak_resistance) << "\n";
-    if (tran_ && options_.start == StartState::static_)
-      initial_conditions_.emplace_back(spice_node, static_value);
+    integrating_capacitor(body_, spice_node, spice_node, static_value);
   }
   // The static operating point's value of the k-th branch unknown of `element` (y at rest:
   // what a tran deck from the static state starts from); 0 without a static state.
@@ -199,6 +195,17 @@ class DeckWriter {
       first = false;
     }
     out << "* " << line << "\n";
+  }
+
+  // The 1 F ‖ 1e9 Ω that makes `node` the integral of the current fed into it (element names from
+  // `basis`); from the static state, held at `static_value` by .ic.
+  void integrating_capacitor(std::ostringstream& out, const std::string& basis,
+                             const std::string& node, double static_value) {
+    out << element_name('C', basis) << " " << node << " 0 1\n";
+    out << element_name('R', basis) << " " << node << " 0 " << number(integrator_leak_resistance)
+        << "\n";
+    if (tran_ && options_.start == StartState::static_)
+      initial_conditions_.emplace_back(node, static_value);
   }
 
   void check_names() const;

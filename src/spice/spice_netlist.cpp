@@ -96,12 +96,9 @@ void DeckWriter::write_outputs() {
     comment(out, "probe " + probe.name + ": " + meaning);
     out << lines.str();
     if (integrate) {
-      out << element_name('C', "out_" + probe.name) << " " << out_node << " 0 1\n";
-      out << element_name('R', "out_" + probe.name) << " " << out_node << " 0 "
-          << number(integrator_leak_resistance) << "\n";
-      if (static_start)
-        initial_conditions_.emplace_back(
-            out_node, static_probe_value(system_, *options_.static_state, probe));
+      integrating_capacitor(
+          out, "out_" + probe.name, out_node,
+          static_start ? static_probe_value(system_, *options_.static_state, probe) : 0.0);
     } else {
       out << element_name('R', "out_" + probe.name) << " " << out_node << " 0 1\n";
     }

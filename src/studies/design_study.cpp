@@ -53,12 +53,10 @@ bool has(const std::vector<StudyAnalysis>& analyses, StudyAnalysis analysis) {
 // What the study's analyses do with large kinematics: the static state alone takes any beam;
 // modes (about the deflected state) and the sweep (by shooting) need the dynamics' EA.
 PrepareOptions study_prepare_options(const DesignStudyOptions& options) {
-  PrepareOptions prepare;
-  prepare.large_kinematics = has(options.analyses, StudyAnalysis::modes) ||
-                                     has(options.analyses, StudyAnalysis::switching_sweep)
-                                 ? LargeKinematicsUse::dynamics
-                                 : LargeKinematicsUse::static_state;
-  return prepare;
+  const bool dynamics = has(options.analyses, StudyAnalysis::modes) ||
+                        has(options.analyses, StudyAnalysis::switching_sweep);
+  return serving_large_kinematics(dynamics ? LargeKinematicsUse::dynamics
+                                           : LargeKinematicsUse::static_state);
 }
 
 // One variant's network and what its analyses append to: `values` in the layout's order, the

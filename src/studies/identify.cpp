@@ -290,9 +290,8 @@ class Identification {
   // The damped frequency of mode mode_number about the scene's operating point (with large
   // kinematics the deflected static state, as the modes study).
   double mode_frequency(const Scene& scene) {
-    PrepareOptions prepare;
-    prepare.large_kinematics = LargeKinematicsUse::dynamics;
-    const Model model = prepare_model(scene, prepare);
+    const Model model =
+        prepare_model(scene, serving_large_kinematics(LargeKinematicsUse::dynamics));
     const System system = model.network.assemble();
     const OperatingPoint point = operating_point(system);
     if (!point.status.ok()) throw FitStopped{point.status};

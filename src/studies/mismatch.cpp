@@ -44,9 +44,8 @@ MismatchResult run_mismatch(const Scene& given, const MismatchOptions& options) 
     throw InputError(scene.file, "drive.frequency", "must be a positive frequency in Hz (> 0)");
   result.output = options.output;
   if (result.output.empty()) {
-    PrepareOptions prepare;
-    prepare.large_kinematics = LargeKinematicsUse::dynamics;  // as periodic_extremes
-    const Model model = prepare_model(scene, prepare);
+    const Model model =  // as periodic_extremes
+        prepare_model(scene, serving_large_kinematics(LargeKinematicsUse::dynamics));
     const std::vector<ModelOutput> outputs = transient_output_list(model);
     const ModelOutput* chosen = default_deflection_output(outputs);
     if (!chosen) throw InputError(scene.file, "probe", "the scene has no deflection output");

@@ -28,9 +28,8 @@ PeriodicExtremesResult periodic_extremes(Scene scene, const PeriodicExtremesOpti
   scene.drive.electrical_dynamics = false;
   scene.drive.electrical_dynamics_auto = false;
   scene.drive.frequency = options.frequency_hz;
-  PrepareOptions prepare;
-  prepare.large_kinematics = LargeKinematicsUse::dynamics;  // served by shooting
-  const Model model = prepare_model(scene, prepare);
+  const Model model =  // large kinematics served by shooting
+      prepare_model(scene, serving_large_kinematics(LargeKinematicsUse::dynamics));
   const System system = model.network.assemble();
   const bool shooting = system.is_nonlinear();
   if (!shooting) check_periodic_memory(system.size(), "segments");

@@ -72,9 +72,8 @@ struct Linearised {
 // static state, as the modes study).
 Linearised linearise(const Scene& scene) {
   Linearised result;
-  PrepareOptions prepare;
-  prepare.large_kinematics = LargeKinematicsUse::dynamics;
-  result.system = prepare_model(scene, prepare).network.assemble();
+  result.system = prepare_model(scene, serving_large_kinematics(LargeKinematicsUse::dynamics))
+                      .network.assemble();
   const OperatingPoint point = operating_point(result.system);
   if (!point.status.ok()) {
     result.status = point.status;

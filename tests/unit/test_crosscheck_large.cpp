@@ -28,9 +28,7 @@ namespace emnet {
 namespace {
 
 Model large_model(const Scene& scene, LargeKinematicsUse use) {
-  PrepareOptions prepare;
-  prepare.large_kinematics = use;
-  return prepare_model(scene, prepare);
+  return prepare_model(scene, serving_large_kinematics(use));
 }
 
 void expect_every_row_passes(const CrosscheckReport& report, std::size_t rows_at_least) {

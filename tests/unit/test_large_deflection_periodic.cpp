@@ -21,23 +21,13 @@
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "emnet/studies/switching_sweep.hpp"
+#include "one_mesh_fin.hpp"
 #include "shipped_scenes.hpp"
 
 namespace emnet {
 namespace {
 
-// The fish fin with the ideal drive (the DEAs as voltage-driven forces), `kinematics` small or
-// large (with the assumed 200 kN axial stiffness of its carbon tape), and `overrides`. With 21
-// segments every probe (P1..P4 at thirds of 70 mm, the tip) is on a node, so both kinematics
-// have the same mesh (large kinematics puts a node at each probe; at 7 segments that moves the
-// first mode by 0.12 %, a discretisation difference, not a geometric one).
-Scene fin(const std::string& kinematics, std::vector<std::string> overrides = {}) {
-  overrides.push_back("drive.electrical_dynamics=false");
-  overrides.push_back("beam.segments=21");
-  overrides.push_back("beam.kinematics=" + kinematics);
-  if (kinematics == "large") overrides.push_back("beam.axial_stiffness=200 kN");
-  return read_scene(testing::kFishfin, overrides);
-}
+using testing::one_mesh_fin;
 
 SwitchingSweepResult sweep(const Scene& scene, const std::vector<double>& frequencies) {
   const SweptModel swept =
@@ -58,8 +48,10 @@ SwitchingSweepResult sweep(const Scene& scene, const std::vector<double>& freque
 // quarter of the resonance and at it (measured: 2.8e-8 and 2.5e-7).
 TEST(LargeKinematicsPeriodic, SmallDriveGivesTheSmallNetworksExactPeriodicState) {
   const std::vector<double> frequencies = {1.6, 6.4};
-  const SwitchingSweepResult small = sweep(fin("small", {"drive.voltage=400 V"}), frequencies);
-  const SwitchingSweepResult large = sweep(fin("large", {"drive.voltage=400 V"}), frequencies);
+  const SwitchingSweepResult small =
+      sweep(one_mesh_fin("small", {"drive.voltage=400 V"}), frequencies);
+  const SwitchingSweepResult large =
+      sweep(one_mesh_fin("large", {"drive.voltage=400 V"}), frequencies);
   ASSERT_TRUE(small.status.ok()) << small.status.message;
   ASSERT_TRUE(large.status.ok()) << large.status.message;
   EXPECT_EQ(small.method, Method::exact);
@@ -81,8 +73,8 @@ TEST(LargeKinematicsPeriodic, ShootingIsTheSettledTransient) {
                                               "drive.frequency=6.4 Hz"};
   PrepareOptions dynamics;
   dynamics.large_kinematics = LargeKinematicsUse::dynamics;
-  const Model model = prepare_model(fin("large", overrides), dynamics);
-  const Model small_model = prepare_model(fin("small", overrides));
+  const Model model = prepare_model(one_mesh_fin("large", overrides), dynamics);
+  const Model small_model = prepare_model(one_mesh_fin("small", overrides));
   const std::vector<Probe> tip = switching_sweep_outputs(model, {"tip"});
   const double period = 1.0 / 6.4;
   const int samples = 64, periods = 30;
@@ -116,7 +108,7 @@ TEST(LargeKinematicsPeriodic, ShootingIsTheSettledTransient) {
 // The exact and the reduced periodic methods need a linear network: with large kinematics they
 // are refused naming beam.kinematics; the automatic choice takes shooting and says why.
 TEST(LargeKinematicsPeriodic, TheExactAndReducedMethodsAreRefusedNamingTheKey) {
-  const Scene scene = fin("large");
+  const Scene scene = one_mesh_fin("large");
   try {
     prepare_swept_model(scene, SwitchingSweepMethod::exact, {}, PrepareOptions{}, 7.0);
     ADD_FAILURE() << "the exact method took a large-kinematics scene";

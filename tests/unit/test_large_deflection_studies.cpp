@@ -26,6 +26,7 @@
 #include "emnet/studies/periodic_peak.hpp"
 #include "emnet/studies/sensitivity.hpp"
 #include "fixtures.hpp"
+#include "one_mesh_fin.hpp"
 #include "shipped_scenes.hpp"
 
 namespace emnet {
@@ -73,14 +74,9 @@ TEST(LargeKinematicsSensitivity, FollowsTheDimensionalAnalysisOfTheDeflectedElas
 
 // ---- the fin at 400 V: shot periodic states against the small network's exact ones -----------
 
-// The fish fin with the ideal drive at 400 V, 21 segments (every probe on a node, so both
-// kinematics have one mesh), `kinematics` small or large (with the assumed 200 kN axial
-// stiffness of its carbon tape).
+// The fin at 400 V on one mesh for both kinematics (one_mesh_fin.hpp).
 Scene fin_at_400_volts(const std::string& kinematics) {
-  std::vector<std::string> overrides = {"drive.electrical_dynamics=false", "beam.segments=21",
-                                        "drive.voltage=400", "beam.kinematics=" + kinematics};
-  if (kinematics == "large") overrides.push_back("beam.axial_stiffness=200 kN");
-  return read_scene(testing::kFishfin, overrides);
+  return testing::one_mesh_fin(kinematics, {"drive.voltage=400"});
 }
 
 // Mismatch at the resonance (6.4 Hz): every extreme within 2e-6 of the swing of the small

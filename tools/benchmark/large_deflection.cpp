@@ -18,9 +18,8 @@ constexpr const char* kFinAxialStiffness = "beam.axial_stiffness=200 kN";
 
 emnet::Model prepared(const std::string& path, const std::vector<std::string>& overrides,
                       emnet::LargeKinematicsUse use) {
-  emnet::PrepareOptions options;
-  options.large_kinematics = use;
-  return emnet::prepare_model(emnet::read_scene(path, overrides), options);
+  return emnet::prepare_model(emnet::read_scene(path, overrides),
+                              emnet::serving_large_kinematics(use));
 }
 
 // The in-process static solve of `model` (assembled once), timed.

@@ -104,6 +104,8 @@ class CoRotationalSegment : public Element {
   void add_chord_rows(const Eigen::VectorXd& y, const ChordState& st,
                       const NonlinearSink& sink) const;
   void add_damper_rows(const ChordState& st, const NonlinearSink& sink) const;
+  // +1 where the end force is end a's (f_a), −1 where it is end b's (f_b = −f_a).
+  double end_force_sign() const { return end_force_ == EndForce::a ? 1.0 : -1.0; }
   void add_node_forces(double force, double tension, const ChordState& st,
                        const NonlinearSink& sink, int end_force_x) const;
 

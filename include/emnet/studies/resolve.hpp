@@ -109,6 +109,13 @@ struct PrepareOptions {
   LargeKinematicsUse large_kinematics = LargeKinematicsUse::refused;  ///< see LargeKinematicsUse
 };
 
+/// The PrepareOptions of an analysis that serves large kinematics as `use`, the rest default.
+inline PrepareOptions serving_large_kinematics(LargeKinematicsUse use) {
+  PrepareOptions prepare;
+  prepare.large_kinematics = use;
+  return prepare;
+}
+
 /// The PrepareOptions of a run that asks for `probe_texts`: the RC dynamics kept when one of
 /// them asks for a DEA's electrical quantity (asks_for_dea_electrics).
 PrepareOptions prepare_options_for_probes(const std::vector<std::string>& probe_texts);

@@ -27,130 +27,116 @@ namespace emnet::spice_deck {
 
 namespace {
 
-// The segment's own node names, claimed once.
-struct SegmentNodes {
+// The segment's own node names (claimed once) and the expressions its lines share.
+struct Segment {
+  const CoRotationalSegment& element;
+  DeckWriter& deck;
+  std::string name;
+  // Nodes.
   std::string dx, dy, angle, extension, force, tension, total_force, total_tension;
-};
+  // Values and expressions: l, l/2; cos θ, sin θ; v_b − v_a along x and y; l/ℓ.
+  std::string l, half, cos, sin, vx, vy, lever;
 
-SegmentNodes claim_nodes(const CoRotationalSegment& s, DeckWriter& deck) {
-  const std::string& name = s.name();
-  SegmentNodes n;
-  n.dx = deck.internal_node(name + "_dx", name + ": the chord's change along x, d_x [m]");
-  n.dy = deck.internal_node(name + "_dy", name + ": the chord's change along y, d_y [m]");
-  n.angle = deck.internal_node(name + "_th", name + ": the chord's angle theta [rad]");
-  n.extension = deck.internal_node(name + "_ext", name + ": the chord's extension [m]");
-  n.force = deck.internal_node(name + "_F", name + ": the transverse compliance's force F [N]");
-  n.tension = deck.internal_node(name + "_N", name + ": the axial force N [N], tension positive");
-  n.total_force = n.force;
-  n.total_tension = n.tension;
-  return n;
-}
-
-// The rates in the tran deck: e₂·(v_b − v_a) and e₁·(v_b − v_a).
-struct ChordRates {
-  std::string across, along;
-};
-
-ChordRates chord_rates(const CoRotationalSegment& s, const SegmentNodes& n, DeckWriter& deck) {
-  const std::string vx = deck.voltage(s.end_b().x, s.end_a().x);
-  const std::string vy = deck.voltage(s.end_b().y, s.end_a().y);
-  const std::string c = "cos(V(" + n.angle + "))", si = "sin(V(" + n.angle + "))";
-  return {"(-" + si + "*" + vx + "+" + c + "*" + vy + ")",
-          "(" + c + "*" + vx + "+" + si + "*" + vy + ")"};
-}
-
-void write_chord(const CoRotationalSegment& s, const SegmentNodes& n, DeckWriter& deck) {
-  const std::string& name = s.name();
-  const std::string l = deck.value(s.length(), name);
-  std::ostringstream& out = deck.body();
-  const std::string vx = deck.voltage(s.end_b().x, s.end_a().x);
-  const std::string vy = deck.voltage(s.end_b().y, s.end_a().y);
-  if (deck.op()) {
-    out << deck.element_name('B', n.dx) << " " << n.dx << " 0 V = " << vx << "\n";
-    out << deck.element_name('B', n.dy) << " " << n.dy << " 0 V = " << vy << "\n";
-  } else {
-    deck.integrator(n.dx, vx, deck.static_branch_value(name, CoRotationalSegment::chord_x));
-    deck.integrator(n.dy, vy, deck.static_branch_value(name, CoRotationalSegment::chord_y));
+  Segment(const CoRotationalSegment& s, DeckWriter& writer)
+      : element(s), deck(writer), name(s.name()) {
+    dx = deck.internal_node(name + "_dx", name + ": the chord's change along x, d_x [m]");
+    dy = deck.internal_node(name + "_dy", name + ": the chord's change along y, d_y [m]");
+    angle = deck.internal_node(name + "_th", name + ": the chord's angle theta [rad]");
+    extension = deck.internal_node(name + "_ext", name + ": the chord's extension [m]");
+    force = deck.internal_node(name + "_F", name + ": the transverse compliance's force F [N]");
+    tension = deck.internal_node(name + "_N", name + ": the axial force N [N], tension positive");
+    total_force = force;
+    total_tension = tension;
+    l = deck.value(s.length(), name);
+    half = deck.value(0.5 * s.length(), name);
+    cos = "cos(V(" + angle + "))";
+    sin = "sin(V(" + angle + "))";
+    vx = deck.voltage(s.end_b().x, s.end_a().x);
+    vy = deck.voltage(s.end_b().y, s.end_a().y);
+    lever = l + "/(" + l + "+V(" + extension + "))";
   }
-  const std::string c = "cos(V(" + n.angle + "))", si = "sin(V(" + n.angle + "))";
-  const std::string dx = "V(" + n.dx + ")", dy = "V(" + n.dy + ")";
-  out << deck.element_name('B', n.angle) << " " << n.angle << " 0 I = " << si << "*(" << l << "+"
-      << dx << ")-" << c << "*" << dy << "\n";
-  out << deck.element_name('B', n.extension) << " " << n.extension << " 0 V = " << c << "*(" << l
-      << "+" << dx << ")+" << si << "*" << dy << "-" << l << "\n";
-  deck.branch_node(name, CoRotationalSegment::chord_x, n.dx, 1.0);
-  deck.branch_node(name, CoRotationalSegment::chord_y, n.dy, 1.0);
-  deck.branch_node(name, CoRotationalSegment::chord_angle, n.angle, 1.0);
+  // The tran deck's rates e₂·(v_b − v_a) and e₁·(v_b − v_a).
+  std::string across_rate() const { return "(-" + sin + "*" + vx + "+" + cos + "*" + vy + ")"; }
+  std::string along_rate() const { return "(" + cos + "*" + vx + "+" + sin + "*" + vy + ")"; }
+  // A B source of `kind` ("V" or "I") from `node` to ground with `expression`.
+  void source(const std::string& element_name, const std::string& node, const char* kind,
+              const std::string& expression) {
+    deck.body() << deck.element_name('B', element_name) << " " << node << " 0 " << kind << " = "
+                << expression << "\n";
+  }
+};
+
+void write_chord(Segment& g) {
+  if (g.deck.op()) {
+    g.source(g.dx, g.dx, "V", g.vx);
+    g.source(g.dy, g.dy, "V", g.vy);
+  } else {
+    g.deck.integrator(g.dx, g.vx, g.deck.static_branch_value(g.name, CoRotationalSegment::chord_x));
+    g.deck.integrator(g.dy, g.vy, g.deck.static_branch_value(g.name, CoRotationalSegment::chord_y));
+  }
+  const std::string dx = "V(" + g.dx + ")", dy = "V(" + g.dy + ")";
+  g.source(g.angle, g.angle, "I", g.sin + "*(" + g.l + "+" + dx + ")-" + g.cos + "*" + dy);
+  g.source(g.extension, g.extension, "V",
+           g.cos + "*(" + g.l + "+" + dx + ")+" + g.sin + "*" + dy + "-" + g.l);
+  g.deck.branch_node(g.name, CoRotationalSegment::chord_x, g.dx, 1.0);
+  g.deck.branch_node(g.name, CoRotationalSegment::chord_y, g.dy, 1.0);
+  g.deck.branch_node(g.name, CoRotationalSegment::chord_angle, g.angle, 1.0);
 }
 
-// F and N, and with τ in the tran deck Q and P (their nodes in `n`).
-void write_forces(const CoRotationalSegment& s, SegmentNodes& n, DeckWriter& deck) {
-  const std::string& name = s.name();
-  const std::string l = deck.value(s.length(), name);
-  const std::string half = deck.value(0.5 * s.length(), name);
-  const std::string n_t = deck.value(s.transverse_compliance(), name);
-  const std::string n_a = deck.value(s.axial_compliance(), name);
-  std::ostringstream& out = deck.body();
+// F and N, and with τ in the tran deck Q and P (their nodes in `g`).
+void write_forces(Segment& g) {
+  const CoRotationalSegment& s = g.element;
+  const std::string n_t = g.deck.value(s.transverse_compliance(), g.name);
+  const std::string n_a = g.deck.value(s.axial_compliance(), g.name);
   auto node_or_zero = [&](NodeId id) {
-    return id == ground ? std::string("0") : "V(" + deck.node(id) + ")";
+    return id == ground ? std::string("0") : "V(" + g.deck.node(id) + ")";
   };
   const std::string sum =
       "(" + node_or_zero(s.end_a().rotation) + "+" + node_or_zero(s.end_b().rotation) + ")";
-  const ChordRates rates = chord_rates(s, n, deck);
-  const std::string force_rate = "((" + half + "*" + sum + "-" + l + "/(" + l + "+V(" +
-                                 n.extension + "))*" + rates.across + ")/" + n_t + ")";
-  if (deck.op())
-    out << deck.element_name('B', n.force) << " " << n.force << " 0 V = (" << half << "*" << sum
-        << "-" << l << "*V(" << n.angle << "))/" << n_t << "\n";
+  const std::string force_rate =
+      "((" + g.half + "*" + sum + "-" + g.lever + "*" + g.across_rate() + ")/" + n_t + ")";
+  if (g.deck.op())
+    g.source(g.force, g.force, "V",
+             "(" + g.half + "*" + sum + "-" + g.l + "*V(" + g.angle + "))/" + n_t);
   else
-    deck.integrator(n.force, force_rate,
-                    deck.static_branch_value(name, CoRotationalSegment::transverse_force));
-  out << deck.element_name('B', n.tension) << " " << n.tension << " 0 V = V(" << n.extension << ")/"
-      << n_a << "\n";
-  deck.branch_node(name, CoRotationalSegment::transverse_force, n.force, 1.0);
-  deck.branch_node(name, CoRotationalSegment::axial_force, n.tension, 1.0);
+    g.deck.integrator(g.force, force_rate,
+                      g.deck.static_branch_value(g.name, CoRotationalSegment::transverse_force));
+  g.source(g.tension, g.tension, "V", "V(" + g.extension + ")/" + n_a);
+  g.deck.branch_node(g.name, CoRotationalSegment::transverse_force, g.force, 1.0);
+  g.deck.branch_node(g.name, CoRotationalSegment::axial_force, g.tension, 1.0);
   const double tau = s.kelvin_voigt_time();
   if (tau <= 0.0) return;
-  if (deck.op()) {
-    deck.leave_out(name + " (its Kelvin-Voigt dampers)");
-    deck.branch_node(name, CoRotationalSegment::total_transverse_force, n.force, 1.0);
-    deck.branch_node(name, CoRotationalSegment::total_axial_force, n.tension, 1.0);
-    return;
+  if (g.deck.op()) {
+    g.deck.leave_out(g.name + " (its Kelvin-Voigt dampers)");
+  } else {
+    g.total_force =
+        g.deck.internal_node(g.name + "_Q", g.name + ": the total transverse force Q [N]");
+    g.total_tension = g.deck.internal_node(g.name + "_P", g.name + ": the total axial force P [N]");
+    g.source(g.total_force, g.total_force, "V",
+             "V(" + g.force + ")+" + g.deck.value(tau, g.name) + "*" + force_rate);
+    g.source(g.total_tension, g.total_tension, "V",
+             "V(" + g.tension + ")+" + g.deck.value(tau / s.axial_compliance(), g.name) + "*" +
+                 g.along_rate());
   }
-  n.total_force = deck.internal_node(name + "_Q", name + ": the total transverse force Q [N]");
-  n.total_tension = deck.internal_node(name + "_P", name + ": the total axial force P [N]");
-  const std::string t = deck.value(tau, name);
-  out << deck.element_name('B', n.total_force) << " " << n.total_force << " 0 V = V(" << n.force
-      << ")+" << t << "*" << force_rate << "\n";
-  out << deck.element_name('B', n.total_tension) << " " << n.total_tension << " 0 V = V("
-      << n.tension << ")+" << deck.value(tau / s.axial_compliance(), name) << "*" << rates.along
-      << "\n";
-  deck.branch_node(name, CoRotationalSegment::total_transverse_force, n.total_force, 1.0);
-  deck.branch_node(name, CoRotationalSegment::total_axial_force, n.total_tension, 1.0);
+  g.deck.branch_node(g.name, CoRotationalSegment::total_transverse_force, g.total_force, 1.0);
+  g.deck.branch_node(g.name, CoRotationalSegment::total_axial_force, g.total_tension, 1.0);
 }
 
 // The forces the segment draws from its end nodes.
-void write_node_forces(const CoRotationalSegment& s, const SegmentNodes& n, DeckWriter& deck) {
-  const std::string& name = s.name();
-  const std::string l = deck.value(s.length(), name);
-  const std::string half = deck.value(0.5 * s.length(), name);
-  const std::string c = "cos(V(" + n.angle + "))", si = "sin(V(" + n.angle + "))";
-  const std::string q = "V(" + n.total_force + ")", p = "V(" + n.total_tension + ")";
-  const std::string lever = l + "/(" + l + "+V(" + n.extension + "))";
-  const std::string fx = "(-" + q + "*" + lever + "*" + si + "-" + p + "*" + c + ")";
-  const std::string fy = "(" + q + "*" + lever + "*" + c + "-" + p + "*" + si + ")";
-  std::ostringstream& out = deck.body();
+void write_node_forces(Segment& g) {
+  const CoRotationalSegment& s = g.element;
+  const std::string q = "V(" + g.total_force + ")", p = "V(" + g.total_tension + ")";
+  const std::string fx = "(-" + q + "*" + g.lever + "*" + g.sin + "-" + p + "*" + g.cos + ")";
+  const std::string fy = "(" + q + "*" + g.lever + "*" + g.cos + "-" + p + "*" + g.sin + ")";
   auto draw = [&](NodeId node, const std::string& what, const std::string& current) {
-    if (node == ground) return;
-    out << deck.element_name('B', name + "_" + what) << " " << deck.node(node)
-        << " 0 I = " << current << "\n";
+    if (node != ground) g.source(g.name + "_" + what, g.deck.node(node), "I", current);
   };
   draw(s.end_a().x, "ax", fx);
   draw(s.end_a().y, "ay", fy);
   draw(s.end_b().x, "bx", "-" + fx);
   draw(s.end_b().y, "by", "-" + fy);
-  draw(s.end_a().rotation, "ra", half + "*" + q);
-  draw(s.end_b().rotation, "rb", half + "*" + q);
+  draw(s.end_a().rotation, "ra", g.half + "*" + q);
+  draw(s.end_b().rotation, "rb", g.half + "*" + q);
   // A held end's force (f_x, f_y: the reaction probes' unknowns) is not written: a node near zero
   // (the axial reaction of a cantilever) would be held to vntol against the rounding of the large
   // forces it is the difference of, which stops ngspice's Newton; the crosscheck skips unknowns
@@ -177,10 +163,10 @@ void write_corotational_segment(const CoRotationalSegment& s, DeckWriter& deck) 
       number(s.transverse_compliance()) + " m/N, n_A = " + number(s.axial_compliance()) + " m/N" +
       (s.kelvin_voigt_time() > 0.0 ? ", Kelvin-Voigt tau = " + number(s.kelvin_voigt_time()) + " s"
                                    : std::string()));
-  SegmentNodes nodes = claim_nodes(s, deck);
-  write_chord(s, nodes, deck);
-  write_forces(s, nodes, deck);
-  write_node_forces(s, nodes, deck);
+  Segment segment(s, deck);
+  write_chord(segment);
+  write_forces(segment);
+  write_node_forces(segment);
 }
 
 }  // namespace emnet::spice_deck
