@@ -245,6 +245,10 @@ class Shooting {
 
 }  // namespace
 
+double shooting_residual_limit(double rtol) {
+  return std::max(kResidualLimit, kNoiseSteps * rtol);
+}
+
 PeriodicResult run_periodic_shooting(const System& given, const std::vector<Probe>& probes,
                                      double period, double rtol, int samples,
                                      const Progress* progress, const Eigen::VectorXd* start_guess) {
@@ -260,7 +264,7 @@ PeriodicResult run_periodic_shooting(const System& given, const std::vector<Prob
     const Eigen::VectorXd xi =
         shooting.solve(start_guess, result.newton_iterations, result.periodicity_residual);
     if (Status periodic = check_residual(result.periodicity_residual, "shooting: x(T) = x(0)",
-                                         std::max(kResidualLimit, kNoiseSteps * rtol));
+                                         shooting_residual_limit(rtol));
         !periodic.ok())
       return finish(periodic);
     const TransientResult& run = shooting.last_period();

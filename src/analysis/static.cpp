@@ -9,6 +9,7 @@
 
 #include "core/timed.hpp"
 #include "emnet/analysis/analysis.hpp"
+#include "emnet/core/units.hpp"
 #include "static_operator.hpp"
 
 namespace emnet {
@@ -35,29 +36,13 @@ Eigen::VectorXd rest_state(const Eigen::VectorXd& z, const std::vector<bool>& me
 
 }  // namespace
 
-namespace {
-
-// A limit as people write it: "1e-8", not printf's "1e-08".
-std::string limit_text(double limit) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", limit);
-  std::string out = text;
-  const size_t e = out.find('e');
-  if (e == std::string::npos) return out;
-  size_t digits = e + 1;
-  if (digits < out.size() && (out[digits] == '-' || out[digits] == '+')) ++digits;
-  while (digits + 1 < out.size() && out[digits] == '0') out.erase(digits, 1);
-  if (out[e + 1] == '+') out.erase(e + 1, 1);
-  return out;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 Status check_residual(double residual, const std::string& what, double limit) {
   if (residual <= limit) return Status::success();
   char value[32];
   std::snprintf(value, sizeof value, "%.3g", residual);
-  const std::string accepted = limit_text(limit);
+  const std::string accepted = short_number(limit);
   return Status::failure(
       what + ": relative residual " +
       (std::isfinite(residual) ? std::string(value) : "not finite (" + std::string(value) + ")") +

@@ -434,6 +434,17 @@ std::string format_number(const char* format, double value) {
   return buffer;
 }
 
+std::string short_number(double value, int digits) {
+  std::string out = format_number(("%." + std::to_string(digits) + "g").c_str(), value);
+  const size_t e = out.find('e');
+  if (e == std::string::npos) return out;
+  size_t exponent = e + 1;
+  if (exponent < out.size() && (out[exponent] == '-' || out[exponent] == '+')) ++exponent;
+  while (exponent + 1 < out.size() && out[exponent] == '0') out.erase(exponent, 1);
+  if (out[e + 1] == '+') out.erase(e + 1, 1);
+  return out;
+}
+
 void append_number(std::string& out, double value, char conversion, int precision, int width) {
   char buffer[400];  // the longest: "%.<precision>f" of 1e308
   const std::chars_format format = conversion == 'e'   ? std::chars_format::scientific

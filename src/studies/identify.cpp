@@ -31,14 +31,6 @@ struct FitStopped {
   throw FitStopped{Status::failure(std::move(why))};
 }
 
-// "%.6g" without the exponent's leading zero: 1e-5, not 1e-05.
-std::string short_number(double value) {
-  std::string text = format_number("%.6g", value);
-  for (const char* exponent : {"e-0", "e+0"})
-    if (const size_t at = text.find(exponent); at != std::string::npos) text.erase(at + 2, 1);
-  return text;
-}
-
 constexpr const char* kBendingStiffness = "beam.bending_stiffness";
 
 struct ResonanceFit {
@@ -415,8 +407,8 @@ void IdentifyOptions::validate() const {
 namespace {
 
 // The options a fit of `scene` holds itself to: with large kinematics a peak target's periodic
-// state is shot, to about 1e-7 of the peak (residual limit 1e-6 of the state), and near the
-// resonance the peak goes as 1/η: bisecting η below kShotPeakRatio, or asking the rounds for
+// state is shot, to about 1e-7 of the peak (shooting_residual_limit: 1e-6 of the state), and near
+// the resonance the peak goes as 1/η: bisecting η below kShotPeakRatio, or asking the rounds for
 // less than kShotRoundTolerance, would chase IDA's noise.
 constexpr double kShotPeakRatio = 1e-6;
 constexpr double kShotRoundTolerance = 1e-5;
@@ -429,9 +421,11 @@ IdentifyOptions options_for(const Scene& scene, const IdentifyOptions& given,
   options.round_tolerance = std::max(options.round_tolerance, kShotRoundTolerance);
   notes.push_back(
       "identify by the peak with large kinematics: each periodic peak is shot (IDA "
-      "rtol 1e-9, about 1e-7 of the peak), so the loss factor is bisected to " +
-      format_number("%.3g", options.bisection_ratio) + " and the rounds end at " +
-      format_number("%.3g", options.round_tolerance) + " (relative)");
+      "rtol " +
+      format_number("%.3g", kPeriodicPeakShootingRtol) +
+      ", about 1e-7 of the peak), so the loss factor is bisected to " +
+      short_number(options.bisection_ratio) + " and the rounds end at " +
+      short_number(options.round_tolerance) + " (relative)");
   return options;
 }
 
@@ -511,8 +505,8 @@ IdentifyResult identify(const Scene& given_scene, const IdentifyOptions& given_o
                                                   peak_at, low, high)
                                    : !(peak_at(low) < peak.value || peak_at(high) > peak.value);
         if (!bracketed)
-          stop("identify by the peak: no loss factor in [" + short_number(low) + ", " +
-               short_number(high) + "] gives the peak " + format_with_unit(peak.value, "m") +
+          stop("identify by the peak: no loss factor in [" + short_number(low, 6) + ", " +
+               short_number(high, 6) + "] gives the peak " + format_with_unit(peak.value, "m") +
                " at " + format_with_unit(options.target_hz, "Hz"));
         for (int k = 0; k < options.bisection_steps && high / low > 1 + options.bisection_ratio;
              ++k) {

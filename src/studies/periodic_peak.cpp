@@ -43,9 +43,9 @@ PeriodicExtremesResult periodic_extremes(Scene scene, const PeriodicExtremesOpti
   if (probes.empty())
     throw OptionError(options.field, "no deflection output named '" + options.output + "'");
   const double period = 1.0 / options.frequency_hz;
-  const PeriodicResult periodic = shooting
-                                      ? run_periodic_shooting(system, probes, period, 1e-9, 256)
-                                      : PeriodicSolver(system).solve(system, probes, period, 256);
+  const PeriodicResult periodic =
+      shooting ? run_periodic_shooting(system, probes, period, kPeriodicPeakShootingRtol, 256)
+               : PeriodicSolver(system).solve(system, probes, period, 256);
   result.method = periodic.method;
   result.seconds = stopwatch.seconds();
   if (!periodic.status.ok()) {

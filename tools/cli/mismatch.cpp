@@ -13,9 +13,12 @@
 
 #include "cli/common.hpp"
 #include "cli/option_names.hpp"
+#include "emnet/analysis/periodic.hpp"
+#include "emnet/core/units.hpp"
 #include "emnet/core/progress.hpp"
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/report/mismatch_json.hpp"
+#include "emnet/studies/periodic_peak.hpp"
 
 namespace emnet_cli {
 
@@ -57,9 +60,12 @@ int run_mismatch_command(const CommonOptions& options, const MismatchCommandOpti
       si(result.frequency_hz, "Hz").c_str());
   std::printf("asymmetry = (|left| - right) / mean, > 0: larger to the left (negative) side\n");
   if (result.method == emnet::Method::shooting)
-    std::printf(
-        "accuracy: periodic states by shooting (large kinematics), IDA rtol 1e-9, "
-        "periodicity residual below 1e-6\n");
+    std::cout << "accuracy: periodic states by shooting (large kinematics), IDA rtol "
+              << emnet::short_number(emnet::kPeriodicPeakShootingRtol)
+              << ", periodicity residual below "
+              << emnet::short_number(
+                     emnet::shooting_residual_limit(emnet::kPeriodicPeakShootingRtol))
+              << "\n";
   else
     std::printf("accuracy: exact periodic states, extremes to 1e-11 of the peak\n");
   std::printf("cost: %d periodic solves, total %s\n", result.periodic_solves,

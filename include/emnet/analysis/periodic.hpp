@@ -86,6 +86,11 @@ PeriodicResult run_periodic_shooting(const System& system, const std::vector<Pro
                                      const Progress* progress = nullptr,
                                      const Eigen::VectorXd* start_guess = nullptr);
 
+/// The periodicity residual ‖x(T) − x(0)‖/‖x(0)‖ shooting holds itself to at IDA's relative
+/// tolerance `rtol`: IDA's own noise, 1000·rtol (1e-7 of the state measured at rtol 1e-9 on the
+/// fin at 400 V), or kResidualLimit where that is larger.
+double shooting_residual_limit(double rtol);
+
 /// Memory of the exact periodic method's dense eigen-decomposition of the state matrix, measured
 /// on the fish fin: 31 MB at 306 unknowns, 104 MB at 606, 393 MB at 1206, 1.47 GB at 2406, about
 /// 254 bytes per unknown squared (complex eigenvectors, their LU and inverse, work space); its

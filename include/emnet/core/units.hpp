@@ -88,6 +88,9 @@ std::string format_quantity(double value, const Dimension& dimension);
 
 /// One number through a printf format ("%.3g", "%.4g Hz"), for messages and notes.
 std::string format_number(const char* format, double value);
+/// A number as people write it, through a printf "%.<digits>g": "1e-8", "2e6", not printf's
+/// "1e-08", "2e+06".
+std::string short_number(double value, int digits = 3);
 /// Appends `value` to `out` as printf's "%<width>.<precision><conversion>" would (conversion 'e',
 /// 'f' or 'g'; right-aligned in `width`), by std::to_chars: the same digits, since both round
 /// correctly, at a fraction of printf's cost (no format parsing, no locale) — so that writing a

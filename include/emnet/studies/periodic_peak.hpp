@@ -25,6 +25,10 @@
 
 namespace emnet {
 
+/// IDA's relative tolerance of a shot periodic state (large kinematics); its periodicity
+/// residual is held to max(kResidualLimit, 1000 × this) (analysis/periodic.hpp).
+inline constexpr double kPeriodicPeakShootingRtol = 1e-9;
+
 struct PeriodicExtremesOptions {
   double frequency_hz = 0.0;  // the switching frequency [Hz]
   // An output of transient_output_list (emnet/model/outputs.hpp: dx4, u_A, ...), else a probe
