@@ -136,14 +136,16 @@ class Shooting {
     for (iterations = 1; iterations <= kShootingIterations; ++iterations) {
       Eigen::VectorXd step = -(inverse * r);
       Eigen::VectorXd r_next;
-      bool converged = false;
+      bool converged = false, halved = false;
       double size = 0.0;
       for (int halving = 0;; ++halving) {
         const Eigen::VectorXd trial = xi + step;
         size = std::max(trial.norm(), 1e-300);
         const double step_norm = step.norm();
-        converged = step_norm <= 10 * rtol_ * size ||
-                    at_the_integrations_noise(step_norm, previous_step, size);
+        converged =
+            step_norm <= 10 * rtol_ * size ||
+            at_the_integrations_noise(step_norm, previous_step, size) ||
+            (halving == 0 && remaining_error_below_tolerance(step_norm, previous_step, size));
         if (converged || halving == kStepHalvings) {
           r_next = period_residual(trial, converged);
           break;
@@ -158,9 +160,10 @@ class Shooting {
           break;
         }
         step *= 0.5;
+        halved = true;
       }
       xi += step;
-      previous_step = step.norm();
+      previous_step = halved ? 0.0 : step.norm();
       residual = r_next.norm() / size;
       if (converged) return xi;
       // Broyden's ("good") update of the inverse: the secant condition on this step.
@@ -226,6 +229,16 @@ class Shooting {
   // rtol 1e-9 on the fish fin driven at 400 V with large kinematics.
   bool at_the_integrations_noise(double step, double previous_step, double size) const {
     return previous_step > 0.0 && step >= 0.5 * previous_step && step <= kNoiseSteps * rtol_ * size;
+  }
+
+  // Newton's contraction ρ = ‖step‖/‖previous step‖ (both full steps) bounds the error left
+  // after this step by ρ/(1 − ρ)·‖step‖: when that is below 10·rtol of ξ, under the period map's
+  // own noise (~100·rtol), the step is the last. Without it the loop ran two or three more
+  // one-period runs into that noise before at_the_integrations_noise saw it stall.
+  bool remaining_error_below_tolerance(double step, double previous_step, double size) const {
+    if (previous_step <= 0.0) return false;
+    const double contraction = step / previous_step;
+    return contraction <= 0.5 && contraction / (1 - contraction) * step <= 10 * rtol_ * size;
   }
 
   static Eigen::MatrixXd inverse_of(const Eigen::MatrixXd& jacobian) {

@@ -396,11 +396,17 @@ class SwitchingSweepRun {
     if (samples == 0) samples = samples_;
     if (options_.reduce) return reduced_solution_at(system, f, outputs, samples);
     if (exact_) return solver_->solve(system, outputs, 1.0 / f, samples);
-    // Continuation: Newton starts from the previous frequency's periodic state.
+    // Continuation: Newton starts from the previous frequencies' periodic states, extrapolated.
+    const Eigen::VectorXd guess = continuation_guess(f);
     PeriodicResult solution =
         run_periodic_shooting(system, outputs, 1.0 / f, options_.rtol, samples, options_.progress,
-                              previous_start_.size() ? &previous_start_ : nullptr);
-    if (solution.status.ok()) previous_start_ = solution.start_state;
+                              guess.size() ? &guess : nullptr);
+    if (solution.status.ok()) {
+      before_previous_ = std::move(previous_);
+      previous_ = {f, solution.start_state};
+    } else {
+      previous_ = before_previous_ = {};
+    }
     return solution;
   }
 
@@ -591,7 +597,21 @@ class SwitchingSweepRun {
   std::optional<SwitchingSweepReductionCheck> check_;
   std::string reduction_failure_;
   std::vector<double> solve_seconds_at_;  // per frequency, for the reduction check
-  Eigen::VectorXd previous_start_;        // shooting: the last periodic state's, at t = 0
+  // Shooting: a periodic state at t = 0 and its switching frequency [Hz].
+  struct SolvedState {
+    double frequency = 0.0;
+    Eigen::VectorXd start;
+  };
+  SolvedState previous_, before_previous_;  // the last two solved, or empty
+
+  // The start at f: the straight line through the last two periodic states (the secant
+  // predictor of continuation), the last one alone, or none.
+  Eigen::VectorXd continuation_guess(double f) const {
+    if (previous_.start.size() == 0) return {};
+    if (before_previous_.start.size() != previous_.start.size()) return previous_.start;
+    const double t = (f - previous_.frequency) / (previous_.frequency - before_previous_.frequency);
+    return previous_.start + t * (previous_.start - before_previous_.start);
+  }
   SwitchingSweepResult result_;
 };
 
