@@ -1,7 +1,11 @@
 // The beam's deformed shape (emnet/model/deformed_shape.hpp).
 #include "emnet/model/deformed_shape.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
+
+#include "emnet/core/units.hpp"
 
 namespace emnet {
 
@@ -22,6 +26,36 @@ ShapeProbes shape_probes(const Model& model) {
     }
   }
   return shape;
+}
+
+RotationProbes rotation_probes(const Model& model, size_t most) {
+  RotationProbes rotations;
+  if (model.beam.kinematics == BeamKinematics::large || most == 0) return rotations;
+  const size_t nodes = model.beam.x.size();
+  const size_t stride = (nodes + most - 1) / most;
+  for (size_t k = 0; k < nodes; k += stride) rotations.positions.push_back(model.beam.x[k]);
+  if (nodes > 0 && rotations.positions.back() != model.beam.x.back())
+    rotations.positions.back() = model.beam.x.back();
+  for (size_t k = 0; k < rotations.positions.size(); ++k) {
+    ProbeSpec spec;
+    spec.name = "psi" + std::to_string(k);
+    spec.quantity = ProbeQuantity::rotation;
+    spec.at = rotations.positions[k];
+    rotations.probes.push_back(model.make_probe(spec));
+  }
+  return rotations;
+}
+
+std::optional<RotationPeak> largest_rotation(const RotationProbes& probes,
+                                             const std::vector<double>& peaks) {
+  if (peaks.size() != probes.probes.size())
+    throw std::invalid_argument("largest_rotation: one peak per rotation probe expected");
+  if (peaks.empty()) return std::nullopt;
+  const size_t k = static_cast<size_t>(
+      std::max_element(peaks.begin(), peaks.end(),
+                       [](double a, double b) { return std::abs(a) < std::abs(b); }) -
+      peaks.begin());
+  return RotationPeak{format_number("x = %.4g mm", 1e3 * probes.positions[k]), std::abs(peaks[k])};
 }
 
 DeformedShape deformed_shape(const ShapeProbes& probes, const std::vector<double>& times,

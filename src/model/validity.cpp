@@ -81,11 +81,24 @@ std::string percent(double fraction) {
   return format_number("%.3g %%", 100.0 * fraction);
 }
 
+// How the geometric error was estimated: "estimate (w/L)^2", or with the largest rotation
+// "estimate max((w/L)^2, psi^2), psi = 0.494 rad at x = 35 mm".
+std::string geometric_estimate_text(double fraction, const std::optional<RotationPeak>& rotation) {
+  if (!rotation) return "estimate (w/L)^2";
+  return "estimate max((w/L)^2, psi^2) = max(" + percent(fraction * fraction) + ", " +
+         percent(rotation->peak * rotation->peak) +
+         "), psi = " + format_number("%.3g rad", rotation->peak) + " at " + rotation->where;
+}
+
 }  // namespace
 
 double geometric_error_estimate(double peak, double length) {
   const double fraction = peak / length;
   return fraction * fraction;
+}
+
+double geometric_error_estimate(double peak, double length, double rotation) {
+  return std::max(geometric_error_estimate(peak, length), rotation * rotation);
 }
 
 const char* validity_check_name(ValidityCheck check) {
@@ -110,9 +123,11 @@ std::vector<DeaVoltage> drive_voltages_at_start(const Scene& scene) {
 }
 
 Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& deflections,
-                        const std::vector<DeaVoltage>& voltages) {
+                        const std::vector<DeaVoltage>& voltages,
+                        const std::optional<RotationPeak>& rotation) {
   Validity validity;
   const double length = scene.beam.length;
+  const double psi = rotation ? rotation->peak : 0.0;
   const double limit = scene.model.deflection_limit * length;
   const DeflectionPeak* largest = nullptr;
   // Large kinematics has no small-deflection assumption: the deflections are not limited.
@@ -134,7 +149,7 @@ Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& d
                         "; a small-deflection linear beam is trusted with at most " +
                         percent(scene.model.deflection_limit) + " (" + length_text(limit) +
                         ", model.deflection_limit); its geometric error is estimated at " +
-                        percent(geometric_error_estimate(deflection.peak, length)) +
+                        percent(geometric_error_estimate(deflection.peak, length, psi)) +
                         ", which beam.kinematics = \"large\" does not have";
     validity.violations.push_back(violation);
   }
@@ -142,11 +157,13 @@ Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& d
       large ? "deflection not limited (beam.kinematics = \"large\")" : "no deflection computed";
   if (largest) {
     validity.deflection_fraction = largest->peak / limit;
-    validity.geometric_error = geometric_error_estimate(largest->peak, length);
+    validity.geometric_error = geometric_error_estimate(largest->peak, length, psi);
+    validity.largest_rotation = psi;
     deflection_text = "largest |deflection| " + length_text(largest->peak) + " (" +
                       largest->output + ") = " + share(largest->peak / length, "L") + ", limit " +
                       percent(scene.model.deflection_limit) + ", geometric error ~" +
-                      percent(validity.geometric_error) + " (estimate (w/L)^2)";
+                      percent(validity.geometric_error) + " (" +
+                      geometric_estimate_text(largest->peak / length, rotation) + ")";
   }
 
   std::string field_text = "no DEA driven";

@@ -35,6 +35,7 @@ Json to_json(const Validity& validity) {
           {"deflection_fraction_of_limit", validity.deflection_fraction},
           {"field_fraction_of_breakdown", validity.field_fraction},
           {"geometric_error_estimate", validity.geometric_error},
+          {"largest_rotation_rad", validity.largest_rotation},
           {"violations", violations}};
 }
 

@@ -9,6 +9,7 @@
 
 #include "emnet/core/constants.hpp"
 #include "emnet/core/units.hpp"
+#include "emnet/model/deformed_shape.hpp"
 #include "emnet/model/outputs.hpp"
 
 namespace emnet {
@@ -66,6 +67,20 @@ std::vector<std::string> zero_voltage_dea_notes(const Model& model,
                       "k_F*V^2 has no part linear in an AC input (2*k_F*V0*v = 0), so the input "
                       "moves nothing through it");
   return notes;
+}
+
+// The largest |rotation| at the beam's nodes in the AC response at `frequency` [Hz] (the largest
+// deflection's), for the geometric error; none with large kinematics or where the solve fails.
+std::optional<RotationPeak> largest_rotation_at(const Model& model, const System& system,
+                                                const Eigen::VectorXd& operating_point,
+                                                double frequency) {
+  const RotationProbes rotations = rotation_probes(model);
+  if (rotations.probes.empty() || !(frequency > 0.0)) return std::nullopt;
+  const AcResult response = run_ac(system, operating_point, {frequency}, rotations.probes);
+  if (!response.status.ok()) return std::nullopt;
+  std::vector<double> peaks;
+  for (const auto& values : response.values) peaks.push_back(std::abs(values.at(0)));
+  return largest_rotation(rotations, peaks);
 }
 
 }  // namespace
@@ -148,13 +163,25 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
         "the AC input reaches no output: every response is exactly zero" +
             (why.empty() ? std::string(" (the input and the outputs are not coupled)") : why));
   }
+  size_t peak_frequency = 0;
+  double largest_deflection = -1.0;
   for (size_t k = 0; k < probes.size(); ++k)
     if (probes[k].quantity == ProbeQuantity::deflection) {
       result.peaks.push_back({probes[k].name, 0.0});
-      for (const auto& v : result.ac.values[k])
-        result.peaks.back().peak = std::max(result.peaks.back().peak, std::abs(v));
+      const auto& values = result.ac.values[k];
+      for (size_t i = 0; i < values.size(); ++i) {
+        result.peaks.back().peak = std::max(result.peaks.back().peak, std::abs(values[i]));
+        if (std::abs(values[i]) > largest_deflection)
+          largest_deflection = std::abs(values[i]), peak_frequency = i;
+      }
     }
-  result.validity = check_validity(model.scene, result.peaks, drive_peak_voltages(model.scene));
+  const std::optional<RotationPeak> rotation =
+      largest_deflection >= 0.0 && peak_frequency < result.ac.frequencies.size()
+          ? largest_rotation_at(model, system, operating_point,
+                                result.ac.frequencies[peak_frequency])
+          : std::nullopt;
+  result.validity =
+      check_validity(model.scene, result.peaks, drive_peak_voltages(model.scene), rotation);
   result.status = Status::success();
   return result;
 }

@@ -16,6 +16,7 @@
 #include "emnet/analysis/periodic.hpp"
 #include "emnet/core/option_error.hpp"
 #include "emnet/core/stopwatch.hpp"
+#include "emnet/model/deformed_shape.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/model/outputs.hpp"
 #include "emnet/scene/parameters.hpp"
@@ -70,7 +71,14 @@ struct VariantRun {
   const PrepareOptions& prepare;
   std::vector<double>& values;
   std::vector<DeflectionPeak> deflections;
+  std::optional<RotationPeak> rotation;  // the largest the analyses computed
 };
+
+// Keeps the larger of `run`'s rotation and `candidate`.
+void take_rotation(VariantRun& run, const std::optional<RotationPeak>& candidate) {
+  if (candidate && (!run.rotation || candidate->peak > run.rotation->peak))
+    run.rotation = candidate;
+}
 
 // f<k>_hz, zeta<k>, f<k>_error_hz of the lowest mode_count modes.
 Status append_modes(VariantRun& run) {
@@ -102,6 +110,11 @@ void append_static(VariantRun& run) {
     if (probe.quantity == ProbeQuantity::deflection)
       run.deflections.push_back({probe.name + " (static)", std::abs(run.values.back())});
   }
+  const RotationProbes rotations = rotation_probes(run.model);
+  std::vector<double> peaks;
+  for (const Probe& probe : rotations.probes)
+    peaks.push_back(std::abs(static_probe_value(run.system, run.op.rest, probe)));
+  take_rotation(run, largest_rotation(rotations, peaks));
 }
 
 // sweep.peak_hz, then each output's extremes at the reported frequencies. As `emnet
@@ -137,6 +150,8 @@ Status append_sweep(VariantRun& run) {
           {largest, std::abs(peak.outputs[0].left[k]), std::abs(peak.outputs[0].right[k])});
     run.deflections.push_back({layout.sweep_outputs.back().name + " (sweep)", largest});
   }
+  if (peak.validity.largest_rotation > 0.0)  // at the sweep's peak (switching_sweep.cpp)
+    take_rotation(run, RotationPeak{"the sweep peak", peak.validity.largest_rotation});
   if (layout.report_indices.empty()) return Status::success();
   sweep.frequencies.clear();
   for (std::size_t index : layout.report_indices)
@@ -171,7 +186,7 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
   const OperatingPoint op = operating_point(system, op_options);
   cost.operating_point += stopwatch.seconds();
   if (!op.status.ok()) return op.status;
-  VariantRun run{model, system, op, layout, options, prepare, values, {}};
+  VariantRun run{model, system, op, layout, options, prepare, values, {}, {}};
   for (StudyAnalysis analysis : options.analyses) {
     stopwatch.restart();
     if (analysis == StudyAnalysis::modes) {
@@ -188,7 +203,8 @@ Status run_analyses(const Scene& scene, const ColumnLayout& layout,
   }
   for (double value : values)
     if (!std::isfinite(value)) return Status::failure("a result is not finite");
-  validity = check_validity(model.scene, run.deflections, drive_peak_voltages(model.scene));
+  validity =
+      check_validity(model.scene, run.deflections, drive_peak_voltages(model.scene), run.rotation);
   return Status::success();
 }
 

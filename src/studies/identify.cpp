@@ -266,15 +266,18 @@ class Identification {
   }
 
  public:
-  // The periodic peak of the peak target's output at the target frequency.
-  double periodic_peak(const Scene& scene) {
+  // The periodic peak of the peak target's output at the target frequency; with `rotation`
+  // also the largest rotation at the beam's nodes there (for the validity check).
+  double periodic_peak(const Scene& scene, std::optional<RotationPeak>* rotation = nullptr) {
     PeriodicExtremesOptions extremes_options;
     extremes_options.frequency_hz = options_.target_hz;
     extremes_options.output = options_.peak->output;
     extremes_options.field = "peak";
+    extremes_options.largest_rotation = rotation != nullptr;
     const PeriodicExtremesResult extremes = periodic_extremes(scene, extremes_options);
     ++result_.periodic_solves;
     if (!extremes.status.ok()) throw FitStopped{extremes.status};
+    if (rotation) *rotation = extremes.rotation;
     return extremes.peak;
   }
 
@@ -535,8 +538,10 @@ IdentifyResult identify(const Scene& given_scene, const IdentifyOptions& given_o
                                " rounds; the last round's values are given");
       result.loss_factor = loss_factor;
       result.peak_residual = (result.achieved_peak - peak.value) / peak.value;
+      std::optional<RotationPeak> rotation;  // at the values found: one more periodic solve
+      identification.periodic_peak(with(loss_factor, fit.value), &rotation);
       result.validity = check_validity(measured, {{peak.output, result.achieved_peak}},
-                                       drive_peak_voltages(measured));
+                                       drive_peak_voltages(measured), rotation);
     }
     result.parameter.value = fit.value;
     result.bending_stiffness =

@@ -1,10 +1,10 @@
 // beam.kinematics = "auto" (kinematics_choice.hpp).
 //
-// The estimate is that of every small-kinematics result (emnet/model/validity.hpp): (w/L)² of
-// the largest deflection. The deflection is the small network's, before any analysis: the
-// static state under the loads and the drive at t = 0 and, for the dynamic analyses, the AC
-// response to the drive's alternating part at every node, at the band's ends and its damped
-// modes, times 4/π for a square-wave drive (its fundamental: at the fish fin's resonance
+// The estimate is that of every small-kinematics result (emnet/model/validity.hpp):
+// max((w/L)², ψ²) of the largest deflection and section rotation. Both are the small network's,
+// before any analysis: the static state under the loads and the drive at t = 0 and, for the dynamic
+// analyses, the AC response to the drive's alternating part at every node, at the band's ends and
+// its damped modes, times 4/π for a square-wave drive (its fundamental: at the fish fin's resonance
 // 13.24 mm against the periodic swing's 13.16 mm). An analysis that refuses large kinematics
 // computes nothing: it stays small.
 #include "kinematics_choice.hpp"
@@ -33,6 +33,7 @@ namespace {
 struct LargestDeflection {
   double value = 0.0;
   std::string where = "no load or drive deflects the beam";
+  double rotation = 0.0;  // the largest |section rotation| at the nodes [rad], anywhere
 };
 
 void take(LargestDeflection& largest, double value, const std::string& where) {
@@ -43,7 +44,8 @@ void take(LargestDeflection& largest, double value, const std::string& where) {
 // within ζ² of the peak) and at the band's ends, by a sparse LU per frequency (no more than the
 // modes in the band: a grid would cost an LU per point at every size of network).
 void take_ac_response(const Scene& scene, const System& system, const StaticResult& rest,
-                      const std::vector<Probe>& nodes, LargestDeflection& largest) {
+                      const std::vector<Probe>& nodes, const std::vector<Probe>& rotations,
+                      LargestDeflection& largest) {
   if (system.b_ac().norm() == 0.0) return;
   BandOfInterest band;
   try {
@@ -79,6 +81,9 @@ void take_ac_response(const Scene& scene, const System& system, const StaticResu
       take(largest, factor * std::abs(probe_phasor(probe, y, omega)),
            std::string(square ? "4/pi x " : "") + "the AC amplitude at " +
                format_number("%.5g", f) + " Hz (band " + band.source + ")");
+    for (const Probe& probe : rotations)
+      largest.rotation =
+          std::max(largest.rotation, factor * std::abs(probe_phasor(probe, y, omega)));
   }
 }
 
@@ -90,12 +95,17 @@ LargestDeflection largest_small_deflection(const Scene& scene, bool with_ac) {
   const Model model = build_model(small);
   const System system = model.network.assemble();
   const ShapeProbes nodes = shape_probes(model);
+  const RotationProbes rotations = rotation_probes(model);
   LargestDeflection largest;
   const StaticResult rest = solve_static(system);
-  if (rest.status.ok())
+  if (rest.status.ok()) {
     for (const Probe& probe : nodes.probes)
       take(largest, std::abs(static_probe_value(system, rest, probe)), "the static state");
-  if (with_ac) take_ac_response(scene, system, rest, nodes.probes, largest);
+    for (const Probe& probe : rotations.probes)
+      largest.rotation =
+          std::max(largest.rotation, std::abs(static_probe_value(system, rest, probe)));
+  }
+  if (with_ac) take_ac_response(scene, system, rest, nodes.probes, rotations.probes, largest);
   return largest;
 }
 
@@ -131,19 +141,20 @@ AutomaticChoice choose_kinematics(const Scene& scene, LargeKinematicsUse use) {
   const LargestDeflection largest =
       largest_small_deflection(scene, use == LargeKinematicsUse::dynamics);
   const double fraction = largest.value / scene.beam.length;
-  choice.estimated_error = geometric_error_estimate(largest.value, scene.beam.length);
+  choice.estimated_error =
+      geometric_error_estimate(largest.value, scene.beam.length, largest.rotation);
   const bool wanted = choice.estimated_error > scene.model.tolerance;
   const std::string obstacle = wanted ? why_not_large(scene, use) : "";
   const bool large = wanted && obstacle.empty();
   choice.value = large ? "large" : "small";
-  choice.reason =
-      "beam.kinematics = \"auto\": " + choice.value + ": the small beam's largest " +
-      "deflection " + format_number("%.4g", largest.value * 1e3) + " mm (" + largest.where +
-      ") = " + format_number("%.3g", 100 * fraction) +
-      " % of L, a geometric error ~(w/L)^2 = " + format_number("%.3g", choice.estimated_error) +
-      (wanted ? " > " : " <= ") + "model.tolerance " +
-      format_number("%.3g", scene.model.tolerance) +
-      (obstacle.empty() ? "" : "; small all the same: " + obstacle);
+  choice.reason = "beam.kinematics = \"auto\": " + choice.value + ": the small beam's largest " +
+                  "deflection " + format_number("%.4g", largest.value * 1e3) + " mm (" +
+                  largest.where + ") = " + format_number("%.3g", 100 * fraction) +
+                  " % of L, its largest rotation " + format_number("%.3g", largest.rotation) +
+                  " rad, a geometric error ~max((w/L)^2, psi^2) = " +
+                  format_number("%.3g", choice.estimated_error) + (wanted ? " > " : " <= ") +
+                  "model.tolerance " + format_number("%.3g", scene.model.tolerance) +
+                  (obstacle.empty() ? "" : "; small all the same: " + obstacle);
   choice.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return choice;
 }

@@ -75,6 +75,8 @@ MismatchResult run_mismatch(const Scene& given, const MismatchOptions& options) 
   extremes_options.frequency_hz = result.frequency_hz;
   extremes_options.output = result.output;
   extremes_options.field = "output";
+  extremes_options.largest_rotation = true;
+  std::optional<RotationPeak> rotation;  // the largest over every case
   const long solves = 1 + 2 * static_cast<long>(cases.size());
   auto solve = [&](const Scene& changed, double& left, double& right) {
     if (!keep_going(options.progress, result.periodic_solves, solves, "periodic solves")) {
@@ -90,6 +92,8 @@ MismatchResult run_mismatch(const Scene& given, const MismatchOptions& options) 
     }
     left = extremes.minimum;
     right = extremes.maximum;
+    if (extremes.rotation && (!rotation || extremes.rotation->peak > rotation->peak))
+      rotation = extremes.rotation;
     return true;
   };
   auto finished = [&]() -> MismatchResult& {
@@ -122,7 +126,7 @@ MismatchResult run_mismatch(const Scene& given, const MismatchOptions& options) 
     peaks.push_back({result.output + " (" + row.label + " " +
                          format_number("%+.3g", 100.0 * row.change) + " %)",
                      std::max(std::abs(row.left), std::abs(row.right))});
-  result.validity = check_validity(scene, peaks, drive_peak_voltages(scene));
+  result.validity = check_validity(scene, peaks, drive_peak_voltages(scene), rotation);
   return finished();
 }
 

@@ -8,6 +8,7 @@
 #include "emnet/analysis/periodic.hpp"
 #include "emnet/core/option_error.hpp"
 #include "emnet/core/stopwatch.hpp"
+#include "emnet/model/deformed_shape.hpp"
 #include "emnet/model/drive.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/model/outputs.hpp"
@@ -42,6 +43,9 @@ PeriodicExtremesResult periodic_extremes(Scene scene, const PeriodicExtremesOpti
     if (probes.empty() && probe.name == options.output) probes.push_back(probe);
   if (probes.empty())
     throw OptionError(options.field, "no deflection output named '" + options.output + "'");
+  const RotationProbes rotations =
+      options.largest_rotation ? rotation_probes(model) : RotationProbes{};
+  probes.insert(probes.end(), rotations.probes.begin(), rotations.probes.end());
   const double period = 1.0 / options.frequency_hz;
   const PeriodicResult periodic =
       shooting ? run_periodic_shooting(system, probes, period, kPeriodicPeakShootingRtol, 256)
@@ -63,6 +67,11 @@ PeriodicExtremesResult periodic_extremes(Scene scene, const PeriodicExtremesOpti
   result.minimum = periodic.minimum[0];
   result.maximum = periodic.maximum[0];
   result.peak = std::max(std::abs(result.minimum), std::abs(result.maximum));
+  std::vector<double> rotation_peaks;
+  for (size_t p = 1; p < probes.size(); ++p)
+    rotation_peaks.push_back(
+        std::max(std::abs(periodic.minimum[p]), std::abs(periodic.maximum[p])));
+  result.rotation = largest_rotation(rotations, rotation_peaks);
   return result;
 }
 

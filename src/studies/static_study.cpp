@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "emnet/core/units.hpp"
 #include "emnet/model/drive.hpp"
 
 namespace emnet {
@@ -49,7 +50,14 @@ StaticStudyValues static_study_values(const Model& model, const System& system,
   for (size_t k = 0; k < probes.size(); ++k)
     if (probes[k].quantity == ProbeQuantity::deflection)
       peaks.push_back({probes[k].name, std::abs(values.probe_values[k])});
-  values.validity = check_validity(model.scene, peaks, drive_voltages_at_start(model.scene));
+  // The largest rotation at the nodes (all of them, computed above) for the geometric error.
+  std::optional<RotationPeak> rotation;
+  if (model.beam.kinematics == BeamKinematics::small)
+    for (const auto& row : values.nodes)
+      if (!rotation || std::abs(row[2]) > rotation->peak)
+        rotation = RotationPeak{"x = " + format_with_unit(row[0], "m"), std::abs(row[2])};
+  values.validity =
+      check_validity(model.scene, peaks, drive_voltages_at_start(model.scene), rotation);
   return values;
 }
 

@@ -489,7 +489,23 @@ class SwitchingSweepRun {
         peaks.back().peak = std::max({peaks.back().peak, std::abs(result_.outputs[p].left[k]),
                                       std::abs(result_.outputs[p].right[k])});
     }
-    result_.validity = check_validity(model_.scene, peaks, drive_peak_voltages(model_.scene));
+    result_.validity = check_validity(model_.scene, peaks, drive_peak_voltages(model_.scene),
+                                      rotation_at_the_sweep_peak());
+  }
+
+  // The largest |rotation| at the beam's nodes over the period at the sweep's peak, for the
+  // geometric error (one more periodic solve); none with large kinematics or where it fails.
+  std::optional<RotationPeak> rotation_at_the_sweep_peak() {
+    const RotationProbes rotations = rotation_probes(model_);
+    if (rotations.probes.empty() || result_.frequencies.empty()) return std::nullopt;
+    const double f = result_.peak_frequency;
+    const std::optional<PeriodicResult> solved =
+        periodic_solution_at(system_at(f), f, &rotations.probes);
+    if (!solved || !solved->status.ok()) return std::nullopt;
+    std::vector<double> peaks;
+    for (size_t p = 0; p < rotations.probes.size(); ++p)
+      peaks.push_back(std::max(std::abs(solved->minimum[p]), std::abs(solved->maximum[p])));
+    return largest_rotation(rotations, peaks);
   }
 
   // The first, the largest-swing (the sweep peak) and the last frequency, each once.

@@ -170,9 +170,27 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
   std::vector<Probe> computed = study.outputs;
   for (const CircuitDeaVoltageProbe& one : judged) computed.push_back(one.probe);
   computed.insert(computed.end(), shape.probes.begin(), shape.probes.end());
+  // The rotations for the geometric error, within what may be stored beside the outputs.
+  const double spare = std::floor(kTransientMaximumStoredValues / (count + 1.0)) -
+                       static_cast<double>(study.outputs.size() + shape.probes.size()) - 1.0;
+  const RotationProbes rotations =
+      rotation_probes(model, static_cast<size_t>(std::clamp(spare, 0.0, 64.0)));
+  computed.insert(computed.end(), rotations.probes.begin(), rotations.probes.end());
   study.result = options.method == TransientMethod::exact
                      ? run_transient_exact(study.system, computed, transient)
                      : run_transient_ida(study.system, computed, transient);
+  std::optional<RotationPeak> rotation;
+  if (study.result.status.ok() && !rotations.probes.empty()) {
+    auto& values = study.result.values;
+    std::vector<double> peaks;
+    for (auto it = values.end() - static_cast<long>(rotations.probes.size()); it != values.end();
+         ++it) {
+      peaks.push_back(0.0);
+      for (double v : *it) peaks.back() = std::max(peaks.back(), std::abs(v));
+    }
+    values.resize(values.size() - rotations.probes.size());
+    rotation = largest_rotation(rotations, peaks);
+  }
   if (study.result.status.ok() && !shape.probes.empty()) {
     auto& values = study.result.values;
     const std::vector<std::vector<double>> shape_values(
@@ -206,7 +224,7 @@ TransientStudyResult run_transient_study(Scene scene, const TransientStudyOption
     }
   std::vector<DeaVoltage> voltages = drive_peak_voltages(model.scene);
   judge_computed_voltages(voltages, judged, judged_values);
-  study.validity = check_validity(model.scene, peaks, voltages);
+  study.validity = check_validity(model.scene, peaks, voltages, rotation);
   study.seconds = stopwatch.seconds();
   return study;
 }

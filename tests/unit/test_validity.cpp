@@ -206,4 +206,35 @@ TEST(CliValidity, HelpDocumentsExitStatusFive) {
 }
 
 }  // namespace
+// Every command that states a geometric error takes the largest section rotation at the beam's
+// nodes into it, max((w/L)², ψ²) (a soft tip turns far more than its deflection over L says:
+// LargeKinematicsPeriodic.TweezerJawAtResonanceAgainstTheSmallNetworksStatedError). On the fin
+// the static rotation is the static analysis's own largest nodal rotation; the dynamic ones are
+// at least the static one's order (the tip's AC amplitude 0.118 rad, the swing at 6.4 Hz 0.149).
+TEST(CliValidity, EveryCommandStatesTheGeometricErrorFromItsRotations) {
+  const Flagged stat = run("static " + kFishfin);
+  double nodal = 0.0;
+  for (const auto& row : stat.json["nodes"])
+    nodal = std::max(nodal, std::abs(row["rotation_rad"].get<double>()));
+  EXPECT_GT(nodal, 0.0);
+  EXPECT_DOUBLE_EQ(stat.json["validity"]["largest_rotation_rad"].get<double>(), nodal);
+  const std::vector<std::string> commands = {
+      "ac " + kFishfin + " --points 50",
+      "tran " + kFishfin +
+          " --method exact --periods 1 --points-per-period 40 --set "
+          "drive.electrical_dynamics=false",
+      "sweep-switching " + kFishfin + " --from 6 --to 6.4 --step 0.4",
+      "mismatch " + kFishfin,
+  };
+  for (const std::string& command : commands) {
+    const Flagged f = run(command);
+    ASSERT_TRUE(f.json.contains("validity")) << command << "\n" << f.err;
+    const double psi = f.json["validity"]["largest_rotation_rad"].get<double>();
+    EXPECT_GT(psi, 0.01) << command;
+    EXPECT_GE(f.json["validity"]["geometric_error_estimate"].get<double>(), psi * psi) << command;
+    EXPECT_NE(f.json["validity"]["summary"].get<std::string>().find("psi = "), std::string::npos)
+        << command;
+  }
+}
+
 }  // namespace emnet

@@ -4,9 +4,11 @@
 // motion, so x = x_k) and the y deflection w_k. Lengths in metres.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "emnet/model/model.hpp"
+#include "emnet/model/validity.hpp"
 #include "emnet/network/output.hpp"
 
 namespace emnet {
@@ -21,6 +23,23 @@ struct ShapeProbes {
 
 /// The shape's probes of `model`'s beam.
 ShapeProbes shape_probes(const Model& model);
+
+/// The section rotation at the beam's nodes, where a small-kinematics result reads its largest
+/// rotation for its geometric error (emnet/model/validity.hpp).
+struct RotationProbes {
+  std::vector<double> positions;  ///< x_k [m] of the nodes probed
+  std::vector<Probe> probes;      ///< rotation at each
+};
+
+/// Rotation probes at `model`'s beam nodes: every node up to `most`, else `most` of them evenly
+/// spread with the last one; none with large kinematics (its results have no geometric error).
+RotationProbes rotation_probes(const Model& model, size_t most = 64);
+
+/// The largest of `peaks` (|rotation| [rad] per probe of `probes`, as a result computed them);
+/// none when `probes` is empty.
+/// @throws std::invalid_argument when `peaks` does not match `probes`
+std::optional<RotationPeak> largest_rotation(const RotationProbes& probes,
+                                             const std::vector<double>& peaks);
 
 /// The beam's curve at several instants.
 struct DeformedShape {

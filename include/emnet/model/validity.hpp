@@ -17,12 +17,16 @@
 //   against dea[].breakdown_field (default kDefaultBreakdownField, emnet/scene/scene.hpp). Above it
 //   the film breaks down and the DEA is a short, not a capacitor.
 //
-// Each small-kinematics result also states its geometric error, estimated from its largest
-// deflection as (w/L)²: the tip-force elastica's (1.0 % at 0.1·L, 4.0 % at 0.2·L), the largest
-// of the cases measured against beam.kinematics = "large" (the arc under an end moment: a third
-// of it; the fish fin's periodic swing at its resonance, 10.7 % of L: at most half of it). An
-// estimate, not a bound: a beam whose supports stretch it (clamped at both ends) stiffens far
-// sooner.
+// Each small-kinematics result also states its geometric error, estimated as max((w/L)², ψ²) of
+// its largest deflection w and its largest section rotation ψ at the beam's nodes (rotation_probes
+// in emnet/model/deformed_shape.hpp; (w/L)² alone where a result computed no rotation). The
+// rotation is what sin ψ ≈ ψ and cos ψ ≈ 1 neglect, and it sees what w/L does not: a soft tip
+// turning on a stiff body (the tweezer jaw at resonance: w = 12.9 % of L, (w/L)² = 1.66 %, but
+// its tip turns by 0.49 rad and the small swing is 16 % above the large model's; ψ² = 24 %).
+// Measured against beam.kinematics = "large", the true error is 0.44·ψ² under a tip force (the
+// elastica: its tip turns by 1.5·w/L), ψ²/12 under an end moment (the arc), at most 0.25·ψ² for
+// the fish fin's swing at resonance and 0.67·ψ² for the tweezer's. An estimate, not a bound: a beam
+// whose supports stretch it (clamped at both ends) stiffens far sooner.
 //
 // With beam.kinematics = "large" the beam has no small-deflection assumption, and the deflection
 // check does not apply (the summary says so).
@@ -34,6 +38,7 @@
 // program exits with kExitOutsideValidity.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,6 +67,15 @@ struct DeaVoltage {
 /// The small beam's geometric error (above): (w/L)² at a largest |deflection| `peak` [m] of a beam
 /// of `length` [m], the tip-force elastica's, relative.
 double geometric_error_estimate(double peak, double length);
+/// The same from the deflection and the largest |section rotation| ψ [rad]: max((w/L)², ψ²).
+double geometric_error_estimate(double peak, double length, double rotation);
+
+/// The largest |section rotation| [rad] a small-kinematics result computed at the beam's nodes
+/// (rotation_probes, emnet/model/deformed_shape.hpp), and where.
+struct RotationPeak {
+  std::string where;  ///< "x = 35 mm"
+  double peak = 0.0;  ///< [rad]
+};
 
 /// The limits a result is checked against.
 enum class ValidityCheck { deflection, electric_field };
@@ -85,8 +99,10 @@ struct Validity {
   double deflection_fraction = 0.0;
   double field_fraction = 0.0;  ///< see deflection_fraction
   /// Small kinematics: the estimated relative error of the deflections from the small-deflection
-  /// assumption, (w/L)² of the largest (above); 0 with large kinematics or no deflection.
+  /// assumption, max((w/L)², ψ²) (above); 0 with large kinematics or no deflection.
   double geometric_error = 0.0;
+  /// The largest |section rotation| [rad] the estimate took; 0 when none was computed.
+  double largest_rotation = 0.0;
   std::string summary;  ///< one line: the largest values against their limits
   /// Whether nothing exceeds its limit.
   bool within() const { return violations.empty(); }
@@ -102,9 +118,11 @@ std::vector<DeaVoltage> drive_peak_voltages(const Scene& scene);
 std::vector<DeaVoltage> drive_voltages_at_start(const Scene& scene);
 
 /// The violations among `deflections` and `voltages` of `scene` (its beam length, DEA films and
-/// limits); a DEA named in `voltages` must be one of the scene's.
+/// limits); a DEA named in `voltages` must be one of the scene's. `rotation`: the result's largest
+/// section rotation, which the geometric error estimate then takes (none: the deflection alone).
 /// @throws std::invalid_argument for a DEA in `voltages` that the scene does not have
 Validity check_validity(const Scene& scene, const std::vector<DeflectionPeak>& deflections,
-                        const std::vector<DeaVoltage>& voltages);
+                        const std::vector<DeaVoltage>& voltages,
+                        const std::optional<RotationPeak>& rotation = std::nullopt);
 
 }  // namespace emnet

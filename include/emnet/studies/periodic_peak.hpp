@@ -16,11 +16,13 @@
 // Units: those of the output (a deflection in m).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "emnet/analysis/method.hpp"
 #include "emnet/core/errors.hpp"
+#include "emnet/model/validity.hpp"
 #include "emnet/scene/scene.hpp"
 
 namespace emnet {
@@ -37,6 +39,9 @@ struct PeriodicExtremesOptions {
   // The field of the calling study's Options that OptionErrors name: the one that gave the
   // output and the frequency (mismatch's "output", identify's "peak").
   std::string field = "output";
+  // Also the largest |rotation| at the beam's nodes over the period (small kinematics), for the
+  // geometric error of a study's validity check.
+  bool largest_rotation = false;
 
   /// The checks of the options alone, as periodic_extremes makes them first.
   /// @throws OptionError naming "frequency_hz" when it is not a finite frequency > 0
@@ -49,6 +54,7 @@ struct PeriodicExtremesResult {
   double maximum = 0.0;           // its largest (the right swing)
   double peak = 0.0;              // max(|minimum|, |maximum|)
   Method method = Method::exact;  // exact (a linear network) or shooting (large kinematics)
+  std::optional<RotationPeak> rotation;  // with options.largest_rotation and small kinematics
   double seconds = 0.0;
 };
 

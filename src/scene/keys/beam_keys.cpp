@@ -80,7 +80,8 @@ SceneTableKeys beam_table_keys() {
   keys.add(choice("beam", "kinematics", {"small", "large", "auto"}, false, "beam",
                   "small: the linear beam network (small deflections and rotations); large: "
                   "planar, geometrically exact co-rotational segments (any rotation, dead loads); "
-                  "auto: large where the small beam's geometric error (w/L)^2, from its static "
+                  "auto: large where the small beam's geometric error max((w/L)^2, psi^2) (its "
+                  "largest deflection over L and section rotation), from its static "
                   "state and its AC response to the drive, exceeds model.tolerance"))
       .text = [](const Scene& scene, std::size_t) {
     return std::string(scene.beam.kinematics_auto ? "auto"
