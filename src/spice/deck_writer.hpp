@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -99,6 +100,7 @@ class DeckWriter {
         op_(options.analysis == SpiceAnalysis::op),
         ac_(options.analysis == SpiceAnalysis::ac),
         tran_(options.analysis == SpiceAnalysis::tran),
+        displacements_(op_ || (ac_ && model.beam.kinematics == BeamKinematics::large)),
         system_(model.network.assemble()) {}
 
   SpiceDeck write();
@@ -106,6 +108,16 @@ class DeckWriter {
   // ---- What an element's writer (deck/<element>.cpp) uses to write its lines.
   bool op() const { return op_; }
   bool ac() const { return ac_; }
+  // Whether mechanical node voltages are displacements and rotations: the op deck, and the ac
+  // deck of a large-kinematics beam (ngspice then linearises it about the deflected static state,
+  // its own operating point, as emnet's ac does); velocities otherwise.
+  bool displacements() const { return displacements_; }
+  // A node whose voltage is d/dt V(spice_node): a copy of the node (an E source) charges 1 F
+  // through a 0 V sense source, whose current an H source makes the node's voltage. 0 at rest,
+  // jω·V in ac; written once per node ("0" for ground).
+  std::string rate_of(const std::string& spice_node);
+  // rate_of the network node `id`.
+  std::string rate(NodeId id) { return id == ground ? std::string("0") : rate_of(node(id)); }
   const Network& network() const { return network_; }
   std::string where() const { return scene_.file.empty() ? std::string("scene") : scene_.file; }
   bool mechanical(NodeId node) const {
@@ -231,7 +243,7 @@ class DeckWriter {
   const Network& network_;
   const Scene& scene_;
   const SpiceDeckOptions& options_;
-  const bool op_, ac_, tran_;
+  const bool op_, ac_, tran_, displacements_;
   const System system_;
   std::vector<Probe> outputs_;
   NameTable nodes_, elements_;
@@ -241,7 +253,8 @@ class DeckWriter {
   std::ostringstream body_;
   std::vector<std::pair<std::string, double>> initial_conditions_;  // tran, static start
   std::vector<std::string> edge_notes_;
-  std::vector<std::string> left_out_;  // op: masses and dampers of the current group
+  std::vector<std::string> left_out_;         // op: masses and dampers of the current group
+  std::map<std::string, std::string> rates_;  // rate_of's nodes, by the node they differentiate
   SpiceDeck deck_;
 };
 

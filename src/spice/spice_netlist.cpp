@@ -26,7 +26,7 @@ void DeckWriter::check_names() const {
 
 std::string DeckWriter::node_meaning(const Node& node) const {
   std::string meaning = node.meaning;
-  if (!op_ || !is_mechanical(node.domain)) return meaning;
+  if (!displacements_ || !is_mechanical(node.domain)) return meaning;
   // The op deck's mechanical nodes hold displacements: say so in the node's own words.
   auto replace = [&](const std::string& from, const std::string& to) {
     for (auto at = meaning.find(from); at != std::string::npos; at = meaning.find(from, at))
@@ -78,18 +78,21 @@ void DeckWriter::write_outputs() {
       if (index < 0 || index >= node_count)
         throw InputError(where(), "probe " + probe.name,
                          "a probe of a branch quantity is not written to SPICE decks");
-      if (op_) {
-        const int power_of_s = (mechanical(index) ? 1 : 0) - probe.integrations;
-        if (power_of_s != 0) continue;  // a velocity at rest: zero
-      }
-      if (c == 0.0) continue;
+      // In displacement form a term is the node's voltage times s^power: a velocity is the rate
+      // of a displacement (at rest zero), an integral of an electrical voltage is not written.
+      const int power_of_s = displacements_ ? (mechanical(index) ? 1 : 0) - probe.integrations : 0;
+      if (c == 0.0 || (op_ && power_of_s != 0)) continue;
+      if (power_of_s < 0)
+        throw InputError(where(), "probe " + probe.name,
+                         "an integral of an electrical quantity is not written to this deck");
+      const std::string term = power_of_s == 1 ? rate_of(node(index)) : node(index);
       ++written;
       lines << element_name('G', "out_" + probe.name + "_" + std::to_string(written)) << " 0 "
-            << out_node << " " << node(index) << " 0 " << value(c, probe.name) << "\n";
-      formula += (formula.empty() ? "" : " + ") + number(c) + "*V(" + node(index) + ")";
+            << out_node << " " << term << " 0 " << value(c, probe.name) << "\n";
+      formula += (formula.empty() ? "" : " + ") + number(c) + "*V(" + term + ")";
     }
     if (formula.empty()) formula = "0";
-    const bool integrate = probe.integrations == 1 && !op_;
+    const bool integrate = probe.integrations == 1 && !displacements_;
     const std::string meaning = probe.description + " [" + probe.unit +
                                 "] = " + (integrate ? "integral of " + formula : formula);
     node_comments_.push_back(out_node + ": " + meaning);
@@ -146,6 +149,15 @@ void DeckWriter::write_conventions(std::ostringstream& out) const {
     comment(out,
             "  compliance n = resistor n [m/N as Ohm]; masses and dampers carry no force "
             "at rest and are left out; levers keep their ratios");
+  } else if (displacements_) {
+    comment(out,
+            "  THIS ac DECK IS IN DISPLACEMENTS (large kinematics): mechanical node voltages are "
+            "displacements [m] and rotations [rad], currents forces [N] and torques [N*m]; "
+            "ngspice linearises it about its operating point, the deflected static state");
+    comment(out,
+            "  compliance n = resistor n; viscous damper r = capacitor r; mass m = the current "
+            "m*d2V/dt2 (an F source of a capacitor m on the node's rate); a velocity is a rate "
+            "node d/dt V (E copy, 1 F, 0 V sense, H source)");
   } else {
     comment(out, "  translational: velocity [m/s] as V, force [N] as A");
     comment(out, "  rotational: angular velocity [rad/s] as V, torque [N*m] as A");
@@ -255,6 +267,10 @@ void DeckWriter::write_analysis(std::ostringstream& out) {
       out << ".op\n";
       break;
     case SpiceAnalysis::ac: {
+      if (displacements_) {  // the operating point is the deflected state: solved as the op deck
+        comment(out, "the operating point (the deflected state) as tightly as the op deck's");
+        out << ".options reltol=1e-9 vntol=1e-15 abstol=1e-18\n";
+      }
       const AcSpec spec = options_.ac.value_or(scene_.ac);
       if (spec.log && spec.points > 1) {  // one frequency: `.ac lin 1 f f`, no decades
         const double decades = std::log10(spec.to / spec.from);
@@ -367,11 +383,15 @@ void DeckWriter::add_notes() {
         "op: mechanical node voltages are displacements and rotations (emnet's static state "
         "z); compliances are resistors, so their forces have no branch vector here");
   }
-  if (ac_)
+  if (ac_ && displacements_)
+    deck_.notes.push_back(
+        "ac: about the deflected static state (displacement nodes, B sources linearised by "
+        "ngspice at its operating point); mechanical unknowns are compared as their rate nodes");
+  if (ac_ && !displacements_)
     deck_.notes.push_back(
         "ac: an integral output (deflection) is 0 at f = 0 where emnet gives the static limit; "
         "compare from the first frequency above 0");
-  if (tran_ || ac_)
+  if (tran_ || (ac_ && !displacements_))
     deck_.notes.push_back("integral outputs: 1 F with a 1e9 Ohm leak (time constant 1e9 s)");
   for (const auto& note : edge_notes_)
     if (std::find(deck_.notes.begin(), deck_.notes.end(), note) == deck_.notes.end())
@@ -382,16 +402,37 @@ void DeckWriter::add_notes() {
         "zero-mean pulse: its effect is of second order in the edge width");
 }
 
+std::string DeckWriter::rate_of(const std::string& spice_node) {
+  if (spice_node == "0") return spice_node;
+  if (const auto found = rates_.find(spice_node); found != rates_.end()) return found->second;
+  const std::string rate = internal_node(spice_node + "_rate", "d/dt V(" + spice_node + ")");
+  const std::string copy = internal_node(spice_node + "_copy", "V(" + spice_node + ") again");
+  const std::string sense = internal_node(spice_node + "_sense", "0 V: the rate's sense source");
+  const std::string source = element_name('V', spice_node + "_rate");
+  body_ << element_name('E', spice_node + "_copy") << " " << copy << " 0 " << spice_node
+        << " 0 1\n";
+  body_ << element_name('C', spice_node + "_rate") << " " << copy << " " << sense << " 1\n";
+  body_ << source << " " << sense << " 0 DC 0\n";
+  body_ << element_name('H', spice_node + "_rate") << " " << rate << " 0 " << source << " 1\n";
+  rates_.emplace(spice_node, rate);
+  return rate;
+}
+
 SpiceDeck DeckWriter::write() {
   check_names();
   check_options();
   deck_.analysis = options_.analysis;
+  deck_.displacement_nodes = displacements_;
   deck_.unknowns.assign(system_.unknowns.size(), {});
   outputs_ = options_.outputs.empty() ? spice_output_probes(model_) : options_.outputs;
   name_nodes();
   for (size_t k = 0; k < node_names_.size(); ++k) deck_.unknowns[k] = {lower(node_names_[k]), 1.0};
   write_groups();
   write_outputs();
+  if (displacements_ && !op_)  // emnet's mechanical unknowns are velocities: the nodes' rates
+    for (size_t k = 0; k < node_names_.size(); ++k)
+      if (is_mechanical(network_.nodes()[k].domain))
+        deck_.unknowns[k] = {lower(rate_of(node_names_[k])), 1.0};
   add_notes();
   std::ostringstream out;
   write_header(out);

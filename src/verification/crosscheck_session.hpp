@@ -88,7 +88,6 @@ class CrosscheckSession {
     for (std::string& note : deck_left_out_notes(model_)) report_.notes.push_back(std::move(note));
     try {
       for (const auto analysis : options_.analyses) {
-        if (not_compared_with_large_kinematics(analysis)) continue;
         switch (analysis) {
           case CrosscheckAnalysis::op:
             op();
@@ -108,19 +107,6 @@ class CrosscheckSession {
       report_.status = Status::failure(failure.what());
     }
     return report_;
-  }
-
-  // With large kinematics ac and modal are not compared (no ac deck: deck/corotational_segment.cpp
-  // says why), and a note says so.
-  bool not_compared_with_large_kinematics(CrosscheckAnalysis analysis) {
-    if (model_.scene.beam.kinematics != BeamKinematics::large) return false;
-    if (analysis != CrosscheckAnalysis::ac && analysis != CrosscheckAnalysis::modal) return false;
-    report_.notes.push_back(std::string(crosscheck_analysis_name(analysis)) +
-                            ": not compared with beam.kinematics = \"large\": ngspice's ac "
-                            "linearises about the operating point of the velocity deck, where the "
-                            "chords' integrators cannot hold the deflected state (emnet's ac and "
-                            "modes linearise about it)");
-    return true;
   }
 
   // Runs one deck; a failure of ngspice ends the cross-check with a clear status.

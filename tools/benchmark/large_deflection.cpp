@@ -126,7 +126,7 @@ std::string transient_rows(const Settings& settings) {
         "|---|---|---|---|\n";
   const IdaRun small = fin_ida(settings, periods, "");
   md << "| small kinematics | " << small.timing.text() << " (" << small.steps << ") | 1 | – |\n";
-  for (const std::string axial :
+  for (const std::string& axial :
        {std::string("beam.axial_stiffness=1 kN"), std::string(kFinAxialStiffness)}) {
     const IdaRun large = fin_ida(settings, periods, axial);
     const double ratio = large.timing.median / small.timing.median;

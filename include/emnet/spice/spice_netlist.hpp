@@ -33,12 +33,20 @@
 //                   current source c_k·ac_force into each coupling node (ac deck only).
 //   CoRotationalSegment (beam.kinematics = "large") its unknowns as nodes and its geometry and
 //                   forces as B sources (deck/corotational_segment.cpp): the chord's change
-//                   (op: V(b) − V(a) of the displacement nodes; tran: an integrator of v_b − v_a,
-//                   1 F ‖ 1 GΩ as the outputs), its angle θ by its constraint
-//                   sin θ·(l + d_x) − cos θ·d_y = 0, the extension ℓ − l, the forces F (tran: an
-//                   integrator of F'), N = (ℓ − l)/n_A, with τ Q and P, and the forces on the end
-//                   nodes. op and tran decks only: an ac deck and an inextensible segment are
-//                   refused naming the key (beam.kinematics, beam.axial_stiffness).
+//                   (op, ac: V(b) − V(a) of the displacement nodes; tran: an integrator of v_b −
+//                   v_a, 1 F ‖ 1 GΩ as the outputs), its angle θ by its constraint sin θ·(l + d_x)
+//                   − cos θ·d_y = 0, the extension ℓ − l, the forces F (tran: an integrator of F'),
+//                   N = (ℓ − l)/n_A, with τ Q and P, and the forces on the end nodes. An
+//                   inextensible segment is refused naming beam.axial_stiffness.
+// The ac deck of a large-kinematics beam is written in displacements, as the op deck (below), with
+// the network's dynamics added, so that ngspice's operating point is the deflected static state
+// and its ac linearises the B sources there, as emnet's ac does (a velocity deck's integrators
+// cannot hold that state): a mass m draws m·d²V/dt² (an F source of the current a capacitor m
+// takes from the node's rate), a damper r is a capacitor r, a compliance a resistor n, the
+// segments' Kelvin–Voigt totals and the DEAs' motional currents take rate nodes. A rate node
+// d/dt V(x) is an E copy of x charging 1 F through a 0 V sense source, whose current an H source
+// makes a voltage. Outputs are the probes' values themselves (no integrators); emnet's
+// mechanical unknowns (velocities) map to the nodes' rates.
 // Independent sources: op and ac decks hold their value at t = 0 (what emnet's static and its
 // AC operating point use, System::b(0)) and, in the ac deck, their AC phasor (System::b_ac);
 // tran decks hold the time function: DC, SIN, PULSE or PWL. A pulse with zero rise and fall
@@ -67,8 +75,8 @@
 // usually solved it already and can report its failure in its own terms. A probe that is
 // not an integral feeds a 1 Ω resistor: V(out) = Σc·V. In the op deck a probe's term stays when
 // emnet's static_probe_value keeps it (displacement of a deflection, voltage of a DEA), through
-// a 1 Ω resistor. In the ac deck an integral output at f = 0 is 0, where emnet gives the
-// static limit: compare from the first frequency above 0.
+// a 1 Ω resistor. In the ac deck (in velocities) an integral output at f = 0 is 0, where emnet
+// gives the static limit: compare from the first frequency above 0.
 //
 // Safety: no text from a scene reaches a deck unchecked. Comment text keeps only printable
 // ASCII letters, digits, spaces and `_-+.,:;=()[]/*%@<>'!?^~|&` (anything else, newlines and
@@ -146,8 +154,12 @@ struct SpiceDeck {
   SpiceAnalysis analysis = SpiceAnalysis::op;  ///< the analysis it runs
   /// One entry per unknown of network.assemble() (System::unknowns order). Node entries hold
   /// the node's voltage vector (op: the displacement z, or the voltage, of emnet's
-  /// StaticResult::state; ac/tran: the velocity / voltage); branch entries the branch current.
+  /// StaticResult::state; ac/tran: the velocity / voltage, in the ac deck in displacements the
+  /// mechanical node's rate node); branch entries the branch current.
   std::vector<SpiceVector> unknowns;
+  /// Whether mechanical node voltages are displacements: the op deck, and the ac deck of a
+  /// large-kinematics beam (outputs then are the probes' values themselves, no integrators).
+  bool displacement_nodes = false;
   std::vector<SpiceOutput> outputs;  ///< one per output probe, in order
   std::vector<std::string> notes;    ///< what the deck approximates, in words
 };

@@ -1,5 +1,6 @@
 // SPICE lines of a Conductance g: a resistor R = 1/g between its nodes; g = 0 is an open (a
-// comment, no element). The op deck leaves out a mechanical one (a damper: no force at rest).
+// comment, no element). The op deck leaves out a mechanical one (a damper: no force at rest); a
+// displacement ac deck writes it as a capacitor g (its force g·d(V_a − V_b)/dt).
 #include "emnet/elements/conductance.hpp"
 
 #include "spice/deck_writer.hpp"
@@ -15,6 +16,11 @@ void write_conductance(const Conductance& g, DeckWriter& deck) {
   if (g.conductance() == 0.0) {
     deck.comment(name + ": conductance 0 between " + deck.node(g.a()) + " and " + deck.node(g.b()) +
                  ": an open, no element");
+    return;
+  }
+  if (deck.displacements() && (deck.mechanical(g.a()) || deck.mechanical(g.b()))) {
+    deck.body() << deck.element_name('C', name) << " " << deck.node(g.a()) << " "
+                << deck.node(g.b()) << " " << deck.value(g.conductance(), name) << "\n";
     return;
   }
   deck.body() << deck.element_name('R', name) << " " << deck.node(g.a()) << " " << deck.node(g.b())

@@ -1,23 +1,25 @@
 // SPICE lines of a CoRotationalSegment (beam.kinematics = "large"): its unknowns as nodes, its
 // geometry and forces as B sources (behavioural sources: the modulated transformer of the
 // chord's rotation), with the equations of corotational_segment.hpp:
-//   dx, dy  the chord's change [m]: op deck V(b) − V(a) of the displacement nodes; tran deck
-//           integrators of v_b − v_a (1 F, 1e9 Ω leak, as the integral outputs)
+//   dx, dy  the chord's change [m]: op and ac decks V(b) − V(a) of the displacement nodes; tran
+//           deck integrators of v_b − v_a (1 F, 1e9 Ω leak, as the integral outputs)
 //   th      the chord's angle [rad], by its constraint sin θ·(l + dx) − cos θ·dy = 0: a B source
 //           drawing that current from the node (its conductance ∂/∂θ is the chord's length ℓ > 0)
 //   ext     the chord's extension ℓ − l = cos θ·(l + dx) + sin θ·dy − l [m] (a node that is 0 at
 //           rest, where SPICE's first iterate starts: l/ℓ is written l/(l + V(ext)))
-//   F       the transverse compliance's force [N]: op deck ((l/2)·(ψ_a + ψ_b) − l·θ)/n_T; tran deck
-//           the integrator of F' = ((l/2)·(Ω_a + Ω_b) − (l/ℓ)·e₂·(v_b − v_a))/n_T
+//   F       the transverse compliance's force [N]: op and ac decks ((l/2)·(ψ_a + ψ_b) − l·θ)/n_T;
+//           tran deck the integrator of F' = ((l/2)·(Ω_a + Ω_b) − (l/ℓ)·e₂·(v_b − v_a))/n_T
 //   N       the axial force (ℓ − l)/n_A [N]
-//   Q, P    with Kelvin–Voigt damping τ (tran deck): Q = F + τ·F', P = N + (τ/n_A)·e₁·(v_b − v_a)
+//   Q, P    with Kelvin–Voigt damping τ: tran deck Q = F + τ·F', P = N + (τ/n_A)·e₁·(v_b − v_a);
+//           ac deck Q = F + τ·dF/dt, P = N + τ·dN/dt (rate nodes); the op deck leaves them out
 // and the forces each node gives the segment, B sources from the node to ground:
 //   (x, y)_a: +Q·(l/ℓ)·e₂ − P·e₁,   (x, y)_b: the opposite,   Ω_a, Ω_b: (l/2)·Q,
 // a held end's force (f_x, f_y) left out (see write_node_forces),
 // e₁ = (cos θ, sin θ), e₂ = (−sin θ, cos θ). Node voltages are velocities in the tran deck and
-// displacements in the op deck (rates are zero at rest there). The ac deck is refused: ngspice
-// linearises about its own operating point of the velocity deck, at which the integrators cannot
-// hold the deflected state (emnet's ac linearises about it), and an inextensible segment
+// displacements in the op and ac decks (rates are zero at rest in the op deck). The ac deck is
+// the op deck with the network's dynamics (DeckWriter::displacements): its operating point is the
+// deflected static state, about which ngspice linearises the B sources itself, as emnet's ac
+// does (a velocity deck's integrators could not hold that state). An inextensible segment
 // (n_A = 0, N a multiplier) has no B-source form here.
 #include "emnet/elements/corotational_segment.hpp"
 
@@ -67,7 +69,7 @@ struct Segment {
 };
 
 void write_chord(Segment& g) {
-  if (g.deck.op()) {
+  if (g.deck.displacements()) {
     g.source(g.dx, g.dx, "V", g.vx);
     g.source(g.dy, g.dy, "V", g.vy);
   } else {
@@ -95,7 +97,7 @@ void write_forces(Segment& g) {
       "(" + node_or_zero(s.end_a().rotation) + "+" + node_or_zero(s.end_b().rotation) + ")";
   const std::string force_rate =
       "((" + g.half + "*" + sum + "-" + g.lever + "*" + g.across_rate() + ")/" + n_t + ")";
-  if (g.deck.op())
+  if (g.deck.displacements())
     g.source(g.force, g.force, "V",
              "(" + g.half + "*" + sum + "-" + g.l + "*V(" + g.angle + "))/" + n_t);
   else
@@ -108,6 +110,15 @@ void write_forces(Segment& g) {
   if (tau <= 0.0) return;
   if (g.deck.op()) {
     g.deck.leave_out(g.name + " (its Kelvin-Voigt dampers)");
+  } else if (g.deck.displacements()) {
+    g.total_force =
+        g.deck.internal_node(g.name + "_Q", g.name + ": the total transverse force Q [N]");
+    g.total_tension = g.deck.internal_node(g.name + "_P", g.name + ": the total axial force P [N]");
+    const std::string t = g.deck.value(tau, g.name);
+    g.source(g.total_force, g.total_force, "V",
+             "V(" + g.force + ")+" + t + "*V(" + g.deck.rate_of(g.force) + ")");
+    g.source(g.total_tension, g.total_tension, "V",
+             "V(" + g.tension + ")+" + t + "*V(" + g.deck.rate_of(g.tension) + ")");
   } else {
     g.total_force =
         g.deck.internal_node(g.name + "_Q", g.name + ": the total transverse force Q [N]");
@@ -147,12 +158,6 @@ void write_node_forces(Segment& g) {
 
 void write_corotational_segment(const CoRotationalSegment& s, DeckWriter& deck) {
   const std::string& name = s.name();
-  if (deck.ac())
-    throw InputError(deck.where(), "beam.kinematics",
-                     "is \"large\": an ac deck is not written, because ngspice linearises about "
-                     "its own operating point of the velocity deck, where the integrators of the "
-                     "chords cannot hold the deflected state (emnet ac linearises about it); op "
-                     "and tran decks are written");
   if (s.axial_compliance() == 0.0)
     throw InputError(deck.where(), "beam.axial_stiffness",
                      "is needed for a SPICE deck with beam.kinematics = \"large\": an "

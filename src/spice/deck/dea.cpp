@@ -33,9 +33,10 @@ void write_motional_current(const Dea& d, const NodeCoupling& coupling, DeckWrit
   const std::string& name = d.name();
   const std::string u = deck.voltage(d.electrode_plus(), d.electrode_minus());
   std::string rate;
-  for (const auto& [n, c] : coupling) {
+  for (const auto& [n, c] : coupling) {  // velocities: in displacements the nodes' rates
     if (c == 0.0) continue;
-    rate += (rate.empty() ? "" : "+") + deck.value(c, name) + "*V(" + deck.node(n) + ")";
+    rate += (rate.empty() ? "" : "+") + deck.value(c, name) + "*V(" +
+            (deck.displacements() ? deck.rate(n) : deck.node(n)) + ")";
   }
   if (rate.empty()) return;
   deck.comment(name + ": motional current u*dC/dx*dx/dt = 2*k_F*u*(elongation rate)");

@@ -1,7 +1,8 @@
 // SPICE lines of an Inductor n: an inductor L = n whose branch current is emnet's branch
 // unknown (same sign), with its parallel conductance as a resistor across it; n = 0 is a short,
 // a 0 V source. In the op deck a mechanical compliance is a resistor R = n between displacement
-// nodes (z_a − z_b = n·F), without a branch vector, and its damper is left out.
+// nodes (z_a − z_b = n·F), without a branch vector, and its damper is left out; a displacement
+// ac deck writes the compliance the same way and its damper as a capacitor g across it.
 #include "emnet/elements/inductor.hpp"
 
 #include "spice/deck_writer.hpp"
@@ -18,12 +19,15 @@ void write_inductor(const Inductor& l, DeckWriter& deck) {
     deck.branch(name, 0, spice, 1.0);
     return;
   }
-  if (deck.op() && (deck.mechanical(l.a()) || deck.mechanical(l.b()))) {
+  if (deck.displacements() && (deck.mechanical(l.a()) || deck.mechanical(l.b()))) {
     // z_a − z_b = n·F: the compliance is a resistor n between displacement nodes (a damper
     // across it carries no force at rest).
-    if (l.parallel_conductance() != 0.0) deck.leave_out(name + " (its damper)");
+    if (l.parallel_conductance() != 0.0 && deck.op()) deck.leave_out(name + " (its damper)");
     out << deck.element_name('R', name) << " " << deck.node(l.a()) << " " << deck.node(l.b()) << " "
         << deck.value(l.inductance(), name) << "\n";
+    if (l.parallel_conductance() != 0.0 && !deck.op())
+      out << deck.element_name('C', name) << " " << deck.node(l.a()) << " " << deck.node(l.b())
+          << " " << deck.value(l.parallel_conductance(), name) << "\n";
     deck.branch(name, 0, "", 1.0);
     return;
   }

@@ -19,11 +19,11 @@ std::vector<Transformer::Port> active_primaries(const Transformer& t, const Deck
   std::vector<Transformer::Port> active;
   for (const auto& port : t.primaries()) {
     if (port.ratio == 0.0 || (port.plus == ground && port.minus == ground)) continue;
-    if (deck.op() &&
+    if (deck.displacements() &&
         (deck.mechanical(port.plus) || deck.mechanical(port.minus)) != secondary_mechanical)
       throw InputError(deck.where(), t.name(),
                        "a transformer between electrical and mechanical ports is not written "
-                       "to op decks");
+                       "to decks in displacements (op; ac with large kinematics)");
     active.push_back(port);
   }
   return active;
@@ -43,7 +43,8 @@ std::vector<std::string> secondary_chain(const Transformer& t, size_t primaries,
     chain.push_back(deck.internal_node(
         name + "_" + std::to_string(k + 1),
         "internal node of " + name + ", in the series chain of its secondary [" +
-            (deck.op() && secondary_mechanical ? (unit == "m/s" ? "m" : "rad") : unit) + "]"));
+            (deck.displacements() && secondary_mechanical ? (unit == "m/s" ? "m" : "rad") : unit) +
+            "]"));
   chain.push_back(deck.node(t.secondary_minus()));
   return chain;
 }

@@ -1,6 +1,7 @@
 // SPICE lines of a VoltageSource: V plus minus, whose branch current is emnet's branch unknown
 // (from plus through the source to minus, same sign). The op deck holds a mechanical one at
-// 0 (a clamp); a non-zero velocity source has no static state and is refused.
+// 0 (a clamp), and so does a displacement ac deck; a non-zero velocity source has no static
+// state and is refused.
 #include "emnet/elements/voltage_source.hpp"
 
 #include "spice/deck_writer.hpp"
@@ -11,11 +12,15 @@ void write_voltage_source(const VoltageSource& v, DeckWriter& deck) {
   const std::string& name = v.name();
   const std::string spice = deck.element_name('V', name);
   std::ostringstream& out = deck.body();
-  if (deck.op() && (deck.mechanical(v.plus()) || deck.mechanical(v.minus()))) {
+  if (deck.displacements() && (deck.mechanical(v.plus()) || deck.mechanical(v.minus()))) {
     if (v.waveform().value(0.0) != 0.0)
       throw InputError(deck.where(), name,
                        "a constant velocity source (" + number(v.waveform().value(0.0)) +
-                           ") has no static state: no op deck");
+                           ") has no static state: no deck in displacements");
+    if (deck.ac() && v.waveform().ac_magnitude != 0.0)
+      throw InputError(deck.where(), name,
+                       "an AC velocity source is not written to the ac deck in displacements "
+                       "(beam.kinematics = \"large\")");
     out << spice << " " << deck.node(v.plus()) << " " << deck.node(v.minus()) << " DC 0\n";
   } else {
     out << spice << " " << deck.node(v.plus()) << " " << deck.node(v.minus()) << " "
