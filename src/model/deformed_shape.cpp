@@ -1,7 +1,6 @@
 // The beam's deformed shape (emnet/model/deformed_shape.hpp).
 #include "emnet/model/deformed_shape.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -50,11 +49,12 @@ std::optional<RotationPeak> largest_rotation(const RotationProbes& probes,
                                              const std::vector<double>& peaks) {
   if (peaks.size() != probes.probes.size())
     throw std::invalid_argument("largest_rotation: one peak per rotation probe expected");
-  if (peaks.empty()) return std::nullopt;
-  const size_t k = static_cast<size_t>(
-      std::max_element(peaks.begin(), peaks.end(),
-                       [](double a, double b) { return std::abs(a) < std::abs(b); }) -
-      peaks.begin());
+  std::optional<size_t> largest;  // a non-finite peak (a failed solve's) is not taken
+  for (size_t k = 0; k < peaks.size(); ++k)
+    if (std::isfinite(peaks[k]) && (!largest || std::abs(peaks[k]) > std::abs(peaks[*largest])))
+      largest = k;
+  if (!largest) return std::nullopt;
+  const size_t k = *largest;
   return RotationPeak{format_number("x = %.4g mm", 1e3 * probes.positions[k]), std::abs(peaks[k])};
 }
 

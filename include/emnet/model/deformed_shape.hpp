@@ -36,7 +36,7 @@ struct RotationProbes {
 RotationProbes rotation_probes(const Model& model, size_t most = 64);
 
 /// The largest of `peaks` (|rotation| [rad] per probe of `probes`, as a result computed them);
-/// none when `probes` is empty.
+/// none when `probes` is empty or no peak is finite.
 /// @throws std::invalid_argument when `peaks` does not match `probes`
 std::optional<RotationPeak> largest_rotation(const RotationProbes& probes,
                                              const std::vector<double>& peaks);
