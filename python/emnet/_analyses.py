@@ -97,8 +97,8 @@ def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1
     output and frequency in the output's unit, 2-D arrays [output, frequency];
     outputs.row("dx4").right is one output's); sweep_peak_hz (the largest peak-to-peak of the
     last output); first_mode_hz (the lowest mode, when found); accuracy
-    (worst_periodicity_residual); cost (solves, unknowns, decomposition_seconds, solve_seconds,
-    total_seconds); validity.
+    (worst_periodicity_residual); cost (solves, period_runs: shooting's one-period IDA runs,
+    unknowns, decomposition_seconds, solve_seconds, total_seconds); validity.
     """
     return Result(_emnet.sweep_switching(as_scene(scene)._handle, numbers(frequencies, "frequencies"),
                                          from_hz, to_hz, step_hz, method, samples, rtol,

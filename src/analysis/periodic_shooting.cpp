@@ -186,6 +186,8 @@ class Shooting {
 
   // The network's unknowns IDA starts from at ξ.
   Eigen::VectorXd start(const Eigen::VectorXd& xi) const { return coordinates_.start(xi); }
+  // The one-period runs made so far.
+  int runs() const { return runs_; }
   // The last period run: from the ξ solve returned, with the probes' samples when it converged.
   const TransientResult& last_period() const { return last_run_; }
 
@@ -195,6 +197,7 @@ class Shooting {
   Eigen::VectorXd period_residual(const Eigen::VectorXd& xi, bool sampled = false) {
     options_.initial_state = coordinates_.start(xi);
     options_.output_times = sampled ? sample_times_ : std::vector<double>{};
+    ++runs_;
     last_run_ = run_transient_ida(system_, sampled ? probes_ : std::vector<Probe>{}, options_);
     if (last_run_.status.cancelled()) throw ShootingCancelled{};
     if (!last_run_.status.ok()) throw std::runtime_error(last_run_.status.message);
@@ -254,6 +257,7 @@ class Shooting {
   double rtol_;
   std::vector<double> sample_times_;
   TransientResult last_run_;
+  int runs_ = 0;
 };
 
 }  // namespace
@@ -276,6 +280,7 @@ PeriodicResult run_periodic_shooting(const System& given, const std::vector<Prob
     Shooting shooting(system, probes, period, rtol, samples, progress);
     const Eigen::VectorXd xi =
         shooting.solve(start_guess, result.newton_iterations, result.periodicity_residual);
+    result.period_runs = shooting.runs();
     if (Status periodic = check_residual(result.periodicity_residual, "shooting: x(T) = x(0)",
                                          shooting_residual_limit(rtol));
         !periodic.ok())

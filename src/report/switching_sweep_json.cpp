@@ -48,6 +48,7 @@ Json to_json(const SwitchingSweepResult& result, const Model& model,
   if (result.first_mode_hz) out["first_mode_hz"] = *result.first_mode_hz;
   out["accuracy"] = {{"worst_periodicity_residual", result.worst_periodicity_residual}};
   out["cost"] = {{"solves", result.solves},
+                 {"period_runs", result.period_runs},
                  {"unknowns", result.unknowns},
                  {"decomposition_seconds", result.decomposition_seconds},
                  {"solve_seconds", result.solve_seconds},

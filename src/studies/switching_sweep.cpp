@@ -433,6 +433,7 @@ class SwitchingSweepRun {
     result_.worst_periodicity_residual =
         std::max(result_.worst_periodicity_residual, r.periodicity_residual);
     solve_seconds_at_.push_back(r.seconds);
+    result_.period_runs += r.period_runs;
     result_.frequencies.push_back(f);
     ++result_.solves;
   }

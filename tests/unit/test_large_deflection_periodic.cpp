@@ -160,6 +160,10 @@ TEST(LargeKinematicsPeriodic, FinAt4kVSmallAndLargeSideBySideAcrossTheSweep) {
   EXPECT_GT(large.outputs[0].right[7], small.outputs[0].right[7]);  // 6.5 Hz: hardened
   EXPECT_LT(difference[0], 1e-4);                                   // 1 Hz: 1 mm swing
   EXPECT_LT(difference[8], 1e-4);                                   // 7 Hz
+  // What shooting cost: at least two one-period runs per frequency (a residual and the sampled
+  // last one); the exact method none.
+  EXPECT_EQ(small.period_runs, 0);
+  EXPECT_GE(large.period_runs, static_cast<long>(2 * frequencies.size()));
 }
 
 // The tweezer jaw (netlists/tweezer-jaw.toml: a 25 mm body and a 10 mm tip 80 times softer,

@@ -203,7 +203,11 @@ int report_switching_sweep(const SweepReportInput& input) {
             << ", " << count << " switching frequencies\n"
             << "accuracy: worst periodicity residual "
             << format("%.2g", result.worst_periodicity_residual) << "\ncost: periodic solves "
-            << milliseconds(result.solve_seconds) << ", total " << milliseconds(total) << "\n";
+            << milliseconds(result.solve_seconds)
+            << (result.period_runs > 0
+                    ? " (" + std::to_string(result.period_runs) + " one-period IDA runs)"
+                    : std::string())
+            << ", total " << milliseconds(total) << "\n";
   if (check) print_reduction_check(*check, result);
   std::cout << "\n";
   print_sweep_table(result);

@@ -46,6 +46,9 @@ struct PeriodicResult {
   std::vector<std::vector<double>> values;         ///< [probe][sample]
   double periodicity_residual = 0.0;  ///< ‖x(T) − x(0)‖ / ‖x(0)‖; above 1e-8: failed
   int newton_iterations = 0;          ///< shooting
+  /// Shooting: the one-period IDA runs it took (halved steps, finite differences and the last,
+  /// sampled run included): where its time goes.
+  int period_runs = 0;
   /// Shooting: the network's unknowns at t = 0 of the periodic state, a start for the next
   /// period of a sweep (run_periodic_shooting's `start_guess`).
   Eigen::VectorXd start_state;

@@ -137,6 +137,7 @@ struct SwitchingSweepResult {
   double worst_periodicity_residual = 0.0;
   // Cost.
   long solves = 0;                     // periodic solves of the sweep (checks not counted)
+  long period_runs = 0;                // shooting: their one-period IDA runs (0 otherwise)
   int unknowns = 0;                    // of the swept network
   double model_seconds = 0.0;          // models prepared and assembled
   double excitation_seconds = 0.0;     // the drive's excitation made and set per frequency
