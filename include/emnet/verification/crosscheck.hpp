@@ -61,8 +61,10 @@
 //    wrong element or sign (≥ 1e-2). ngspice's error is not proportional to reltol (cantilever:
 //    8.6e-5 at reltol 1e-5), so other --reltol values keep the multiple without a measurement.
 //
-// With beam.kinematics = "large" op and tran are compared (the chords' changes and angles in
-// groups of their own); ac and modal are not, and a note says why (deck/corotational_segment.cpp).
+// With beam.kinematics = "large" every analysis is compared (the chords' changes and angles in
+// groups of their own): the ac deck is then written in displacements, so that ngspice linearises
+// about the deflected static state (include/emnet/spice/spice_netlist.hpp), and its integral
+// outputs are compared at f = 0 too.
 //
 // Wall times: ngspice's (loading and running the deck and reading the vectors back,
 // NgspiceResult::ngspice_seconds) and emnet's analysis of the same question, measured in the
