@@ -36,8 +36,6 @@ Eigen::VectorXd rest_state(const Eigen::VectorXd& z, const std::vector<bool>& me
 
 }  // namespace
 
-namespace {}  // namespace
-
 Status check_residual(double residual, const std::string& what, double limit) {
   if (residual <= limit) return Status::success();
   char value[32];

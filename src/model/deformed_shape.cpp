@@ -4,8 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "emnet/core/units.hpp"
-
 namespace emnet {
 
 ShapeProbes shape_probes(const Model& model) {
@@ -54,8 +52,7 @@ std::optional<RotationPeak> largest_rotation(const RotationProbes& probes,
     if (std::isfinite(peaks[k]) && (!largest || std::abs(peaks[k]) > std::abs(peaks[*largest])))
       largest = k;
   if (!largest) return std::nullopt;
-  const size_t k = *largest;
-  return RotationPeak{format_number("x = %.4g mm", 1e3 * probes.positions[k]), std::abs(peaks[k])};
+  return rotation_peak_at(probes.positions[*largest], peaks[*largest]);
 }
 
 DeformedShape deformed_shape(const ShapeProbes& probes, const std::vector<double>& times,

@@ -97,6 +97,16 @@ double geometric_error_estimate(double peak, double length) {
   return fraction * fraction;
 }
 
+RotationPeak rotation_peak_at(double position, double peak) {
+  return {format_number("x = %.4g mm", 1e3 * position), std::abs(peak)};
+}
+
+std::optional<RotationPeak> larger_rotation(const std::optional<RotationPeak>& a,
+                                            const std::optional<RotationPeak>& b) {
+  if (!a) return b;
+  return b && b->peak > a->peak ? b : a;
+}
+
 double geometric_error_estimate(double peak, double length, double rotation) {
   return std::max(geometric_error_estimate(peak, length), rotation * rotation);
 }

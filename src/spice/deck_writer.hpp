@@ -123,6 +123,8 @@ class DeckWriter {
   bool mechanical(NodeId node) const {
     return node != ground && is_mechanical(network_.node(node).domain);
   }
+  // Whether a port between `a` and `b` is mechanical (either node is).
+  bool mechanical(NodeId a, NodeId b) const { return mechanical(a) || mechanical(b); }
   const std::string& node(NodeId id) const {
     static const std::string ground_name = "0";
     return id == ground ? ground_name : node_names_.at(static_cast<size_t>(id));

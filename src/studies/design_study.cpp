@@ -74,12 +74,6 @@ struct VariantRun {
   std::optional<RotationPeak> rotation;  // the largest the analyses computed
 };
 
-// Keeps the larger of `run`'s rotation and `candidate`.
-void take_rotation(VariantRun& run, const std::optional<RotationPeak>& candidate) {
-  if (candidate && (!run.rotation || candidate->peak > run.rotation->peak))
-    run.rotation = candidate;
-}
-
 // f<k>_hz, zeta<k>, f<k>_error_hz of the lowest mode_count modes.
 Status append_modes(VariantRun& run) {
   ModalOptions modal;
@@ -114,7 +108,7 @@ void append_static(VariantRun& run) {
   std::vector<double> peaks;
   for (const Probe& probe : rotations.probes)
     peaks.push_back(std::abs(static_probe_value(run.system, run.op.rest, probe)));
-  take_rotation(run, largest_rotation(rotations, peaks));
+  run.rotation = larger_rotation(run.rotation, largest_rotation(rotations, peaks));
 }
 
 // sweep.peak_hz, then each output's extremes at the reported frequencies. As `emnet
@@ -151,13 +145,15 @@ Status append_sweep(VariantRun& run) {
     run.deflections.push_back({layout.sweep_outputs.back().name + " (sweep)", largest});
   }
   if (peak.validity.largest_rotation > 0.0)  // at the sweep's peak (switching_sweep.cpp)
-    take_rotation(run, RotationPeak{"the sweep peak", peak.validity.largest_rotation});
+    run.rotation = larger_rotation(run.rotation,
+                                   RotationPeak{"the sweep peak", peak.validity.largest_rotation});
   if (layout.report_indices.empty()) return Status::success();
   sweep.frequencies.clear();
   for (std::size_t index : layout.report_indices)
     sweep.frequencies.push_back(layout.sweep_frequencies[index]);
   sweep.outputs = layout.sweep_outputs;
-  sweep.solver = peak.solver;  // one decomposition per variant
+  sweep.solver = peak.solver;      // one decomposition per variant
+  sweep.largest_rotation = false;  // taken from the first run's validity above
   const SwitchingSweepResult at = run_switching_sweep(swept, swept.scene, sweep);
   if (!at.status.ok()) return at.status.with_context("sweep-switching: ");
   for (const SwitchingSweepOutput& output : at.outputs)

@@ -92,8 +92,7 @@ MismatchResult run_mismatch(const Scene& given, const MismatchOptions& options) 
     }
     left = extremes.minimum;
     right = extremes.maximum;
-    if (extremes.rotation && (!rotation || extremes.rotation->peak > rotation->peak))
-      rotation = extremes.rotation;
+    rotation = larger_rotation(rotation, extremes.rotation);
     return true;
   };
   auto finished = [&]() -> MismatchResult& {

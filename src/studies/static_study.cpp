@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "emnet/core/units.hpp"
 #include "emnet/model/drive.hpp"
 
 namespace emnet {
@@ -54,8 +53,7 @@ StaticStudyValues static_study_values(const Model& model, const System& system,
   std::optional<RotationPeak> rotation;
   if (model.beam.kinematics == BeamKinematics::small)
     for (const auto& row : values.nodes)
-      if (!rotation || std::abs(row[2]) > rotation->peak)
-        rotation = RotationPeak{"x = " + format_with_unit(row[0], "m"), std::abs(row[2])};
+      rotation = larger_rotation(rotation, rotation_peak_at(row[0], row[2]));
   values.validity =
       check_validity(model.scene, peaks, drive_voltages_at_start(model.scene), rotation);
   return values;

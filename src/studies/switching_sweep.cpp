@@ -497,6 +497,7 @@ class SwitchingSweepRun {
   // The largest |rotation| at the beam's nodes over the period at the sweep's peak, for the
   // geometric error (one more periodic solve); none with large kinematics or where it fails.
   std::optional<RotationPeak> rotation_at_the_sweep_peak() {
+    if (!options_.largest_rotation) return std::nullopt;
     const RotationProbes rotations = rotation_probes(model_);
     if (rotations.probes.empty() || result_.frequencies.empty()) return std::nullopt;
     const double f = result_.peak_frequency;

@@ -76,6 +76,11 @@ struct RotationPeak {
   std::string where;  ///< "x = 35 mm"
   double peak = 0.0;  ///< [rad]
 };
+/// The rotation `peak` [rad] at `position` [m] along the beam, where named in millimetres.
+RotationPeak rotation_peak_at(double position, double peak);
+/// The larger of two rotations (either may be none).
+std::optional<RotationPeak> larger_rotation(const std::optional<RotationPeak>& a,
+                                            const std::optional<RotationPeak>& b);
 
 /// The limits a result is checked against.
 enum class ValidityCheck { deflection, electric_field };

@@ -62,6 +62,10 @@ struct SwitchingSweepOptions {
   // The outputs whose peaks are swept; at least one. With `reduce`, deflections and rotations.
   std::vector<Probe> outputs;
   bool first_mode = true;  // compute f1 (the lowest mode), for a plot marker
+  // The validity's geometric error from the largest rotation at the beam's nodes (small
+  // kinematics): one more periodic solve at the sweep's peak. False where the caller does not
+  // use the validity (the estimate is then (w/L)² alone).
+  bool largest_rotation = true;
   // One report per frequency; cancelled: a failed Status "cancelled" and `cancelled` set.
   Progress* progress = nullptr;
   // Told each step without counts ("eigen-decomposition of the state matrix (…)"), if set.

@@ -10,7 +10,7 @@ namespace emnet::spice_deck {
 
 void write_capacitor(const Capacitor& c, DeckWriter& deck) {
   const std::string& name = c.name();
-  if (deck.op() && (deck.mechanical(c.a()) || deck.mechanical(c.b()))) {
+  if (deck.op() && deck.mechanical(c.a(), c.b())) {
     deck.leave_out(name);  // a mass or inertia: no force at rest
     return;
   }
@@ -18,7 +18,7 @@ void write_capacitor(const Capacitor& c, DeckWriter& deck) {
     deck.comment(name + ": capacitance 0: no element");
     return;
   }
-  if (deck.displacements() && (deck.mechanical(c.a()) || deck.mechanical(c.b()))) {
+  if (deck.displacements() && deck.mechanical(c.a(), c.b())) {
     // The rate nodes first: each writes its own lines.
     const std::string rate_a = deck.rate(c.a()), rate_b = deck.rate(c.b());
     const std::string sense = deck.internal_node(name + "_sense", name + ": its force's sense");

@@ -9,7 +9,7 @@ namespace emnet::spice_deck {
 
 void write_conductance(const Conductance& g, DeckWriter& deck) {
   const std::string& name = g.name();
-  if (deck.op() && (deck.mechanical(g.a()) || deck.mechanical(g.b()))) {
+  if (deck.op() && deck.mechanical(g.a(), g.b())) {
     deck.leave_out(name);  // a damper: no force at rest
     return;
   }
@@ -18,7 +18,7 @@ void write_conductance(const Conductance& g, DeckWriter& deck) {
                  ": an open, no element");
     return;
   }
-  if (deck.displacements() && (deck.mechanical(g.a()) || deck.mechanical(g.b()))) {
+  if (deck.displacements() && deck.mechanical(g.a(), g.b())) {
     deck.body() << deck.element_name('C', name) << " " << deck.node(g.a()) << " "
                 << deck.node(g.b()) << " " << deck.value(g.conductance(), name) << "\n";
     return;

@@ -16,17 +16,17 @@ void write_gyrator(const Gyrator& y, DeckWriter& deck) {
                "-K*V(port 1) out of port 2");
   // The across of a port as the deck holds it: a mechanical one's rate in displacements.
   auto across = [&](NodeId plus, NodeId minus) {
-    if (!deck.displacements() || !(deck.mechanical(plus) || deck.mechanical(minus)))
+    if (!deck.displacements() || !deck.mechanical(plus, minus))
       return deck.node(plus) + " " + deck.node(minus);
     return deck.rate(plus) + " " + deck.rate(minus);
   };
   // (each across before its line: a rate node writes its own lines)
-  if (!(deck.op() && (deck.mechanical(y.c()) || deck.mechanical(y.d())))) {
+  if (!(deck.op() && deck.mechanical(y.c(), y.d()))) {
     const std::string control = across(y.c(), y.d());
     out << deck.element_name('G', name + "_1") << " " << deck.node(y.a()) << " " << deck.node(y.b())
         << " " << control << " " << deck.value(k, name) << "\n";
   }
-  if (!(deck.op() && (deck.mechanical(y.a()) || deck.mechanical(y.b())))) {
+  if (!(deck.op() && deck.mechanical(y.a(), y.b()))) {
     const std::string control = across(y.a(), y.b());
     out << deck.element_name('G', name + "_2") << " " << deck.node(y.c()) << " " << deck.node(y.d())
         << " " << control << " " << deck.value(-k, name) << "\n";

@@ -19,7 +19,7 @@ void write_inductor(const Inductor& l, DeckWriter& deck) {
     deck.branch(name, 0, spice, 1.0);
     return;
   }
-  if (deck.displacements() && (deck.mechanical(l.a()) || deck.mechanical(l.b()))) {
+  if (deck.displacements() && deck.mechanical(l.a(), l.b())) {
     // z_a − z_b = n·F: the compliance is a resistor n between displacement nodes (a damper
     // across it carries no force at rest).
     if (l.parallel_conductance() != 0.0 && deck.op()) deck.leave_out(name + " (its damper)");

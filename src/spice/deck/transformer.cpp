@@ -14,13 +14,11 @@ namespace {
 
 // The primaries that take part, checked for the op deck.
 std::vector<Transformer::Port> active_primaries(const Transformer& t, const DeckWriter& deck) {
-  const bool secondary_mechanical =
-      deck.mechanical(t.secondary_plus()) || deck.mechanical(t.secondary_minus());
+  const bool secondary_mechanical = deck.mechanical(t.secondary_plus(), t.secondary_minus());
   std::vector<Transformer::Port> active;
   for (const auto& port : t.primaries()) {
     if (port.ratio == 0.0 || (port.plus == ground && port.minus == ground)) continue;
-    if (deck.displacements() &&
-        (deck.mechanical(port.plus) || deck.mechanical(port.minus)) != secondary_mechanical)
+    if (deck.displacements() && deck.mechanical(port.plus, port.minus) != secondary_mechanical)
       throw InputError(deck.where(), t.name(),
                        "a transformer between electrical and mechanical ports is not written "
                        "to decks in displacements (op; ac with large kinematics)");
@@ -32,8 +30,7 @@ std::vector<Transformer::Port> active_primaries(const Transformer& t, const Deck
 // The internal nodes of the secondary's series chain, from the sense source down to s−.
 std::vector<std::string> secondary_chain(const Transformer& t, size_t primaries, DeckWriter& deck) {
   const std::string& name = t.name();
-  const bool secondary_mechanical =
-      deck.mechanical(t.secondary_plus()) || deck.mechanical(t.secondary_minus());
+  const bool secondary_mechanical = deck.mechanical(t.secondary_plus(), t.secondary_minus());
   const NodeId secondary_node =
       t.secondary_plus() != ground ? t.secondary_plus() : t.secondary_minus();
   const std::string unit =

@@ -12,7 +12,7 @@ void write_voltage_source(const VoltageSource& v, DeckWriter& deck) {
   const std::string& name = v.name();
   const std::string spice = deck.element_name('V', name);
   std::ostringstream& out = deck.body();
-  if (deck.displacements() && (deck.mechanical(v.plus()) || deck.mechanical(v.minus()))) {
+  if (deck.displacements() && deck.mechanical(v.plus(), v.minus())) {
     if (v.waveform().value(0.0) != 0.0)
       throw InputError(deck.where(), name,
                        "a constant velocity source (" + number(v.waveform().value(0.0)) +
