@@ -49,9 +49,12 @@ struct PeriodicResult {
   /// Shooting: the one-period IDA runs it took (halved steps, finite differences and the last,
   /// sampled run included): where its time goes.
   int period_runs = 0;
-  /// Shooting: the network's unknowns at t = 0 of the periodic state, a start for the next
-  /// period of a sweep (run_periodic_shooting's `start_guess`).
+  /// Shooting: the network's unknowns at t = 0 of the periodic state.
   Eigen::VectorXd start_state;
+  /// Shooting: the unknowns at t = 0 of the periodic state of the network linearised about its
+  /// static state, where Newton started from. start_state less this is the nonlinear part, from
+  /// which a neighbouring period of a sweep starts (run_periodic_shooting's `nonlinear_part`).
+  Eigen::VectorXd linear_start_state;
   double seconds = 0.0;  ///< [s]
 };
 
@@ -77,17 +80,19 @@ class PeriodicSolver {
 };
 
 /// Shooting with IDA at relative tolerance `rtol` (periodic_shooting.cpp: Newton–Broyden from
-/// the linearisation's Jacobian). `progress` is for cancellation only (Status "cancelled"): the
-/// one-period IDA runs of a solve do not report, a sweep over frequencies does. A periodicity
-/// residual ‖x(T) − x(0)‖/‖x(0)‖ above kResidualLimit (analysis.hpp) is a failure.
-/// @param period       T [s]
-/// @param samples      samples over one period, at t = T·s/samples
-/// @param start_guess  the unknowns at t = 0 to start Newton from (a neighbouring period's
-///                     PeriodicResult::start_state); null: rest
+/// the linearisation's periodic state and Jacobian, both exact for a linear network). `progress`
+/// is for cancellation only (Status "cancelled"): the one-period IDA runs of a solve do not
+/// report, a sweep over frequencies does. A periodicity residual ‖x(T) − x(0)‖/‖x(0)‖ above
+/// shooting_residual_limit(rtol) is a failure.
+/// @param period          T [s]
+/// @param samples         samples over one period, at t = T·s/samples
+/// @param nonlinear_part  added to the linearisation's periodic state to start Newton from: a
+///                        neighbouring period's start_state − linear_start_state (the
+///                        unknowns at t = 0), or its extrapolation; null: none
 PeriodicResult run_periodic_shooting(const System& system, const std::vector<Probe>& probes,
                                      double period, double rtol = 1e-9, int samples = 256,
                                      const Progress* progress = nullptr,
-                                     const Eigen::VectorXd* start_guess = nullptr);
+                                     const Eigen::VectorXd* nonlinear_part = nullptr);
 
 /// The periodicity residual ‖x(T) − x(0)‖/‖x(0)‖ shooting holds itself to at IDA's relative
 /// tolerance `rtol`: IDA's own noise, 1000·rtol (1e-7 of the state measured at rtol 1e-9 on the
