@@ -366,7 +366,8 @@ py::dict run_netlist(const SceneHandle& handle, const std::string& analysis, dou
   return out;
 }
 
-py::dict run_crosscheck(const SceneHandle& handle, const std::string& analyses, double timeout) {
+py::dict run_crosscheck(const SceneHandle& handle, const std::string& analyses, double timeout,
+                        const std::string& worker) {
   emnet::CrosscheckReport report;
   emnet::Model model;
   emnet::Stopwatch stopwatch;
@@ -377,6 +378,7 @@ py::dict run_crosscheck(const SceneHandle& handle, const std::string& analyses, 
     if (!(timeout > 0.0) || timeout > 86400.0)
       throw InputError("timeout", "timeout", "must be > 0 s and at most 86400 s (inclusive)");
     options.ngspice.timeout_seconds = timeout;
+    options.ngspice.worker_program = worker;
     options.overrides = handle.overrides;
     model = emnet::prepare_model(with_segments(handle.scene));
     report = emnet::run_crosscheck(model, options);
@@ -412,8 +414,10 @@ void bind_analyses(py::module_& m) {
         arg("output") = "", arg("change") = 0.05);
   m.def("netlist", &run_netlist, arg("scene"), arg("analysis") = "op", arg("periods") = 2.0,
         arg("points_per_period") = 2000, arg("rtol") = 1e-6, arg("control") = false);
-  m.def("crosscheck", &run_crosscheck, arg("scene"), arg("analyses") = "all",
-        arg("timeout") = 60.0);
+  // worker: the emnet-ngspice-worker program (an installed package's own); empty: the
+  // library's search (NgspiceOptions::worker_program).
+  m.def("crosscheck", &run_crosscheck, arg("scene"), arg("analyses") = "all", arg("timeout") = 60.0,
+        arg("worker") = "");
 }
 
 }  // namespace emnet_python

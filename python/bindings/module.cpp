@@ -10,6 +10,7 @@
 
 #include "convert.hpp"
 #include "emnet/core/option_error.hpp"
+#include "emnet/core/version.hpp"
 #include "emnet/scene/parameters.hpp"
 #include "emnet/scene/scene_reader.hpp"
 
@@ -39,6 +40,7 @@ using namespace emnet_python;
 
 PYBIND11_MODULE(_emnet, module) {
   module.doc() = "emnet's compiled core; use the package emnet (help(emnet)).";
+  module.attr("__version__") = emnet::version();
 
   static py::exception<emnet::InputError> input_error(module, "InputError", PyExc_ValueError);
   static py::exception<NumericalFailure> numerical_error(module, "NumericalError",

@@ -1,7 +1,10 @@
 // The design study for Python (emnet/studies/design_study.hpp): variants from KEY=SPEC texts or
 // a CSV file, and a chunk of variants run on a pool of threads with the GIL released. The
 // package (python/emnet/_study.py) makes the DataFrame and sends chunks to Dask workers.
+#include <chrono>
 #include <cstdio>
+#include <memory>
+#include <mutex>
 
 #include "convert.hpp"
 #include "emnet/report/design_study.hpp"
@@ -22,6 +25,44 @@ class StderrProgress : public emnet::Progress {
   }
   bool cancelled() const override { return false; }
 };
+
+// Progress to a Python callable, progress(done, total, what), at most every 0.1 s and at the
+// end: a tqdm bar in a terminal or a notebook (python/emnet/_study.py). Reports come from the
+// study's threads, each taking the GIL for the call; a callable that raises is not called again
+// (the study goes on: progress is not the result).
+class CallbackProgress : public emnet::Progress {
+ public:
+  explicit CallbackProgress(py::object callback) : callback_(std::move(callback)) {}
+  void report(long done, long total, std::string_view what) override {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      const auto now = std::chrono::steady_clock::now();
+      if (failed_ || (done != total && now - last_ < std::chrono::milliseconds(100))) return;
+      last_ = now;
+    }
+    const py::gil_scoped_acquire gil;
+    try {
+      callback_(done, total, std::string(what));
+    } catch (py::error_already_set&) {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      failed_ = true;
+    }
+  }
+  bool cancelled() const override { return false; }
+
+ private:
+  py::object callback_;
+  std::mutex mutex_;
+  std::chrono::steady_clock::time_point last_{};
+  bool failed_ = false;
+};
+
+// The reporter a study's `progress` asks for: a callable's, standard error's for true, none.
+std::unique_ptr<emnet::Progress> progress_reporter(const py::object& progress) {
+  if (PyCallable_Check(progress.ptr())) return std::make_unique<CallbackProgress>(progress);
+  if (py::bool_(progress)) return std::make_unique<StderrProgress>();
+  return nullptr;
+}
 
 py::tuple variants_tuple(const emnet::VariantTable& table) {
   const auto rows = static_cast<py::ssize_t>(table.rows.size());
@@ -58,7 +99,8 @@ py::dict run_study(const SceneHandle& handle, const std::vector<std::string>& ke
                    py::array_t<double, py::array::c_style | py::array::forcecast> values,
                    const std::string& analyses, int modes,
                    const std::vector<double>& sweep_frequencies,
-                   const std::vector<double>& report_frequencies, int threads, bool progress) {
+                   const std::vector<double>& report_frequencies, int threads,
+                   const py::object& progress) {
   if (values.ndim() != 2 || static_cast<std::size_t>(values.shape(1)) != keys.size())
     throw emnet::InputError(
         "values", "values",
@@ -72,7 +114,7 @@ py::dict run_study(const SceneHandle& handle, const std::vector<std::string>& ke
     table.rows.push_back(std::move(row));
   }
   emnet::DesignStudyResult result;
-  StderrProgress reporter;
+  const std::unique_ptr<emnet::Progress> reporter = progress_reporter(progress);
   run_interruptible(
       Keywords{{"mode_count", "modes"}, {"variations", "vary"}, {"report_frequencies", "at"}},
       [&](emnet::Progress* interrupts) {
@@ -85,7 +127,7 @@ py::dict run_study(const SceneHandle& handle, const std::vector<std::string>& ke
         options.progress = interrupts;
         result = emnet::run_design_study(handle.scene, table, options);
       },
-      progress ? &reporter : nullptr);
+      reporter.get());
   const auto rows = static_cast<py::ssize_t>(result.rows.size());
   const auto columns = static_cast<py::ssize_t>(result.columns.size());
   py::array_t<double> results({rows, columns});
@@ -137,7 +179,7 @@ void bind_studies(py::module_& m) {
         arg("analyses") = "modes", arg("modes") = 1,
         arg("sweep_frequencies") = std::vector<double>{},
         arg("report_frequencies") = std::vector<double>{}, arg("threads") = 0,
-        arg("progress") = false);
+        arg("progress") = py::bool_(false));
 }
 
 }  // namespace emnet_python

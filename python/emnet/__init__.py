@@ -20,7 +20,7 @@ function returns a NaN as a result (a failed variant of a study is a row with it
 Solves release the GIL: calls from several threads run at once and give the same results.
 """
 
-from ._emnet import InputError, NumericalError
+from ._emnet import InputError, NumericalError, __version__
 from ._scene import Scene
 from ._results import Result
 from ._analyses import (ac, crosscheck, identify, mismatch, modes, netlist, sensitivity, static,
@@ -28,7 +28,7 @@ from ._analyses import (ac, crosscheck, identify, mismatch, modes, netlist, sens
 from ._study import study, variants
 
 __all__ = [
-    "Scene", "Result", "InputError", "NumericalError", "static", "modes", "ac", "tran",
+    "__version__", "Scene", "Result", "InputError", "NumericalError", "static", "modes", "ac", "tran",
     "sweep_switching", "identify", "sensitivity", "mismatch", "netlist", "crosscheck", "study",
     "variants",
 ]

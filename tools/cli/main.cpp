@@ -27,6 +27,7 @@
 #include "cli/common.hpp"
 #include "cli/option_names.hpp"
 #include "emnet/core/terminal_text.hpp"
+#include "emnet/core/version.hpp"
 
 using namespace emnet_cli;
 
@@ -108,7 +109,8 @@ bool refused_as_no_known_command(CLI::App& app, int argc, char** argv) {
   return true;
 }
 
-// The help is output too: a full disk or closed file behind standard output fails it (2).
+// The help (or the version) is output too: a full disk or closed file behind standard output
+// fails it (2).
 int help_printed(CLI::App& app, const CLI::ParseError& e) {
   const int status = app.exit(e);
   std::cout.flush();
@@ -127,6 +129,8 @@ std::optional<int> status_if_parsing_ends_the_program(CLI::App& app, int argc, c
   } catch (const CLI::CallForHelp& e) {
     return help_printed(app, e);
   } catch (const CLI::CallForAllHelp& e) {
+    return help_printed(app, e);
+  } catch (const CLI::CallForVersion& e) {
     return help_printed(app, e);
   } catch (const CLI::ParseError& e) {
     // CLI11's message quotes the argument as given: control characters escaped here.
@@ -197,6 +201,7 @@ int main(int argc, char** argv) {
       "Bending beams (Euler-Bernoulli or Timoshenko) cut into N segments, with masses, springs\n"
       "and circuits, driven by dielectric elastomer actuators, as Firestone (mobility)\n"
       "networks: force = current, velocity = voltage."};
+  app.set_version_flag("--version", std::string("emnet ") + emnet::version());
   app.require_subcommand(1);
   app.footer(
       "Exit status: 0 success; 2 bad input; 3 numerical failure; 4 crosscheck: a difference\n"
