@@ -29,6 +29,13 @@ NOTEBOOK = ROOT / "examples" / "tutorial.ipynb"
 HANG = 120  # seconds: only a guard against a hang, far above anything here
 
 
+@pytest.fixture(autouse=True)
+def _own_jupyter_folders(tmp_path, monkeypatch):
+    """Connection files and IPython's profile in the test's folder, not the user's home."""
+    monkeypatch.setenv("JUPYTER_RUNTIME_DIR", str(tmp_path / "jupyter-runtime"))
+    monkeypatch.setenv("IPYTHONDIR", str(tmp_path / "ipython"))
+
+
 def _kernel_manager(manager_class):
     """A kernel manager of ipykernel's own python3 spec (no kernel directories searched)."""
     from jupyter_client.kernelspec import KernelSpecManager
