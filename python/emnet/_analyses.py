@@ -1,17 +1,20 @@
 """The analyses of one scene. Each returns a Result (see emnet.Result) with the keys of the
 command's --json: the same keys in both front-ends."""
 
+from typing import Any
+
 from . import _emnet
+from ._convert import (flag, integer, maybe_flag, maybe_integer, maybe_number, number, numbers,
+                       text, texts)
 from ._results import Result
-from ._scene import as_scene, numbers
+from ._scene import as_scene
 
 
-def _probes(probes):
-    if probes is None:
-        return []
-    if isinstance(probes, str):
-        return [probes]
-    return list(probes)
+def _result(kind: str, data: dict[str, Any]) -> Result:
+    """The Result of the analysis `kind` (the function's name: what to_frame reads it as)."""
+    result = Result(data)
+    result._kind = kind
+    return result
 
 
 def static(scene, probes=None):
@@ -24,7 +27,7 @@ def static(scene, probes=None):
     nodes), probes (name, description, unit, value), accuracy (relative_residual,
     newton_iterations), cost (seconds), validity. Nodal values are exact for any segment count.
     """
-    return Result(_emnet.static(as_scene(scene)._handle, _probes(probes)))
+    return _result("static", _emnet.static(as_scene(scene)._handle, texts(probes, "probes")))
 
 
 def modes(scene, count=0, dense=False, error_estimate=True, shapes=False, probes=None):
@@ -39,8 +42,9 @@ def modes(scene, count=0, dense=False, error_estimate=True, shapes=False, probes
     mode first; a mode is a pair with damping ratio below 1/sqrt(2), mode_rule); overdamped_pairs;
     real_poles; rigid_body_modes; method; cost.
     """
-    return Result(_emnet.modes(as_scene(scene)._handle, count, dense, error_estimate, shapes,
-                               _probes(probes)))
+    return _result("modes", _emnet.modes(
+        as_scene(scene)._handle, integer(count, "count"), flag(dense, "dense"),
+        flag(error_estimate, "error_estimate"), flag(shapes, "shapes"), texts(probes, "probes")))
 
 
 def ac(scene, from_hz=None, to_hz=None, points=None, log=None, probes=None, reduce=False,
@@ -55,8 +59,11 @@ def ac(scene, from_hz=None, to_hz=None, points=None, log=None, probes=None, redu
     (the complex responses, [probe, frequency]), input (what drives it), resonances_hz,
     accuracy (max_relative_residual), cost, validity.
     """
-    return Result(_emnet.ac(as_scene(scene)._handle, from_hz, to_hz, points, log, _probes(probes),
-                            reduce, tolerance, band_hz))
+    return _result("ac", _emnet.ac(
+        as_scene(scene)._handle, maybe_number(from_hz, "from_hz"), maybe_number(to_hz, "to_hz"),
+        maybe_integer(points, "points"), maybe_flag(log, "log"), texts(probes, "probes"),
+        flag(reduce, "reduce"), maybe_number(tolerance, "tolerance"),
+        maybe_number(band_hz, "band_hz")))
 
 
 def tran(scene, periods=10.0, switching_hz=None, method="ida", rtol=1e-6, atol=0.0, max_step=0.0,
@@ -73,9 +80,12 @@ def tran(scene, periods=10.0, switching_hz=None, method="ida", rtol=1e-6, atol=0
     Returns a Result with times_s [s], outputs (name, description, unit, values [output,
     time]), statistics (IDA's steps, residual and Jacobian evaluations, ...), cost, validity.
     """
-    return Result(_emnet.tran(as_scene(scene)._handle, periods, switching_hz, method, rtol, atol,
-                              max_step, start, points_per_period, _probes(outputs),
-                              int(shape_instants)))
+    return _result("tran", _emnet.tran(
+        as_scene(scene)._handle, number(periods, "periods"),
+        maybe_number(switching_hz, "switching_hz"), text(method, "method"), number(rtol, "rtol"),
+        number(atol, "atol"), number(max_step, "max_step"), text(start, "start"),
+        integer(points_per_period, "points_per_period"), texts(outputs, "outputs"),
+        integer(shape_instants, "shape_instants")))
 
 
 def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1,
@@ -100,10 +110,11 @@ def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1
     (worst_periodicity_residual); cost (solves, period_runs: shooting's one-period IDA runs,
     unknowns, decomposition_seconds, solve_seconds, total_seconds); validity.
     """
-    return Result(_emnet.sweep_switching(as_scene(scene)._handle, numbers(frequencies, "frequencies"),
-                                         from_hz, to_hz, step_hz, method, samples, rtol,
-                                         _probes(outputs), _probes(sources),
-                                         int(shape_instants)))
+    return _result("sweep_switching", _emnet.sweep_switching(
+        as_scene(scene)._handle, numbers(frequencies, "frequencies"), number(from_hz, "from_hz"),
+        number(to_hz, "to_hz"), number(step_hz, "step_hz"), text(method, "method"),
+        integer(samples, "samples"), number(rtol, "rtol"), texts(outputs, "outputs"),
+        texts(sources, "sources"), integer(shape_instants, "shape_instants")))
 
 
 def identify(scene, target_hz, parameter="beam.bending_stiffness", mode=1):
@@ -114,7 +125,9 @@ def identify(scene, target_hz, parameter="beam.bending_stiffness", mode=1):
     (frequency_residual: (achieved - target) / target), cost (modal_solves, periodic_solves),
     command (this call, for the scene's [provenance]), total_seconds, notes (when there are any).
     """
-    return Result(_emnet.identify(as_scene(scene)._handle, target_hz, parameter, mode))
+    return _result("identify", _emnet.identify(
+        as_scene(scene)._handle, number(target_hz, "target_hz"), text(parameter, "parameter"),
+        integer(mode, "mode")))
 
 
 def sensitivity(scene, modes=3, parameters=None, check=False):
@@ -126,7 +139,9 @@ def sensitivity(scene, modes=3, parameters=None, check=False):
     Returns a Result with modes (frequency_hz, ...), parameters (key, value, unit, and per mode
     the derivatives [Hz per unit] and normalised sensitivities (p/f) df/dp [-]), cost.
     """
-    return Result(_emnet.sensitivity(as_scene(scene)._handle, modes, _probes(parameters), check))
+    return _result("sensitivity", _emnet.sensitivity(
+        as_scene(scene)._handle, integer(modes, "modes"), texts(parameters, "parameters"),
+        flag(check, "check")))
 
 
 def mismatch(scene, frequency_hz=None, output="", change=0.05):
@@ -139,7 +154,9 @@ def mismatch(scene, frequency_hz=None, output="", change=0.05):
     asymmetry_per_unit_change),
     total_seconds, validity, notes (when there are any).
     """
-    return Result(_emnet.mismatch(as_scene(scene)._handle, frequency_hz, output, change))
+    return _result("mismatch", _emnet.mismatch(
+        as_scene(scene)._handle, maybe_number(frequency_hz, "frequency_hz"),
+        text(output, "output"), number(change, "change")))
 
 
 def netlist(scene, analysis="op", periods=2.0, points_per_period=2000, rtol=1e-6, control=False):
@@ -149,8 +166,10 @@ def netlist(scene, analysis="op", periods=2.0, points_per_period=2000, rtol=1e-6
     "deck" instead), automatic_choices, analysis, unknowns (name, vector, sign: where ngspice
     holds each unknown), outputs (probe, vector, unit, description), notes.
     """
-    return Result(_emnet.netlist(as_scene(scene)._handle, analysis, periods, points_per_period,
-                                 rtol, control))
+    return _result("netlist", _emnet.netlist(
+        as_scene(scene)._handle, text(analysis, "analysis"), number(periods, "periods"),
+        integer(points_per_period, "points_per_period"), number(rtol, "rtol"),
+        flag(control, "control")))
 
 
 def crosscheck(scene, analyses="all", timeout=60.0):
@@ -161,4 +180,5 @@ def crosscheck(scene, analyses="all", timeout=60.0):
     (analysis, quantity, largest_difference, where, tolerance, pass, basis), timings, notes,
     total_seconds.
     """
-    return Result(_emnet.crosscheck(as_scene(scene)._handle, analyses, timeout))
+    return _result("crosscheck", _emnet.crosscheck(
+        as_scene(scene)._handle, text(analyses, "analyses"), number(timeout, "timeout")))

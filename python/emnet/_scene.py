@@ -6,32 +6,7 @@ import os
 import re
 
 from . import _emnet
-
-
-def input_error(message, key="", where="python"):
-    """An emnet.InputError raised by the package itself, with .where and .key as the library's."""
-    error = _emnet.InputError((f"key '{key}': " if key else "") + message)
-    error.where, error.key = where, key
-    return error
-
-
-def numbers(values, key):
-    """`values` (None, a number, or any sequence of numbers: list, tuple, numpy array, pandas
-    Series) as a list of floats; an emnet.InputError naming `key` for anything else."""
-    if values is None:
-        return []
-    if isinstance(values, (str, bytes)):
-        raise input_error(f"numbers are wanted, got the text {values!r}", key)
-    if hasattr(values, "tolist"):  # numpy arrays and scalars, pandas Series
-        values = values.tolist()
-    if not isinstance(values, (list, tuple)):
-        values = [values]
-    out = []
-    for value in values:
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise input_error(f"numbers are wanted, got {type(value).__name__} {value!r}", key)
-        out.append(float(value))
-    return out
+from ._convert import input_error, number, text
 
 
 def _plain(value):
@@ -162,11 +137,11 @@ class Scene:
 
     def get(self, key):
         """The value of a numeric key in SI: get("beam.bending_stiffness") -> N*m^2."""
-        return self._handle.get(key)
+        return self._handle.get(text(key, "key"))
 
     def unit(self, key):
         """The SI unit of a numeric key ("N*m^2"; "" when dimensionless)."""
-        return self._handle.unit(key)
+        return self._handle.unit(text(key, "key"))
 
     def keys(self):
         """Every numeric key the scene uses, canonical ("dea[A].lever_arm")."""
@@ -175,9 +150,12 @@ class Scene:
     def with_values(self, values):
         """A copy with numeric keys set to SI values ({key: value}), checked as the reader
         checks them (InputError names the key)."""
+        if not hasattr(values, "items"):
+            raise input_error("values are a dict {key: value in SI} (or a pandas Series by key), "
+                              f"got {type(values).__name__}", "values", "values")
         handle = self._handle.copy()
         for key, value in values.items():
-            handle.set(key, float(value))
+            handle.set(text(key, "values"), number(value, key, "values"))
         return Scene(_handle=handle)
 
     def with_overrides(self, overrides):

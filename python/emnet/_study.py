@@ -6,25 +6,19 @@ import sys
 import time
 
 from . import _emnet
-from ._scene import Scene, as_scene, input_error, numbers
+from ._convert import flag, input_error, integer, numbers, texts
+from ._scene import Scene, as_scene
+
+_SIZE_MAX = 2**63 - 1  # what the bindings' std::size_t and std::uint64_t take
+_SEED_MAX = 2**64 - 1
 
 
 def _vary_texts(vary):
-    if vary is None:
-        return []
-    if isinstance(vary, str):
-        return [vary]
     if isinstance(vary, dict):  # a spec is a text, or the values themselves (any sequence)
         return [f"{key}={spec}" if isinstance(spec, str)
-                else f"{key}=" + ",".join(repr(v) for v in numbers(spec, key))
+                else f"{key}=" + ",".join(repr(v) for v in numbers(spec, key, "vary"))
                 for key, spec in vary.items()]
-    return list(vary)
-
-
-def _analyses_text(analyses):
-    if isinstance(analyses, str):
-        return analyses
-    return ",".join(analyses)
+    return texts(vary, "vary")
 
 
 def variants(scene, vary=None, samples=0, seed=1, variants=None):
@@ -45,7 +39,7 @@ def _variant_table(scene, vary, samples, seed, variants):
     handle = as_scene(scene)._handle
     if variants is not None:
         if vary:
-            raise input_error("give vary or variants, not both", "variants")
+            raise input_error("give vary or variants, not both", "variants", "variants")
         if isinstance(variants, (str, os.PathLike)):
             keys, values = _emnet.read_variants(handle, os.fspath(variants))
         else:
@@ -53,7 +47,9 @@ def _variant_table(scene, vary, samples, seed, variants):
             keys = [handle.canonical_key(str(key)) for key in frame.columns]
             values = frame.to_numpy(dtype=float)
     else:
-        keys, values = _emnet.make_variants(handle, _vary_texts(vary), samples, seed)
+        keys, values = _emnet.make_variants(
+            handle, _vary_texts(vary), integer(samples, "samples", low=0, high=_SIZE_MAX),
+            integer(seed, "seed", low=0, high=_SEED_MAX))
     return pandas.DataFrame(values, columns=keys)
 
 
@@ -107,20 +103,23 @@ def study(scene, vary=None, *, samples=0, seed=1, variants=None, analyses=("mode
     table = _variant_table(scene, vary, samples, seed, variants)
     keys = list(table.columns)
     values = numpy.ascontiguousarray(table.to_numpy(dtype=float))
-    options = {"analyses": _analyses_text(analyses), "modes": modes,
+    progress = flag(progress, "progress")
+    options = {"analyses": ",".join(texts(analyses, "analyses")),
+               "modes": integer(modes, "modes"),
                "sweep_frequencies": numbers(sweep_frequencies, "sweep_frequencies"),
                "report_frequencies": numbers(at, "at")}
     if client is None:
-        parts = [(0, values, _emnet.run_study(scene._handle, keys, values, threads=threads,
+        parts = [(0, values, _emnet.run_study(scene._handle, keys, values,
+                                              threads=integer(threads, "threads"),
                                               progress=progress, **options))]
     else:
         workers = client.scheduler_info()["workers"]
         if not workers:
-            raise input_error("the Dask cluster has no workers", "client")
-        if chunk_size is None:
-            chunk_size = max(20, math.ceil(len(values) / (4 * len(workers))))
+            raise input_error("the Dask cluster has no workers", "client", "client")
+        chunk_size = (max(20, math.ceil(len(values) / (4 * len(workers)))) if chunk_size is None
+                      else integer(chunk_size, "chunk_size"))
         if chunk_size < 1:
-            raise input_error("must be >= 1", "chunk_size")
+            raise input_error("must be >= 1", "chunk_size", "chunk_size")
         state = scene.__getstate__()
         starts = list(range(0, len(values), chunk_size))
         chunks = [values[start:start + chunk_size] for start in starts]
