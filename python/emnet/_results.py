@@ -5,8 +5,12 @@ converted once: objects to Results, arrays of numbers to numpy arrays, arrays of
 (outputs, probes, modes, ...) to a Result of columns, one per key.
 """
 
+from typing import Any, Optional
 
-class Result(dict):
+from ._tables import counted, lines, rows
+
+
+class Result(dict[str, Any]):
     """A result of an emnet analysis: a dict whose keys read as attributes too.
 
     Its keys are those of the command's --json. Nested dicts are Results as well. Arrays are
@@ -15,6 +19,8 @@ class Result(dict):
     result.outputs["right"][k]); row(name) picks one record. A key that is also a dict method
     (values, items, keys) reads with brackets: result.outputs["values"].
     """
+
+    _kind: Optional[str] = None  # the function that made it ("ac"), None for a nested Result
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
@@ -45,5 +51,8 @@ class Result(dict):
     def __dir__(self):
         return list(self.keys()) + list(super().__dir__())
 
-    def __repr__(self):
-        return "Result(" + ", ".join(self.keys()) + ")"
+    def __repr__(self) -> str:
+        count = rows(self)
+        title = (f"emnet.{self._kind} result:" if self._kind
+                 else f"Result, a table of {counted(count, 'row')}:" if count else "Result:")
+        return "\n".join(lines(self, title))
