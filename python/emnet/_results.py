@@ -5,9 +5,12 @@ converted once: objects to Results, arrays of numbers to numpy arrays, arrays of
 (outputs, probes, modes, ...) to a Result of columns, one per key.
 """
 
-from typing import Any, Optional
+from typing import TYPE_CHECKING, Any, Optional
 
 from ._tables import counted, lines, rows
+
+if TYPE_CHECKING:
+    import pandas
 
 
 class Result(dict[str, Any]):
@@ -40,6 +43,11 @@ class Result(dict[str, Any]):
             raise KeyError(f"no {key} '{name}'; there are: {', '.join(map(str, names))}")
         index = names.index(name)
         return Result({column: values[index] for column, values in self.items()})
+
+    def to_frame(self, table: Optional[str] = None) -> "pandas.DataFrame":
+        """The result's table as a pandas DataFrame."""
+        from ._frames import frame
+        return frame(self, table)
 
     def __getattr__(self, name):
         try:

@@ -8,6 +8,8 @@ import numpy
 # A key's unit by how its name ends (the report layer's convention: x_m, frequency_hz, times_s).
 _SUFFIX_UNITS = (("_hz", "Hz"), ("_seconds", "s"), ("_rad", "rad"), ("_deg", "deg"),
                  ("_m", "m"), ("_s", "s"))
+# Keys whose name does not end in their unit.
+_NAME_UNITS = {"pole": "1/s", "pole_error_bound": "1/s"}
 # Keys whose unit is the record's "unit" entry (outputs.row("dx4").right, identify's value).
 _VALUE_KEYS = ("value", "values", "left", "right", "magnitude")
 
@@ -23,6 +25,8 @@ def counted(count: int, noun: str) -> str:
 
 def unit_of(key: str) -> str:
     """The unit a key's name gives ("frequency_hz" -> "Hz"), "" for none."""
+    if key in _NAME_UNITS:
+        return _NAME_UNITS[key]
     for suffix, unit in _SUFFIX_UNITS:
         if key.endswith(suffix):
             return unit

@@ -1,7 +1,14 @@
 """Results read as their values: repr shows each key's value in one line (numbers with their
-units, arrays with their shape and first values, tables with their rows and columns), bounded."""
+units, arrays with their shape and first values, tables with their rows and columns), bounded;
+to_frame gives a result's table as a DataFrame.
+Every value is checked against the result's own arrays: they are the command's numbers
+(test_bindings.py)."""
+
+import pickle
 
 import numpy as np
+import pandas as pd
+import pytest
 
 import emnet
 
@@ -68,3 +75,122 @@ def test_repr_is_bounded_for_every_analysis(fishfin, cantilever):
     assert len(lines) == 40
     assert lines[-1] == "  … and 62 more keys"
     assert lines[1] == "  key0   array(100000) [0, 1, 2, 3, …, 99999]"
+
+
+# ---- DataFrames: each analysis's table; any table inside a result by name --------------------
+
+def test_static_frame_is_its_probes(cantilever):
+    result = emnet.static(cantilever)
+    frame = result.to_frame()
+    assert list(frame.columns) == ["name", "description", "unit", "value"]
+    assert frame["name"].tolist() == ["tip", "mid"]
+    assert frame["value"].tolist() == list(result.probes["value"])
+    # F*L^3/(3*EI) at the tip (exact nodal statics).
+    assert abs(frame.set_index("name").loc["tip", "value"] - 0.5**3 / (3 * 2.0)) < 1e-13
+
+
+def test_modes_frame_has_a_row_per_mode(fishfin):
+    result = emnet.modes(fishfin, count=3, shapes=True)
+    frame = result.to_frame()
+    assert frame.index.name == "mode" and frame.index.tolist() == [1, 2, 3]
+    assert frame["frequency_hz"].tolist() == list(result.modes["frequency_hz"])
+    assert frame["damping_ratio"].tolist() == list(result.modes["damping_ratio"])
+    assert frame["pole_real"].tolist() == list(result.modes["pole"][:, 0])
+    assert frame["pole_imag"].tolist() == list(result.modes["pole"][:, 1])
+    assert "shape" not in frame.columns  # a mode shape per row stays in the result
+    assert frame.attrs["units"]["frequency_hz"] == "Hz"
+    assert frame.attrs["units"]["pole_imag"] == "1/s"
+    # The paper's first resonance, and f = |Im pole| / (2 pi).
+    assert abs(frame.loc[1, "frequency_hz"] - 6.385) < 6.385e-6
+    assert np.allclose(frame["frequency_hz"], frame["pole_imag"] / (2 * np.pi), rtol=1e-12)
+
+
+def test_ac_frame_has_a_row_per_frequency(cantilever):
+    result = emnet.ac(cantilever, from_hz=1, to_hz=50, points=7)
+    frame = result.to_frame()
+    assert frame.index.name == "frequency_hz"
+    assert frame.index.tolist() == list(result.frequencies_hz)
+    assert list(frame.columns) == ["tip_magnitude", "tip_phase_deg", "mid_magnitude",
+                                   "mid_phase_deg"]
+    assert frame["mid_magnitude"].tolist() == list(result.probes["magnitude"][1])
+    assert frame["tip_phase_deg"].tolist() == list(result.probes["phase_deg"][0])
+    assert frame.attrs["units"] == {"frequency_hz": "Hz", "tip_magnitude": "m",
+                                    "tip_phase_deg": "deg", "mid_magnitude": "m",
+                                    "mid_phase_deg": "deg"}
+
+
+def test_tran_frame_has_a_row_per_time(fishfin):
+    result = emnet.tran(fishfin, periods=1, points_per_period=20)
+    frame = result.to_frame()
+    assert frame.index.name == "times_s" and frame.index.tolist() == list(result.times_s)
+    assert list(frame.columns) == list(result.outputs["name"])
+    assert frame["u_A"].tolist() == list(result.outputs.row("u_A")["values"])
+    assert frame.attrs["units"]["dx4"] == "m" and frame.attrs["units"]["u_A"] == "V"
+    assert frame.attrs["units"]["times_s"] == "s"
+
+
+def test_sweep_frame_has_min_and_max_per_output(fishfin):
+    result = emnet.sweep_switching(fishfin, from_hz=4, to_hz=6, step_hz=0.5)
+    frame = result.to_frame()
+    assert frame.index.name == "frequency_hz"
+    assert frame.index.tolist() == [4.0, 4.5, 5.0, 5.5, 6.0]
+    names = list(result.outputs["name"])
+    assert list(frame.columns) == [f"{n}_{m}" for n in names for m in ("min", "max")]
+    assert frame["dx4_min"].tolist() == list(result.outputs.row("dx4").left)
+    assert frame["dx4_max"].tolist() == list(result.outputs.row("dx4").right)
+    assert frame.attrs["units"]["tip_max"] == "m"
+    assert frame["dx4_max"].idxmax() == 6.0  # nearest the 6.385 Hz resonance
+
+
+def test_sensitivity_frame_has_a_row_per_parameter_and_mode(fishfin):
+    keys = ["beam.bending_stiffness", "beam.mass_per_length"]
+    result = emnet.sensitivity(fishfin, modes=2, parameters=keys)
+    frame = result.to_frame()
+    assert frame["parameter"].tolist() == [keys[0], keys[0], keys[1], keys[1]]
+    assert frame["mode"].tolist() == [1, 2, 1, 2]
+    assert frame["unit"].tolist() == ["N*m^2", "N*m^2", "kg/m", "kg/m"]
+    assert frame["frequency_hz"].tolist() == list(result.modes["frequency_hz"]) * 2
+    for row in range(4):
+        per_mode = result.parameters["modes"][row // 2]
+        assert frame["frequency_derivative"][row] == per_mode["frequency_derivative"][row % 2]
+    # (p/f) df/dp = +1/2 for EI and -1/2 for the mass per length (test_bindings.py).
+    assert np.allclose(frame["normalised_natural"], [0.5, 0.5, -0.5, -0.5], atol=1e-8)
+
+
+def test_mismatch_and_crosscheck_frames_are_their_tables(fishfin, cantilever):
+    pair = emnet.mismatch(fishfin)
+    assert pair.to_frame()["asymmetry"].tolist() == list(pair.cases["asymmetry"])
+    assert pair.to_frame().attrs["units"]["left_m"] == "m"
+    check = emnet.crosscheck(cantilever, analyses="op")
+    assert check.to_frame()["quantity"].tolist() == list(check.rows["quantity"])
+    assert check.to_frame()["pass"].all()
+
+
+def test_any_table_reads_by_name_or_by_itself(cantilever, fishfin):
+    result = emnet.static(cantilever)
+    nodes = result.to_frame("nodes")
+    assert nodes["x_m"].tolist() == list(result.nodes["x_m"])
+    assert nodes.attrs["units"] == {"x_m": "m", "deflection_m": "m", "rotation_rad": "rad"}
+    pd.testing.assert_frame_equal(result.nodes.to_frame(), nodes)
+    deck = emnet.netlist(fishfin)
+    assert deck.to_frame("outputs")["probe"].tolist() == list(deck.outputs["probe"])
+
+
+def test_a_result_without_a_table_says_which_have_one(fishfin):
+    with pytest.raises(TypeError) as error:
+        emnet.identify(fishfin, 5.0).to_frame()
+    assert str(error.value).startswith("to_frame(): an emnet.identify result has no table")
+    assert "static, modes, ac, tran, sweep_switching" in str(error.value)
+    with pytest.raises(TypeError) as error:
+        emnet.netlist(fishfin).to_frame()
+    assert "to_frame('unknowns') or to_frame('outputs')" in str(error.value)
+    with pytest.raises(ValueError) as error:
+        emnet.netlist(fishfin).to_frame("nodes")
+    assert str(error.value) == "this result has no table 'nodes'; its tables are: unknowns, outputs"
+
+
+def test_a_pickled_result_keeps_its_table(cantilever):
+    result = emnet.ac(cantilever, from_hz=1, to_hz=50, points=5)
+    again = pickle.loads(pickle.dumps(result))
+    pd.testing.assert_frame_equal(again.to_frame(), result.to_frame())
+    assert repr(again).splitlines()[0] == "emnet.ac result:"

@@ -1,0 +1,144 @@
+"""Results as pandas DataFrames: the table each analysis's result has. pandas is imported when
+first asked for."""
+
+from typing import TYPE_CHECKING, Any, Callable, Mapping, Optional, Sequence
+
+import numpy
+
+from ._tables import rows, unit_of
+
+if TYPE_CHECKING:
+    import pandas
+
+    from ._results import Result
+
+# The analyses whose result has a table of its own, and which (for messages).
+_FRAME_TABLES = ("static, modes, ac, tran, sweep_switching, sensitivity, mismatch and "
+                 "crosscheck")
+
+
+def _is_scalar(value: Any) -> bool:
+    return value is None or isinstance(value, (str, bool, int, float, complex, numpy.generic))
+
+
+def columns_frame(table: Mapping[str, Any], index: Optional[Sequence[Any]] = None
+                  ) -> "pandas.DataFrame":
+    """A DataFrame of a table's columns, units by their names in df.attrs["units"]. A column of
+    [re, im] pairs (pole) becomes <name>_real and <name>_imag; columns of per-record arrays or
+    records (mode shapes, per-mode probes) are left out."""
+    import pandas
+
+    data: dict[str, Any] = {}
+    units: dict[str, str] = {}
+    for name, column in table.items():
+        if isinstance(column, numpy.ndarray) and column.ndim == 2 and column.shape[1] == 2 \
+                and "pole" in name:
+            for part, values in (("real", column[:, 0]), ("imag", column[:, 1])):
+                data[f"{name}_{part}"], units[f"{name}_{part}"] = values, unit_of(name)
+        elif (isinstance(column, numpy.ndarray) and column.ndim == 1) or \
+                (isinstance(column, list) and all(map(_is_scalar, column))):
+            data[name], units[name] = column, unit_of(name)
+    frame = pandas.DataFrame(data, index=index)
+    frame.attrs["units"] = units
+    return frame
+
+
+def _indexed(data: dict[str, Any], units: dict[str, str], index: Any, name: str
+             ) -> "pandas.DataFrame":
+    """A DataFrame of `data` over `index` (named `name`), units in df.attrs["units"]."""
+    import pandas
+
+    frame = pandas.DataFrame(data, index=pandas.Index(index, name=name))
+    frame.attrs["units"] = {name: unit_of(name), **units}
+    return frame
+
+
+def _ac_frame(result: "Result") -> "pandas.DataFrame":
+    probes = result.probes
+    data, units = {}, {}
+    for k, (name, unit) in enumerate(zip(probes["name"], probes["unit"])):
+        data[f"{name}_magnitude"], units[f"{name}_magnitude"] = probes["magnitude"][k], unit
+        data[f"{name}_phase_deg"], units[f"{name}_phase_deg"] = probes["phase_deg"][k], "deg"
+    return _indexed(data, units, result.frequencies_hz, "frequency_hz")
+
+
+def _tran_frame(result: "Result") -> "pandas.DataFrame":
+    outputs = result.outputs
+    data = dict(zip(outputs["name"], outputs["values"]))
+    return _indexed(data, dict(zip(outputs["name"], outputs["unit"])), result.times_s, "times_s")
+
+
+def _sweep_frame(result: "Result") -> "pandas.DataFrame":
+    outputs = result.outputs
+    data, units = {}, {}
+    for k, (name, unit) in enumerate(zip(outputs["name"], outputs["unit"])):
+        data[f"{name}_min"], units[f"{name}_min"] = outputs["left"][k], unit
+        data[f"{name}_max"], units[f"{name}_max"] = outputs["right"][k], unit
+    return _indexed(data, units, result.frequencies_hz, "frequency_hz")
+
+
+def _sensitivity_frame(result: "Result") -> "pandas.DataFrame":
+    import pandas
+
+    parameters = result.parameters
+    parts = []
+    for k, key in enumerate(parameters["key"]):
+        part = columns_frame(parameters["modes"][k])
+        count = len(part)
+        part.insert(0, "frequency_hz", result.modes["frequency_hz"][:count])
+        part.insert(0, "mode", numpy.arange(1, count + 1))
+        part.insert(0, "value", parameters["value"][k])
+        part.insert(0, "unit", parameters["unit"][k])
+        part.insert(0, "parameter", key)
+        parts.append(part)
+    frame = pandas.concat(parts, ignore_index=True)
+    per_unit = {"frequency_derivative": "Hz", "natural_frequency_derivative": "Hz",
+                "pole_derivative_real": "1/s", "pole_derivative_imag": "1/s",
+                "finite_difference_pole_derivative_real": "1/s",
+                "finite_difference_pole_derivative_imag": "1/s"}
+    frame.attrs["units"] = {column: (f"{per_unit[column]} per unit of the parameter"
+                                     if column in per_unit else unit_of(column))
+                            for column in frame.columns}
+    return frame
+
+
+def _modes_frame(result: "Result") -> "pandas.DataFrame":
+    import pandas
+
+    count = rows(result.modes) or 0
+    return columns_frame(result.modes, pandas.RangeIndex(1, count + 1, name="mode"))
+
+
+_FRAMES: dict[str, Callable[["Result"], "pandas.DataFrame"]] = {
+    "static": lambda result: columns_frame(result.probes),
+    "modes": _modes_frame,
+    "ac": _ac_frame,
+    "tran": _tran_frame,
+    "sweep_switching": _sweep_frame,
+    "sensitivity": _sensitivity_frame,
+    "mismatch": lambda result: columns_frame(result.cases),
+    "crosscheck": lambda result: columns_frame(result.rows),
+}
+
+
+def _tables_of(result: Mapping[str, Any]) -> list[str]:
+    return [key for key, value in result.items() if isinstance(value, dict) and rows(value)]
+
+
+def frame(result: "Result", table: Optional[str] = None) -> "pandas.DataFrame":
+    """result.to_frame(table): see Result.to_frame."""
+    tables = _tables_of(result)
+    if table is not None:
+        if table not in tables:
+            raise ValueError(f"this result has no table '{table}'; its tables are: "
+                             f"{', '.join(tables) or 'none'}")
+        return columns_frame(result[table])
+    if result._kind in _FRAMES:
+        return _FRAMES[result._kind](result)
+    if rows(result):
+        return columns_frame(result)
+    what = f"an emnet.{result._kind} result" if result._kind else "this result"
+    named = (f"name a table inside it: {' or '.join(f'to_frame({t!r})' for t in tables)}"
+             if tables else "it holds no table to name either")
+    raise TypeError(f"to_frame(): {what} has no table of its own (the results of {_FRAME_TABLES} "
+                    f"have one); {named}")
