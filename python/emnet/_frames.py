@@ -1,5 +1,5 @@
-"""Results as pandas DataFrames: the table each analysis's result has. pandas is imported when
-first asked for."""
+"""Results as pandas DataFrames and xarray Datasets: the table each analysis's result has, and its
+arrays over outputs and frequency or time. pandas and xarray are imported when first asked for."""
 
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Optional, Sequence
 
@@ -9,6 +9,7 @@ from ._tables import rows, unit_of
 
 if TYPE_CHECKING:
     import pandas
+    import xarray
 
     from ._results import Result
 
@@ -142,3 +143,69 @@ def frame(result: "Result", table: Optional[str] = None) -> "pandas.DataFrame":
              if tables else "it holds no table to name either")
     raise TypeError(f"to_frame(): {what} has no table of its own (the results of {_FRAME_TABLES} "
                     f"have one); {named}")
+
+
+def _scalars(result: Mapping[str, Any]) -> dict[str, Any]:
+    """A result's top-level numbers and texts (a Dataset's attrs)."""
+    return {key: value for key, value in result.items()
+            if isinstance(value, (str, int, float)) and not isinstance(value, bool)}
+
+
+def _over_outputs(result: "Result", table: Mapping[str, Any],
+                  variables: dict[str, tuple[Any, Optional[str], str]], dim: str, axis: str,
+                  values: Any) -> "xarray.Dataset":
+    """A Dataset of `variables` ({name: (array [output, dim], unit or None for the outputs',
+    description)}) over the table's outputs and `dim`, whose coordinate `axis` holds `values`
+    (an index: ds.sel(frequency_hz=5.0))."""
+    import xarray
+
+    units = list(table["unit"])
+    common = units[0] if len(set(units)) == 1 else None
+    data = {}
+    for name, (array, unit, description) in variables.items():
+        attrs = {"long_name": description}
+        if unit or common:
+            attrs["units"] = unit or common
+        data[name] = (("output", dim), array, attrs)
+    coords = {"output": list(table["name"]), "unit": ("output", units),
+              "description": ("output", list(table["description"])),
+              axis: (dim, values, {"units": unit_of(axis)})}
+    attrs = {"analysis": f"emnet.{result._kind}", **_scalars(result)}
+    return xarray.Dataset(data, coords=coords, attrs=attrs).set_xindex(axis)
+
+
+def _ac_dataset(result: "Result") -> "xarray.Dataset":
+    probes = result.probes
+    variables = {"magnitude": (probes["magnitude"], None, "magnitude per unit input"),
+                 "phase_deg": (probes["phase_deg"], "deg", "phase")}
+    if "phasors" in result:
+        variables["phasor"] = (result.phasors, None, "complex response per unit input")
+    return _over_outputs(result, probes, variables, "frequency", "frequency_hz",
+                         result.frequencies_hz)
+
+
+def _sweep_dataset(result: "Result") -> "xarray.Dataset":
+    outputs = result.outputs
+    variables = {"minimum": (outputs["left"], None, "periodic minimum (left)"),
+                 "maximum": (outputs["right"], None, "periodic maximum (right)")}
+    return _over_outputs(result, outputs, variables, "frequency", "frequency_hz",
+                         result.frequencies_hz)
+
+
+def _tran_dataset(result: "Result") -> "xarray.Dataset":
+    outputs = result.outputs
+    variables = {"value": (outputs["values"], None, "output value")}
+    return _over_outputs(result, outputs, variables, "time", "times_s", result.times_s)
+
+
+_DATASETS: dict[str, Callable[["Result"], "xarray.Dataset"]] = {
+    "ac": _ac_dataset, "sweep_switching": _sweep_dataset, "tran": _tran_dataset}
+
+
+def dataset(result: "Result") -> "xarray.Dataset":
+    """result.to_xarray(): see Result.to_xarray."""
+    if result._kind not in _DATASETS:
+        what = f"an emnet.{result._kind} result" if result._kind else "this result"
+        raise TypeError(f"to_xarray(): {what} has no arrays over outputs; the results of ac, "
+                        "sweep_switching and tran have (their tables read with to_frame())")
+    return _DATASETS[result._kind](result)

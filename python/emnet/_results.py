@@ -11,6 +11,7 @@ from ._tables import counted, lines, rows
 
 if TYPE_CHECKING:
     import pandas
+    import xarray
 
 
 class Result(dict[str, Any]):
@@ -48,6 +49,11 @@ class Result(dict[str, Any]):
         """The result's table as a pandas DataFrame."""
         from ._frames import frame
         return frame(self, table)
+
+    def to_xarray(self) -> "xarray.Dataset":
+        """The result's arrays over outputs as an xarray Dataset."""
+        from ._frames import dataset
+        return dataset(self)
 
     def __getattr__(self, name):
         try:

@@ -1,6 +1,6 @@
 """Results read as their values: repr shows each key's value in one line (numbers with their
 units, arrays with their shape and first values, tables with their rows and columns), bounded;
-to_frame gives a result's table as a DataFrame.
+to_frame gives a result's table as a DataFrame, to_xarray its arrays over outputs as a Dataset.
 Every value is checked against the result's own arrays: they are the command's numbers
 (test_bindings.py)."""
 
@@ -194,3 +194,53 @@ def test_a_pickled_result_keeps_its_table(cantilever):
     again = pickle.loads(pickle.dumps(result))
     pd.testing.assert_frame_equal(again.to_frame(), result.to_frame())
     assert repr(again).splitlines()[0] == "emnet.ac result:"
+
+
+# ---- xarray: arrays over outputs and frequency or time ---------------------------------------
+
+def test_ac_dataset(cantilever):
+    result = emnet.ac(cantilever, from_hz=1, to_hz=50, points=7)
+    data = result.to_xarray()
+    assert dict(data.sizes) == {"output": 2, "frequency": 7}
+    assert data["magnitude"].dims == ("output", "frequency")
+    assert data["output"].values.tolist() == ["tip", "mid"]
+    assert data["frequency_hz"].values.tolist() == list(result.frequencies_hz)
+    assert data["frequency_hz"].attrs["units"] == "Hz"
+    assert (data["magnitude"].values == result.probes["magnitude"]).all()
+    assert (data["phase_deg"].values == result.probes["phase_deg"]).all()
+    assert (data["phasor"].values == result.phasors).all()
+    assert data["magnitude"].attrs["units"] == "m" and data["phase_deg"].attrs["units"] == "deg"
+    f = result.frequencies_hz[3]
+    assert data["magnitude"].sel(output="mid", frequency_hz=f).item() == \
+        result.probes["magnitude"][1][3]
+    assert data.attrs["analysis"] == "emnet.ac" and data.attrs["scene"] == "cantilever"
+
+
+def test_sweep_dataset(fishfin):
+    result = emnet.sweep_switching(fishfin, from_hz=4, to_hz=6, step_hz=1)
+    data = result.to_xarray()
+    assert data["minimum"].dims == ("output", "frequency")
+    assert (data["minimum"].values == result.outputs["left"]).all()
+    assert (data["maximum"].values == result.outputs["right"]).all()
+    assert data["maximum"].sel(output="dx4", frequency_hz=5.0).item() == \
+        result.outputs.row("dx4").right[1]
+    assert data["maximum"].attrs["units"] == "m"
+    assert data.attrs["sweep_peak_hz"] == result.sweep_peak_hz
+
+
+def test_tran_dataset(fishfin):
+    result = emnet.tran(fishfin, periods=1, points_per_period=20)
+    data = result.to_xarray()
+    assert data["value"].dims == ("output", "time")
+    assert data["times_s"].values.tolist() == list(result.times_s)
+    assert (data["value"].values == result.outputs["values"]).all()
+    # Outputs of several units: each output's unit is a coordinate, no unit for the whole.
+    assert data["unit"].sel(output="u_A").item() == "V"
+    assert "units" not in data["value"].attrs
+
+
+def test_to_xarray_says_which_results_have_arrays(fishfin):
+    with pytest.raises(TypeError) as error:
+        emnet.modes(fishfin).to_xarray()
+    assert str(error.value).startswith("to_xarray(): an emnet.modes result has no arrays")
+    assert "ac, sweep_switching and tran" in str(error.value)
