@@ -1,13 +1,13 @@
 """The analyses of one scene. Each returns a Result (see emnet.Result) with the keys of the
 command's --json: the same keys in both front-ends."""
 
-from typing import Any
+from typing import Any, Optional
 
 from . import _emnet
-from ._convert import (flag, integer, maybe_flag, maybe_integer, maybe_number, number, numbers,
-                       text, texts)
+from ._convert import (Flag, Integer, Number, Numbers, Texts, flag, integer, maybe_flag,
+                       maybe_integer, maybe_number, number, numbers, text, texts)
 from ._results import Result
-from ._scene import as_scene
+from ._scene import SceneLike, as_scene
 
 
 def _result(kind: str, data: dict[str, Any]) -> Result:
@@ -17,7 +17,7 @@ def _result(kind: str, data: dict[str, Any]) -> Result:
     return result
 
 
-def static(scene, probes=None):
+def static(scene: SceneLike, probes: Optional[Texts] = None) -> Result:
     """The static state at rest under the drive's first half-period (as `emnet static`).
 
     scene: a Scene or a scene file's path. probes: probe names of the scene or texts such as
@@ -30,7 +30,8 @@ def static(scene, probes=None):
     return _result("static", _emnet.static(as_scene(scene)._handle, texts(probes, "probes")))
 
 
-def modes(scene, count=0, dense=False, error_estimate=True, shapes=False, probes=None):
+def modes(scene: SceneLike, count: Integer = 0, dense: Flag = False, error_estimate: Flag = True,
+          shapes: Flag = False, probes: Optional[Texts] = None) -> Result:
     """The modes about the operating point (as `emnet modes`).
 
     count: oscillatory modes kept (0: the 10 lowest). dense: every pole by the dense method.
@@ -47,8 +48,10 @@ def modes(scene, count=0, dense=False, error_estimate=True, shapes=False, probes
         flag(error_estimate, "error_estimate"), flag(shapes, "shapes"), texts(probes, "probes")))
 
 
-def ac(scene, from_hz=None, to_hz=None, points=None, log=None, probes=None, reduce=False,
-       tolerance=None, band_hz=None):
+def ac(scene: SceneLike, from_hz: Optional[Number] = None, to_hz: Optional[Number] = None,
+       points: Optional[Integer] = None, log: Optional[Flag] = None,
+       probes: Optional[Texts] = None, reduce: Flag = False, tolerance: Optional[Number] = None,
+       band_hz: Optional[Number] = None) -> Result:
     """The small-signal frequency response (as `emnet ac`).
 
     from_hz, to_hz [Hz], points, log (a log-spaced grid): default the scene's [ac] table.
@@ -66,8 +69,10 @@ def ac(scene, from_hz=None, to_hz=None, points=None, log=None, probes=None, redu
         maybe_number(band_hz, "band_hz")))
 
 
-def tran(scene, periods=10.0, switching_hz=None, method="ida", rtol=1e-6, atol=0.0, max_step=0.0,
-         start="rest", points_per_period=100, outputs=None, shape_instants=0):
+def tran(scene: SceneLike, periods: Number = 10.0, switching_hz: Optional[Number] = None,
+         method: str = "ida", rtol: Number = 1e-6, atol: Number = 0.0, max_step: Number = 0.0,
+         start: str = "rest", points_per_period: Integer = 100, outputs: Optional[Texts] = None,
+         shape_instants: Integer = 0) -> Result:
     """The time response to the scene's drive (as `emnet tran`).
 
     periods of the drive's frequency (or switching_hz [Hz]); method "ida" (SUNDIALS IDA, any
@@ -88,9 +93,11 @@ def tran(scene, periods=10.0, switching_hz=None, method="ida", rtol=1e-6, atol=0
         integer(shape_instants, "shape_instants")))
 
 
-def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1,
-                    method="auto", samples=0, rtol=1e-9, outputs=None, sources=None,
-                    shape_instants=0):
+def sweep_switching(scene: SceneLike, frequencies: Optional[Numbers] = None,
+                    from_hz: Number = 1.0, to_hz: Number = 7.0, step_hz: Number = 0.1,
+                    method: str = "auto", samples: Integer = 0, rtol: Number = 1e-9,
+                    outputs: Optional[Texts] = None, sources: Optional[Texts] = None,
+                    shape_instants: Integer = 0) -> Result:
     """Periodic steady-state extremes against the switching frequency (as `emnet sweep-switching`).
 
     frequencies [Hz] (or from_hz, to_hz, step_hz); method "auto" (exact for a linear network,
@@ -117,7 +124,8 @@ def sweep_switching(scene, frequencies=None, from_hz=1.0, to_hz=7.0, step_hz=0.1
         texts(sources, "sources"), integer(shape_instants, "shape_instants")))
 
 
-def identify(scene, target_hz, parameter="beam.bending_stiffness", mode=1):
+def identify(scene: SceneLike, target_hz: Number, parameter: str = "beam.bending_stiffness",
+             mode: Integer = 1) -> Result:
     """The value of `parameter` that puts mode `mode` at target_hz [Hz] (as `emnet identify`).
 
     Returns a Result with automatic_choices, parameter (its canonical key), value and unit (SI),
@@ -130,7 +138,8 @@ def identify(scene, target_hz, parameter="beam.bending_stiffness", mode=1):
         integer(mode, "mode")))
 
 
-def sensitivity(scene, modes=3, parameters=None, check=False):
+def sensitivity(scene: SceneLike, modes: Integer = 3, parameters: Optional[Texts] = None,
+                check: Flag = False) -> Result:
     """d f/d p of the lowest `modes` resonances for every parameter (as `emnet sensitivity`).
 
     parameters: keys (default: every parameter the scene uses). check: also the finite
@@ -144,7 +153,8 @@ def sensitivity(scene, modes=3, parameters=None, check=False):
         flag(check, "check")))
 
 
-def mismatch(scene, frequency_hz=None, output="", change=0.05):
+def mismatch(scene: SceneLike, frequency_hz: Optional[Number] = None, output: str = "",
+             change: Number = 0.05) -> Result:
     """Left/right asymmetry of the periodic peaks when one DEA differs by ±change (as `emnet
     mismatch`): electrode area, film thickness, overlap.
 
@@ -159,7 +169,9 @@ def mismatch(scene, frequency_hz=None, output="", change=0.05):
         text(output, "output"), number(change, "change")))
 
 
-def netlist(scene, analysis="op", periods=2.0, points_per_period=2000, rtol=1e-6, control=False):
+def netlist(scene: SceneLike, analysis: str = "op", periods: Number = 2.0,
+            points_per_period: Integer = 2000, rtol: Number = 1e-6,
+            control: Flag = False) -> Result:
     """The scene's network as a SPICE deck (as `emnet netlist`): analysis "op", "ac" or "tran".
 
     Returns a Result with text (the deck; the command writes it to a file and names that
@@ -172,7 +184,7 @@ def netlist(scene, analysis="op", periods=2.0, points_per_period=2000, rtol=1e-6
         flag(control, "control")))
 
 
-def crosscheck(scene, analyses="all", timeout=60.0):
+def crosscheck(scene: SceneLike, analyses: str = "all", timeout: Number = 60.0) -> Result:
     """emnet against ngspice on the same network (as `emnet crosscheck`): "op,ac,modal,tran".
 
     ngspice runs in its own worker process (timeout [s]). Returns a Result with scene,

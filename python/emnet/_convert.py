@@ -21,6 +21,8 @@ Integer = Union[int, numpy.integer[Any]]
 Numbers = Union[Number, Sequence[Number], NDArray[Any]]
 #: Texts: one text or a sequence of texts.
 Texts = Union[str, Sequence[str]]
+#: A flag: True or False (numpy's too).
+Flag = Union[bool, numpy.bool_]
 
 _INT_MIN, _INT_MAX = -2**31, 2**31 - 1  # the bindings' C int
 

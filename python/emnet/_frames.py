@@ -152,7 +152,7 @@ def _scalars(result: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def _over_outputs(result: "Result", table: Mapping[str, Any],
-                  variables: dict[str, tuple[Any, Optional[str], str]], dim: str, axis: str,
+                  variables: Mapping[str, tuple[Any, Optional[str], str]], dim: str, axis: str,
                   values: Any) -> "xarray.Dataset":
     """A Dataset of `variables` ({name: (array [output, dim], unit or None for the outputs',
     description)}) over the table's outputs and `dim`, whose coordinate `axis` holds `values`

@@ -26,13 +26,13 @@ class Result(dict[str, Any]):
 
     _kind: Optional[str] = None  # the function that made it ("ac"), None for a nested Result
 
-    def __init__(self, *args, **kwargs):
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         for key, value in self.items():
             if isinstance(value, dict) and not isinstance(value, Result):
                 self[key] = Result(value)
 
-    def row(self, name, key="name"):
+    def row(self, name: Any, key: str = "name") -> "Result":
         """One record of a table by its name: result.outputs.row("dx4").right.
 
         A table (an array of records in the command's --json, such as outputs, probes, modes)
@@ -55,14 +55,14 @@ class Result(dict[str, Any]):
         from ._frames import dataset
         return dataset(self)
 
-    def __getattr__(self, name):
+    def __getattr__(self, name: str) -> Any:
         try:
             return self[name]
         except KeyError:
             raise AttributeError(
                 f"this result has no '{name}'; it has: {', '.join(self.keys())}") from None
 
-    def __dir__(self):
+    def __dir__(self) -> list[str]:
         return list(self.keys()) + list(super().__dir__())
 
     def __repr__(self) -> str:

@@ -4,12 +4,16 @@ import json
 import math
 import os
 import re
+from typing import Any, Mapping, Optional, Union
 
 from . import _emnet
-from ._convert import input_error, number, text
+from ._convert import Number, input_error, number, text
+
+#: Overrides: {key: value}, a number in the key's SI unit or a text that may carry a unit.
+Overrides = Mapping[str, Any]
 
 
-def _plain(value):
+def _plain(value: Any) -> Any:
     """numpy scalars and arrays as Python numbers and lists (TOML and the bindings take those)."""
     if type(value).__module__ == "numpy" and hasattr(value, "tolist"):
         return value.tolist()
@@ -19,7 +23,7 @@ def _plain(value):
 _BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
 
 
-def _toml_key(name, key):
+def _toml_key(name: object, key: str) -> str:
     """A TOML key for `name`: bare when TOML allows it, otherwise a quoted basic string, so a
     name holding '#', '=', ']', quotes or a newline is one key and never a line of its own."""
     if not isinstance(name, str):
@@ -29,7 +33,7 @@ def _toml_key(name, key):
     return json.dumps(name, ensure_ascii=False)
 
 
-def _toml_value(value, key):
+def _toml_value(value: Any, key: str) -> str:
     value = _plain(value)
     if isinstance(value, bool):
         return "true" if value else "false"
@@ -50,7 +54,7 @@ def _toml_value(value, key):
                       "booleans, lists and dicts are)", key)
 
 
-def dict_to_toml(data):
+def dict_to_toml(data: Mapping[str, Any]) -> str:
     """The TOML text of a scene given as a dict: {"beam": {...}, "dea": [{...}, {...}], ...}."""
     if not isinstance(data, dict):
         raise input_error("a scene dict maps table names to tables, e.g. "
@@ -75,7 +79,7 @@ def dict_to_toml(data):
     return "\n".join(lines)
 
 
-def _override_texts(overrides):
+def _override_texts(overrides: Optional[Overrides]) -> list[str]:
     if overrides is None:
         return []
     if not isinstance(overrides, dict):
@@ -102,52 +106,59 @@ class Scene:
     so they travel to Dask workers and compute there what they compute here.
     """
 
-    def __init__(self, path=None, set=None, *, _handle=None):
+    def __init__(self, path: Union[str, "os.PathLike[str]", None] = None,
+                 set: Optional[Overrides] = None, *,
+                 _handle: Optional[_emnet.SceneHandle] = None) -> None:
         if _handle is not None:
             self._handle = _handle
             return
         if path is None:
             raise input_error("Scene(path): give a scene file's path (or use "
                                     "Scene.from_text / Scene.from_dict)")
+        if not isinstance(path, (str, os.PathLike)):
+            raise input_error(f"a scene file's path is a str or a pathlib.Path, got "
+                              f"{type(path).__name__}", "path", "path")
         self._handle = _emnet.SceneHandle.read(os.fspath(path), _override_texts(set))
 
     @classmethod
-    def from_text(cls, text, name="<text>", set=None):
+    def from_text(cls, text: str, name: str = "<text>",
+                  set: Optional[Overrides] = None) -> "Scene":
         """A scene from TOML text; `name` stands for the file in messages."""
         return cls(_handle=_emnet.SceneHandle.parse(text, name, _override_texts(set)))
 
     @classmethod
-    def from_dict(cls, data, name="<dict>", set=None):
+    def from_dict(cls, data: Mapping[str, Any], name: str = "<dict>",
+                  set: Optional[Overrides] = None) -> "Scene":
         """A scene from a dict of tables: {"scene": {"name": "x"}, "beam": {...}, "dea": [...]}."""
         return cls.from_text(dict_to_toml(data), name, set)
 
     @property
-    def name(self):
+    def name(self) -> str:
         """scene.name"""
         return self._handle.name
 
     @property
-    def title(self):
+    def title(self) -> str:
         return self._handle.title
 
     @property
-    def file(self):
+    def file(self) -> str:
         """The file it was read from ("<text>", "<dict>" for one held in memory)."""
         return self._handle.file
 
-    def get(self, key):
+    def get(self, key: str) -> float:
         """The value of a numeric key in SI: get("beam.bending_stiffness") -> N*m^2."""
         return self._handle.get(text(key, "key"))
 
-    def unit(self, key):
+    def unit(self, key: str) -> str:
         """The SI unit of a numeric key ("N*m^2"; "" when dimensionless)."""
         return self._handle.unit(text(key, "key"))
 
-    def keys(self):
+    def keys(self) -> list[str]:
         """Every numeric key the scene uses, canonical ("dea[A].lever_arm")."""
         return self._handle.numeric_keys()
 
-    def with_values(self, values):
+    def with_values(self, values: Mapping[str, Number]) -> "Scene":
         """A copy with numeric keys set to SI values ({key: value}), checked as the reader
         checks them (InputError names the key)."""
         if not hasattr(values, "items"):
@@ -158,7 +169,7 @@ class Scene:
             handle.set(text(key, "values"), number(value, key, "values"))
         return Scene(_handle=handle)
 
-    def with_overrides(self, overrides):
+    def with_overrides(self, overrides: Overrides) -> "Scene":
         """A copy read again with more overrides ({key: value}, units allowed)."""
         handle = self._handle
         fresh = _emnet.SceneHandle.parse(handle.text, handle.file,
@@ -168,25 +179,29 @@ class Scene:
             fresh.set(key, value)
         return Scene(_handle=fresh)
 
-    def __getstate__(self):
+    def __getstate__(self) -> dict[str, Any]:
         # The pwl files it read travel as data: a worker in another directory, or after the file
         # changed, rebuilds the very scene that was read here.
         h = self._handle
         return {"text": h.text, "file": h.file, "overrides": list(h.overrides),
                 "sets": list(h.sets), "files": dict(h.files)}
 
-    def __setstate__(self, state):
+    def __setstate__(self, state: Mapping[str, Any]) -> None:
         handle = _emnet.SceneHandle.parse(state["text"], state["file"], state["overrides"],
                                           state.get("files", {}))
         for key, value in state["sets"]:
             handle.set(key, value)
         self._handle = handle
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"Scene({self.name!r} from {self.file!r})"
 
 
-def as_scene(scene):
+#: A scene, or a scene file's path.
+SceneLike = Union[Scene, str, "os.PathLike[str]"]
+
+
+def as_scene(scene: SceneLike) -> Scene:
     """A Scene from a Scene or a path."""
     if isinstance(scene, Scene):
         return scene

@@ -4,16 +4,28 @@ import math
 import os
 import sys
 import time
+from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
+
+import numpy
+from numpy.typing import NDArray
 
 from . import _emnet
-from ._convert import flag, input_error, integer, numbers, texts
-from ._scene import Scene, as_scene
+from ._convert import Integer, Numbers, Texts, input_error, integer, numbers, texts
+from ._scene import Scene, SceneLike, as_scene
+
+if TYPE_CHECKING:
+    import pandas
+
+#: Variations: "KEY=SPEC" texts, or {KEY: SPEC}, a SPEC being a text or the values themselves.
+Vary = Union[str, Sequence[str], Mapping[str, Union[str, Numbers]]]
+#: Variants given as they are: a CSV file's path, or a DataFrame (or dict) of keys.
+Variants = Union[str, "os.PathLike[str]", "pandas.DataFrame", Mapping[str, Numbers]]
 
 _SIZE_MAX = 2**63 - 1  # what the bindings' std::size_t and std::uint64_t take
 _SEED_MAX = 2**64 - 1
 
 
-def _vary_texts(vary):
+def _vary_texts(vary: Optional[Vary]) -> list[str]:
     if isinstance(vary, dict):  # a spec is a text, or the values themselves (any sequence)
         return [f"{key}={spec}" if isinstance(spec, str)
                 else f"{key}=" + ",".join(repr(v) for v in numbers(spec, key, "vary"))
@@ -21,7 +33,8 @@ def _vary_texts(vary):
     return texts(vary, "vary")
 
 
-def variants(scene, vary=None, samples=0, seed=1, variants=None):
+def variants(scene: SceneLike, vary: Optional[Vary] = None, samples: Integer = 0,
+             seed: Integer = 1, variants: Optional[Variants] = None) -> "pandas.DataFrame":
     """The variants of a study, as a pandas DataFrame (one column per key, SI values).
 
     vary: ["KEY=SPEC", ...] or {KEY: SPEC}: values "v1,v2" or linspace(a,b,n), logspace(a,b,n)
@@ -33,7 +46,8 @@ def variants(scene, vary=None, samples=0, seed=1, variants=None):
     return _variant_table(scene, vary, samples, seed, variants)
 
 
-def _variant_table(scene, vary, samples, seed, variants):
+def _variant_table(scene: SceneLike, vary: Optional[Vary], samples: Integer, seed: Integer,
+                   variants: Optional[Variants]) -> "pandas.DataFrame":
     import pandas
 
     handle = as_scene(scene)._handle
@@ -53,17 +67,19 @@ def _variant_table(scene, vary, samples, seed, variants):
     return pandas.DataFrame(values, columns=keys)
 
 
-def _run_chunk(state, keys, values, options):
+def _run_chunk(state: dict[str, Any], keys: list[str], values: NDArray[numpy.float64],
+               options: dict[str, Any]) -> dict[str, Any]:
     """One chunk of variants on a worker (a Dask task): the study's dict for those rows."""
     scene = Scene.__new__(Scene)
     scene.__setstate__(state)
     return _emnet.run_study(scene._handle, keys, values, **options)
 
 
-def _frame(keys, values, first_variant, part):
+def _frame(keys: list[str], values: NDArray[numpy.float64], first_variant: int,
+           part: Mapping[str, Any]) -> "pandas.DataFrame":
     import pandas
 
-    data = {"variant": range(first_variant, first_variant + len(values))}
+    data: dict[str, Any] = {"variant": range(first_variant, first_variant + len(values))}
     for index, key in enumerate(keys):
         data[key] = values[:, index]
     data["status"] = part["status"]
@@ -73,8 +89,12 @@ def _frame(keys, values, first_variant, part):
     return pandas.DataFrame(data)
 
 
-def study(scene, vary=None, *, samples=0, seed=1, variants=None, analyses=("modes",), modes=1,
-          sweep_frequencies=None, at=(), threads=0, client=None, chunk_size=None, progress=False):
+def study(scene: SceneLike, vary: Optional[Vary] = None, *, samples: Integer = 0,
+          seed: Integer = 1, variants: Optional[Variants] = None,
+          analyses: Texts = ("modes",), modes: Integer = 1,
+          sweep_frequencies: Optional[Numbers] = None, at: Numbers = (), threads: Integer = 0,
+          client: Any = None, chunk_size: Optional[Integer] = None,
+          progress: Any = False) -> "pandas.DataFrame":
     """A design study: every variant of `scene` through `analyses`, one row per variant.
 
     scene: a Scene or a path. vary / samples / seed / variants: the variants (see
@@ -96,18 +116,15 @@ def study(scene, vary=None, *, samples=0, seed=1, variants=None, analyses=("mode
     cost (seconds per stage summed over the variants, work and wall seconds), segments,
     unknowns, notes.
     """
-    import numpy
-
     started = time.perf_counter()
     scene = as_scene(scene)
     table = _variant_table(scene, vary, samples, seed, variants)
     keys = list(table.columns)
     values = numpy.ascontiguousarray(table.to_numpy(dtype=float))
-    progress = flag(progress, "progress")
-    options = {"analyses": ",".join(texts(analyses, "analyses")),
-               "modes": integer(modes, "modes"),
-               "sweep_frequencies": numbers(sweep_frequencies, "sweep_frequencies"),
-               "report_frequencies": numbers(at, "at")}
+    options: dict[str, Any] = {
+        "analyses": ",".join(texts(analyses, "analyses")), "modes": integer(modes, "modes"),
+        "sweep_frequencies": numbers(sweep_frequencies, "sweep_frequencies"),
+        "report_frequencies": numbers(at, "at")}
     if client is None:
         parts = [(0, values, _emnet.run_study(scene._handle, keys, values,
                                               threads=integer(threads, "threads"),

@@ -113,11 +113,12 @@ KEYWORDS = {
     "crosscheck": {"analyses": "text", "timeout": "number"},
     "study": {"vary": "texts", "samples": "integer", "seed": "integer", "analyses": "texts",
               "modes": "integer", "sweep_frequencies": "numbers", "at": "numbers",
-              "threads": "integer", "chunk_size": "integer", "progress": "flag"},
+              "threads": "integer", "chunk_size": "integer"},
     "variants": {"vary": "texts", "samples": "integer", "seed": "integer"},
 }
-# Taken as they are: a Dask client; a CSV file's path or a DataFrame (variants).
-NOT_CONVERTED = {"scene", "client", "variants"}
+# Taken as they are: a Dask client; a CSV file's path or a DataFrame (variants); the study's
+# progress (anything: its truth, or a callable the bindings call).
+NOT_CONVERTED = {"scene", "client", "variants", "progress"}
 
 # What each kind refuses: a text, an object, a bool for a number, a NaN, an infinity, two
 # numbers where one is wanted, a fraction where a whole number is, a number where a text is.
