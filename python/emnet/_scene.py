@@ -95,15 +95,26 @@ def _override_texts(overrides: Optional[Overrides]) -> list[str]:
 class Scene:
     """A scene: the device (beam, DEAs, drive, loads, probes) emnet analyses.
 
-    Scene(path, set=None) reads a TOML scene file; Scene.from_text(text) and
-    Scene.from_dict(dict) read one held in memory. `set` overrides keys as the command line's
-    --set does: {"beam.length": "0.2 m", "dea.A.lever_arm": "1.6 mm", "drive.voltage": 3000}
-    (a number is in the key's SI unit; a string may carry a unit).
+    Scene(path) reads a TOML scene file; Scene.from_text(text) and Scene.from_dict(dict) read
+    one held in memory. scene.get(key) gives a numeric key's value in SI;
+    scene.with_values({key: value}) a new scene with those values changed directly (no file read
+    again: what a study does per variant). Scenes pickle (as their text, overrides, changed values
+    and the pwl files they read, as data), so they travel to Dask workers and compute there what
+    they compute here.
 
-    scene.get(key) gives a numeric key's value in SI; scene.with_values({key: value_SI}) a new
-    scene with those values changed directly (no file read again: what a study does per variant).
-    Scenes pickle (as their text, overrides, changed values and the pwl files they read, as data),
-    so they travel to Dask workers and compute there what they compute here.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The scene file.
+    set : dict, optional
+        Overrides, as the command line's --set: {"beam.length": "0.2 m", "dea.A.lever_arm":
+        "1.6 mm", "drive.voltage": 3000} (a number is in the key's SI unit; a text may carry a
+        unit).
+
+    Raises
+    ------
+    InputError
+        An unreadable file, a bad value or key (.where: file and line, or "set"; .key).
     """
 
     def __init__(self, path: Union[str, "os.PathLike[str]", None] = None,
@@ -123,22 +134,52 @@ class Scene:
     @classmethod
     def from_text(cls, text: str, name: str = "<text>",
                   set: Optional[Overrides] = None) -> "Scene":
-        """A scene from TOML text; `name` stands for the file in messages."""
+        """A scene from TOML text.
+
+        Parameters
+        ----------
+        text : str
+            The scene's TOML.
+        name : str, default "<text>"
+            What stands for the file in messages.
+        set : dict, optional
+            Overrides, as Scene's.
+
+        Returns
+        -------
+        Scene
+        """
         return cls(_handle=_emnet.SceneHandle.parse(text, name, _override_texts(set)))
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any], name: str = "<dict>",
                   set: Optional[Overrides] = None) -> "Scene":
-        """A scene from a dict of tables: {"scene": {"name": "x"}, "beam": {...}, "dea": [...]}."""
+        """A scene from a dict of tables.
+
+        Parameters
+        ----------
+        data : dict
+            {"scene": {"name": "x"}, "beam": {...}, "dea": [{...}, {...}], ...}: a table per key, a
+            list of tables for an array of tables; numbers in SI, or texts with a unit.
+        name : str, default "<dict>"
+            What stands for the file in messages.
+        set : dict, optional
+            Overrides, as Scene's.
+
+        Returns
+        -------
+        Scene
+        """
         return cls.from_text(dict_to_toml(data), name, set)
 
     @property
     def name(self) -> str:
-        """scene.name"""
+        """The scene's name ([scene] name)."""
         return self._handle.name
 
     @property
     def title(self) -> str:
+        """The scene's title ("" when it has none)."""
         return self._handle.title
 
     @property
@@ -147,20 +188,64 @@ class Scene:
         return self._handle.file
 
     def get(self, key: str) -> float:
-        """The value of a numeric key in SI: get("beam.bending_stiffness") -> N*m^2."""
+        """The value of a numeric key.
+
+        Parameters
+        ----------
+        key : str
+            A numeric key: "beam.bending_stiffness", "dea.A.lever_arm".
+
+        Returns
+        -------
+        float
+            Its value [the key's SI unit: Scene.unit(key)].
+        """
         return self._handle.get(text(key, "key"))
 
     def unit(self, key: str) -> str:
-        """The SI unit of a numeric key ("N*m^2"; "" when dimensionless)."""
+        """The SI unit of a numeric key.
+
+        Parameters
+        ----------
+        key : str
+            A numeric key.
+
+        Returns
+        -------
+        str
+            "N*m^2", "m"; "" when dimensionless.
+        """
         return self._handle.unit(text(key, "key"))
 
     def keys(self) -> list[str]:
-        """Every numeric key the scene uses, canonical ("dea[A].lever_arm")."""
+        """Every numeric key the scene uses.
+
+        Returns
+        -------
+        list of str
+            Canonical keys ("dea[A].lever_arm").
+        """
         return self._handle.numeric_keys()
 
     def with_values(self, values: Mapping[str, Number]) -> "Scene":
-        """A copy with numeric keys set to SI values ({key: value}), checked as the reader
-        checks them (InputError names the key)."""
+        """A copy with numeric keys set to new values, without reading the scene again.
+
+        Parameters
+        ----------
+        values : dict or pandas.Series
+            {key: value} [the key's SI unit]; any number (numpy's and pandas' too).
+
+        Returns
+        -------
+        Scene
+            The copy; the scene itself is unchanged.
+
+        Raises
+        ------
+        InputError
+            A value out of its key's range, as the reader checks it, or not a number (.key names
+            the key; .where is "values" for a value that is not a number).
+        """
         if not hasattr(values, "items"):
             raise input_error("values are a dict {key: value in SI} (or a pandas Series by key), "
                               f"got {type(values).__name__}", "values", "values")
@@ -170,7 +255,17 @@ class Scene:
         return Scene(_handle=handle)
 
     def with_overrides(self, overrides: Overrides) -> "Scene":
-        """A copy read again with more overrides ({key: value}, units allowed)."""
+        """A copy read again with more overrides.
+
+        Parameters
+        ----------
+        overrides : dict
+            {key: value}, as Scene's `set`: a number in SI, or a text with a unit.
+
+        Returns
+        -------
+        Scene
+        """
         handle = self._handle
         fresh = _emnet.SceneHandle.parse(handle.text, handle.file,
                                          list(handle.overrides) + _override_texts(overrides),
@@ -202,7 +297,7 @@ SceneLike = Union[Scene, str, "os.PathLike[str]"]
 
 
 def as_scene(scene: SceneLike) -> Scene:
-    """A Scene from a Scene or a path."""
+    """A Scene from a Scene or a scene file's path."""
     if isinstance(scene, Scene):
         return scene
     if isinstance(scene, (str, os.PathLike)):

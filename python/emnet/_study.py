@@ -35,13 +35,34 @@ def _vary_texts(vary: Optional[Vary]) -> list[str]:
 
 def variants(scene: SceneLike, vary: Optional[Vary] = None, samples: Integer = 0,
              seed: Integer = 1, variants: Optional[Variants] = None) -> "pandas.DataFrame":
-    """The variants of a study, as a pandas DataFrame (one column per key, SI values).
+    """The variants of a study, as a pandas DataFrame (a column per key, SI values).
 
-    vary: ["KEY=SPEC", ...] or {KEY: SPEC}: values "v1,v2" or linspace(a,b,n), logspace(a,b,n)
-    (a grid), uniform(a,b), normal(mean,sd), lognormal(median,s) (Monte Carlo, `samples` draws
-    per grid point from `seed`). Values in SI, with a unit ("60 mm") or a percentage of the
-    scene's value ("95%"); "KEY1+KEY2=SPEC" changes both keys by the same ratio. variants: a CSV
-    file (a header of keys, a variant per line) or a DataFrame of keys instead.
+    Parameters
+    ----------
+    scene : Scene, str or os.PathLike
+        The scene, or a scene file's path.
+    vary : str, sequence of str, or dict, optional
+        ["KEY=SPEC", ...] or {KEY: SPEC}: values "v1,v2" (or the values themselves, any sequence,
+        in a dict) or linspace(a,b,n), logspace(a,b,n) (a grid); uniform(a,b), normal(mean,sd),
+        lognormal(median,s) (Monte Carlo). Values in SI, with a unit ("60 mm") or a percentage of
+        the scene's value ("95%"); "KEY1+KEY2=SPEC" changes both keys by the same ratio.
+    samples : int, default 0
+        Monte Carlo draws per grid point.
+    seed : int, default 1
+        The draws' seed (the same seed, the same variants).
+    variants : str, os.PathLike, pandas.DataFrame or dict, optional
+        Instead of vary: a CSV file (a header of keys, a variant per line) or a DataFrame of
+        keys.
+
+    Returns
+    -------
+    pandas.DataFrame
+        A column per (canonical) key, a row per variant [SI].
+
+    Raises
+    ------
+    InputError
+        A bad keyword value, key or variation (.key names it).
     """
     return _variant_table(scene, vary, samples, seed, variants)
 
@@ -95,26 +116,52 @@ def study(scene: SceneLike, vary: Optional[Vary] = None, *, samples: Integer = 0
           sweep_frequencies: Optional[Numbers] = None, at: Numbers = (), threads: Integer = 0,
           client: Any = None, chunk_size: Optional[Integer] = None,
           progress: Any = False) -> "pandas.DataFrame":
-    """A design study: every variant of `scene` through `analyses`, one row per variant.
+    """A design study: every variant of `scene` through `analyses`, a row per variant.
 
-    scene: a Scene or a path. vary / samples / seed / variants: the variants (see
-    emnet.variants). analyses: any of "modes", "static", "sweep-switching":
-      modes            f<k>_hz, zeta<k>, f<k>_error_hz for the `modes` lowest modes [Hz, -, Hz];
-      static           static.<probe>_<unit> per probe of the scene;
-      sweep-switching  sweep.peak_hz, and per output and frequency of `at` [Hz]
-                       sweep.<output>.min_at_<f>Hz_<unit>, .max_at_... (the periodic extremes);
-                       sweep_frequencies [Hz] default 1 to 7 Hz in steps of 0.1.
-    threads: worker threads in this process (0: every core). client: a
-    dask.distributed.Client: chunks of variants (chunk_size each; default a quarter of an even
-    share per worker, at least 20) run on its workers, one thread per task, and the rows come
-    back in order, equal bit for bit to a local run's.
+    Parameters
+    ----------
+    scene : Scene, str or os.PathLike
+        The scene, or a scene file's path.
+    vary, samples, seed, variants
+        The variants, as emnet.variants takes them.
+    analyses : str or sequence of str, default ("modes",)
+        Any of:
 
-    Returns a pandas DataFrame: variant, the varied keys (SI), status ("ok" or "failed: why"),
-    validity ("within", or "OUTSIDE: " with each violation of the model's limits: deflection
-    against model.deflection_limit, DEA fields against breakdown), the result columns
-    (missing, NaN, in a failed row). df.attrs holds units {column: unit},
-    cost (seconds per stage summed over the variants, work and wall seconds), segments,
-    unknowns, notes.
+        - "modes": f<k>_hz [Hz], zeta<k> [-], f<k>_error_hz [Hz] for the `modes` lowest modes;
+        - "static": static.<probe>_<unit> per probe of the scene;
+        - "sweep-switching": sweep.peak_hz [Hz], and per output and frequency of `at`
+          sweep.<output>.min_at_<f>Hz_<unit>, .max_at_... (the periodic extremes).
+    modes : int, default 1
+        The modes reported, lowest first.
+    sweep_frequencies : sequence of float, optional
+        The sweep's switching frequencies [Hz] (default: 1 to 7 Hz in steps of 0.1).
+    at : sequence of float, default ()
+        The frequencies of the sweep whose extremes are columns [Hz].
+    threads : int, default 0
+        Worker threads in this process (0: every core).
+    client : dask.distributed.Client, optional
+        Run chunks of variants on its workers, one thread per task; the rows come back in order,
+        equal bit for bit to a local run's.
+    chunk_size : int, optional
+        Variants per task with a client (default: a quarter of an even share per worker, at
+        least 20).
+    progress : bool, default False
+        Report the variants done on standard error.
+
+    Returns
+    -------
+    pandas.DataFrame
+        variant, the varied keys [SI], status ("ok" or "failed: why"), validity ("within", or
+        "OUTSIDE: " with each violation of the model's limits: deflection against
+        model.deflection_limit, DEA fields against breakdown), the result columns (missing,
+        NaN, in a failed row). df.attrs holds units {column: unit}, cost (seconds per stage
+        summed over the variants, work and wall seconds [s]), segments, unknowns, notes,
+        failed and outside_validity (counts).
+
+    Raises
+    ------
+    InputError
+        A bad keyword value (.where and .key name the keyword) or variation.
     """
     started = time.perf_counter()
     scene = as_scene(scene)
