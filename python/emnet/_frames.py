@@ -54,28 +54,39 @@ def _indexed(data: dict[str, Any], units: dict[str, str], index: Any, name: str
     return frame
 
 
-def _ac_frame(result: "Result") -> "pandas.DataFrame":
-    probes = result.probes
+def _over(table: Mapping[str, Any], parts: Sequence[tuple[str, str, Optional[str]]], index: Any,
+          name: str) -> "pandas.DataFrame":
+    """A DataFrame over `index` (named `name`) of columns <output>_<suffix> (<output> for no
+    suffix), each a row of table[key] [output, index] in `unit` (None: the output's), for each
+    (suffix, key, unit) of `parts`."""
     data, units = {}, {}
-    for k, (name, unit) in enumerate(zip(probes["name"], probes["unit"])):
-        data[f"{name}_magnitude"], units[f"{name}_magnitude"] = probes["magnitude"][k], unit
-        data[f"{name}_phase_deg"], units[f"{name}_phase_deg"] = probes["phase_deg"][k], "deg"
-    return _indexed(data, units, result.frequencies_hz, "frequency_hz")
+    for k, (output, output_unit) in enumerate(zip(table["name"], table["unit"])):
+        for suffix, key, unit in parts:
+            column = f"{output}_{suffix}" if suffix else output
+            data[column], units[column] = table[key][k], unit or output_unit
+    return _indexed(data, units, index, name)
+
+
+def _ac_frame(result: "Result") -> "pandas.DataFrame":
+    parts = [("magnitude", "magnitude", None), ("phase_deg", "phase_deg", "deg")]
+    return _over(result.probes, parts, result.frequencies_hz, "frequency_hz")
 
 
 def _tran_frame(result: "Result") -> "pandas.DataFrame":
-    outputs = result.outputs
-    data = dict(zip(outputs["name"], outputs["values"]))
-    return _indexed(data, dict(zip(outputs["name"], outputs["unit"])), result.times_s, "times_s")
+    return _over(result.outputs, [("", "values", None)], result.times_s, "times_s")
 
 
 def _sweep_frame(result: "Result") -> "pandas.DataFrame":
-    outputs = result.outputs
-    data, units = {}, {}
-    for k, (name, unit) in enumerate(zip(outputs["name"], outputs["unit"])):
-        data[f"{name}_min"], units[f"{name}_min"] = outputs["left"][k], unit
-        data[f"{name}_max"], units[f"{name}_max"] = outputs["right"][k], unit
-    return _indexed(data, units, result.frequencies_hz, "frequency_hz")
+    parts = [("min", "left", None), ("max", "right", None)]
+    return _over(result.outputs, parts, result.frequencies_hz, "frequency_hz")
+
+
+def _sensitivity_unit(column: str) -> str:
+    if "pole_derivative" in column:
+        return "1/s per unit of the parameter"
+    if column.endswith("frequency_derivative"):
+        return "Hz per unit of the parameter"
+    return unit_of(column)
 
 
 def _sensitivity_frame(result: "Result") -> "pandas.DataFrame":
@@ -93,13 +104,7 @@ def _sensitivity_frame(result: "Result") -> "pandas.DataFrame":
         part.insert(0, "parameter", key)
         parts.append(part)
     frame = pandas.concat(parts, ignore_index=True)
-    per_unit = {"frequency_derivative": "Hz", "natural_frequency_derivative": "Hz",
-                "pole_derivative_real": "1/s", "pole_derivative_imag": "1/s",
-                "finite_difference_pole_derivative_real": "1/s",
-                "finite_difference_pole_derivative_imag": "1/s"}
-    frame.attrs["units"] = {column: (f"{per_unit[column]} per unit of the parameter"
-                                     if column in per_unit else unit_of(column))
-                            for column in frame.columns}
+    frame.attrs["units"] = {column: _sensitivity_unit(column) for column in frame.columns}
     return frame
 
 

@@ -36,16 +36,17 @@ def unit_of(key: str) -> str:
 def rows(table: Mapping[str, Any]) -> Optional[int]:
     """The number of records of a table (a mapping of columns: arrays or lists of one length),
     None when `table` is not one."""
-    lengths = {len(column) if isinstance(column, (list, numpy.ndarray)) and numpy.ndim(column)
-               else -1 for column in table.values()}
+    lengths = {len(column) if isinstance(column, list) or
+               (isinstance(column, numpy.ndarray) and column.ndim) else -1
+               for column in table.values()}
     if len(lengths) != 1 or -1 in lengths or 0 in lengths:
         return None
     return lengths.pop()
 
 
 def _scalar(value: Any) -> str:
-    if isinstance(value, (bool, numpy.bool_)) or value is None:
-        return repr(bool(value) if value is not None else None)
+    if value is None or isinstance(value, (bool, numpy.bool_)):
+        return str(value if value is None else bool(value))
     if isinstance(value, (int, numpy.integer)):
         return str(value)
     if isinstance(value, (float, numpy.floating, complex, numpy.complexfloating)):
@@ -73,8 +74,9 @@ def _list(items: list[Any]) -> str:
 
 
 def _table(table: Mapping[str, Any], count: int) -> str:
-    columns = ", ".join(f"{name}({'×'.join(map(str, numpy.shape(column)))})"
-                        if numpy.ndim(column) > 1 else name for name, column in table.items())
+    columns = ", ".join(f"{name}({'×'.join(map(str, column.shape))})"
+                        if isinstance(column, numpy.ndarray) and column.ndim > 1 else name
+                        for name, column in table.items())
     named = ""
     if "unit" in table and "name" in table:
         pairs = [f"{name} [{unit}]" for name, unit in zip(table["name"], table["unit"])]

@@ -155,6 +155,8 @@ def test_sensitivity_frame_has_a_row_per_parameter_and_mode(fishfin):
         assert frame["frequency_derivative"][row] == per_mode["frequency_derivative"][row % 2]
     # (p/f) df/dp = +1/2 for EI and -1/2 for the mass per length (test_bindings.py).
     assert np.allclose(frame["normalised_natural"], [0.5, 0.5, -0.5, -0.5], atol=1e-8)
+    assert frame.attrs["units"]["frequency_derivative"] == "Hz per unit of the parameter"
+    assert frame.attrs["units"]["frequency_hz"] == "Hz"
 
 
 def test_mismatch_and_crosscheck_frames_are_their_tables(fishfin, cantilever):
@@ -174,6 +176,16 @@ def test_any_table_reads_by_name_or_by_itself(cantilever, fishfin):
     pd.testing.assert_frame_equal(result.nodes.to_frame(), nodes)
     deck = emnet.netlist(fishfin)
     assert deck.to_frame("outputs")["probe"].tolist() == list(deck.outputs["probe"])
+
+
+def test_a_column_some_records_lack_reads_and_stays_out_of_the_frame():
+    # A key some records lack is a list with None where it is missing (bindings' to_python).
+    result = emnet.Result({"rows": {"name": ["a", "b"], "x_m": np.array([1.0, 2.0]),
+                                    "shape": [np.array([1.0, 2.0, 3.0]), None]}})
+    assert _line(result, "rows") == "table of 2 rows: name, x_m, shape"
+    frame = result.to_frame("rows")
+    assert list(frame.columns) == ["name", "x_m"]
+    assert frame["x_m"].tolist() == [1.0, 2.0]
 
 
 def test_a_result_without_a_table_says_which_have_one(fishfin):
