@@ -20,16 +20,17 @@ PYTHON = pathlib.Path(__file__).resolve().parents[1]  # python/: mypy.ini, the a
 PACKAGE = pathlib.Path(emnet.__file__).resolve().parent
 
 
-def mypy(*arguments):
-    """`python -m mypy ARGUMENTS` with python/mypy.ini, the package found where emnet was
-    imported from: (exit status, what mypy printed)."""
+def mypy(module, *arguments, cwd):
+    """`python -m MODULE ARGUMENTS` (mypy or mypy.stubtest) with python/mypy.ini, run in `cwd`
+    (where mypy keeps its cache), emnet imported from where this test imported it (mypy reads
+    the Python's sys.path): (exit status, what mypy printed)."""
     if importlib.util.find_spec("mypy") is None:
         pytest.skip("mypy is not installed (Debian: python3-mypy)")
-    run = subprocess.run([sys.executable, "-m", *arguments, "--mypy-config-file"
-                          if arguments[0] == "mypy.stubtest" else "--config-file",
-                          str(PYTHON / "mypy.ini")],
-                         capture_output=True, text=True, check=False, cwd=PACKAGE.parent,
-                         env=dict(os.environ, MYPYPATH=str(PACKAGE.parent)))
+    config = "--mypy-config-file" if module == "mypy.stubtest" else "--config-file"
+    path = os.pathsep.join(filter(None, [str(PACKAGE.parent), os.environ.get("PYTHONPATH")]))
+    run = subprocess.run([sys.executable, "-m", module, *arguments, config,
+                          str(PYTHON / "mypy.ini")], capture_output=True, text=True, check=False,
+                         cwd=cwd, env=dict(os.environ, PYTHONPATH=path))
     return run.returncode, run.stdout + run.stderr
 
 
@@ -38,25 +39,25 @@ def test_the_package_is_marked_typed():
     assert (PACKAGE / "_emnet.pyi").is_file()
 
 
-def test_the_package_type_checks():
-    status, output = mypy("mypy", "--cache-dir", os.devnull, str(PACKAGE))
+def test_the_package_type_checks(tmp_path):
+    status, output = mypy("mypy", str(PACKAGE), cwd=tmp_path)
     assert status == 0, output
     assert "Success: no issues found" in output
 
 
-def test_the_examples_type_check():
+def test_the_examples_type_check(tmp_path):
     examples = sorted(str(path) for path in (ROOT / "examples").glob("*.py"))
     assert len(examples) >= 2
-    status, output = mypy("mypy", "--cache-dir", os.devnull, *examples)
+    status, output = mypy("mypy", *examples, cwd=tmp_path)
     assert status == 0, output
     assert f"Success: no issues found in {len(examples)} source files" in output
 
 
-def test_the_stub_has_what_the_compiled_module_has():
+def test_the_stub_has_what_the_compiled_module_has(tmp_path):
     # Every name of the compiled module in the stub and no other (pybind11's own differences
     # are in python/stubtest-allowlist.txt).
     status, output = mypy("mypy.stubtest", "emnet._emnet", "--allowlist",
-                          str(PYTHON / "stubtest-allowlist.txt"))
+                          str(PYTHON / "stubtest-allowlist.txt"), cwd=tmp_path)
     assert status == 0, output
 
 
