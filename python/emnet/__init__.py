@@ -5,7 +5,9 @@ segments, its DEAs, drive, loads and probes. emnet builds its Firestone-analogy 
 as current, velocity as voltage) and analyses it. Every function here takes a Scene (or a path)
 and returns a Result: a dict with attribute access, numbers along a sweep, time or beam as numpy
 arrays, units in the keys' names (x_m, frequency_hz, times_s) or beside the values ("unit"), and
-its accuracy, cost and notes.
+its accuracy, cost and notes; result.to_frame() gives its table as a pandas DataFrame,
+result.to_xarray() (ac, tran, sweep_switching) its arrays as an xarray Dataset. Numbers may be
+Python's, numpy's or pandas' (scalars, arrays, Series); the package is typed (py.typed).
 
     >>> import emnet
     >>> fin = emnet.Scene("netlists/fishfin.toml")

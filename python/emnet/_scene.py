@@ -4,37 +4,16 @@ import json
 import math
 import os
 import re
+from typing import Any, Mapping, Optional, Union
 
 from . import _emnet
+from ._convert import Number, input_error, number, text
+
+#: Overrides: {key: value}, a number in the key's SI unit or a text that may carry a unit.
+Overrides = Mapping[str, Any]
 
 
-def input_error(message, key="", where="python"):
-    """An emnet.InputError raised by the package itself, with .where and .key as the library's."""
-    error = _emnet.InputError((f"key '{key}': " if key else "") + message)
-    error.where, error.key = where, key
-    return error
-
-
-def numbers(values, key):
-    """`values` (None, a number, or any sequence of numbers: list, tuple, numpy array, pandas
-    Series) as a list of floats; an emnet.InputError naming `key` for anything else."""
-    if values is None:
-        return []
-    if isinstance(values, (str, bytes)):
-        raise input_error(f"numbers are wanted, got the text {values!r}", key)
-    if hasattr(values, "tolist"):  # numpy arrays and scalars, pandas Series
-        values = values.tolist()
-    if not isinstance(values, (list, tuple)):
-        values = [values]
-    out = []
-    for value in values:
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise input_error(f"numbers are wanted, got {type(value).__name__} {value!r}", key)
-        out.append(float(value))
-    return out
-
-
-def _plain(value):
+def _plain(value: Any) -> Any:
     """numpy scalars and arrays as Python numbers and lists (TOML and the bindings take those)."""
     if type(value).__module__ == "numpy" and hasattr(value, "tolist"):
         return value.tolist()
@@ -44,7 +23,7 @@ def _plain(value):
 _BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
 
 
-def _toml_key(name, key):
+def _toml_key(name: object, key: str) -> str:
     """A TOML key for `name`: bare when TOML allows it, otherwise a quoted basic string, so a
     name holding '#', '=', ']', quotes or a newline is one key and never a line of its own."""
     if not isinstance(name, str):
@@ -54,7 +33,7 @@ def _toml_key(name, key):
     return json.dumps(name, ensure_ascii=False)
 
 
-def _toml_value(value, key):
+def _toml_value(value: Any, key: str) -> str:
     value = _plain(value)
     if isinstance(value, bool):
         return "true" if value else "false"
@@ -75,7 +54,7 @@ def _toml_value(value, key):
                       "booleans, lists and dicts are)", key)
 
 
-def dict_to_toml(data):
+def dict_to_toml(data: Mapping[str, Any]) -> str:
     """The TOML text of a scene given as a dict: {"beam": {...}, "dea": [{...}, {...}], ...}."""
     if not isinstance(data, dict):
         raise input_error("a scene dict maps table names to tables, e.g. "
@@ -100,7 +79,7 @@ def dict_to_toml(data):
     return "\n".join(lines)
 
 
-def _override_texts(overrides):
+def _override_texts(overrides: Optional[Overrides]) -> list[str]:
     if overrides is None:
         return []
     if not isinstance(overrides, dict):
@@ -116,72 +95,177 @@ def _override_texts(overrides):
 class Scene:
     """A scene: the device (beam, DEAs, drive, loads, probes) emnet analyses.
 
-    Scene(path, set=None) reads a TOML scene file; Scene.from_text(text) and
-    Scene.from_dict(dict) read one held in memory. `set` overrides keys as the command line's
-    --set does: {"beam.length": "0.2 m", "dea.A.lever_arm": "1.6 mm", "drive.voltage": 3000}
-    (a number is in the key's SI unit; a string may carry a unit).
+    Scene(path) reads a TOML scene file; Scene.from_text(text) and Scene.from_dict(dict) read
+    one held in memory. scene.get(key) gives a numeric key's value in SI;
+    scene.with_values({key: value}) a new scene with those values changed directly (no file read
+    again: what a study does per variant). Scenes pickle (as their text, overrides, changed values
+    and the pwl files they read, as data), so they travel to Dask workers and compute there what
+    they compute here.
 
-    scene.get(key) gives a numeric key's value in SI; scene.with_values({key: value_SI}) a new
-    scene with those values changed directly (no file read again: what a study does per variant).
-    Scenes pickle (as their text, overrides, changed values and the pwl files they read, as data),
-    so they travel to Dask workers and compute there what they compute here.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The scene file.
+    set : dict, optional
+        Overrides, as the command line's --set: {"beam.length": "0.2 m", "dea.A.lever_arm":
+        "1.6 mm", "drive.voltage": 3000} (a number is in the key's SI unit; a text may carry a
+        unit).
+
+    Raises
+    ------
+    InputError
+        An unreadable file, a bad value or key (.where: file and line, or "set"; .key).
     """
 
-    def __init__(self, path=None, set=None, *, _handle=None):
+    def __init__(self, path: Union[str, "os.PathLike[str]", None] = None,
+                 set: Optional[Overrides] = None, *,
+                 _handle: Optional[_emnet.SceneHandle] = None) -> None:
         if _handle is not None:
             self._handle = _handle
             return
         if path is None:
             raise input_error("Scene(path): give a scene file's path (or use "
                                     "Scene.from_text / Scene.from_dict)")
+        if not isinstance(path, (str, os.PathLike)):
+            raise input_error(f"a scene file's path is a str or a pathlib.Path, got "
+                              f"{type(path).__name__}", "path", "path")
         self._handle = _emnet.SceneHandle.read(os.fspath(path), _override_texts(set))
 
     @classmethod
-    def from_text(cls, text, name="<text>", set=None):
-        """A scene from TOML text; `name` stands for the file in messages."""
+    def from_text(cls, text: str, name: str = "<text>",
+                  set: Optional[Overrides] = None) -> "Scene":
+        """A scene from TOML text.
+
+        Parameters
+        ----------
+        text : str
+            The scene's TOML.
+        name : str, default "<text>"
+            What stands for the file in messages.
+        set : dict, optional
+            Overrides, as Scene's.
+
+        Returns
+        -------
+        Scene
+        """
         return cls(_handle=_emnet.SceneHandle.parse(text, name, _override_texts(set)))
 
     @classmethod
-    def from_dict(cls, data, name="<dict>", set=None):
-        """A scene from a dict of tables: {"scene": {"name": "x"}, "beam": {...}, "dea": [...]}."""
+    def from_dict(cls, data: Mapping[str, Any], name: str = "<dict>",
+                  set: Optional[Overrides] = None) -> "Scene":
+        """A scene from a dict of tables.
+
+        Parameters
+        ----------
+        data : dict
+            {"scene": {"name": "x"}, "beam": {...}, "dea": [{...}, {...}], ...}: a table per key, a
+            list of tables for an array of tables; numbers in SI, or texts with a unit.
+        name : str, default "<dict>"
+            What stands for the file in messages.
+        set : dict, optional
+            Overrides, as Scene's.
+
+        Returns
+        -------
+        Scene
+        """
         return cls.from_text(dict_to_toml(data), name, set)
 
     @property
-    def name(self):
-        """scene.name"""
+    def name(self) -> str:
+        """The scene's name ([scene] name)."""
         return self._handle.name
 
     @property
-    def title(self):
+    def title(self) -> str:
+        """The scene's title ("" when it has none)."""
         return self._handle.title
 
     @property
-    def file(self):
+    def file(self) -> str:
         """The file it was read from ("<text>", "<dict>" for one held in memory)."""
         return self._handle.file
 
-    def get(self, key):
-        """The value of a numeric key in SI: get("beam.bending_stiffness") -> N*m^2."""
-        return self._handle.get(key)
+    def get(self, key: str) -> float:
+        """The value of a numeric key.
 
-    def unit(self, key):
-        """The SI unit of a numeric key ("N*m^2"; "" when dimensionless)."""
-        return self._handle.unit(key)
+        Parameters
+        ----------
+        key : str
+            A numeric key: "beam.bending_stiffness", "dea.A.lever_arm".
 
-    def keys(self):
-        """Every numeric key the scene uses, canonical ("dea[A].lever_arm")."""
+        Returns
+        -------
+        float
+            Its value [the key's SI unit: Scene.unit(key)].
+        """
+        return self._handle.get(text(key, "key"))
+
+    def unit(self, key: str) -> str:
+        """The SI unit of a numeric key.
+
+        Parameters
+        ----------
+        key : str
+            A numeric key.
+
+        Returns
+        -------
+        str
+            "N*m^2", "m"; "" when dimensionless.
+        """
+        return self._handle.unit(text(key, "key"))
+
+    def keys(self) -> list[str]:
+        """Every numeric key the scene uses.
+
+        Returns
+        -------
+        list of str
+            Canonical keys ("dea[A].lever_arm").
+        """
         return self._handle.numeric_keys()
 
-    def with_values(self, values):
-        """A copy with numeric keys set to SI values ({key: value}), checked as the reader
-        checks them (InputError names the key)."""
+    def with_values(self, values: Mapping[str, Number]) -> "Scene":
+        """A copy with numeric keys set to new values, without reading the scene again.
+
+        Parameters
+        ----------
+        values : dict or pandas.Series
+            {key: value} [the key's SI unit]; any number (numpy's and pandas' too).
+
+        Returns
+        -------
+        Scene
+            The copy; the scene itself is unchanged.
+
+        Raises
+        ------
+        InputError
+            A value out of its key's range, as the reader checks it, or not a number (.key names
+            the key; .where is "values" for a value that is not a number).
+        """
+        if not hasattr(values, "items"):
+            raise input_error("values are a dict {key: value in SI} (or a pandas Series by key), "
+                              f"got {type(values).__name__}", "values", "values")
         handle = self._handle.copy()
         for key, value in values.items():
-            handle.set(key, float(value))
+            handle.set(text(key, "values"), number(value, key, "values"))
         return Scene(_handle=handle)
 
-    def with_overrides(self, overrides):
-        """A copy read again with more overrides ({key: value}, units allowed)."""
+    def with_overrides(self, overrides: Overrides) -> "Scene":
+        """A copy read again with more overrides.
+
+        Parameters
+        ----------
+        overrides : dict
+            {key: value}, as Scene's `set`: a number in SI, or a text with a unit.
+
+        Returns
+        -------
+        Scene
+        """
         handle = self._handle
         fresh = _emnet.SceneHandle.parse(handle.text, handle.file,
                                          list(handle.overrides) + _override_texts(overrides),
@@ -190,26 +274,30 @@ class Scene:
             fresh.set(key, value)
         return Scene(_handle=fresh)
 
-    def __getstate__(self):
+    def __getstate__(self) -> dict[str, Any]:
         # The pwl files it read travel as data: a worker in another directory, or after the file
         # changed, rebuilds the very scene that was read here.
         h = self._handle
         return {"text": h.text, "file": h.file, "overrides": list(h.overrides),
                 "sets": list(h.sets), "files": dict(h.files)}
 
-    def __setstate__(self, state):
+    def __setstate__(self, state: Mapping[str, Any]) -> None:
         handle = _emnet.SceneHandle.parse(state["text"], state["file"], state["overrides"],
                                           state.get("files", {}))
         for key, value in state["sets"]:
             handle.set(key, value)
         self._handle = handle
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"Scene({self.name!r} from {self.file!r})"
 
 
-def as_scene(scene):
-    """A Scene from a Scene or a path."""
+#: A scene, or a scene file's path.
+SceneLike = Union[Scene, str, "os.PathLike[str]"]
+
+
+def as_scene(scene: SceneLike) -> Scene:
+    """A Scene from a Scene or a scene file's path."""
     if isinstance(scene, Scene):
         return scene
     if isinstance(scene, (str, os.PathLike)):

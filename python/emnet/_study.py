@@ -4,48 +4,77 @@ import math
 import os
 import sys
 import time
+from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
+
+import numpy
+from numpy.typing import NDArray
 
 from . import _emnet
-from ._scene import Scene, as_scene, input_error, numbers
+from ._convert import Integer, Numbers, Texts, input_error, integer, numbers, texts
+from ._scene import Scene, SceneLike, as_scene
+
+if TYPE_CHECKING:
+    import pandas
+
+#: Variations: "KEY=SPEC" texts, or {KEY: SPEC}, a SPEC being a text or the values themselves.
+Vary = Union[str, Sequence[str], Mapping[str, Union[str, Numbers]]]
+#: Variants given as they are: a CSV file's path, or a DataFrame (or dict) of keys.
+Variants = Union[str, "os.PathLike[str]", "pandas.DataFrame", Mapping[str, Numbers]]
+
+_SIZE_MAX = 2**63 - 1  # what the bindings' std::size_t and std::uint64_t take
+_SEED_MAX = 2**64 - 1
 
 
-def _vary_texts(vary):
-    if vary is None:
-        return []
-    if isinstance(vary, str):
-        return [vary]
+def _vary_texts(vary: Optional[Vary]) -> list[str]:
     if isinstance(vary, dict):  # a spec is a text, or the values themselves (any sequence)
         return [f"{key}={spec}" if isinstance(spec, str)
-                else f"{key}=" + ",".join(repr(v) for v in numbers(spec, key))
+                else f"{key}=" + ",".join(repr(v) for v in numbers(spec, key, "vary"))
                 for key, spec in vary.items()]
-    return list(vary)
+    return texts(vary, "vary")
 
 
-def _analyses_text(analyses):
-    if isinstance(analyses, str):
-        return analyses
-    return ",".join(analyses)
+def variants(scene: SceneLike, vary: Optional[Vary] = None, samples: Integer = 0,
+             seed: Integer = 1, variants: Optional[Variants] = None) -> "pandas.DataFrame":
+    """The variants of a study, as a pandas DataFrame (a column per key, SI values).
 
+    Parameters
+    ----------
+    scene : Scene, str or os.PathLike
+        The scene, or a scene file's path.
+    vary : str, sequence of str, or dict, optional
+        ["KEY=SPEC", ...] or {KEY: SPEC}: values "v1,v2" (or the values themselves, any sequence,
+        in a dict) or linspace(a,b,n), logspace(a,b,n) (a grid); uniform(a,b), normal(mean,sd),
+        lognormal(median,s) (Monte Carlo). Values in SI, with a unit ("60 mm") or a percentage of
+        the scene's value ("95%"); "KEY1+KEY2=SPEC" changes both keys by the same ratio.
+    samples : int, default 0
+        Monte Carlo draws per grid point.
+    seed : int, default 1
+        The draws' seed (the same seed, the same variants).
+    variants : str, os.PathLike, pandas.DataFrame or dict, optional
+        Instead of vary: a CSV file (a header of keys, a variant per line) or a DataFrame of
+        keys.
 
-def variants(scene, vary=None, samples=0, seed=1, variants=None):
-    """The variants of a study, as a pandas DataFrame (one column per key, SI values).
+    Returns
+    -------
+    pandas.DataFrame
+        A column per (canonical) key, a row per variant [SI].
 
-    vary: ["KEY=SPEC", ...] or {KEY: SPEC}: values "v1,v2" or linspace(a,b,n), logspace(a,b,n)
-    (a grid), uniform(a,b), normal(mean,sd), lognormal(median,s) (Monte Carlo, `samples` draws
-    per grid point from `seed`). Values in SI, with a unit ("60 mm") or a percentage of the
-    scene's value ("95%"); "KEY1+KEY2=SPEC" changes both keys by the same ratio. variants: a CSV
-    file (a header of keys, a variant per line) or a DataFrame of keys instead.
+    Raises
+    ------
+    InputError
+        A bad keyword value, key or variation (.key names it).
     """
     return _variant_table(scene, vary, samples, seed, variants)
 
 
-def _variant_table(scene, vary, samples, seed, variants):
+def _variant_table(scene: SceneLike, vary: Optional[Vary], samples: Integer, seed: Integer,
+                   variants: Optional[Variants]) -> "pandas.DataFrame":
     import pandas
 
     handle = as_scene(scene)._handle
     if variants is not None:
         if vary:
-            raise input_error("give vary or variants, not both", "variants")
+            raise input_error("give vary or variants, not both", "variants", "variants")
         if isinstance(variants, (str, os.PathLike)):
             keys, values = _emnet.read_variants(handle, os.fspath(variants))
         else:
@@ -53,21 +82,25 @@ def _variant_table(scene, vary, samples, seed, variants):
             keys = [handle.canonical_key(str(key)) for key in frame.columns]
             values = frame.to_numpy(dtype=float)
     else:
-        keys, values = _emnet.make_variants(handle, _vary_texts(vary), samples, seed)
+        keys, values = _emnet.make_variants(
+            handle, _vary_texts(vary), integer(samples, "samples", low=0, high=_SIZE_MAX),
+            integer(seed, "seed", low=0, high=_SEED_MAX))
     return pandas.DataFrame(values, columns=keys)
 
 
-def _run_chunk(state, keys, values, options):
+def _run_chunk(state: dict[str, Any], keys: list[str], values: NDArray[numpy.float64],
+               options: dict[str, Any]) -> dict[str, Any]:
     """One chunk of variants on a worker (a Dask task): the study's dict for those rows."""
     scene = Scene.__new__(Scene)
     scene.__setstate__(state)
     return _emnet.run_study(scene._handle, keys, values, **options)
 
 
-def _frame(keys, values, first_variant, part):
+def _frame(keys: list[str], values: NDArray[numpy.float64], first_variant: int,
+           part: Mapping[str, Any]) -> "pandas.DataFrame":
     import pandas
 
-    data = {"variant": range(first_variant, first_variant + len(values))}
+    data: dict[str, Any] = {"variant": range(first_variant, first_variant + len(values))}
     for index, key in enumerate(keys):
         data[key] = values[:, index]
     data["status"] = part["status"]
@@ -77,50 +110,80 @@ def _frame(keys, values, first_variant, part):
     return pandas.DataFrame(data)
 
 
-def study(scene, vary=None, *, samples=0, seed=1, variants=None, analyses=("modes",), modes=1,
-          sweep_frequencies=None, at=(), threads=0, client=None, chunk_size=None, progress=False):
-    """A design study: every variant of `scene` through `analyses`, one row per variant.
+def study(scene: SceneLike, vary: Optional[Vary] = None, *, samples: Integer = 0,
+          seed: Integer = 1, variants: Optional[Variants] = None,
+          analyses: Texts = ("modes",), modes: Integer = 1,
+          sweep_frequencies: Optional[Numbers] = None, at: Numbers = (), threads: Integer = 0,
+          client: Any = None, chunk_size: Optional[Integer] = None,
+          progress: Any = False) -> "pandas.DataFrame":
+    """A design study: every variant of `scene` through `analyses`, a row per variant.
 
-    scene: a Scene or a path. vary / samples / seed / variants: the variants (see
-    emnet.variants). analyses: any of "modes", "static", "sweep-switching":
-      modes            f<k>_hz, zeta<k>, f<k>_error_hz for the `modes` lowest modes [Hz, -, Hz];
-      static           static.<probe>_<unit> per probe of the scene;
-      sweep-switching  sweep.peak_hz, and per output and frequency of `at` [Hz]
-                       sweep.<output>.min_at_<f>Hz_<unit>, .max_at_... (the periodic extremes);
-                       sweep_frequencies [Hz] default 1 to 7 Hz in steps of 0.1.
-    threads: worker threads in this process (0: every core). client: a
-    dask.distributed.Client: chunks of variants (chunk_size each; default a quarter of an even
-    share per worker, at least 20) run on its workers, one thread per task, and the rows come
-    back in order, equal bit for bit to a local run's.
+    Parameters
+    ----------
+    scene : Scene, str or os.PathLike
+        The scene, or a scene file's path.
+    vary, samples, seed, variants
+        The variants, as emnet.variants takes them.
+    analyses : str or sequence of str, default ("modes",)
+        Any of:
 
-    Returns a pandas DataFrame: variant, the varied keys (SI), status ("ok" or "failed: why"),
-    validity ("within", or "OUTSIDE: " with each violation of the model's limits: deflection
-    against model.deflection_limit, DEA fields against breakdown), the result columns
-    (missing, NaN, in a failed row). df.attrs holds units {column: unit},
-    cost (seconds per stage summed over the variants, work and wall seconds), segments,
-    unknowns, notes.
+        - "modes": f<k>_hz [Hz], zeta<k> [-], f<k>_error_hz [Hz] for the `modes` lowest modes;
+        - "static": static.<probe>_<unit> per probe of the scene;
+        - "sweep-switching": sweep.peak_hz [Hz], and per output and frequency of `at`
+          sweep.<output>.min_at_<f>Hz_<unit>, .max_at_... (the periodic extremes).
+    modes : int, default 1
+        The modes reported, lowest first.
+    sweep_frequencies : sequence of float, optional
+        The sweep's switching frequencies [Hz] (default: 1 to 7 Hz in steps of 0.1).
+    at : sequence of float, default ()
+        The frequencies of the sweep whose extremes are columns [Hz].
+    threads : int, default 0
+        Worker threads in this process (0: every core).
+    client : dask.distributed.Client, optional
+        Run chunks of variants on its workers, one thread per task; the rows come back in order,
+        equal bit for bit to a local run's.
+    chunk_size : int, optional
+        Variants per task with a client (default: a quarter of an even share per worker, at
+        least 20).
+    progress : bool, default False
+        Report the variants done on standard error.
+
+    Returns
+    -------
+    pandas.DataFrame
+        variant, the varied keys [SI], status ("ok" or "failed: why"), validity ("within", or
+        "OUTSIDE: " with each violation of the model's limits: deflection against
+        model.deflection_limit, DEA fields against breakdown), the result columns (missing,
+        NaN, in a failed row). df.attrs holds units {column: unit}, cost (seconds per stage
+        summed over the variants, work and wall seconds [s]), segments, unknowns, notes,
+        failed and outside_validity (counts).
+
+    Raises
+    ------
+    InputError
+        A bad keyword value (.where and .key name the keyword) or variation.
     """
-    import numpy
-
     started = time.perf_counter()
     scene = as_scene(scene)
     table = _variant_table(scene, vary, samples, seed, variants)
     keys = list(table.columns)
     values = numpy.ascontiguousarray(table.to_numpy(dtype=float))
-    options = {"analyses": _analyses_text(analyses), "modes": modes,
-               "sweep_frequencies": numbers(sweep_frequencies, "sweep_frequencies"),
-               "report_frequencies": numbers(at, "at")}
+    options: dict[str, Any] = {
+        "analyses": ",".join(texts(analyses, "analyses")), "modes": integer(modes, "modes"),
+        "sweep_frequencies": numbers(sweep_frequencies, "sweep_frequencies"),
+        "report_frequencies": numbers(at, "at")}
     if client is None:
-        parts = [(0, values, _emnet.run_study(scene._handle, keys, values, threads=threads,
+        parts = [(0, values, _emnet.run_study(scene._handle, keys, values,
+                                              threads=integer(threads, "threads"),
                                               progress=progress, **options))]
     else:
         workers = client.scheduler_info()["workers"]
         if not workers:
-            raise input_error("the Dask cluster has no workers", "client")
-        if chunk_size is None:
-            chunk_size = max(20, math.ceil(len(values) / (4 * len(workers))))
+            raise input_error("the Dask cluster has no workers", "client", "client")
+        chunk_size = (max(20, math.ceil(len(values) / (4 * len(workers)))) if chunk_size is None
+                      else integer(chunk_size, "chunk_size"))
         if chunk_size < 1:
-            raise input_error("must be >= 1", "chunk_size")
+            raise input_error("must be >= 1", "chunk_size", "chunk_size")
         state = scene.__getstate__()
         starts = list(range(0, len(values), chunk_size))
         chunks = [values[start:start + chunk_size] for start in starts]
