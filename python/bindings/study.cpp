@@ -29,7 +29,7 @@ class StderrProgress : public emnet::Progress {
 // Progress to a Python callable, progress(done, total, what), at most every 0.1 s and at the
 // end: a tqdm bar in a terminal or a notebook (python/emnet/_study.py). Reports come from the
 // study's threads, each taking the GIL for the call; a callable that raises is not called again
-// (the study goes on: progress is not the result).
+// (the study goes on: progress is not the result), except for Ctrl-C, which stops the study.
 class CallbackProgress : public emnet::Progress {
  public:
   explicit CallbackProgress(py::object callback) : callback_(std::move(callback)) {}
@@ -43,7 +43,15 @@ class CallbackProgress : public emnet::Progress {
     const py::gil_scoped_acquire gil;
     try {
       callback_(done, total, std::string(what));
-    } catch (py::error_already_set&) {
+    } catch (py::error_already_set& error) {
+      // Ctrl-C reaches Python inside the callback as often as not (it runs Python code while
+      // the study runs): it is handed back as a pending interrupt, which the study's
+      // cancellation check (PythonInterrupts) then sees, not swallowed with the callback's
+      // own failures.
+      if (error.matches(PyExc_KeyboardInterrupt)) {
+        PyErr_SetInterrupt();
+        return;
+      }
       const std::lock_guard<std::mutex> lock(mutex_);
       failed_ = true;
     }

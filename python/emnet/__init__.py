@@ -30,7 +30,7 @@ from ._analyses import (ac, crosscheck, identify, mismatch, modes, netlist, sens
 from ._study import study, variants
 
 __all__ = [
-    "__version__", "Scene", "Result", "InputError", "NumericalError", "static", "modes", "ac", "tran",
-    "sweep_switching", "identify", "sensitivity", "mismatch", "netlist", "crosscheck", "study",
-    "variants",
+    "__version__", "Scene", "Result", "InputError", "NumericalError", "static", "modes", "ac",
+    "tran", "sweep_switching", "identify", "sensitivity", "mismatch", "netlist", "crosscheck",
+    "study", "variants",
 ]

@@ -6,6 +6,7 @@ from typing import Any, Optional
 from . import _emnet
 from ._convert import (Flag, Integer, Number, Numbers, Texts, flag, integer, maybe_flag,
                        maybe_integer, maybe_number, number, numbers, text, texts)
+from ._command import program
 from ._results import Result
 from ._scene import SceneLike, as_scene
 
@@ -431,5 +432,8 @@ def crosscheck(scene: SceneLike, analyses: str = "all", timeout: Number = 60.0) 
     NumericalError
         The analysis failed (the reason in the message).
     """
+    # An installed package runs its own worker (emnet/bin); the module in build/python finds the
+    # one the build made.
+    worker = program("emnet-ngspice-worker") or ""
     return _result("crosscheck", _emnet.crosscheck(
-        as_scene(scene)._handle, text(analyses, "analyses"), number(timeout, "timeout")))
+        as_scene(scene)._handle, text(analyses, "analyses"), number(timeout, "timeout"), worker))

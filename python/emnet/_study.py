@@ -1,10 +1,13 @@
 """Design studies: many variants of a scene, in one process or on a Dask cluster."""
 
+import contextlib
+import importlib
+import importlib.util
 import math
 import os
 import sys
 import time
-from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
+from typing import TYPE_CHECKING, Any, Iterator, Mapping, Optional, Sequence, Union
 
 import numpy
 from numpy.typing import NDArray
@@ -110,6 +113,36 @@ def _frame(keys: list[str], values: NDArray[numpy.float64], first_variant: int,
     return pandas.DataFrame(data)
 
 
+@contextlib.contextmanager
+def _progress_reporter(progress: Any, total: int, unit: str) -> Iterator[Any]:
+    """What a study reports its progress to: for True a tqdm bar (a widget in a notebook with
+    ipywidgets, a line on standard error otherwise; without tqdm, the library's own line "emnet
+    study: done/total" on standard error), a callable as it is (called as callable(done, total,
+    what), at most every 0.1 s and at the end), nothing for False. The bar is closed at the end,
+    also when the study is interrupted."""
+    if callable(progress) or not progress:
+        yield progress if callable(progress) else False
+        return
+    try:
+        import tqdm
+    except ImportError:
+        yield True
+        return
+    # tqdm.auto draws a widget in a notebook with ipywidgets, and without it warns.
+    widgets = importlib.util.find_spec("ipywidgets") is not None
+    bar_class: Any = importlib.import_module("tqdm.auto").tqdm if widgets else tqdm.tqdm
+    bar = bar_class(total=total, desc="emnet study", unit=unit, file=sys.stderr)
+
+    def report(done: int, total: int, what: str) -> None:
+        bar.total = total
+        bar.update(done - bar.n)
+
+    try:
+        yield report
+    finally:
+        bar.close()
+
+
 def study(scene: SceneLike, vary: Optional[Vary] = None, *, samples: Integer = 0,
           seed: Integer = 1, variants: Optional[Variants] = None,
           analyses: Texts = ("modes",), modes: Integer = 1,
@@ -145,8 +178,11 @@ def study(scene: SceneLike, vary: Optional[Vary] = None, *, samples: Integer = 0
     chunk_size : int, optional
         Variants per task with a client (default: a quarter of an even share per worker, at
         least 20).
-    progress : bool, default False
-        Report the variants done on standard error.
+    progress : bool or callable, default False
+        True: a progress bar of the variants (of the chunks with a client) done: tqdm's, a
+        widget in a notebook where ipywidgets is installed, a line on standard error otherwise.
+        A callable is called as progress(done, total, what) instead, at most every 0.1 s and at
+        the end (from the study's threads, holding the GIL).
 
     Returns
     -------
@@ -173,9 +209,10 @@ def study(scene: SceneLike, vary: Optional[Vary] = None, *, samples: Integer = 0
         "sweep_frequencies": numbers(sweep_frequencies, "sweep_frequencies"),
         "report_frequencies": numbers(at, "at")}
     if client is None:
-        parts = [(0, values, _emnet.run_study(scene._handle, keys, values,
-                                              threads=integer(threads, "threads"),
-                                              progress=progress, **options))]
+        with _progress_reporter(progress, len(values), "variant") as report:
+            parts = [(0, values, _emnet.run_study(scene._handle, keys, values,
+                                                  threads=integer(threads, "threads"),
+                                                  progress=report, **options))]
     else:
         workers = client.scheduler_info()["workers"]
         if not workers:
@@ -191,13 +228,14 @@ def study(scene: SceneLike, vary: Optional[Vary] = None, *, samples: Integer = 0
         futures = client.map(_run_chunk, [state] * len(chunks), [keys] * len(chunks), chunks,
                              [task_options] * len(chunks), pure=False)
         results = []
-        for done, future in enumerate(futures, 1):
-            results.append(future.result())
-            if progress:
-                print(f"\remnet study: {done}/{len(futures)} chunks", end="", flush=True,
-                      file=sys.stderr)
-        if progress:
-            print(file=sys.stderr)
+        with _progress_reporter(progress, len(futures), "chunk") as report:
+            for done, future in enumerate(futures, 1):
+                results.append(future.result())
+                if callable(report):
+                    report(done, len(futures), "chunks")
+                elif report:
+                    print(f"\remnet study: {done}/{len(futures)} chunks",
+                          end="\n" if done == len(futures) else "", flush=True, file=sys.stderr)
         parts = list(zip(starts, chunks, results))
     import pandas
 
