@@ -461,6 +461,7 @@ class SwitchingSweepRun {
       if (std::optional<Status> failed = failure_of_the_periodic_solution(*solved, f))
         return failed;
       keep_the_extremes(f, *solved);
+      start_states_.push_back(solved->start_state);  // shooting's; empty from the others
     }
     return std::nullopt;
   }
@@ -479,6 +480,7 @@ class SwitchingSweepRun {
       result_.peak_frequency = result_.frequencies[best];
       result_.peak_left = main.left[best];
       result_.peak_right = main.right[best];
+      peak_start_state_ = start_states_[best];
     }
   }
 
@@ -496,19 +498,30 @@ class SwitchingSweepRun {
   }
 
   // The largest |rotation| at the beam's nodes over the period at the sweep's peak, for the
-  // geometric error (one more periodic solve); none with large kinematics or where it fails.
+  // geometric error (one more periodic solve, or one period of IDA); none with large kinematics
+  // or where it fails.
   std::optional<RotationPeak> rotation_at_the_sweep_peak() {
     if (!options_.largest_rotation) return std::nullopt;
     const RotationProbes rotations = rotation_probes(model_);
     if (rotations.probes.empty() || result_.frequencies.empty()) return std::nullopt;
     const double f = result_.peak_frequency;
-    const std::optional<PeriodicResult> solved =
-        periodic_solution_at(system_at(f), f, &rotations.probes);
+    const std::optional<PeriodicResult> solved = rotation_solution_at(f, rotations.probes);
     if (!solved || !solved->status.ok()) return std::nullopt;
     std::vector<double> peaks;
     for (size_t p = 0; p < rotations.probes.size(); ++p)
       peaks.push_back(std::max(std::abs(solved->minimum[p]), std::abs(solved->maximum[p])));
     return largest_rotation(rotations, peaks);
+  }
+
+  // The periodic state at the sweep peak f for the rotation probes: by shooting, one period of
+  // IDA from the periodic start already found there (on the tweezer jaw half a one-frequency
+  // sweep's time went to solving it again); otherwise solved again (the exact method's
+  // solve is cheap, the reduced one does not keep its start).
+  std::optional<PeriodicResult> rotation_solution_at(double f, const std::vector<Probe>& probes) {
+    if (peak_start_state_.size() > 0)
+      return sample_periodic_state(system_at(f), probes, 1.0 / f, options_.rtol, samples_,
+                                   peak_start_state_, options_.progress);
+    return periodic_solution_at(system_at(f), f, &probes);
   }
 
   // The first, the largest-swing (the sweep peak) and the last frequency, each once.
@@ -623,6 +636,9 @@ class SwitchingSweepRun {
     Eigen::VectorXd nonlinear_part;
   };
   SolvedState previous_, before_previous_;  // the last two solved, or empty
+  // Shooting: the periodic start state at each frequency solved, and at the sweep peak.
+  std::vector<Eigen::VectorXd> start_states_;
+  Eigen::VectorXd peak_start_state_;
 
   // The nonlinear part at f, added to the linearisation's periodic state there: the straight
   // line through the last two (the secant predictor of continuation), the last one alone, or

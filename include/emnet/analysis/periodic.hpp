@@ -94,6 +94,17 @@ PeriodicResult run_periodic_shooting(const System& system, const std::vector<Pro
                                      const Progress* progress = nullptr,
                                      const Eigen::VectorXd* nonlinear_part = nullptr);
 
+/// One period of IDA (relative tolerance `rtol`) from a periodic state that shooting found, its
+/// PeriodicResult::start_state, sampled for `probes`: the extremes of other outputs over the
+/// same periodic state without solving for it again (one run instead of a shooting solve).
+/// periodicity_residual is ‖u(T) − u(0)‖/‖u(0)‖ over the differential unknowns (the state).
+/// @param period       T [s], the one the start state is periodic for
+/// @param samples      samples over one period, at t = T·s/samples
+PeriodicResult sample_periodic_state(const System& system, const std::vector<Probe>& probes,
+                                     double period, double rtol, int samples,
+                                     const Eigen::VectorXd& start_state,
+                                     const Progress* progress = nullptr);
+
 /// The periodicity residual ‖x(T) − x(0)‖/‖x(0)‖ shooting holds itself to at IDA's relative
 /// tolerance `rtol`: IDA's own noise, 1000·rtol (1e-7 of the state measured at rtol 1e-9 on the
 /// fin at 400 V), or kResidualLimit where that is larger.

@@ -63,8 +63,9 @@ struct SwitchingSweepOptions {
   std::vector<Probe> outputs;
   bool first_mode = true;  // compute f1 (the lowest mode), for a plot marker
   // The validity's geometric error from the largest rotation at the beam's nodes (small
-  // kinematics): one more periodic solve at the sweep's peak. False where the caller does not
-  // use the validity (the estimate is then (w/L)² alone).
+  // kinematics): one more periodic solve at the sweep's peak (by shooting, one period of IDA
+  // from the periodic state found there). False where the caller does not use the validity (the
+  // estimate is then (w/L)² alone).
   bool largest_rotation = true;
   // One report per frequency; cancelled: a failed Status "cancelled" and `cancelled` set.
   Progress* progress = nullptr;
