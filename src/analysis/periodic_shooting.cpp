@@ -68,8 +68,7 @@ class ShootingCoordinates {
     space_ = std::make_unique<LinearStateSpace>(form, d_u, d_up, 2 * M_PI / period);
     basis_ = constrained_basis(space_->hidden_constraints_on_state(), space_->state_size());
     u_of_xi_ = space_->u_of_state() * basis_;
-    const LinearStateSpace::Propagator propagator = space_->propagator(period);
-    jacobian_ = basis_.transpose() * propagator.gamma * space_->m() * basis_;
+    jacobian_ = basis_.transpose() * period_map_less_identity(period) * basis_;
     linear_periodic_ = linear_periodic_xi(system, form, u, period);
   }
   Eigen::Index size() const { return basis_.cols(); }
@@ -86,6 +85,21 @@ class ShootingCoordinates {
   const Eigen::VectorXd& linear_periodic_state() const { return linear_periodic_; }
 
  private:
+  // Φ(T) − I of the linearisation's state equation: per pole e^{λT} − 1 = λ·T·φ₁(λT) in M's
+  // modal basis, when it has a well-conditioned one (O(n³) once, and the linear periodic state
+  // uses the same basis); else Γ(T)·M from the exponential of [[M, I], [0, 0]]·T, which a stiff
+  // M makes costly (336 ms on the tweezer jaw's 216 states: about 30 squarings of 432 × 432).
+  Eigen::MatrixXd period_map_less_identity(double period) const {
+    if (const LinearStateSpace::ModalBasis* modal = space_->modal_basis()) {
+      Eigen::VectorXcd change(modal->values.size());
+      for (Eigen::Index k = 0; k < change.size(); ++k)
+        change[k] =
+            modal->values[k] * LinearStateSpace::ModalBasis::increment(modal->values[k], period);
+      return (modal->vectors * change.asDiagonal() * modal->vectors_lu.inverse()).real();
+    }
+    return space_->propagator(period).gamma * space_->m();
+  }
+
   // N·f over one interval of length h, f = f₀ + s·f₁ (slope: f₁ ≠ 0).
   struct AffineForcing {
     double length;
