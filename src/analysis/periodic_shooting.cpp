@@ -11,6 +11,7 @@
 // far from the linearisation) the Jacobian is formed again by finite differences of one-period
 // runs, one per state. ξ are the linearisation's states restricted to the hidden constraints'
 // null space: x = P·ξ, P orthonormal, and IDA starts from u = U·x (U: the state's unknowns).
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <memory>
@@ -54,22 +55,104 @@ constexpr double kNoiseResidual = 300.0;
 constexpr double kResidualGrowth = 2.0;
 constexpr int kStepHalvings = 8;
 
+// The network linearised about its static state (or rest, where that fails) as a state space,
+// with the basis of the states that satisfy the hidden constraints. It depends on the network's
+// matrices and static state only, not on the period: a sweep keeps it (ShootingCache).
+struct Linearisation {
+  Eigen::VectorXd u_static;
+  Eigen::SparseMatrix<double> d_u, d_up;
+  std::unique_ptr<LinearStateSpace> space;
+  Eigen::MatrixXd basis, u_of_xi;
+  Eigen::MatrixXcd modal_inverse;  // V⁻¹ of M's modal basis, when it has one
+
+  // The same linearisation: bit for bit the same matrices and static state.
+  bool same(const Eigen::VectorXd& u, const Eigen::SparseMatrix<double>& a,
+            const Eigen::SparseMatrix<double>& e) const {
+    return u.size() == u_static.size() && u == u_static && identical(a, d_u) && identical(e, d_up);
+  }
+
+ private:
+  static bool identical(const Eigen::SparseMatrix<double>& x,
+                        const Eigen::SparseMatrix<double>& y) {
+    if (x.rows() != y.rows() || x.cols() != y.cols() || x.nonZeros() != y.nonZeros() ||
+        !x.isCompressed() || !y.isCompressed())
+      return false;
+    const auto n = static_cast<size_t>(x.nonZeros());
+    return std::equal(x.outerIndexPtr(), x.outerIndexPtr() + x.outerSize() + 1,
+                      y.outerIndexPtr()) &&
+           std::equal(x.innerIndexPtr(), x.innerIndexPtr() + n, y.innerIndexPtr()) &&
+           std::equal(x.valuePtr(), x.valuePtr() + n, y.valuePtr());
+  }
+};
+
+}  // namespace
+
+struct ShootingCache::Impl {
+  std::shared_ptr<const Linearisation> last;
+  int reuses = 0;
+};
+ShootingCache::ShootingCache() : impl_(std::make_unique<Impl>()) {}
+ShootingCache::~ShootingCache() = default;
+int ShootingCache::reuses() const {
+  return impl_->reuses;
+}
+
+namespace {
+
+// An orthonormal basis of the null space of `constraints` (the identity without rows).
+Eigen::MatrixXd constrained_basis(const Eigen::MatrixXd& constraints, Eigen::Index n) {
+  if (constraints.rows() == 0) return Eigen::MatrixXd::Identity(n, n);
+  const RealSingularValueDecomposition svd = jacobi_svd(constraints, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sv = svd.singular_values;
+  Eigen::Index rank = 0;
+  while (rank < sv.size() && sv[rank] > 1e-12 * sv[0]) ++rank;
+  return svd.v.rightCols(n - rank);
+}
+
+// The linearisation of `system` (its form `form`), `cache`'s when it is the same, else made
+// (and kept there). `angular_frequency`: the state space's time unit, the first period's.
+std::shared_ptr<const Linearisation> linearisation_of(const System& system,
+                                                      const DisplacementForm& form,
+                                                      double angular_frequency,
+                                                      ShootingCache::Impl* kept) {
+  const StaticResult rest = solve_static(system);
+  Eigen::VectorXd u =
+      rest.status.ok() ? form.from_static(rest.state) : Eigen::VectorXd::Zero(form.size());
+  Eigen::SparseMatrix<double> d_u, d_up;
+  form.linearised(u, Eigen::VectorXd::Zero(form.size()), d_u, d_up);
+  d_u.makeCompressed();
+  d_up.makeCompressed();
+  if (kept && kept->last && kept->last->same(u, d_u, d_up)) {
+    ++kept->reuses;
+    return kept->last;
+  }
+  auto made = std::make_shared<Linearisation>();
+  made->space = std::make_unique<LinearStateSpace>(form, d_u, d_up, angular_frequency);
+  made->basis =
+      constrained_basis(made->space->hidden_constraints_on_state(), made->space->state_size());
+  made->u_of_xi = made->space->u_of_state() * made->basis;
+  if (const LinearStateSpace::ModalBasis* modal = made->space->modal_basis())
+    made->modal_inverse = modal->vectors_lu.inverse();
+  made->u_static = std::move(u);
+  made->d_u = std::move(d_u);
+  made->d_up = std::move(d_up);
+  if (kept) kept->last = made;
+  return made;
+}
+
 // The shooting unknowns ξ: the states of the network's linearisation about its static state
-// (or rest, where that fails) that satisfy the hidden constraints, with the linearisation's
-// Jacobian Φ(T) − I on them.
+// that satisfy the hidden constraints, with the linearisation's Jacobian Φ(T) − I on them and
+// its periodic state.
 class ShootingCoordinates {
  public:
-  ShootingCoordinates(const System& system, const DisplacementForm& form, double period) {
-    const StaticResult rest = solve_static(system);
-    const Eigen::VectorXd u =
-        rest.status.ok() ? form.from_static(rest.state) : Eigen::VectorXd::Zero(form.size());
-    Eigen::SparseMatrix<double> d_u, d_up;
-    form.linearised(u, Eigen::VectorXd::Zero(form.size()), d_u, d_up);
-    space_ = std::make_unique<LinearStateSpace>(form, d_u, d_up, 2 * M_PI / period);
-    basis_ = constrained_basis(space_->hidden_constraints_on_state(), space_->state_size());
-    u_of_xi_ = space_->u_of_state() * basis_;
+  ShootingCoordinates(const System& system, const DisplacementForm& form, double period,
+                      ShootingCache::Impl* kept)
+      : linear_(linearisation_of(system, form, 2 * M_PI / period, kept)),
+        space_(linear_->space.get()),
+        basis_(linear_->basis),
+        u_of_xi_(linear_->u_of_xi) {
     jacobian_ = basis_.transpose() * period_map_less_identity(period) * basis_;
-    linear_periodic_ = linear_periodic_xi(system, form, u, period);
+    linear_periodic_ = linear_periodic_xi(system, form, linear_->u_static, period);
   }
   Eigen::Index size() const { return basis_.cols(); }
   /// The network's unknowns u to start IDA from at ξ.
@@ -95,7 +178,7 @@ class ShootingCoordinates {
       for (Eigen::Index k = 0; k < change.size(); ++k)
         change[k] =
             modal->values[k] * LinearStateSpace::ModalBasis::increment(modal->values[k], period);
-      return (modal->vectors * change.asDiagonal() * modal->vectors_lu.inverse()).real();
+      return (modal->vectors * change.asDiagonal() * linear_->modal_inverse).real();
     }
     return space_->propagator(period).gamma * space_->m();
   }
@@ -165,18 +248,11 @@ class ShootingCoordinates {
     return xi.allFinite() ? xi : Eigen::VectorXd::Zero(basis_.cols());
   }
 
-  // An orthonormal basis of the null space of `constraints` (the identity without rows).
-  static Eigen::MatrixXd constrained_basis(const Eigen::MatrixXd& constraints, Eigen::Index n) {
-    if (constraints.rows() == 0) return Eigen::MatrixXd::Identity(n, n);
-    const RealSingularValueDecomposition svd = jacobi_svd(constraints, Eigen::ComputeFullV);
-    const Eigen::VectorXd& sv = svd.singular_values;
-    Eigen::Index rank = 0;
-    while (rank < sv.size() && sv[rank] > 1e-12 * sv[0]) ++rank;
-    return svd.v.rightCols(n - rank);
-  }
-
-  std::unique_ptr<LinearStateSpace> space_;
-  Eigen::MatrixXd basis_, u_of_xi_, jacobian_;
+  std::shared_ptr<const Linearisation> linear_;
+  const LinearStateSpace* space_;
+  const Eigen::MatrixXd& basis_;
+  const Eigen::MatrixXd& u_of_xi_;
+  Eigen::MatrixXd jacobian_;
   Eigen::VectorXd linear_periodic_;
 };
 
@@ -200,11 +276,11 @@ class Shooting {
   // The run from the converged ξ (a step below the tolerance: the last) samples `probes` at
   // `samples` points, the result's period.
   Shooting(const System& system, const std::vector<Probe>& probes, double period, double rtol,
-           int samples, const Progress* progress)
+           int samples, const Progress* progress, ShootingCache::Impl* kept)
       : system_(system),
         probes_(probes),
         form_(system),
-        coordinates_(system, form_, period),
+        coordinates_(system, form_, period, kept),
         cancellation_(progress),
         rtol_(rtol) {
     options_.end_time = period;
@@ -422,7 +498,7 @@ double shooting_residual_limit(double rtol) {
 PeriodicResult run_periodic_shooting(const System& given, const std::vector<Probe>& probes,
                                      double period, double rtol, int samples,
                                      const Progress* progress,
-                                     const Eigen::VectorXd* nonlinear_part) {
+                                     const Eigen::VectorXd* nonlinear_part, ShootingCache* cache) {
   const std::optional<System> steady = steady_period_system(given, period);
   const System& system = steady ? *steady : given;
   Timed<PeriodicResult> timed;
@@ -431,7 +507,8 @@ PeriodicResult run_periodic_shooting(const System& given, const std::vector<Prob
   result.period = period;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   try {
-    Shooting shooting(system, probes, period, rtol, samples, progress);
+    Shooting shooting(system, probes, period, rtol, samples, progress,
+                      cache ? cache->impl_.get() : nullptr);
     const Eigen::VectorXd xi =
         shooting.solve(nonlinear_part, result.newton_iterations, result.periodicity_residual);
     result.period_runs = shooting.runs();

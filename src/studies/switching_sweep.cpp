@@ -401,7 +401,7 @@ class SwitchingSweepRun {
     const Eigen::VectorXd guess = continuation_guess(f);
     PeriodicResult solution =
         run_periodic_shooting(system, outputs, 1.0 / f, options_.rtol, samples, options_.progress,
-                              guess.size() ? &guess : nullptr);
+                              guess.size() ? &guess : nullptr, &shooting_cache_);
     if (solution.status.ok()) {
       before_previous_ = std::move(previous_);
       previous_ = {f, solution.start_state - solution.linear_start_state};
@@ -636,6 +636,7 @@ class SwitchingSweepRun {
     Eigen::VectorXd nonlinear_part;
   };
   SolvedState previous_, before_previous_;  // the last two solved, or empty
+  ShootingCache shooting_cache_;            // the linearisation, made at the first frequency
   // Shooting: the periodic start state at each frequency solved, and at the sweep peak.
   std::vector<Eigen::VectorXd> start_states_;
   Eigen::VectorXd peak_start_state_;

@@ -79,6 +79,23 @@ class PeriodicSolver {
   Status status_;
 };
 
+/// What shooting keeps between calls: the network linearised about its static state, as a state
+/// space with its modal basis (on the tweezer jaw's 222 unknowns about 110 ms, a third of one
+/// frequency's shooting). A call on a network whose linearisation is bit for bit the same (a
+/// sweep's periods; a circuit switched per frequency) reuses it; any other makes its own and
+/// keeps that. Not to be shared between threads.
+class ShootingCache {
+ public:
+  ShootingCache();
+  ~ShootingCache();
+  ShootingCache(const ShootingCache&) = delete;
+  ShootingCache& operator=(const ShootingCache&) = delete;
+  /// The calls that reused the kept linearisation.
+  int reuses() const;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 /// Shooting with IDA at relative tolerance `rtol` (periodic_shooting.cpp: Newton–Broyden from
 /// the linearisation's periodic state and Jacobian, both exact for a linear network). `progress`
 /// is for cancellation only (Status "cancelled"): the one-period IDA runs of a solve do not
@@ -89,10 +106,12 @@ class PeriodicSolver {
 /// @param nonlinear_part  added to the linearisation's periodic state to start Newton from: a
 ///                        neighbouring period's start_state − linear_start_state (the
 ///                        unknowns at t = 0), or its extrapolation; null: none
+/// @param cache           the linearisation kept between calls (a sweep's); null: none
 PeriodicResult run_periodic_shooting(const System& system, const std::vector<Probe>& probes,
                                      double period, double rtol = 1e-9, int samples = 256,
                                      const Progress* progress = nullptr,
-                                     const Eigen::VectorXd* nonlinear_part = nullptr);
+                                     const Eigen::VectorXd* nonlinear_part = nullptr,
+                                     ShootingCache* cache = nullptr);
 
 /// One period of IDA (relative tolerance `rtol`) from a periodic state that shooting found, its
 /// PeriodicResult::start_state, sampled for `probes`: the extremes of other outputs over the
