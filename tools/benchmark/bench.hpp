@@ -270,5 +270,7 @@ std::string reduction_section(const Settings& settings);
 std::string crosscheck_section(const Settings& settings);
 // large_deflection.cpp: 7, large kinematics against small (static, IDA).
 std::string large_deflection_section(const Settings& settings);
+// real_devices.cpp: 8, the tweezer jaw's periodic state over switching frequencies.
+std::string real_device_section(const Settings& settings);
 
 }  // namespace emnet_bench

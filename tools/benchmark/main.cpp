@@ -8,7 +8,7 @@
 // and whole process, errors) is the report's "How it is measured", written here.
 //
 //   emnet_bench [--root DIR] [--out DIR] [--emnet PROGRAM] [--report FILE] [--figures DIR]
-//               [--quick] [--only 0|4|5a|5b|6|7]
+//               [--quick] [--only 0|4|5a|5b|6|7|8]
 //
 // --out: the scratch directory (data *.dat and gnuplot scripts *.gp of the plots, decks/*.cir);
 // --report: the report (default out/report.md, or out/report-<section>.md with --only);
@@ -19,8 +19,8 @@
 //
 // The sections are in tools/benchmark/: limits.cpp (0), discretisation.cpp (1, 4b), ac.cpp and
 // transient.cpp (2, 3), sweep.cpp (the switching sweep), scale.cpp (4), simplifications.cpp (5a,
-// 5b), study.cpp (6), crosscheck.cpp (the cross-check), large_deflection.cpp (7); the pieces
-// they share in common.cpp (bench.hpp); the report and the command line here.
+// 5b), study.cpp (6), crosscheck.cpp (the cross-check), large_deflection.cpp (7), real_devices.cpp
+// (8); the pieces they share in common.cpp (bench.hpp); the report and the command line here.
 #include <filesystem>
 
 #include "bench.hpp"
@@ -216,6 +216,8 @@ int run(const Settings& settings) {
         : settings.only == "6" ? Part{"Design studies", study_section(settings)}
         : settings.only == "7" ? Part{"Large deflection: cost against small kinematics",
                                       large_deflection_section(settings)}
+        : settings.only == "8"
+            ? Part{"Real devices: the tweezer jaw's periodic state", real_device_section(settings)}
         : settings.only == "0"
             ? Part{"Limits: each analysis against its arithmetic", limits_section(settings)}
         : settings.only == "4"
@@ -258,6 +260,8 @@ int run(const Settings& settings) {
   const std::string crosscheck = crosscheck_section(settings);
   std::cerr << "emnet_bench: large deflection\n";
   const std::string large_deflection = large_deflection_section(settings);
+  std::cerr << "emnet_bench: real devices\n";
+  const std::string real_devices = real_device_section(settings);
   write_pareto_plot(settings, "discretisation", "cantilever: discretisation error against cost",
                     discretisation_points);
   write_pareto_plot(settings, "ac", "fish fin AC, 1000 points: error against time", ac_points);
@@ -297,7 +301,8 @@ int run(const Settings& settings) {
       {"Modal reduction: speed gained and error", reduction},
       {"Design studies", study},
       {"Cross-check against ngspice: differences and wall times", crosscheck},
-      {"Large deflection: cost against small kinematics", large_deflection}};
+      {"Large deflection: cost against small kinematics", large_deflection},
+      {"Real devices: the tweezer jaw's periodic state", real_devices}};
 
   std::ostringstream md;
   md << "What emnet costs and how accurate it is, measured in one run on one machine: each "
@@ -354,7 +359,8 @@ int main(int argc, char** argv) {
     } else if (argument == "--only") {
       settings.only = value();
       if (settings.only != "0" && settings.only != "4" && settings.only != "5a" &&
-          settings.only != "5b" && settings.only != "6" && settings.only != "7") {
+          settings.only != "5b" && settings.only != "6" && settings.only != "7" &&
+          settings.only != "8") {
         std::cerr << "emnet_bench: --only takes 0 (limits), 4 (scale), 5a (simplifications), 5b "
                      "(modal reduction), 6 (design studies) or 7 (large deflection)\n";
         return 2;
@@ -364,7 +370,7 @@ int main(int argc, char** argv) {
       scale_segments = std::stoi(value());
     } else {
       std::cerr << "usage: emnet_bench [--root DIR] [--out DIR] [--emnet PROGRAM] [--report FILE] "
-                   "[--figures DIR] [--quick] [--only 0|4|5a|5b|6|7]\n";
+                   "[--figures DIR] [--quick] [--only 0|4|5a|5b|6|7|8]\n";
       return 2;
     }
   }
