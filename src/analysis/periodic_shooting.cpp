@@ -270,6 +270,22 @@ void fill_sampled_extremes(PeriodicResult& result, double step) {
   });
 }
 
+// IDA's options for one period from t = 0 at `rtol`, cancelled through `cancellation`.
+TransientOptions one_period_options(double period, double rtol, CancellationOnly& cancellation) {
+  TransientOptions options;
+  options.end_time = period;
+  options.relative_tolerance = rtol;
+  options.progress = &cancellation;
+  return options;
+}
+
+// `samples` instants over one period, at t = T·s/samples.
+std::vector<double> sample_times(double period, int samples) {
+  std::vector<double> times;
+  for (int s = 0; s < samples; ++s) times.push_back(period * s / samples);
+  return times;
+}
+
 // One shooting solve: the period map, the Newton–Broyden iteration, the sampled last period.
 class Shooting {
  public:
@@ -282,12 +298,9 @@ class Shooting {
         form_(system),
         coordinates_(system, form_, period, kept),
         cancellation_(progress),
-        rtol_(rtol) {
-    options_.end_time = period;
-    options_.relative_tolerance = rtol;
-    options_.progress = &cancellation_;
-    for (int s = 0; s < samples; ++s) sample_times_.push_back(period * s / samples);
-  }
+        options_(one_period_options(period, rtol, cancellation_)),
+        rtol_(rtol),
+        sample_times_(sample_times(period, samples)) {}
 
   // The periodic ξ (its period is last_period()); `iterations` and `residual`
   // (‖ξ(T) − ξ‖/‖ξ‖) say how it converged.
@@ -471,12 +484,9 @@ PeriodicResult sample_periodic_state(const System& given, const std::vector<Prob
   result.method = Method::shooting;
   result.period = period;
   CancellationOnly cancellation(progress);
-  TransientOptions options;
-  options.end_time = period;
-  options.relative_tolerance = rtol;
+  TransientOptions options = one_period_options(period, rtol, cancellation);
   options.initial_state = start_state;
-  options.progress = &cancellation;
-  for (int s = 0; s < samples; ++s) options.output_times.push_back(period * s / samples);
+  options.output_times = sample_times(period, samples);
   const TransientResult run = run_transient_ida(system, probes, options);
   if (run.status.cancelled()) return timed.finish(cancelled_status());
   if (!run.status.ok())
