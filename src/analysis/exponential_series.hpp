@@ -20,10 +20,17 @@ namespace emnet {
 // edges[i] ≤ t < edges[i+1]. The affine part comes from the sources' ramps (slope 0 where they
 // are constant); it adds nothing to p'', so the curvature bounds of the extremum search hold as
 // they are.
+//
+// The exact cascade (periodic_cascade.hpp) adds a forced part over further exponents μ_m, shared
+// by every series and interval: + Re Σ_m (c₀ + c₁·h + c₂·h²)_m·e^{μ_m·h}, the polynomial's
+// coefficients in the columns of forced[i] (one row per exponent). Its curvature has bounds of
+// its own (periodic_series.cpp).
 struct ExponentialSeries {
+  using ForcedTerms = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, 3>;
   std::vector<double> offset;
   std::vector<double> slope;  // as many as offset, or empty: all 0
   std::vector<Eigen::VectorXcd> coefficient;
+  std::vector<ForcedTerms> forced;  // as many as offset, or empty: none
 };
 
 // The system with its sources over one period of their periodic regime, or nullopt when [0, T)
@@ -56,12 +63,24 @@ Status periodic_interval_starts(const Eigen::VectorXcd& lambda, const std::vecto
                                 const std::vector<bool>& fixed_at_zero,
                                 std::vector<Eigen::VectorXcd>& start_of, double& residual);
 
+// The same for any particular state ξ_p,i (the cascade's is not affine): given at the start
+// (particular_start[i]) and the end (particular_end[i]) of each interval, each interval advances
+// ξ ↦ ξ_p,i(h_i) + e^{Λh_i}·(ξ − ξ_p,i(0)).
+Status periodic_starts_from_particulars(const Eigen::VectorXcd& lambda,
+                                        const std::vector<double>& edges,
+                                        const std::vector<Eigen::VectorXcd>& particular_start,
+                                        const std::vector<Eigen::VectorXcd>& particular_end,
+                                        const std::vector<bool>& fixed_at_zero,
+                                        std::vector<Eigen::VectorXcd>& start_of, double& residual);
+
 // Samples every series at `samples` uniform times over [0, edges.back()) into result.times and
 // result.values, and finds its global extremes into result.minimum, maximum and their times
 // (curvature-bounded search between the samples, then Newton: see periodic.hpp).
+// `forced_exponents`: the μ_m of the series' forced parts (none when empty).
 void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
                             const std::vector<ExponentialSeries>& series, int samples,
-                            PeriodicResult& result);
+                            PeriodicResult& result,
+                            const Eigen::VectorXcd& forced_exponents = Eigen::VectorXcd());
 
 // Extremes of every probe over one period from samples (times, values), with the sampled
 // extreme refined by `refine(probe, sample index, is_maximum)` → (time, value).

@@ -21,6 +21,7 @@
 #include "emnet/core/option_error.hpp"
 #include "emnet/core/units.hpp"
 #include "exponential_series.hpp"
+#include "periodic_cascade.hpp"
 #include "state_space.hpp"
 
 namespace emnet {
@@ -30,6 +31,22 @@ Status require_piecewise_linear(const System& system);  // transient_exact.cpp
 namespace {
 
 using Complex = std::complex<double>;
+
+// The state space of `form`: its linear part, which for a cascade (a network whose only
+// nonlinearity is the DEAs' force, periodic_cascade.hpp) is its linearisation at zero, where
+// the force k_F·u² and its derivative vanish; the force is then a source of it. Throws, saying
+// why, for any other nonlinear network.
+LinearStateSpace linear_part(const DisplacementForm& form, const System& system,
+                             std::vector<SquaredSource>& squared) {
+  if (!system.is_nonlinear())
+    return LinearStateSpace(form, characteristic_angular_frequency(system, 0.0));
+  if (Status cascade = cascade_sources(system, form, squared); !cascade.ok())
+    throw std::runtime_error(cascade.message);
+  Eigen::SparseMatrix<double> d_u, d_up;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(form.size());
+  form.linearised(zero, zero, d_u, d_up);
+  return LinearStateSpace(form, d_u, d_up, characteristic_angular_frequency(system, 0.0));
+}
 
 }  // namespace
 
@@ -65,15 +82,28 @@ Status periodic_interval_starts(const Eigen::VectorXcd& lambda, const std::vecto
                                 const std::vector<Eigen::VectorXcd>& particular_slope,
                                 const std::vector<bool>& fixed_at_zero,
                                 std::vector<Eigen::VectorXcd>& start_of, double& residual) {
+  // ξ_p(h) = ξ_p(0) on a constant interval.
+  std::vector<Eigen::VectorXcd> particular_end = particular;
+  if (!particular_slope.empty())
+    for (size_t i = 0; i + 1 < edges.size(); ++i)
+      particular_end[i] += (edges[i + 1] - edges[i]) * particular_slope[i];
+  return periodic_starts_from_particulars(lambda, edges, particular, particular_end, fixed_at_zero,
+                                          start_of, residual);
+}
+
+Status periodic_starts_from_particulars(const Eigen::VectorXcd& lambda,
+                                        const std::vector<double>& edges,
+                                        const std::vector<Eigen::VectorXcd>& particular_start,
+                                        const std::vector<Eigen::VectorXcd>& particular_end,
+                                        const std::vector<bool>& fixed_at_zero,
+                                        std::vector<Eigen::VectorXcd>& start_of, double& residual) {
   const size_t intervals = edges.size() - 1;
   auto advance = [&](const Eigen::VectorXcd& xi, size_t i) {
     const double h = edges[i + 1] - edges[i];
-    // ξ_p(h) + e^{Λh}·(ξ − ξ_p(0)); ξ_p(h) = ξ_p(0) on a constant interval.
-    const Eigen::VectorXcd particular_end =
-        particular_slope.empty() ? particular[i]
-                                 : Eigen::VectorXcd(particular[i] + h * particular_slope[i]);
-    return Eigen::VectorXcd(particular_end +
-                            ((lambda * h).array().exp() * (xi - particular[i]).array()).matrix());
+    // ξ_p(h) + e^{Λh}·(ξ − ξ_p(0)).
+    return Eigen::VectorXcd(
+        particular_end[i] +
+        ((lambda * h).array().exp() * (xi - particular_start[i]).array()).matrix());
   };
   Eigen::VectorXcd xi = Eigen::VectorXcd::Zero(lambda.size());
   for (size_t i = 0; i < intervals; ++i) xi = advance(xi, i);
@@ -99,9 +129,7 @@ Status periodic_interval_starts(const Eigen::VectorXcd& lambda, const std::vecto
 
 struct PeriodicSolver::Impl {
   explicit Impl(const System& reference)
-      : system(reference),
-        form(system),
-        space(form, characteristic_angular_frequency(system, 0.0)) {
+      : system(reference), form(system), space(linear_part(form, system, squared)) {
     // Every pole (repeated semi-simple ones with an orthonormal eigenspace basis,
     // LinearStateSpace::ModalBasis::of); usable up to a vector condition of 1e12.
     LinearStateSpace::ModalBasis basis;
@@ -127,18 +155,30 @@ struct PeriodicSolver::Impl {
   }
   std::vector<bool> invariant;
   Eigen::Index zero_poles = 0;
+  // The DEAs' forces as sources d_j·u_j² of the linear part (a cascade; empty for a linear
+  // network), and V⁻¹·N·d_j as columns (made at the first solve, with the check that the
+  // voltages do not see the forces).
+  std::vector<SquaredSource> squared;
+  mutable Eigen::MatrixXcd squared_forcing;
   // Per probe seen so far (by name and terms), reused across solves: gᵀ·V, the probe's row on
   // the modal coordinates, and h, its row on the sources (p = gᵀ·x + h·f on a constant
   // interval).
   struct ProbeRows {
     Eigen::RowVectorXcd modes;
     Eigen::RowVectorXd sources;
+    // A cascade's: the probe's feed-through of each squared source, on u² and on (u²)'.
+    Eigen::VectorXd squared_feed, squared_rate_feed;
   };
   mutable std::map<std::string, ProbeRows> probe_rows;
   // The state space's maps (u, u' and N·f as matrices) and V⁻¹·N, the sources' forcing in modal
   // coordinates (q = V⁻¹·N·f), made at the first solve.
   mutable LinearStateSpace::StateMaps maps;
   mutable Eigen::MatrixXcd modal_forcing;
+  void prepare_maps() const {
+    if (modal_forcing.size() != 0) return;
+    maps = space.state_maps();
+    modal_forcing = vectors_lu.solve(maps.forcing_matrix.cast<Complex>());
+  }
   // Whether `given` is the decomposed network with piecewise-linear sources and `probes` are
   // linear: a failed Status saying why not.
   Status check(const System& given, const std::vector<Probe>& probes) const;
@@ -149,6 +189,28 @@ struct PeriodicSolver::Impl {
                            std::vector<Eigen::VectorXcd>& particular_slope) const;
   // The probe's rows, from the cache or computed and cached.
   const ProbeRows& probe_rows_of(const Probe& probe) const;
+  // Whether the particular states must keep modes at s = 0 out of the drive (more zero poles
+  // than hidden constraints: a free body).
+  bool free_body() const {
+    return zero_poles > static_cast<Eigen::Index>(form.hidden_constraints().size());
+  }
+  // squared_forcing, and the check that no mode carries both a DEA's voltage and a DEA's force
+  // (the stages of the cascade follow one another): made once.
+  Status prepare_cascade() const;
+  // The cascade's probe series (periodic_cascade.hpp) from the linear stage's particular states
+  // and periodic starts, with the exponents of their forced parts and the periodicity residual.
+  Status cascade_series(const std::vector<double>& edges, const std::vector<AffinePiece>& f,
+                        const std::vector<Eigen::VectorXcd>& particular,
+                        const std::vector<Eigen::VectorXcd>& particular_slope,
+                        const std::vector<Eigen::VectorXcd>& linear_start_of,
+                        const std::vector<Probe>& probes, std::vector<ExponentialSeries>& series,
+                        Eigen::VectorXcd& exponents, double& residual) const;
+  // The forced part of a probe (rows) on interval i: its modes' particular states and its
+  // feed-through of the squared sources.
+  ExponentialSeries::ForcedTerms forced_terms(
+      const ProbeRows& rows, size_t i, const SquareExponents& exponents,
+      const ForcedModalResponse& response,
+      const std::vector<std::vector<ExponentialSeries::ForcedTerms>>& squares) const;
   // The probe's exponential series over the intervals (solve).
   ExponentialSeries probe_series(const Probe& probe, const std::vector<AffinePiece>& f,
                                  const std::vector<Eigen::VectorXcd>& particular,
@@ -172,14 +234,32 @@ PeriodicSolver::PeriodicSolver(const System& system) {
 
 PeriodicSolver::~PeriodicSolver() = default;
 
+Status PeriodicSolver::usable() const {
+  if (!impl_) return status_;
+  return impl_->squared.empty() ? Status::success() : impl_->prepare_cascade();
+}
+
+Status exact_periodic_applies(const System& system) {
+  if (!system.is_nonlinear()) return Status::success();
+  try {
+    const DisplacementForm form(system);
+    std::vector<SquaredSource> squared;
+    return cascade_sources(system, form, squared);
+  } catch (const std::exception& e) {
+    return Status::failure(e.what());
+  }
+}
+
 Status PeriodicSolver::Impl::check(const System& given, const std::vector<Probe>& probes) const {
   if (Status pieces = require_piecewise_linear(given); !pieces.ok()) return pieces;
-  if (given.size() != system.size() || given.is_nonlinear())
+  if (given.size() != system.size() || given.is_nonlinear() != system.is_nonlinear() ||
+      (system.is_nonlinear() && !same_cascade(given, system)))
     return Status::failure("the network differs from the one the solver decomposed");
   for (const Probe& probe : probes)
     if (!is_linear(probe))
       return Status::failure("the exact periodic state takes linear outputs; probe '" + probe.name +
                              "' squares a voltage");
+  if (!squared.empty()) return prepare_cascade();
   return Status::success();
 }
 
@@ -196,14 +276,11 @@ Status PeriodicSolver::Impl::particular_states(
   // excites: whatever forcing reaches them is rounding (it grows with V's condition: 1.1e-9 of
   // the forcing's scale on the 100-segment fish fin). More zero poles than that mean a free body,
   // which has no periodic state when the drive reaches it.
-  const bool free_body = zero_poles > static_cast<Eigen::Index>(form.hidden_constraints().size());
+  const bool free_body = this->free_body();
   const auto free_body_failure = Status::failure(
       "the network has a pole at s = 0 that the drive excites "
       "(a free body): no periodic state");
-  if (modal_forcing.size() == 0) {
-    maps = space.state_maps();
-    modal_forcing = vectors_lu.solve(maps.forcing_matrix.cast<Complex>());
-  }
+  prepare_maps();
   for (size_t i = 0; i < intervals; ++i) {
     const Eigen::VectorXcd forcing = modal_forcing * f[i].start;
     particular[i] = Eigen::VectorXcd::Zero(nd);
@@ -245,8 +322,20 @@ const PeriodicSolver::Impl::ProbeRows& PeriodicSolver::Impl::probe_rows_of(
   Eigen::RowVectorXd sources(form.size());
   for (Eigen::Index j = 0; j < form.size(); ++j)
     sources[j] = form.probe(probe, maps.u_f.col(j), maps.up_f.col(j));
-  return probe_rows.emplace(key, ProbeRows{g.transpose().cast<Complex>() * vectors, sources})
-      .first->second;
+  ProbeRows rows{g.transpose().cast<Complex>() * vectors, sources, {}, {}};
+  if (!squared.empty()) {
+    rows.squared_feed.resize(static_cast<Eigen::Index>(squared.size()));
+    rows.squared_rate_feed.resize(rows.squared_feed.size());
+    const Eigen::VectorXd no_state = Eigen::VectorXd::Zero(nd);
+    const Eigen::VectorXd no_source = Eigen::VectorXd::Zero(form.size());
+    Eigen::VectorXd u, up;
+    for (size_t j = 0; j < squared.size(); ++j) {
+      rows.squared_feed[static_cast<Eigen::Index>(j)] = sources.dot(squared[j].direction);
+      space.full_state(no_state, no_source, squared[j].direction, u, up);
+      rows.squared_rate_feed[static_cast<Eigen::Index>(j)] = form.probe(probe, u, up);
+    }
+  }
+  return probe_rows.emplace(key, std::move(rows)).first->second;
 }
 
 ExponentialSeries PeriodicSolver::Impl::probe_series(
@@ -275,6 +364,148 @@ ExponentialSeries PeriodicSolver::Impl::probe_series(
     series.coefficient.push_back(g_modes.transpose().cwiseProduct(start_of[i] - particular[i]));
   }
   return series;
+}
+
+namespace {
+
+Status voltage_sees_the_motion(const SquaredSource& source) {
+  return Status::failure("DEA " + source.name +
+                         "'s voltage depends on the beam's motion (an element of the circuit "
+                         "couples them): the exact cascade needs the DEAs' voltages to follow "
+                         "from the circuit alone; the shooting method serves this network");
+}
+
+// A bound on |Σ_m (c₀ + c₁·h + c₂·h²)_m·e^{μ_m h}| over 0 ≤ h ≤ length.
+double forced_bound(const ExponentialSeries::ForcedTerms& c, const Eigen::VectorXcd& mu,
+                    double length) {
+  double bound = 0.0;
+  for (Eigen::Index m = 0; m < mu.size(); ++m)
+    bound +=
+        (std::abs(c(m, 0)) + std::abs(c(m, 1)) * length + std::abs(c(m, 2)) * length * length) *
+        std::exp(std::max(mu[m].real(), 0.0) * length);
+  return bound;
+}
+
+}  // namespace
+
+Status PeriodicSolver::Impl::prepare_cascade() const {
+  if (squared_forcing.size() != 0) return Status::success();
+  prepare_maps();
+  const auto sources = static_cast<Eigen::Index>(squared.size());
+  Eigen::MatrixXd directions(form.size(), sources);
+  for (Eigen::Index j = 0; j < sources; ++j)
+    directions.col(j) = squared[static_cast<size_t>(j)].direction;
+  const Eigen::MatrixXcd forcing = modal_forcing * directions.cast<Complex>();
+  // A mode that carries a voltage and is forced by a DEA (beyond the decomposition's rounding:
+  // 5e-15 of the product of the largest of each on the tweezer jaw) would make the voltage
+  // depend on the motion. (Whether a solve's voltages move with the forces at all is checked
+  // on its numbers: cascade_series.)
+  for (const SquaredSource& source : squared) {
+    const Eigen::VectorXd voltage_modes =
+        probe_rows_of(source.voltage).modes.cwiseAbs().transpose();
+    for (Eigen::Index j = 0; j < sources; ++j) {
+      const Eigen::VectorXd forced = forcing.col(j).cwiseAbs();
+      const double shared = voltage_modes.cwiseProduct(forced).maxCoeff();
+      if (shared > 1e-9 * voltage_modes.maxCoeff() * forced.maxCoeff())
+        return voltage_sees_the_motion(source);
+    }
+  }
+  squared_forcing = forcing;
+  return Status::success();
+}
+
+ExponentialSeries::ForcedTerms PeriodicSolver::Impl::forced_terms(
+    const ProbeRows& rows, size_t i, const SquareExponents& exponents,
+    const ForcedModalResponse& response,
+    const std::vector<std::vector<ExponentialSeries::ForcedTerms>>& squares) const {
+  const Eigen::Index terms = exponents.mu.size();
+  const Eigen::RowVectorXcd through_modes = rows.modes * response.coefficients[i];
+  ExponentialSeries::ForcedTerms forced(terms, 3);
+  for (Eigen::Index m = 0; m < terms; ++m)
+    for (int d = 0; d < 3; ++d) forced(m, d) = through_modes[3 * m + d];
+  for (size_t j = 0; j < squares.size(); ++j) {
+    const ExponentialSeries::ForcedTerms& w = squares[j][i];
+    const double feed = rows.squared_feed[static_cast<Eigen::Index>(j)];
+    const double rate = rows.squared_rate_feed[static_cast<Eigen::Index>(j)];
+    if (feed != 0.0) forced += feed * w;
+    if (rate == 0.0) continue;
+    // (P·e^{μh})' = (P' + μ·P)·e^{μh}.
+    for (Eigen::Index m = 0; m < terms; ++m) {
+      const Complex mu = exponents.mu[m];
+      forced(m, 0) += rate * (w(m, 1) + mu * w(m, 0));
+      forced(m, 1) += rate * (2.0 * w(m, 2) + mu * w(m, 1));
+      forced(m, 2) += rate * mu * w(m, 2);
+    }
+  }
+  return forced;
+}
+
+Status PeriodicSolver::Impl::cascade_series(const std::vector<double>& edges,
+                                            const std::vector<AffinePiece>& f,
+                                            const std::vector<Eigen::VectorXcd>& particular,
+                                            const std::vector<Eigen::VectorXcd>& particular_slope,
+                                            const std::vector<Eigen::VectorXcd>& linear_start_of,
+                                            const std::vector<Probe>& probes,
+                                            std::vector<ExponentialSeries>& series,
+                                            Eigen::VectorXcd& exponents, double& residual) const {
+  // The first stage: the DEAs' voltages of the linear part, and their squares.
+  std::vector<ExponentialSeries> voltages;
+  for (const SquaredSource& source : squared)
+    voltages.push_back(
+        probe_series(source.voltage, f, particular, particular_slope, linear_start_of));
+  double dropped = 0.0;
+  const SquareExponents squares_exponents = square_exponents(lambda, edges, voltages, dropped);
+  std::vector<std::vector<ExponentialSeries::ForcedTerms>> squares;
+  for (const ExponentialSeries& voltage : voltages)
+    squares.push_back(squared_terms(voltage, squares_exponents));
+  // The second: every mode under the squares, its periodic state from both particular states.
+  ForcedModalResponse response;
+  if (Status forced = forced_modal_response(lambda, edges, squares_exponents, squared_forcing,
+                                            squares, invariant, free_body(), response);
+      !forced.ok())
+    return forced;
+  const size_t intervals = edges.size() - 1;
+  // The voltages' own response to the forces (through any mode or feed-through) is the
+  // decomposition's rounding in a cascade: above 1e-9 of the voltage, the stages are coupled.
+  for (size_t j = 0; j < squared.size(); ++j) {
+    const ProbeRows& rows = probe_rows_of(squared[j].voltage);
+    double voltage = 0.0, moved = 0.0;
+    for (size_t i = 0; i < intervals; ++i) {
+      const double h = edges[i + 1] - edges[i];
+      voltage = std::max(
+          voltage, std::abs(voltages[j].offset[i]) + voltages[j].coefficient[i].cwiseAbs().sum());
+      moved =
+          std::max(moved, forced_bound(forced_terms(rows, i, squares_exponents, response, squares),
+                                       squares_exponents.mu, h));
+    }
+    if (moved > 1e-9 * voltage) return voltage_sees_the_motion(squared[j]);
+  }
+  std::vector<Eigen::VectorXcd> particular_start(intervals), particular_end(intervals);
+  for (size_t i = 0; i < intervals; ++i) {
+    const double h = edges[i + 1] - edges[i];
+    particular_start[i] = particular[i] + response.start[i];
+    particular_end[i] = particular[i] + response.end[i];
+    if (!particular_slope.empty()) particular_end[i] += h * particular_slope[i];
+  }
+  std::vector<Eigen::VectorXcd> start_of;
+  if (Status periodic = periodic_starts_from_particulars(
+          lambda, edges, particular_start, particular_end, invariant, start_of, residual);
+      !periodic.ok())
+    return periodic;
+  // Each probe: the linear stage's series with the homogeneous part measured from both
+  // particular states, plus the forced part.
+  std::vector<Eigen::VectorXcd> homogeneous_from(intervals);
+  for (size_t i = 0; i < intervals; ++i) homogeneous_from[i] = start_of[i] - response.start[i];
+  series.clear();
+  for (const Probe& probe : probes) {
+    ExponentialSeries s = probe_series(probe, f, particular, particular_slope, homogeneous_from);
+    const ProbeRows& rows = probe_rows_of(probe);
+    for (size_t i = 0; i < intervals; ++i)
+      s.forced.push_back(forced_terms(rows, i, squares_exponents, response, squares));
+    series.push_back(std::move(s));
+  }
+  exponents = squares_exponents.mu;
+  return Status::success();
 }
 
 PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Probe>& probes,
@@ -312,9 +543,17 @@ PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Prob
   // interval i, p(h) = p_i + s_i·h + Re Σ_k a_ik·e^{λ_k h} with a_ik = (gᵀV)_k·(ξ_i − a_i)_k,
   // p_i = p(V·a_i, f₀,i, f₁,i) and s_i = Re (gᵀV)·b_i + c(f₁,i).
   std::vector<ExponentialSeries> series;
-  for (const Probe& probe : probes)
-    series.push_back(impl_->probe_series(probe, f, particular, particular_slope, start_of));
-  sample_periodic_series(impl_->lambda, edges, series, samples, result);
+  Eigen::VectorXcd forced_exponents;
+  if (impl_->squared.empty()) {
+    for (const Probe& probe : probes)
+      series.push_back(impl_->probe_series(probe, f, particular, particular_slope, start_of));
+  } else if (Status cascade =
+                 impl_->cascade_series(edges, f, particular, particular_slope, start_of, probes,
+                                       series, forced_exponents, result.periodicity_residual);
+             !cascade.ok()) {
+    return finish(cascade);
+  }
+  sample_periodic_series(impl_->lambda, edges, series, samples, result, forced_exponents);
   return finish(Status::success());
 }
 

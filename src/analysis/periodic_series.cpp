@@ -17,11 +17,17 @@ using Complex = std::complex<double>;
 class SeriesEvaluator {
  public:
   SeriesEvaluator(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
-                  const std::vector<ExponentialSeries>& series)
-      : lambda_(lambda), edges_(edges), series_(series), intervals_(edges.size() - 1) {
+                  const std::vector<ExponentialSeries>& series,
+                  const Eigen::VectorXcd& forced_exponents)
+      : lambda_(lambda),
+        mu_(forced_exponents),
+        edges_(edges),
+        series_(series),
+        intervals_(edges.size() - 1) {
     find_cutoffs();
     pair_conjugates();
     form_curvature_terms();
+    form_forced_bounds();
   }
 
   size_t intervals() const { return intervals_; }
@@ -49,22 +55,95 @@ class SeriesEvaluator {
       first += (term * lambda_[k]).real();
       second += (term * lambda_[k] * lambda_[k]).real();
     }
+    if (has_forced(p)) add_forced(p, i, h, sum, first, second);
     if (d1) *d1 = first + slope_of(p, i);
     if (d2) *d2 = second;
     return series_[p].offset[i] + slope_of(p, i) * h + sum;
   }
+  // The forced part of probe p at offset h into interval i (no derivatives).
+  double forced_value(size_t p, size_t i, double h) const {
+    double sum = 0.0, first = 0.0, second = 0.0;
+    if (has_forced(p)) add_forced(p, i, h, sum, first, second);
+    return sum;
+  }
+  bool has_forced(size_t p) const { return !series_[p].forced.empty(); }
   // K_i(0) of probe p: the bound on |p''| over all of interval i.
-  double widest_curvature(size_t p, size_t i) const { return curvature_terms_[p][i].sum(); }
+  double widest_curvature(size_t p, size_t i) const {
+    return curvature_terms_[p][i].sum() + (has_forced(p) ? forced_curvature_[p][i].sum() : 0.0);
+  }
   // K_i(a) of probe p: the bound on |p''| in interval i for h ≥ a.
   double curvature_after(size_t p, size_t i, double a) const {
-    return curvature_terms_[p][i].dot((decay_ * a).array().exp().matrix());
+    double bound = curvature_terms_[p][i].dot((decay_ * a).array().exp().matrix());
+    if (has_forced(p))
+      bound += forced_curvature_[p][i].dot((forced_decay_ * a).array().exp().matrix());
+    return bound;
   }
   // J_i(a) of probe p: the bound on |p‴| in interval i for h ≥ a.
   double third_derivative_after(size_t p, size_t i, double a) const {
-    return curvature_terms_[p][i].cwiseProduct(magnitude_).dot((decay_ * a).array().exp().matrix());
+    double bound =
+        curvature_terms_[p][i].cwiseProduct(magnitude_).dot((decay_ * a).array().exp().matrix());
+    if (has_forced(p)) bound += forced_third_[p][i].dot((forced_decay_ * a).array().exp().matrix());
+    return bound;
   }
 
  private:
+  // The forced terms' value and two derivatives at h, added to sum, first and second:
+  // (C·e^{μh})' = (C' + μ·C)·e^{μh}, (C·e^{μh})'' = (C'' + 2μ·C' + μ²·C)·e^{μh}.
+  void add_forced(size_t p, size_t i, double h, double& sum, double& first, double& second) const {
+    const ExponentialSeries::ForcedTerms& c = series_[p].forced[i];
+    for (Eigen::Index m = 0; m < mu_.size(); ++m) {
+      const Complex mu = mu_[m], e = std::exp(mu * h);
+      const Complex poly = c(m, 0) + h * (c(m, 1) + h * c(m, 2));
+      const Complex slope = c(m, 1) + 2.0 * h * c(m, 2), curvature = 2.0 * c(m, 2);
+      sum += (poly * e).real();
+      first += ((slope + mu * poly) * e).real();
+      second += ((curvature + 2.0 * mu * slope + mu * mu * poly) * e).real();
+    }
+  }
+
+  // Bounds on the forced terms' second and third derivatives for h ≥ a in an interval of length
+  // H: with |C^(j)(h)| ≤ Σ_{k≥j} k!/(k−j)!·|c_k|·H^{k−j} = C̄_j, |(C·e^{μh})''| ≤ (C̄₂ + 2|μ|·C̄₁
+  // + |μ|²·C̄₀)·e^{Re μ·a} and |(C·e^{μh})‴| ≤ (3|μ|·C̄₂ + 3|μ|²·C̄₁ + |μ|³·C̄₀)·e^{Re μ·a}
+  // (C‴ = 0). An exponent with Re μ > 0 (rounding of a sum of stable poles) is bounded at h = H.
+  void form_forced_bounds() {
+    forced_decay_ = Eigen::VectorXd::Zero(mu_.size());
+    for (Eigen::Index m = 0; m < mu_.size(); ++m) forced_decay_[m] = std::min(mu_[m].real(), 0.0);
+    forced_curvature_.assign(series_.size(), {});
+    forced_third_.assign(series_.size(), {});
+    for (size_t p = 0; p < series_.size(); ++p) {
+      if (!has_forced(p)) continue;
+      for (size_t i = 0; i < intervals_; ++i) {
+        const double length = edges_[i + 1] - edges_[i];
+        const ExponentialSeries::ForcedTerms& c = series_[p].forced[i];
+        Eigen::VectorXd second(mu_.size()), third(mu_.size());
+        for (Eigen::Index m = 0; m < mu_.size(); ++m) {
+          const double c0 = std::abs(c(m, 0)), c1 = std::abs(c(m, 1)), c2 = std::abs(c(m, 2));
+          const double bar0 = c0 + c1 * length + c2 * length * length;
+          const double bar1 = c1 + 2.0 * c2 * length, bar2 = 2.0 * c2;
+          const double r = std::abs(mu_[m]);
+          const double growth = std::exp(std::max(mu_[m].real(), 0.0) * length);
+          second[m] = (bar2 + 2.0 * r * bar1 + r * r * bar0) * growth;
+          third[m] = (3.0 * r * bar2 + 3.0 * r * r * bar1 + r * r * r * bar0) * growth;
+        }
+        forced_curvature_[p].push_back(std::move(second));
+        forced_third_[p].push_back(std::move(third));
+      }
+    }
+  }
+
+  // The largest |forced part| of probe p in interval i (a bound).
+  double forced_scale(size_t p, size_t i) const {
+    if (!has_forced(p)) return 0.0;
+    const double length = edges_[i + 1] - edges_[i];
+    const ExponentialSeries::ForcedTerms& c = series_[p].forced[i];
+    double bound = 0.0;
+    for (Eigen::Index m = 0; m < mu_.size(); ++m)
+      bound +=
+          (std::abs(c(m, 0)) + std::abs(c(m, 1)) * length + std::abs(c(m, 2)) * length * length) *
+          std::exp(std::max(mu_[m].real(), 0.0) * length);
+    return bound;
+  }
+
   // Where each term has decayed below rounding: beyond h = cutoff[p][i][k] the term
   // a_ik·e^{λ_k h} is smaller than 2⁻⁶⁰ of S_p = max_i (|p_i| + Σ_k |a_ik|), a bound on |p| and
   // on the sum's own rounding scale, so leaving it out changes a value by less than n·2⁻⁶⁰·S_p,
@@ -75,8 +154,9 @@ class SeriesEvaluator {
     for (size_t p = 0; p < series_.size(); ++p) {
       double scale = 0.0;
       for (size_t i = 0; i < intervals_; ++i)
-        scale = std::max(
-            scale, std::abs(series_[p].offset[i]) + series_[p].coefficient[i].cwiseAbs().sum());
+        scale =
+            std::max(scale, std::abs(series_[p].offset[i]) +
+                                series_[p].coefficient[i].cwiseAbs().sum() + forced_scale(p, i));
       const double negligible = std::ldexp(scale, -60);
       for (size_t i = 0; i < intervals_; ++i) {
         Eigen::VectorXd after(lambda_.size());
@@ -134,6 +214,7 @@ class SeriesEvaluator {
   }
 
   const Eigen::VectorXcd& lambda_;
+  const Eigen::VectorXcd& mu_;  // the forced exponents
   const std::vector<double>& edges_;
   const std::vector<ExponentialSeries>& series_;
   size_t intervals_;
@@ -142,6 +223,10 @@ class SeriesEvaluator {
   std::vector<double> weights_;
   std::vector<std::vector<Eigen::VectorXd>> curvature_terms_;
   Eigen::VectorXd decay_, magnitude_;
+  // Per probe and interval, per forced exponent: the bounds' factors on |p''| and |p‴|, and
+  // min(Re μ, 0).
+  std::vector<std::vector<Eigen::VectorXd>> forced_curvature_, forced_third_;
+  Eigen::VectorXd forced_decay_;
 };
 
 // Uniform samples: inside an interval e^{λ(h+Δ)} = e^{λh}·e^{λΔ}, one exponential per
@@ -172,7 +257,8 @@ void sample_uniformly(const SeriesEvaluator& evaluator, const Eigen::VectorXcd& 
     result.times.push_back(t);
     for (size_t p = 0; p < series.size(); ++p)
       result.values[p].push_back(series[p].offset[i] + evaluator.slope_of(p, i) * h +
-                                 series[p].coefficient[i].cwiseProduct(e).sum().real());
+                                 series[p].coefficient[i].cwiseProduct(e).sum().real() +
+                                 evaluator.forced_value(p, i, h));
   }
 }
 
@@ -321,8 +407,8 @@ class ExtremeSearch {
 
 void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
                             const std::vector<ExponentialSeries>& series, int samples,
-                            PeriodicResult& result) {
-  const SeriesEvaluator evaluator(lambda, edges, series);
+                            PeriodicResult& result, const Eigen::VectorXcd& forced_exponents) {
+  const SeriesEvaluator evaluator(lambda, edges, series, forced_exponents);
   sample_uniformly(evaluator, lambda, series, samples, result);
   const double sample_step = edges.back() / samples;
   fill_extremes(result, [&](size_t p, size_t sample, bool maximum) {

@@ -21,6 +21,17 @@ void Dea::stamp(Stamper& s) const {
     for (const Coupling& c : coupling_) s.ac(c.node, ac_force_ * c.coefficient);
 }
 
+bool Dea::squared_source(LinearTerms& voltage, LinearTerms& direction) const {
+  if (back_coupling_) return false;
+  voltage.clear();
+  direction.clear();
+  if (electrode_plus_ != ground) voltage.emplace_back(electrode_plus_, 1.0);
+  if (electrode_minus_ != ground) voltage.emplace_back(electrode_minus_, -1.0);
+  for (const Coupling& c : coupling_)
+    if (c.node != ground) direction.emplace_back(c.node, force_constant_ * c.coefficient);
+  return true;
+}
+
 void Dea::add_nonlinear(const Eigen::VectorXd& y, int /*branch_offset*/, Eigen::VectorXd& g,
                         std::vector<Eigen::Triplet<double>>* jacobian) const {
   const double u = across(y, electrode_plus_) - across(y, electrode_minus_);

@@ -114,8 +114,9 @@ void append_static(VariantRun& run) {
 // sweep.peak_hz, then each output's extremes at the reported frequencies. As `emnet
 // sweep-switching` chooses (SwitchingSweepMethod::automatic): the exact method's model, the DEAs
 // as ideal voltage-driven forces, where the scene has their electrical model through [drive];
-// shooting on the model as it is where a [[circuit]] drives them (the nominal scene passed
-// prepare_swept_model's checks in column_layout), and with large kinematics.
+// the model as it is where a [[circuit]] drives them (the nominal scene passed
+// prepare_swept_model's checks in column_layout): the exact cascade, or shooting where it does
+// not serve (back-coupling), and shooting with large kinematics.
 Status append_sweep(VariantRun& run) {
   const Model& model = run.model;
   const ColumnLayout& layout = run.layout;

@@ -85,10 +85,31 @@ PrepareOptions served_by_the_sweep(const Scene& scene, PrepareOptions given,
   return given;
 }
 
+// Whether the exact method serves the nonlinear `system` as a cascade (periodic.hpp
+// exact_periodic_applies), within the dense limit; its solver made and kept in options.solver
+// when it does (the sweep's decomposition, its time added to `decomposition_seconds`), else why
+// not.
+Status exact_cascade_serves(const System& system, SwitchingSweepOptions& options,
+                            double& decomposition_seconds) {
+  if (system.size() > options.dense_limit)
+    return Status::failure("its " + std::to_string(system.size()) +
+                           " unknowns are more than the dense limit of " +
+                           std::to_string(options.dense_limit));
+  if (Status applies = exact_periodic_applies(system); !applies.ok()) return applies;
+  const Stopwatch stopwatch;
+  auto solver = options.solver ? options.solver : std::make_shared<const PeriodicSolver>(system);
+  const Status usable = solver->usable();
+  decomposition_seconds += stopwatch.seconds();
+  if (!usable.ok()) return usable;
+  options.solver = std::move(solver);
+  return Status::success();
+}
+
 // `options` with SwitchingSweepMethod::automatic replaced by what it chooses (the header), the
 // reason in `notes`.
 SwitchingSweepOptions resolve_sweep_method(const Model& model, const SwitchingSweepOptions& given,
-                                           std::vector<std::string>& notes) {
+                                           std::vector<std::string>& notes,
+                                           double& decomposition_seconds) {
   SwitchingSweepOptions options = given;
   if (options.method != SwitchingSweepMethod::automatic) return options;
   const System system = model.network.assemble();
@@ -98,13 +119,24 @@ SwitchingSweepOptions resolve_sweep_method(const Model& model, const SwitchingSw
                      "is \"large\": a nonlinear network, which the reduced (modal) periodic "
                      "method cannot solve; the shooting method (the automatic choice) can");
   if (system.is_nonlinear() && !options.reduce) {
+    const std::string why = large                         ? "large kinematics"
+                            : model.scene.circuit.empty() ? "the DEAs' RC loops"
+                                                          : "DEAs driven through the [[circuit]]";
+    const Status cascade = exact_cascade_serves(system, options, decomposition_seconds);
+    if (cascade.ok()) {
+      options.method = SwitchingSweepMethod::exact;
+      notes.push_back(
+          "method: exact cascade, since the network's only nonlinearity is the DEAs' "
+          "force k_F·u² (" +
+          why +
+          "): the circuit's periodic state, its squared DEA voltages and the beam's "
+          "response to them, each in closed form");
+      return options;
+    }
     options.method = SwitchingSweepMethod::shooting;
-    notes.push_back("method: shooting, since the network is nonlinear (" +
-                    std::string(large ? "large kinematics"
-                                : model.scene.circuit.empty()
-                                    ? "the DEAs' RC loops"
-                                    : "DEAs driven through the [[circuit]]") +
-                    "); the exact method needs a linear one");
+    notes.push_back("method: shooting, since the network is nonlinear (" + why +
+                    (large ? "); the exact method needs a linear one, or a cascade"
+                           : ") and the exact cascade does not serve it: " + cascade.message));
     return options;
   }
   options.method = SwitchingSweepMethod::exact;
@@ -237,7 +269,8 @@ class ReductionCheckReference {
 class SwitchingSweepRun {
  public:
   SwitchingSweepRun(const Model& model, const Scene& scene, const SwitchingSweepOptions& options,
-                    std::vector<std::string> method_notes, const Stopwatch& stopwatch)
+                    std::vector<std::string> method_notes, double decomposition_seconds,
+                    const Stopwatch& stopwatch)
       : model_(model),
         scene_(scene),
         options_(options),
@@ -250,6 +283,7 @@ class SwitchingSweepRun {
         solver_(options.solver) {
     result_.method = options.reduce ? Method::reduced : exact_ ? Method::exact : Method::shooting;
     result_.notes = std::move(method_notes);
+    result_.decomposition_seconds = decomposition_seconds;
     if (options.reduce) check_.emplace();
   }
 
@@ -663,9 +697,12 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
   const Stopwatch stopwatch;
   given.validate();
   std::vector<std::string> method_notes;
-  const SwitchingSweepOptions options = resolve_sweep_method(model, given, method_notes);
+  double decomposition_seconds = 0.0;
+  const SwitchingSweepOptions options =
+      resolve_sweep_method(model, given, method_notes, decomposition_seconds);
   check_sweep_outputs(model, scene, options);
-  SwitchingSweepRun sweep(model, scene, options, std::move(method_notes), stopwatch);
+  SwitchingSweepRun sweep(model, scene, options, std::move(method_notes), decomposition_seconds,
+                          stopwatch);
   return sweep.run();
 }
 
@@ -696,25 +733,30 @@ SweptModel prepare_swept_model(const Scene& scene, SwitchingSweepMethod method,
   if (method == SwitchingSweepMethod::shooting || built_large)
     return with_kinematics_chosen(std::move(swept));
   const bool automatic = method == SwitchingSweepMethod::automatic;
+  // The network as built: the exact method serves it as a cascade where the DEAs' force is its
+  // only nonlinearity (run_switching_sweep), keeping the RC loops and the circuit.
+  const System built = swept.model.network.assemble();
+  const bool nonlinear = built.is_nonlinear();
+  const Status cascade = nonlinear ? exact_periodic_applies(built) : Status::success();
+  const bool as_built = automatic || (nonlinear && cascade.ok());
   for (const auto& text : probe_texts)
     if (asks_for_dea_electrics(text)) {
-      if (automatic)
-        return with_kinematics_chosen(
-            std::move(swept));  // the RC loop is asked for: shooting (run_switching_sweep)
+      if (as_built)  // the RC loop is asked for: the exact cascade or shooting
+        return with_kinematics_chosen(std::move(swept));
       throw OptionError("probe",
-                        "the exact periodic method models the DEAs as ideal voltage-driven "
-                        "forces, without the RC loop whose voltage and current this probe asks "
-                        "for; use the shooting method",
+                        "the exact periodic method takes the DEAs' RC loop, whose voltage and "
+                        "current this probe asks for, only as an exact cascade, which this "
+                        "network is not (" +
+                            cascade.message + "); use the shooting method",
                         text);
     }
-  const bool nonlinear = swept.model.network.assemble().is_nonlinear();
-  if (nonlinear && !swept.model.scene.circuit.empty() && automatic)
+  if (nonlinear && !swept.model.scene.circuit.empty() && as_built)
     return with_kinematics_chosen(std::move(swept));
   if (nonlinear && !swept.model.scene.circuit.empty())
     throw InputError(swept.model.scene.file, "circuit",
-                     "the exact periodic method models the DEAs as ideal voltage-driven forces, "
-                     "but this scene drives them through its [[circuit]] elements, whose "
-                     "electrical loops it needs; use the shooting method");
+                     "the exact periodic method serves DEAs driven through a [[circuit]] as a "
+                     "cascade only, which this network is not (" +
+                         cascade.message + "); use the shooting method");
   if (nonlinear) {
     double tau = 0.0;
     for (const auto& dea : swept.model.deas)

@@ -1,8 +1,8 @@
 // The switching frequency of a circuit-driven scene (emnet/model/drive.hpp
 // set_switching_frequency) and the switching sweep over the circuit's periodic sources
 // (emnet/studies/switching_sweep.hpp), on netlists/tweezer-jaw.toml: two 8 Hz square sources,
-// the bottom one inverted, each behind 4.7 MOhm and its DEA's RC loop (a nonlinear network:
-// the shooting method).
+// the bottom one inverted, each behind 4.7 MOhm and its DEA's RC loop (a nonlinear network whose
+// only nonlinearity is the DEAs' force: the exact cascade, or shooting when asked).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -92,13 +92,14 @@ TEST(CircuitSweep, TransientSwitchingSetsTheCircuitSources) {
 // sweep's route through the scene is the same on 8 segments.
 const char* const kCoarse = "beam.segments=8";
 
-// The shooting sweep at 12 Hz against the periodic state of the scene whose sources and drive
-// were set to 12 Hz by overrides (the independent route, through the scene reader), solved by
-// run_periodic_shooting on its own model (the shooting method itself is checked against the
-// exact one in SwitchingSweep.ShootingAgreesWithExact). Tolerance 1e-9 of the peak-to-peak:
-// the same Newton iteration on the same network, to its rounding; a source left at 8 Hz
-// changes the extremes by far more.
-TEST(CircuitSweep, ShootingSweepMatchesThePeriodicStateOfTheSetScene) {
+// The sweep at 12 Hz, by the automatic choice (the exact cascade) and by shooting, against the
+// periodic state of the scene whose sources and drive were set to 12 Hz by overrides (the
+// independent route, through the scene reader), solved by the same method on its own model
+// (the cascade itself is checked against shooting and a settled transient in
+// PeriodicCascade.*). Tolerance 1e-9 of the peak-to-peak: the same computation on the same
+// network, to its rounding (shooting's Newton iteration stops at its noise); a source left at
+// 8 Hz changes the extremes by far more.
+TEST(CircuitSweep, SweepMatchesThePeriodicStateOfTheSetScene) {
   const SweptModel swept =
       prepare_swept_model(tweezer({kCoarse}), SwitchingSweepMethod::automatic, {"tip"}, {}, 12.0);
   SwitchingSweepOptions sweep;
@@ -107,18 +108,28 @@ TEST(CircuitSweep, ShootingSweepMatchesThePeriodicStateOfTheSetScene) {
   sweep.first_mode = false;
   const SwitchingSweepResult result = run_switching_sweep(swept.model, swept.scene, sweep);
   ASSERT_TRUE(result.status.ok()) << result.status.message;
-  EXPECT_EQ(result.method, Method::shooting);  // the automatic choice: a circuit-driven DEA network
+  EXPECT_EQ(result.method, Method::exact);  // the automatic choice: the DEAs' force, a cascade
+  sweep.method = SwitchingSweepMethod::shooting;
+  const SwitchingSweepResult shot = run_switching_sweep(swept.model, swept.scene, sweep);
+  ASSERT_TRUE(shot.status.ok()) << shot.status.message;
+  EXPECT_EQ(shot.method, Method::shooting);
 
   const Model set =
       prepare_model(tweezer({kCoarse, "drive.frequency=12 Hz", "circuit.src_A.frequency=12 Hz",
                              "circuit.src_B.frequency=12 Hz"}));
+  const System set_system = set.network.assemble();
+  const PeriodicResult exact =
+      PeriodicSolver(set_system).solve(set_system, sweep.outputs, 1.0 / 12.0, 64);
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
   const PeriodicResult reference =
-      run_periodic_shooting(set.network.assemble(), sweep.outputs, 1.0 / 12.0, sweep.rtol, 256);
+      run_periodic_shooting(set_system, sweep.outputs, 1.0 / 12.0, sweep.rtol, 256);
   ASSERT_TRUE(reference.status.ok()) << reference.status.message;
   const double swing = reference.maximum[0] - reference.minimum[0];
   ASSERT_GT(swing, 0.0);
-  EXPECT_NEAR(result.outputs[0].left[0], reference.minimum[0], 1e-9 * swing);
-  EXPECT_NEAR(result.outputs[0].right[0], reference.maximum[0], 1e-9 * swing);
+  EXPECT_NEAR(result.outputs[0].left[0], exact.minimum[0], 1e-9 * swing);
+  EXPECT_NEAR(result.outputs[0].right[0], exact.maximum[0], 1e-9 * swing);
+  EXPECT_NEAR(shot.outputs[0].left[0], reference.minimum[0], 1e-9 * swing);
+  EXPECT_NEAR(shot.outputs[0].right[0], reference.maximum[0], 1e-9 * swing);
 
   const Model unswitched = prepare_model(tweezer({kCoarse}));
   const PeriodicResult at_8_hz =
@@ -127,17 +138,17 @@ TEST(CircuitSweep, ShootingSweepMatchesThePeriodicStateOfTheSetScene) {
       << "the 12 Hz sources make a difference the test can see";
 }
 
-// The device as a user writes it, through the commands: `sweep-switching` chose shooting and
-// switched both sources (it refused drive.kind = "none" before), and `study` sweeps a variant
-// the same way (its 12 Hz state, the nominal resistance, equals the single sweep's: the same
-// computation, 1e-12 relative). 8 segments keep each shooting solve to about a second.
+// The device as a user writes it, through the commands: `sweep-switching` chose the exact
+// cascade and switched both sources (it refused drive.kind = "none" before), and `study` sweeps
+// a variant the same way (its 12 Hz state, the nominal resistance, equals the single sweep's:
+// the same computation, 1e-12 relative).
 TEST(CliCircuitSweep, TweezerSweepAndStudyRunThroughTheCircuitSources) {
   const std::string scene = std::string(EMNET_SOURCE_DIR) + "/netlists/tweezer-jaw.toml";
   const auto sweep = testing::run_emnet("sweep-switching " + scene +
                                         " --segments 8 --from 12 --to 12 --step 1 --json");
   ASSERT_EQ(sweep.status, 0) << sweep.err;
   const nlohmann::json json = nlohmann::json::parse(sweep.out);
-  EXPECT_EQ(json["method"], "shooting");
+  EXPECT_EQ(json["method"], "exact");
   bool switched_note = false;
   for (const auto& note : json["notes"])
     switched_note |=

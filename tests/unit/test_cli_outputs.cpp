@@ -164,9 +164,10 @@ TEST(CliProbes, ProbesACommandCannotHonourAreRefused) {
     std::string arguments, named;
   };
   const std::vector<Case> cases = {
-      // the exact periodic method has ideal DEAs: no RC loop to probe
-      // (asked for: the automatic method takes shooting for such a probe)
-      {"sweep-switching " + kFishfin + " --from 4 --to 5 --method exact --probe dea_voltage:A",
+      // the exact periodic method takes the RC loop only as a cascade, which the back-coupling
+      // is not (asked for: the automatic method takes shooting for such a probe)
+      {"sweep-switching " + kFishfin +
+           " --from 4 --to 5 --method exact --set dea[0].back_coupling=true --probe dea_voltage:A",
        "dea_voltage:A"},
       // a reduced model has no velocities (the square wave's feed-through has no derivative)
       {"sweep-switching " + kFishfin + " --from 4 --to 5 --reduce --probe velocity@0.1",

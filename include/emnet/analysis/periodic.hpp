@@ -72,12 +72,21 @@ class PeriodicSolver {
   /// @param samples  samples over one period, at t = T·s/samples
   PeriodicResult solve(const System& system, const std::vector<Probe>& probes, double period,
                        int samples = 256) const;
+  /// Whether the solver serves its network: the decomposition succeeded and, for a cascade,
+  /// the DEAs' voltages do not see the beam; a failed Status saying why not.
+  Status usable() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   Status status_;
 };
+
+/// Whether the exact method can serve `system` (before decomposing it): a linear network, or an
+/// exact cascade — the DEAs' force k_F·u² its only nonlinearity, none with back-coupling, small
+/// kinematics (src/analysis/periodic_cascade.hpp); a failed Status saying why not. That the
+/// DEAs' voltages do not see the beam is checked on the decomposition (PeriodicSolver::usable).
+Status exact_periodic_applies(const System& system);
 
 /// What shooting keeps between calls: the network linearised about its static state, as a state
 /// space with its modal basis (on the tweezer jaw's 222 unknowns about 110 ms, a third of one

@@ -63,6 +63,8 @@ class Dea : public Element {
   bool is_nonlinear() const override { return true; }
   void add_nonlinear(const Eigen::VectorXd& y, int branch_offset, Eigen::VectorXd& g,
                      std::vector<Eigen::Triplet<double>>* jacobian) const override;
+  /// u = y_e+ − y_e−, d = k_F·c; false with the back-coupling.
+  bool squared_source(LinearTerms& voltage, LinearTerms& direction) const override;
 
   /// F = k_F·u² for a given capacitor voltage u.
   double force(double voltage) const { return force_constant_ * voltage * voltage; }

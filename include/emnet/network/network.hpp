@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "emnet/network/output.hpp"
 #include "emnet/network/waveform.hpp"
 
 namespace emnet {
@@ -96,6 +97,15 @@ class Element {
   virtual void add_nonlinear(const Eigen::VectorXd& /*y*/, int /*branch_offset*/,
                              Eigen::VectorXd& /*g*/,
                              std::vector<Eigen::Triplet<double>>* /*jacobian*/) const {}
+  /// A nonlinear part that is a source d·u² of one linear functional u of y, entering the rows
+  /// of `direction` as g = −d·u² (a DEA's force k_F·u² without its back-coupling): u's terms
+  /// and d's rows, for the exact periodic cascade. False for any other nonlinear part (the
+  /// default) and for a linear element.
+  /// @param voltage    u = Σ c·y[index] [V for a DEA]
+  /// @param direction  d per row [N/V² for a DEA]
+  virtual bool squared_source(LinearTerms& /*voltage*/, LinearTerms& /*direction*/) const {
+    return false;
+  }
 
  private:
   std::string name_;
