@@ -170,14 +170,23 @@ struct PeriodicSolver::Impl {
     Eigen::VectorXd squared_feed, squared_rate_feed;
   };
   mutable std::map<std::string, ProbeRows> probe_rows;
-  // The state space's maps (u, u' and N·f as matrices) and V⁻¹·N, the sources' forcing in modal
-  // coordinates (q = V⁻¹·N·f), made at the first solve.
-  mutable LinearStateSpace::StateMaps maps;
-  mutable Eigen::MatrixXcd modal_forcing;
-  void prepare_maps() const {
-    if (modal_forcing.size() != 0) return;
-    maps = space.state_maps();
-    modal_forcing = vectors_lu.solve(maps.forcing_matrix.cast<Complex>());
+  // V⁻¹·N·e_r, the forcing of a source on row r in modal coordinates (q = V⁻¹·N·f), made for
+  // the rows a solve's sources use (a few: the whole V⁻¹·N took 11 ms of the tweezer jaw's
+  // decomposition).
+  mutable std::vector<Eigen::VectorXcd> modal_forcing_columns;
+  Eigen::VectorXcd modal_forcing(const Eigen::VectorXd& f) const {
+    if (modal_forcing_columns.empty())
+      modal_forcing_columns.resize(static_cast<size_t>(form.size()));
+    Eigen::VectorXcd q = Eigen::VectorXcd::Zero(space.state_size());
+    for (Eigen::Index r = 0; r < f.size(); ++r) {
+      if (f[r] == 0.0) continue;
+      Eigen::VectorXcd& column = modal_forcing_columns[static_cast<size_t>(r)];
+      if (column.size() == 0)
+        column =
+            vectors_lu.solve(space.forcing(Eigen::VectorXd::Unit(form.size(), r)).cast<Complex>());
+      q += f[r] * column;
+    }
+    return q;
   }
   // Whether `given` is the decomposed network with piecewise-linear sources and `probes` are
   // linear: a failed Status saying why not.
@@ -280,9 +289,8 @@ Status PeriodicSolver::Impl::particular_states(
   const auto free_body_failure = Status::failure(
       "the network has a pole at s = 0 that the drive excites "
       "(a free body): no periodic state");
-  prepare_maps();
   for (size_t i = 0; i < intervals; ++i) {
-    const Eigen::VectorXcd forcing = modal_forcing * f[i].start;
+    const Eigen::VectorXcd forcing = modal_forcing(f[i].start);
     particular[i] = Eigen::VectorXcd::Zero(nd);
     const double forcing_scale = forcing.cwiseAbs().maxCoeff();
     for (Eigen::Index k = 0; k < nd; ++k) {
@@ -293,7 +301,7 @@ Status PeriodicSolver::Impl::particular_states(
       }
     }
     if (!f[i].ramp()) continue;
-    const Eigen::VectorXcd modal_slope = modal_forcing * f[i].slope;
+    const Eigen::VectorXcd modal_slope = modal_forcing(f[i].slope);
     const double slope_scale = modal_slope.cwiseAbs().maxCoeff();
     for (Eigen::Index k = 0; k < nd; ++k) {
       if (!invariant[static_cast<size_t>(k)]) {
@@ -315,24 +323,17 @@ const PeriodicSolver::Impl::ProbeRows& PeriodicSolver::Impl::probe_rows_of(
     key += "/" + std::to_string(index) + ":" + std::to_string(coefficient);
   auto cached = probe_rows.find(key);
   if (cached != probe_rows.end()) return cached->second;
-  // The probe is linear in (u, u'): its value on each column of the maps.
-  const Eigen::Index nd = space.state_size();
-  Eigen::VectorXd g(nd);
-  for (Eigen::Index k = 0; k < nd; ++k) g[k] = form.probe(probe, maps.u_x.col(k), maps.up_x.col(k));
-  Eigen::RowVectorXd sources(form.size());
-  for (Eigen::Index j = 0; j < form.size(); ++j)
-    sources[j] = form.probe(probe, maps.u_f.col(j), maps.up_f.col(j));
-  ProbeRows rows{g.transpose().cast<Complex>() * vectors, sources, {}, {}};
+  // The probe is linear in (u, u'): its rows on the state, the sources and their slope.
+  Eigen::RowVectorXd on_u, on_up;
+  form.probe_rows(probe, on_u, on_up);
+  const LinearStateSpace::OutputRows output = space.output_rows(on_u, on_up);
+  ProbeRows rows{output.state.cast<Complex>() * vectors, output.source, {}, {}};
   if (!squared.empty()) {
     rows.squared_feed.resize(static_cast<Eigen::Index>(squared.size()));
     rows.squared_rate_feed.resize(rows.squared_feed.size());
-    const Eigen::VectorXd no_state = Eigen::VectorXd::Zero(nd);
-    const Eigen::VectorXd no_source = Eigen::VectorXd::Zero(form.size());
-    Eigen::VectorXd u, up;
     for (size_t j = 0; j < squared.size(); ++j) {
-      rows.squared_feed[static_cast<Eigen::Index>(j)] = sources.dot(squared[j].direction);
-      space.full_state(no_state, no_source, squared[j].direction, u, up);
-      rows.squared_rate_feed[static_cast<Eigen::Index>(j)] = form.probe(probe, u, up);
+      rows.squared_feed[static_cast<Eigen::Index>(j)] = output.source.dot(squared[j].direction);
+      rows.squared_rate_feed[static_cast<Eigen::Index>(j)] = output.slope.dot(squared[j].direction);
     }
   }
   return probe_rows.emplace(key, std::move(rows)).first->second;
@@ -390,12 +391,10 @@ double forced_bound(const ExponentialSeries::ForcedTerms& c, const Eigen::Vector
 
 Status PeriodicSolver::Impl::prepare_cascade() const {
   if (squared_forcing.size() != 0) return Status::success();
-  prepare_maps();
   const auto sources = static_cast<Eigen::Index>(squared.size());
-  Eigen::MatrixXd directions(form.size(), sources);
+  Eigen::MatrixXcd forcing(space.state_size(), sources);
   for (Eigen::Index j = 0; j < sources; ++j)
-    directions.col(j) = squared[static_cast<size_t>(j)].direction;
-  const Eigen::MatrixXcd forcing = modal_forcing * directions.cast<Complex>();
+    forcing.col(j) = modal_forcing(squared[static_cast<size_t>(j)].direction);
   // A mode that carries a voltage and is forced by a DEA (beyond the decomposition's rounding:
   // 5e-15 of the product of the largest of each on the tweezer jaw) would make the voltage
   // depend on the motion. (Whether a solve's voltages move with the forces at all is checked

@@ -143,6 +143,13 @@ class LinearStateSpace {
     Eigen::MatrixXd u_x, u_f, up_x, up_f, forcing_matrix;
   };
   StateMaps state_maps() const;
+  // One linear output p = on_u·u + on_up·u' as rows, the same as state_maps gives them but at
+  // O(n²) (the maps are O(n³)): under constant sources p = state_row·x + source_row·f, and a
+  // slope f' of the sources adds slope_row·f' (the algebraic unknowns' rates).
+  struct OutputRows {
+    Eigen::RowVectorXd state, source, slope;
+  };
+  OutputRows output_rows(const Eigen::RowVectorXd& on_u, const Eigen::RowVectorXd& on_up) const;
 
  private:
   Eigen::Index n_ = 0, nd_ = 0, na_ = 0;
