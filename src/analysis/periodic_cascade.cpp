@@ -77,11 +77,12 @@ SquareExponents square_exponents(const Eigen::VectorXcd& lambda, const std::vect
       scale = std::max(
           scale, std::abs(v.offset[i]) +
                      (v.slope.empty() ? 0.0 : std::abs(v.slope[i])) * (edges[i + 1] - edges[i]) +
-                     v.coefficient[i].cwiseAbs().sum());
+                     moduli(v.coefficient[i]).sum());
     scales.push_back(scale);
     for (const Eigen::VectorXcd& a : v.coefficient)
       for (Eigen::Index k = 0; k < a.size(); ++k)
-        if (std::abs(a[k]) > kKeptPole * scale) carried[static_cast<size_t>(k)] = true;
+        if (std::norm(a[k]) > kKeptPole * kKeptPole * scale * scale)
+          carried[static_cast<size_t>(k)] = true;
   }
   SquareExponents exponents;
   for (Eigen::Index k = 0; k < lambda.size(); ++k)
@@ -91,7 +92,7 @@ SquareExponents square_exponents(const Eigen::VectorXcd& lambda, const std::vect
     for (const Eigen::VectorXcd& a : voltages[j].coefficient) {
       double left_out = 0.0;
       for (Eigen::Index k = 0; k < a.size(); ++k)
-        if (!carried[static_cast<size_t>(k)]) left_out += std::abs(a[k]);
+        if (!carried[static_cast<size_t>(k)]) left_out += modulus(a[k]);
       if (scales[j] > 0.0) dropped = std::max(dropped, left_out / scales[j]);
     }
   const auto kept = static_cast<Eigen::Index>(exponents.kept.size());
@@ -158,7 +159,7 @@ Status forced_modal_response(
   double largest = 0.0;
   for (size_t i = 0; i < intervals; ++i) {
     forcing.push_back(modal_forcing_on(i, modal_forcing, squares, terms));
-    largest = std::max(largest, forcing.back().cwiseAbs().maxCoeff());
+    largest = std::max(largest, std::sqrt(forcing.back().cwiseAbs2().maxCoeff()));
   }
   const double negligible = kNegligibleForcing * largest;
   response = {};
@@ -172,17 +173,17 @@ Status forced_modal_response(
           static_cast<size_t>(k) < fixed_at_zero.size() && fixed_at_zero[static_cast<size_t>(k)];
       for (Eigen::Index m = 0; m < terms; ++m) {
         const Complex f0 = f(k, 3 * m), f1 = f(k, 3 * m + 1), f2 = f(k, 3 * m + 2);
-        const double size = std::max({std::abs(f0), std::abs(f1), std::abs(f2)});
+        auto size = [&] { return std::max({modulus(f0), modulus(f1), modulus(f2)}); };
         if (invariant) {
-          if (free_body && size > 1e-9 * largest)
+          if (free_body && size() > 1e-9 * largest)
             return Status::failure(
                 "the network has a pole at s = 0 that the DEAs' force excites (a free body): no "
                 "periodic state");
           continue;
         }
         const Complex gap = exponents.mu[m] - lambda[k];
-        if (std::abs(gap) * period < kResonanceGap) {
-          if (size <= negligible) continue;
+        if (std::norm(gap) * period * period < kResonanceGap * kResonanceGap) {
+          if (size() <= negligible) continue;
           return Status::failure(
               "a pole of the network (s = " + format_number("%.6g", lambda[k].real()) +
               (lambda[k].imag() < 0 ? " - " : " + ") +
@@ -191,7 +192,8 @@ Status forced_modal_response(
               "cascade would lose its accuracy to rounding there; the shooting method serves it");
         }
         // (μ − λ)·Q + Q' = F, from the top coefficient down.
-        const Complex q2 = f2 / gap, q1 = (f1 - 2.0 * q2) / gap, q0 = (f0 - q1) / gap;
+        const Complex inverse = std::conj(gap) / std::norm(gap);
+        const Complex q2 = f2 * inverse, q1 = (f1 - 2.0 * q2) * inverse, q0 = (f0 - q1) * inverse;
         q(k, 3 * m) = q0;
         q(k, 3 * m + 1) = q1;
         q(k, 3 * m + 2) = q2;

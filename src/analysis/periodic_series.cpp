@@ -154,14 +154,13 @@ class SeriesEvaluator {
     for (size_t p = 0; p < series_.size(); ++p) {
       double scale = 0.0;
       for (size_t i = 0; i < intervals_; ++i)
-        scale =
-            std::max(scale, std::abs(series_[p].offset[i]) +
-                                series_[p].coefficient[i].cwiseAbs().sum() + forced_scale(p, i));
+        scale = std::max(scale, std::abs(series_[p].offset[i]) +
+                                    moduli(series_[p].coefficient[i]).sum() + forced_scale(p, i));
       const double negligible = std::ldexp(scale, -60);
       for (size_t i = 0; i < intervals_; ++i) {
         Eigen::VectorXd after(lambda_.size());
         for (Eigen::Index k = 0; k < lambda_.size(); ++k) {
-          const double size = std::abs(series_[p].coefficient[i][k]);
+          const double size = modulus(series_[p].coefficient[i][k]);
           const double rate = -lambda_[k].real();
           after[k] = size <= negligible ? -1.0
                      : rate > 0.0       ? std::log(size / negligible) / rate
@@ -204,7 +203,7 @@ class SeriesEvaluator {
     for (size_t p = 0; p < series_.size(); ++p)
       for (size_t i = 0; i < intervals_; ++i) {
         const Eigen::VectorXd all =
-            series_[p].coefficient[i].cwiseAbs().cwiseProduct(lambda_.cwiseAbs2());
+            moduli(series_[p].coefficient[i]).cwiseProduct(lambda_.cwiseAbs2());
         Eigen::VectorXd merged(static_cast<Eigen::Index>(terms_.size()));
         for (size_t j = 0; j < terms_.size(); ++j)
           merged[static_cast<Eigen::Index>(j)] =
