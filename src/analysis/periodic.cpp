@@ -206,6 +206,23 @@ struct PeriodicSolver::Impl {
   // squared_forcing, and the check that no mode carries both a DEA's voltage and a DEA's force
   // (the stages of the cascade follow one another): made once.
   Status prepare_cascade() const;
+  // The cascade's first stage: the functionals squared (the DEAs' voltages, then those of the
+  // probes' squares in order), their series from the linear stage and their squares.
+  struct FirstStage {
+    std::vector<Probe> functionals;
+    std::vector<ExponentialSeries> series;
+    SquareExponents exponents;
+    std::vector<std::vector<ExponentialSeries::ForcedTerms>> squares;
+  };
+  FirstStage first_stage(const std::vector<double>& edges, const std::vector<AffinePiece>& f,
+                         const std::vector<Eigen::VectorXcd>& particular,
+                         const std::vector<Eigen::VectorXcd>& particular_slope,
+                         const std::vector<Eigen::VectorXcd>& linear_start_of,
+                         const std::vector<Probe>& probes) const;
+  // Whether the functionals squared do not move with the DEAs' forces (`response`): a failed
+  // Status saying which does.
+  Status unmoved_by_the_forces(const std::vector<double>& edges, const FirstStage& stage,
+                               const ForcedModalResponse& response) const;
   // The cascade's probe series (periodic_cascade.hpp) from the linear stage's particular states
   // and periodic starts, with the exponents of their forced parts and the periodicity residual.
   Status cascade_series(const std::vector<double>& edges, const std::vector<AffinePiece>& f,
@@ -264,10 +281,6 @@ Status PeriodicSolver::Impl::check(const System& given, const std::vector<Probe>
   if (given.size() != system.size() || given.is_nonlinear() != system.is_nonlinear() ||
       (system.is_nonlinear() && !same_cascade(given, system)))
     return Status::failure("the network differs from the one the solver decomposed");
-  for (const Probe& probe : probes)
-    if (!is_linear(probe))
-      return Status::failure("the exact periodic state takes linear outputs; probe '" + probe.name +
-                             "' squares a voltage");
   if (!squared.empty()) return prepare_cascade();
   return Status::success();
 }
@@ -439,6 +452,57 @@ ExponentialSeries::ForcedTerms PeriodicSolver::Impl::forced_terms(
   return forced;
 }
 
+PeriodicSolver::Impl::FirstStage PeriodicSolver::Impl::first_stage(
+    const std::vector<double>& edges, const std::vector<AffinePiece>& f,
+    const std::vector<Eigen::VectorXcd>& particular,
+    const std::vector<Eigen::VectorXcd>& particular_slope,
+    const std::vector<Eigen::VectorXcd>& linear_start_of, const std::vector<Probe>& probes) const {
+  FirstStage stage;
+  for (const SquaredSource& source : squared) stage.functionals.push_back(source.voltage);
+  for (const Probe& probe : probes)
+    for (size_t k = 0; k < probe.squares.size(); ++k) {
+      Probe functional;
+      functional.name = "\x01" + probe.name + "^2#" + std::to_string(k);
+      functional.terms = probe.squares[k].terms;
+      stage.functionals.push_back(std::move(functional));
+    }
+  for (const Probe& functional : stage.functionals)
+    stage.series.push_back(
+        probe_series(functional, f, particular, particular_slope, linear_start_of));
+  double dropped = 0.0;
+  stage.exponents = square_exponents(lambda, edges, stage.series, dropped);
+  for (const ExponentialSeries& series : stage.series)
+    stage.squares.push_back(squared_terms(series, stage.exponents));
+  return stage;
+}
+
+Status PeriodicSolver::Impl::unmoved_by_the_forces(const std::vector<double>& edges,
+                                                   const FirstStage& stage,
+                                                   const ForcedModalResponse& response) const {
+  // In a cascade a squared functional's own response to the forces (through any mode or
+  // feed-through) is the decomposition's rounding: above 1e-9 of its size, the stages are
+  // coupled (the DEAs' voltages) or the probe squares what the forces move.
+  const std::vector<std::vector<ExponentialSeries::ForcedTerms>> forces(
+      stage.squares.begin(), stage.squares.begin() + static_cast<long>(squared.size()));
+  for (size_t j = 0; j < stage.functionals.size(); ++j) {
+    const ProbeRows& rows = probe_rows_of(stage.functionals[j]);
+    const ExponentialSeries& series = stage.series[j];
+    double size = 0.0, moved = 0.0;
+    for (size_t i = 0; i + 1 < edges.size(); ++i) {
+      size = std::max(size, std::abs(series.offset[i]) + moduli(series.coefficient[i]).sum());
+      moved = std::max(moved, forced_bound(forced_terms(rows, i, stage.exponents, response, forces),
+                                           stage.exponents.mu, edges[i + 1] - edges[i]));
+    }
+    if (moved <= 1e-9 * size) continue;
+    if (j < squared.size()) return voltage_sees_the_motion(squared[j]);
+    return Status::failure(
+        "a probe squares a quantity that the DEAs' forces move: the exact "
+        "cascade squares what the circuit alone sets (a DEA's voltage); the "
+        "shooting method serves it");
+  }
+  return Status::success();
+}
+
 Status PeriodicSolver::Impl::cascade_series(const std::vector<double>& edges,
                                             const std::vector<AffinePiece>& f,
                                             const std::vector<Eigen::VectorXcd>& particular,
@@ -447,38 +511,20 @@ Status PeriodicSolver::Impl::cascade_series(const std::vector<double>& edges,
                                             const std::vector<Probe>& probes,
                                             std::vector<ExponentialSeries>& series,
                                             Eigen::VectorXcd& exponents, double& residual) const {
-  // The first stage: the DEAs' voltages of the linear part, and their squares.
-  std::vector<ExponentialSeries> voltages;
-  for (const SquaredSource& source : squared)
-    voltages.push_back(
-        probe_series(source.voltage, f, particular, particular_slope, linear_start_of));
-  double dropped = 0.0;
-  const SquareExponents squares_exponents = square_exponents(lambda, edges, voltages, dropped);
-  std::vector<std::vector<ExponentialSeries::ForcedTerms>> squares;
-  for (const ExponentialSeries& voltage : voltages)
-    squares.push_back(squared_terms(voltage, squares_exponents));
-  // The second: every mode under the squares, its periodic state from both particular states.
+  // The first stage: the DEAs' voltages (and the functionals probes square) of the linear part,
+  // and their squares; the second: every mode under the DEAs' squares.
+  const FirstStage stage =
+      first_stage(edges, f, particular, particular_slope, linear_start_of, probes);
+  const std::vector<std::vector<ExponentialSeries::ForcedTerms>> forces(
+      stage.squares.begin(), stage.squares.begin() + static_cast<long>(squared.size()));
   ForcedModalResponse response;
-  if (Status forced = forced_modal_response(lambda, edges, squares_exponents, squared_forcing,
-                                            squares, invariant, free_body(), response);
+  if (Status forced = forced_modal_response(lambda, edges, stage.exponents, squared_forcing, forces,
+                                            invariant, free_body(), response);
       !forced.ok())
     return forced;
+  if (Status unmoved = unmoved_by_the_forces(edges, stage, response); !unmoved.ok()) return unmoved;
+  // The periodic state from both particular states.
   const size_t intervals = edges.size() - 1;
-  // The voltages' own response to the forces (through any mode or feed-through) is the
-  // decomposition's rounding in a cascade: above 1e-9 of the voltage, the stages are coupled.
-  for (size_t j = 0; j < squared.size(); ++j) {
-    const ProbeRows& rows = probe_rows_of(squared[j].voltage);
-    double voltage = 0.0, moved = 0.0;
-    for (size_t i = 0; i < intervals; ++i) {
-      const double h = edges[i + 1] - edges[i];
-      voltage = std::max(
-          voltage, std::abs(voltages[j].offset[i]) + voltages[j].coefficient[i].cwiseAbs().sum());
-      moved =
-          std::max(moved, forced_bound(forced_terms(rows, i, squares_exponents, response, squares),
-                                       squares_exponents.mu, h));
-    }
-    if (moved > 1e-9 * voltage) return voltage_sees_the_motion(squared[j]);
-  }
   std::vector<Eigen::VectorXcd> particular_start(intervals), particular_end(intervals);
   for (size_t i = 0; i < intervals; ++i) {
     const double h = edges[i + 1] - edges[i];
@@ -492,18 +538,24 @@ Status PeriodicSolver::Impl::cascade_series(const std::vector<double>& edges,
       !periodic.ok())
     return periodic;
   // Each probe: the linear stage's series with the homogeneous part measured from both
-  // particular states, plus the forced part.
+  // particular states, plus the forced part and the squares it takes.
   std::vector<Eigen::VectorXcd> homogeneous_from(intervals);
   for (size_t i = 0; i < intervals; ++i) homogeneous_from[i] = start_of[i] - response.start[i];
   series.clear();
+  size_t next_square = squared.size();
   for (const Probe& probe : probes) {
     ExponentialSeries s = probe_series(probe, f, particular, particular_slope, homogeneous_from);
     const ProbeRows& rows = probe_rows_of(probe);
     for (size_t i = 0; i < intervals; ++i)
-      s.forced.push_back(forced_terms(rows, i, squares_exponents, response, squares));
+      s.forced.push_back(forced_terms(rows, i, stage.exponents, response, forces));
+    for (const SquaredTerm& square : probe.squares) {
+      for (size_t i = 0; i < intervals; ++i)
+        s.forced[i] += square.factor * stage.squares[next_square][i];
+      ++next_square;
+    }
     series.push_back(std::move(s));
   }
-  exponents = squares_exponents.mu;
+  exponents = stage.exponents.mu;
   return Status::success();
 }
 
@@ -543,7 +595,9 @@ PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Prob
   // p_i = p(V·a_i, f₀,i, f₁,i) and s_i = Re (gᵀV)·b_i + c(f₁,i).
   std::vector<ExponentialSeries> series;
   Eigen::VectorXcd forced_exponents;
-  if (impl_->squared.empty()) {
+  const bool squares =
+      std::any_of(probes.begin(), probes.end(), [](const Probe& p) { return !is_linear(p); });
+  if (impl_->squared.empty() && !squares) {
     for (const Probe& probe : probes)
       series.push_back(impl_->probe_series(probe, f, particular, particular_slope, start_of));
   } else if (Status cascade =

@@ -158,7 +158,8 @@ Status forced_modal_response(
   std::vector<Eigen::MatrixXcd> forcing;
   double largest = 0.0;
   for (size_t i = 0; i < intervals; ++i) {
-    forcing.push_back(modal_forcing_on(i, modal_forcing, squares, terms));
+    forcing.push_back(squares.empty() ? Eigen::MatrixXcd::Zero(n, 3 * terms)
+                                      : modal_forcing_on(i, modal_forcing, squares, terms));
     largest = std::max(largest, std::sqrt(forcing.back().cwiseAbs2().maxCoeff()));
   }
   const double negligible = kNegligibleForcing * largest;

@@ -39,13 +39,15 @@ double sample_difference(const std::vector<double>& a, const std::vector<double>
 // the swing (measured); 1e-9 leaves room for IDA's error at that tolerance. Shooting's extremes
 // come from a parabola through the largest samples: the tip's are 8.5e-7 of the swing too far
 // out at 256 samples and within 1e-12 at 8192 (measured), so they are checked against the
-// 8192-sample shooting at 1e-9.
+// 8192-sample shooting at 1e-9. The DEA's force, a probe with a square, is the square of the
+// cascade's own first stage.
 TEST(PeriodicCascade, TweezerAgreesWithShooting) {
   const Model model = prepare_model(tweezer({"beam.segments=8"}));
   const System system = model.network.assemble();
   ASSERT_TRUE(system.is_nonlinear());
   ASSERT_TRUE(exact_periodic_applies(system).ok()) << exact_periodic_applies(system).message;
-  const std::vector<Probe> outputs = switching_sweep_outputs(model, {"tip", "u_A", "u_B"});
+  const std::vector<Probe> outputs =
+      switching_sweep_outputs(model, {"tip", "u_A", "u_B", "dea_force:A"});
   const PeriodicSolver solver(system);
   ASSERT_TRUE(solver.usable().ok()) << solver.usable().message;
   const double period = 1.0 / 8.0;
@@ -73,10 +75,17 @@ TEST(PeriodicCascade, TweezerAgreesWithShooting) {
   // 8192 samples): their extremes lie between the sources' levels, 0 and 2.5 kV, to rounding
   // (an RC loop cannot leave them), and the largest reaches the top to 1e-9 (the 5.2 MOhm and
   // 0.17 nF loop's 0.87 ms fits about 70 times into the half period).
-  for (size_t p = 1; p < outputs.size(); ++p) {
+  for (size_t p = 1; p <= 2; ++p) {
     EXPECT_GE(exact.minimum[p], -1e-9 * 2500.0) << outputs[p].name;
     EXPECT_NEAR(exact.maximum[p], 2500.0, 1e-9 * 2500.0) << outputs[p].name;
   }
+  // The force k_F·u² (a probe with a square, the cascade's own square of u_A): from 0 to
+  // k_F·(2.5 kV)², to the same 1e-9.
+  const auto* dea = dynamic_cast<const Dea*>(system.nonlinear_elements[0].get());
+  ASSERT_NE(dea, nullptr);
+  const double top = dea->force(2500.0);
+  EXPECT_GE(exact.minimum[3], -1e-9 * top);
+  EXPECT_NEAR(exact.maximum[3], top, 1e-9 * top);
 }
 
 // The same network from rest over 60 periods by IDA at rtol 1e-10, its last period against the
