@@ -11,6 +11,7 @@
 #include "emnet/core/option_error.hpp"
 #include "emnet/core/units.hpp"
 #include "emnet/elements/dea.hpp"
+#include "emnet/model/circuit.hpp"
 #include "emnet/model/model.hpp"
 
 namespace emnet {
@@ -124,6 +125,23 @@ Excitation drive_excitation(const Model& model, const Excitation& assembled, dou
                              std::to_string(owned[k]) +
                              " waveforms of the excitation (one expected): an excitation of "
                              "another network");
+  return excitation;
+}
+
+Excitation circuit_excitation(const Model& model, const Scene& scene, const Excitation& assembled) {
+  Excitation excitation = assembled;
+  if (excitation.waveform_element.size() != excitation.waveforms.size())
+    throw std::logic_error(
+        "circuit_excitation: the excitation does not say which element stamped each waveform");
+  for (size_t w = 0; w < excitation.waveforms.size(); ++w) {
+    const ElementRecord* record =
+        model.structure.element(static_cast<size_t>(excitation.waveform_element[w]));
+    if (!record || record->component != Component::circuit) continue;
+    if (record->index < 0 || static_cast<size_t>(record->index) >= scene.circuit.size())
+      throw std::logic_error("circuit_excitation: no circuit entry " +
+                             std::to_string(record->index) + " in the scene");
+    excitation.waveforms[w] = circuit_waveform(scene.circuit[static_cast<size_t>(record->index)]);
+  }
   return excitation;
 }
 

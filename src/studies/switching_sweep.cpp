@@ -318,22 +318,23 @@ class SwitchingSweepRun {
     return finished();
   }
 
-  // Only the drive's excitation changes with the frequency: `model`'s G and C assembled once,
-  // the drive sources' waveforms made again per frequency (the same b(t) as a model built at
-  // that frequency). With drive.electrical_dynamics = "auto" left in the scene the choice may
-  // change with the frequency (its default band is 10 x f): then a model per frequency.
+  // Only the sources' excitation changes with the frequency: `model`'s G and C assembled once,
+  // the drive sources' and the switched circuit sources' waveforms made again per frequency
+  // (the same b(t) as a model built at that frequency; rebuilding it took about 20 ms of the
+  // tweezer jaw's 61-frequency sweep). With drive.electrical_dynamics = "auto" left in the scene
+  // the choice may change with the frequency (its default band is 10 x f): then a model per
+  // frequency.
   void decide_what_changes_per_frequency() {
-    const bool circuit_switched = !switched_sources(scene_, options_.sources).empty();
-    excitation_only_ = !scene_.drive.electrical_dynamics_auto && !circuit_switched;
-    if (circuit_switched) {
+    circuit_switched_ = !switched_sources(scene_, options_.sources).empty();
+    excitation_only_ = !scene_.drive.electrical_dynamics_auto;
+    if (circuit_switched_) {
       Scene probe_scene = scene_;
       for (const std::string& note :
            set_switching_frequency(probe_scene, highest_, options_.sources))
         result_.notes.push_back(note);
       result_.notes.push_back(
-          "the circuit's periodic sources switched at each sweep frequency (a model per "
-          "frequency), each keeping its levels, duty, rise and fall; a delay keeps its fraction "
-          "of the period");
+          "the circuit's periodic sources switched at each sweep frequency, each keeping its "
+          "levels, duty, rise and fall; a delay keeps its fraction of the period");
     } else if (!excitation_only_)
       result_.notes.push_back(
           "drive.electrical_dynamics = \"auto\": a model prepared per switching frequency (the "
@@ -362,7 +363,13 @@ class SwitchingSweepRun {
   const System& system_at(double f) {
     if (excitation_only_) {
       const Stopwatch excitation_stopwatch;
-      swept_.set_excitation(drive_excitation(model_, swept_.excitation(), f));
+      Excitation excitation = drive_excitation(model_, swept_.excitation(), f);
+      if (circuit_switched_) {
+        Scene at = scene_;
+        set_switching_frequency(at, f, options_.sources);
+        excitation = circuit_excitation(model_, at, excitation);
+      }
+      swept_.set_excitation(std::move(excitation));
       result_.excitation_seconds += excitation_stopwatch.seconds();
     } else {
       const Stopwatch model_stopwatch;
@@ -657,6 +664,7 @@ class SwitchingSweepRun {
   const std::vector<Probe>& probes_;
   const double highest_;
   bool excitation_only_ = true;
+  bool circuit_switched_ = false;  // periodic [[circuit]] sources switched with the sweep
   System swept_;
   std::shared_ptr<const PeriodicSolver> solver_;
   std::unique_ptr<ReducedPeriodicSolver> reduced_;

@@ -207,11 +207,10 @@ void study_rows(const Settings& settings, std::ostringstream& md) {
     md << time_text(cost.value(stage, 0.0) / variants) << " | ";
   md << "≤ 5 s: " << (per_1000 <= 5.0 ? "met" : "**not met**") << " |\n\n"
      << "Where a variant's time goes: the sweep, in it the exact cascade's decomposition of the "
-        "variant's 222 unknowns (about 50 ms, as above) and a model per frequency (the "
-        "circuit's sources are switched by rebuilding it); 61 solves of about 0.5 ms each. The "
-        "goal "
-        "needs a reduced cascade (the modes in the band with a static correction, O(n) per "
-        "variant), which is not built.\n";
+        "variant's 222 unknowns (about 50 ms, as above) and 61 solves of about 0.5 ms each (the "
+        "circuit's sources switched by swapping their waveforms into one assembled network). "
+        "The goal needs a reduced cascade (the modes in the band with a static correction, O(n) "
+        "per variant), which is not built.\n";
 }
 
 }  // namespace

@@ -88,6 +88,14 @@ Waveform drive_source_waveform(const DriveSpec& drive, const DeaLayout& dea,
 ///         of `assembled` (an excitation of another network)
 Excitation drive_excitation(const Model& model, const Excitation& assembled, double frequency);
 
+/// `assembled` with the waveform of every [[circuit]] source that `model` stamped made again
+/// from `scene`'s entry (circuit_waveform): after set_switching_frequency on the scene the model
+/// was prepared from, the same b(t) as a model prepared from it, at the cost of the waveforms
+/// alone. Nothing else of a resolved model depends on a source's waveform.
+/// @throws std::logic_error for an excitation that does not say which element stamped each
+///         waveform, or a circuit entry that `scene` does not have (another scene)
+Excitation circuit_excitation(const Model& model, const Scene& scene, const Excitation& assembled);
+
 /// The largest RC time constant R_e·C₀ [s] of the DEAs the drive names (0 when it names none);
 /// `which`, when given, receives that DEA's name.
 double drive_time_constant(const Scene& scene, std::string* which = nullptr);
