@@ -210,9 +210,11 @@ def sweep_switching(scene: SceneLike, frequencies: Optional[Numbers] = None,
     from_hz, to_hz, step_hz : float, default 1, 7, 0.1
         The grid without `frequencies` [Hz].
     method : {"auto", "exact", "shooting"}, default "auto"
-        "auto": exact for a linear network, reduced above 1000 unknowns, shooting where a
-        [[circuit]] drives the DEAs (the choice in the notes); "exact": linear networks (DEAs as
-        ideal voltage-driven forces, with a note); "shooting": IDA, any network.
+        "auto": exact for a linear network, reduced above 1000 unknowns, the exact cascade
+        where a [[circuit]] drives the DEAs and their force is the only nonlinearity, shooting
+        where it is not (back-coupling, large kinematics; the choice in the notes); "exact":
+        linear networks (DEAs as ideal voltage-driven forces, with a note) and cascades;
+        "shooting": IDA, any network.
     samples : int, default 0
         Samples per period (0: 64 exact, 256 shooting; from 8 to 1000000).
     rtol : float, default 1e-9
