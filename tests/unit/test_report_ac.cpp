@@ -195,7 +195,11 @@ TEST(AcStudy, ResonancesInBandAreTheModesAndPeaksTheLargestResponse) {
     if (mode.frequency_hz >= 1.0 && mode.frequency_hz <= 100.0)
       expected.push_back(mode.frequency_hz);
   ASSERT_FALSE(expected.empty());
-  EXPECT_EQ(result.resonances_hz, expected);
+  // The markers ask for the 3 lowest (10 when all 3 lie in the band) without error bounds, the
+  // reference for the default 10: other Krylov subspaces, the same poles to rounding (1e-9).
+  ASSERT_EQ(result.resonances_hz.size(), expected.size());
+  for (size_t k = 0; k < expected.size(); ++k)
+    EXPECT_NEAR(result.resonances_hz[k], expected[k], 1e-9 * expected[k]);
   ASSERT_EQ(result.peaks.size(), 1u);
   double largest = 0.0;
   for (const auto& v : result.ac.values[0]) largest = std::max(largest, std::abs(v));
