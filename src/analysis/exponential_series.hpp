@@ -45,6 +45,12 @@ struct ExponentialSeries {
   std::vector<ForcedTerms> forced;  // as many as offset, or empty: none
 };
 
+// A bound on |Σ_m (c₀ + c₁·h + c₂·h²)_m·e^{μ_m h}| over 0 ≤ h ≤ length (forced terms `c` on
+// the exponents `mu`; an exponent with Re μ > 0, rounding of a sum of stable poles, taken at
+// h = length).
+double forced_bound(const ExponentialSeries::ForcedTerms& c, const Eigen::VectorXcd& mu,
+                    double length);
+
 // The system with its sources over one period of their periodic regime, or nullopt when [0, T)
 // already is one. A periodic pulse with a delay stays at its low level before it, so the first
 // period need not be a period of the drive the network settles to: a pulse reaching past the

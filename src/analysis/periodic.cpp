@@ -188,9 +188,9 @@ struct PeriodicSolver::Impl {
     }
     return q;
   }
-  // Whether `given` is the decomposed network with piecewise-linear sources and `probes` are
-  // linear: a failed Status saying why not.
-  Status check(const System& given, const std::vector<Probe>& probes) const;
+  // Whether `given` is the decomposed network with piecewise-linear sources (and, for a
+  // cascade, its stages apart): a failed Status saying why not.
+  Status check(const System& given) const;
   // The particular state a_i (`particular`) and b_i (`particular_slope`, empty when no interval
   // ramps) of each interval's sources `f` (solve); fails for a free body the drive reaches.
   Status particular_states(const std::vector<AffinePiece>& f,
@@ -207,12 +207,13 @@ struct PeriodicSolver::Impl {
   // (the stages of the cascade follow one another): made once.
   Status prepare_cascade() const;
   // The cascade's first stage: the functionals squared (the DEAs' voltages, then those of the
-  // probes' squares in order), their series from the linear stage and their squares.
+  // probes' squares in order), their series from the linear stage and their squares: the
+  // DEAs' (`forces`, the second stage's sources) and the probes' (`probe_squares`).
   struct FirstStage {
     std::vector<Probe> functionals;
     std::vector<ExponentialSeries> series;
     SquareExponents exponents;
-    std::vector<std::vector<ExponentialSeries::ForcedTerms>> squares;
+    std::vector<std::vector<ExponentialSeries::ForcedTerms>> forces, probe_squares;
   };
   FirstStage first_stage(const std::vector<double>& edges, const std::vector<AffinePiece>& f,
                          const std::vector<Eigen::VectorXcd>& particular,
@@ -276,7 +277,7 @@ Status exact_periodic_applies(const System& system) {
   }
 }
 
-Status PeriodicSolver::Impl::check(const System& given, const std::vector<Probe>& probes) const {
+Status PeriodicSolver::Impl::check(const System& given) const {
   if (Status pieces = require_piecewise_linear(given); !pieces.ok()) return pieces;
   if (given.size() != system.size() || given.is_nonlinear() != system.is_nonlinear() ||
       (system.is_nonlinear() && !same_cascade(given, system)))
@@ -389,17 +390,6 @@ Status voltage_sees_the_motion(const SquaredSource& source) {
                          "from the circuit alone; the shooting method serves this network");
 }
 
-// A bound on |Σ_m (c₀ + c₁·h + c₂·h²)_m·e^{μ_m h}| over 0 ≤ h ≤ length.
-double forced_bound(const ExponentialSeries::ForcedTerms& c, const Eigen::VectorXcd& mu,
-                    double length) {
-  double bound = 0.0;
-  for (Eigen::Index m = 0; m < mu.size(); ++m)
-    bound +=
-        (std::abs(c(m, 0)) + std::abs(c(m, 1)) * length + std::abs(c(m, 2)) * length * length) *
-        std::exp(std::max(mu[m].real(), 0.0) * length);
-  return bound;
-}
-
 }  // namespace
 
 Status PeriodicSolver::Impl::prepare_cascade() const {
@@ -469,10 +459,10 @@ PeriodicSolver::Impl::FirstStage PeriodicSolver::Impl::first_stage(
   for (const Probe& functional : stage.functionals)
     stage.series.push_back(
         probe_series(functional, f, particular, particular_slope, linear_start_of));
-  double dropped = 0.0;
-  stage.exponents = square_exponents(lambda, edges, stage.series, dropped);
-  for (const ExponentialSeries& series : stage.series)
-    stage.squares.push_back(squared_terms(series, stage.exponents));
+  stage.exponents = square_exponents(lambda, edges, stage.series);
+  for (size_t j = 0; j < stage.series.size(); ++j)
+    (j < squared.size() ? stage.forces : stage.probe_squares)
+        .push_back(squared_terms(stage.series[j], stage.exponents));
   return stage;
 }
 
@@ -482,16 +472,15 @@ Status PeriodicSolver::Impl::unmoved_by_the_forces(const std::vector<double>& ed
   // In a cascade a squared functional's own response to the forces (through any mode or
   // feed-through) is the decomposition's rounding: above 1e-9 of its size, the stages are
   // coupled (the DEAs' voltages) or the probe squares what the forces move.
-  const std::vector<std::vector<ExponentialSeries::ForcedTerms>> forces(
-      stage.squares.begin(), stage.squares.begin() + static_cast<long>(squared.size()));
   for (size_t j = 0; j < stage.functionals.size(); ++j) {
     const ProbeRows& rows = probe_rows_of(stage.functionals[j]);
     const ExponentialSeries& series = stage.series[j];
     double size = 0.0, moved = 0.0;
     for (size_t i = 0; i + 1 < edges.size(); ++i) {
       size = std::max(size, std::abs(series.offset[i]) + moduli(series.coefficient[i]).sum());
-      moved = std::max(moved, forced_bound(forced_terms(rows, i, stage.exponents, response, forces),
-                                           stage.exponents.mu, edges[i + 1] - edges[i]));
+      moved = std::max(moved,
+                       forced_bound(forced_terms(rows, i, stage.exponents, response, stage.forces),
+                                    stage.exponents.mu, edges[i + 1] - edges[i]));
     }
     if (moved <= 1e-9 * size) continue;
     if (j < squared.size()) return voltage_sees_the_motion(squared[j]);
@@ -515,11 +504,9 @@ Status PeriodicSolver::Impl::cascade_series(const std::vector<double>& edges,
   // and their squares; the second: every mode under the DEAs' squares.
   const FirstStage stage =
       first_stage(edges, f, particular, particular_slope, linear_start_of, probes);
-  const std::vector<std::vector<ExponentialSeries::ForcedTerms>> forces(
-      stage.squares.begin(), stage.squares.begin() + static_cast<long>(squared.size()));
   ForcedModalResponse response;
-  if (Status forced = forced_modal_response(lambda, edges, stage.exponents, squared_forcing, forces,
-                                            invariant, free_body(), response);
+  if (Status forced = forced_modal_response(lambda, edges, stage.exponents, squared_forcing,
+                                            stage.forces, invariant, free_body(), response);
       !forced.ok())
     return forced;
   if (Status unmoved = unmoved_by_the_forces(edges, stage, response); !unmoved.ok()) return unmoved;
@@ -542,15 +529,15 @@ Status PeriodicSolver::Impl::cascade_series(const std::vector<double>& edges,
   std::vector<Eigen::VectorXcd> homogeneous_from(intervals);
   for (size_t i = 0; i < intervals; ++i) homogeneous_from[i] = start_of[i] - response.start[i];
   series.clear();
-  size_t next_square = squared.size();
+  size_t next_square = 0;
   for (const Probe& probe : probes) {
     ExponentialSeries s = probe_series(probe, f, particular, particular_slope, homogeneous_from);
     const ProbeRows& rows = probe_rows_of(probe);
     for (size_t i = 0; i < intervals; ++i)
-      s.forced.push_back(forced_terms(rows, i, stage.exponents, response, forces));
+      s.forced.push_back(forced_terms(rows, i, stage.exponents, response, stage.forces));
     for (const SquaredTerm& square : probe.squares) {
       for (size_t i = 0; i < intervals; ++i)
-        s.forced[i] += square.factor * stage.squares[next_square][i];
+        s.forced[i] += square.factor * stage.probe_squares[next_square][i];
       ++next_square;
     }
     series.push_back(std::move(s));
@@ -569,7 +556,7 @@ PeriodicResult PeriodicSolver::solve(const System& given, const std::vector<Prob
   result.period = period;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   if (!impl_) return finish(status_);
-  if (Status usable = impl_->check(system, probes); !usable.ok()) return finish(usable);
+  if (Status usable = impl_->check(system); !usable.ok()) return finish(usable);
 
   // The intervals over one period on which the sources are affine, f = f₀,i + h·f₁,i, and the
   // particular state of each, affine too: in modal coordinates q = V⁻¹·N·f,

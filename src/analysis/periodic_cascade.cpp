@@ -68,9 +68,8 @@ bool same_cascade(const System& a, const System& b) {
 }
 
 SquareExponents square_exponents(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
-                                 const std::vector<ExponentialSeries>& voltages, double& dropped) {
+                                 const std::vector<ExponentialSeries>& voltages) {
   std::vector<bool> carried(static_cast<size_t>(lambda.size()), false);
-  std::vector<double> scales;
   for (const ExponentialSeries& v : voltages) {
     double scale = 0.0;
     for (size_t i = 0; i < v.offset.size(); ++i)
@@ -78,7 +77,6 @@ SquareExponents square_exponents(const Eigen::VectorXcd& lambda, const std::vect
           scale, std::abs(v.offset[i]) +
                      (v.slope.empty() ? 0.0 : std::abs(v.slope[i])) * (edges[i + 1] - edges[i]) +
                      moduli(v.coefficient[i]).sum());
-    scales.push_back(scale);
     for (const Eigen::VectorXcd& a : v.coefficient)
       for (Eigen::Index k = 0; k < a.size(); ++k)
         if (std::norm(a[k]) > kKeptPole * kKeptPole * scale * scale)
@@ -87,14 +85,6 @@ SquareExponents square_exponents(const Eigen::VectorXcd& lambda, const std::vect
   SquareExponents exponents;
   for (Eigen::Index k = 0; k < lambda.size(); ++k)
     if (carried[static_cast<size_t>(k)]) exponents.kept.push_back(k);
-  dropped = 0.0;
-  for (size_t j = 0; j < voltages.size(); ++j)
-    for (const Eigen::VectorXcd& a : voltages[j].coefficient) {
-      double left_out = 0.0;
-      for (Eigen::Index k = 0; k < a.size(); ++k)
-        if (!carried[static_cast<size_t>(k)]) left_out += modulus(a[k]);
-      if (scales[j] > 0.0) dropped = std::max(dropped, left_out / scales[j]);
-    }
   const auto kept = static_cast<Eigen::Index>(exponents.kept.size());
   exponents.mu.resize(1 + kept + kept * (kept + 1) / 2);
   Eigen::Index m = 0;

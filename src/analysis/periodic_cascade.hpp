@@ -57,10 +57,9 @@ struct SquareExponents {
 };
 
 // The poles any of `voltages` carries above 1e-12 of its scale (max_i |o_i| + |s_i|·h_i +
-// Σ_k |a_ik|) in any interval, and the exponents of their squares. `dropped`: the largest sum of
-// left-out |a_ik| relative to that scale.
+// Σ_k |a_ik|) in any interval, and the exponents of their squares.
 SquareExponents square_exponents(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
-                                 const std::vector<ExponentialSeries>& voltages, double& dropped);
+                                 const std::vector<ExponentialSeries>& voltages);
 
 // u(h)² per interval as Σ_m (c₀ + c₁·h + c₂·h²)_m·e^{μ_m h} on `exponents` (the formula above).
 std::vector<ExponentialSeries::ForcedTerms> squared_terms(const ExponentialSeries& voltage,

@@ -133,15 +133,7 @@ class SeriesEvaluator {
 
   // The largest |forced part| of probe p in interval i (a bound).
   double forced_scale(size_t p, size_t i) const {
-    if (!has_forced(p)) return 0.0;
-    const double length = edges_[i + 1] - edges_[i];
-    const ExponentialSeries::ForcedTerms& c = series_[p].forced[i];
-    double bound = 0.0;
-    for (Eigen::Index m = 0; m < mu_.size(); ++m)
-      bound +=
-          (std::abs(c(m, 0)) + std::abs(c(m, 1)) * length + std::abs(c(m, 2)) * length * length) *
-          std::exp(std::max(mu_[m].real(), 0.0) * length);
-    return bound;
+    return has_forced(p) ? forced_bound(series_[p].forced[i], mu_, edges_[i + 1] - edges_[i]) : 0.0;
   }
 
   // Where each term has decayed below rounding: beyond h = cutoff[p][i][k] the term
@@ -403,6 +395,16 @@ class ExtremeSearch {
 };
 
 }  // namespace
+
+double forced_bound(const ExponentialSeries::ForcedTerms& c, const Eigen::VectorXcd& mu,
+                    double length) {
+  double bound = 0.0;
+  for (Eigen::Index m = 0; m < mu.size(); ++m)
+    bound +=
+        (std::abs(c(m, 0)) + std::abs(c(m, 1)) * length + std::abs(c(m, 2)) * length * length) *
+        std::exp(std::max(mu[m].real(), 0.0) * length);
+  return bound;
+}
 
 void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<double>& edges,
                             const std::vector<ExponentialSeries>& series, int samples,
