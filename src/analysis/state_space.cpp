@@ -235,32 +235,6 @@ void LinearStateSpace::full_state(const Eigen::VectorXd& x, const Eigen::VectorX
   up = column_scale_.cwiseProduct(right_ * wp);
 }
 
-LinearStateSpace::StateMaps LinearStateSpace::state_maps() const {
-  // The same steps as forcing and full_state, on the identity's columns at once.
-  const Eigen::Index sources = row_scale_.size();
-  const Eigen::MatrixXd f_hat = left_.transpose() * row_scale_.asDiagonal();  // n × sources
-  StateMaps maps;
-  Eigen::MatrixXd a22_inv_f2;
-  if (na_ > 0) a22_inv_f2 = a22_lu_.solve(f_hat.bottomRows(na_));
-  maps.forcing_matrix =
-      sigma_inv_.asDiagonal() * (na_ > 0 ? Eigen::MatrixXd(f_hat.topRows(nd_) - a12_ * a22_inv_f2)
-                                         : Eigen::MatrixXd(f_hat.topRows(nd_)));
-  Eigen::MatrixXd w_f = Eigen::MatrixXd::Zero(n_, sources);
-  Eigen::MatrixXd wp_x(n_, nd_), wp_f(n_, sources);
-  wp_x.topRows(nd_) = m_;
-  wp_f.topRows(nd_) = maps.forcing_matrix;
-  if (na_ > 0) {
-    w_f.bottomRows(na_) = a22_inv_f2;
-    wp_x.bottomRows(na_) = -a22_inv_a21_ * m_;
-    wp_f.bottomRows(na_) = -a22_inv_a21_ * maps.forcing_matrix;
-  }
-  maps.u_x = u_of_state();
-  maps.u_f = column_scale_.asDiagonal() * (right_ * w_f);
-  maps.up_x = column_scale_.asDiagonal() * (right_ * wp_x);
-  maps.up_f = column_scale_.asDiagonal() * (right_ * wp_f);
-  return maps;
-}
-
 LinearStateSpace::OutputRows LinearStateSpace::output_rows(const Eigen::RowVectorXd& on_u,
                                                            const Eigen::RowVectorXd& on_up) const {
   // u = C·R·w, u' = C·R·w' with w = [x; Â₂₂⁻¹·f̂₂ − Â₂₂⁻¹·Â₂₁·x], w' = [x'; −Â₂₂⁻¹·Â₂₁·x'],

@@ -137,15 +137,10 @@ class LinearStateSpace {
   Eigen::MatrixXd u_of_state() const;
   // The state of a consistent u.
   Eigen::VectorXd state_of(const Eigen::VectorXd& u) const;
-  // full_state and forcing as matrices, for many outputs at once: under constant sources f,
-  // u = u_x·x + u_f·f, u' = up_x·x + up_f·f, and forcing(f) = forcing_matrix·f (N).
-  struct StateMaps {
-    Eigen::MatrixXd u_x, u_f, up_x, up_f, forcing_matrix;
-  };
-  StateMaps state_maps() const;
-  // One linear output p = on_u·u + on_up·u' as rows, the same as state_maps gives them but at
-  // O(n²) (the maps are O(n³)): under constant sources p = state_row·x + source_row·f, and a
-  // slope f' of the sources adds slope_row·f' (the algebraic unknowns' rates).
+  // One linear output p = on_u·u + on_up·u' as rows, as full_state and forcing give it, at
+  // O(n²) (maps of every unknown, which the exact periodic method formed before, are O(n³)):
+  // under constant sources p = state_row·x + source_row·f, and a slope f' of the sources adds
+  // slope_row·f' (the algebraic unknowns' rates).
   struct OutputRows {
     Eigen::RowVectorXd state, source, slope;
   };
