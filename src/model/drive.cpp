@@ -101,24 +101,42 @@ Waveform drive_source_waveform(const DriveSpec& drive, const DeaLayout& dea,
       dea.coupling[static_cast<size_t>(record.coupling)].coefficient);
 }
 
-Excitation drive_excitation(const Model& model, const Excitation& assembled, double frequency) {
-  DriveSpec drive = model.scene.drive;
-  drive.frequency = frequency;
+namespace {
+
+// `assembled` with each waveform that an element of `component` stamped made again by
+// remake(its record, the element's index): the one walk of drive_excitation and
+// circuit_excitation. `caller` names the function in a logic error.
+template <class Remake>
+Excitation with_waveforms_remade(const Model& model, const Excitation& assembled,
+                                 Component component, const std::string& caller,
+                                 const Remake& remake) {
   Excitation excitation = assembled;
   if (excitation.waveform_element.size() != excitation.waveforms.size())
-    throw std::logic_error(
-        "drive_excitation: the excitation does not say which element stamped "
-        "each waveform");
-  std::vector<int> owned(model.structure.elements.size(), 0);
+    throw std::logic_error(caller +
+                           ": the excitation does not say which element stamped each waveform");
   for (size_t w = 0; w < excitation.waveforms.size(); ++w) {
     const int element = excitation.waveform_element[w];
     const ElementRecord* record = model.structure.element(static_cast<size_t>(element));
-    if (!record || record->component != Component::drive_source) continue;
-    const DeaLayout* dea = model.find_dea(record->dea);
-    if (!dea) throw std::logic_error("drive_excitation: no DEA named " + record->dea);
-    excitation.waveforms[w] = drive_source_waveform(drive, *dea, *record);
-    ++owned[static_cast<size_t>(element)];
+    if (record && record->component == component)
+      excitation.waveforms[w] = remake(*record, element);
   }
+  return excitation;
+}
+
+}  // namespace
+
+Excitation drive_excitation(const Model& model, const Excitation& assembled, double frequency) {
+  DriveSpec drive = model.scene.drive;
+  drive.frequency = frequency;
+  std::vector<int> owned(model.structure.elements.size(), 0);
+  Excitation excitation = with_waveforms_remade(
+      model, assembled, Component::drive_source, "drive_excitation",
+      [&](const ElementRecord& record, int element) {
+        const DeaLayout* dea = model.find_dea(record.dea);
+        if (!dea) throw std::logic_error("drive_excitation: no DEA named " + record.dea);
+        ++owned[static_cast<size_t>(element)];
+        return drive_source_waveform(drive, *dea, record);
+      });
   for (size_t k = 0; k < owned.size(); ++k)
     if (model.structure.elements[k].component == Component::drive_source && owned[k] != 1)
       throw std::logic_error("drive_excitation: drive source " + std::to_string(k) + " owns " +
@@ -129,20 +147,14 @@ Excitation drive_excitation(const Model& model, const Excitation& assembled, dou
 }
 
 Excitation circuit_excitation(const Model& model, const Scene& scene, const Excitation& assembled) {
-  Excitation excitation = assembled;
-  if (excitation.waveform_element.size() != excitation.waveforms.size())
-    throw std::logic_error(
-        "circuit_excitation: the excitation does not say which element stamped each waveform");
-  for (size_t w = 0; w < excitation.waveforms.size(); ++w) {
-    const ElementRecord* record =
-        model.structure.element(static_cast<size_t>(excitation.waveform_element[w]));
-    if (!record || record->component != Component::circuit) continue;
-    if (record->index < 0 || static_cast<size_t>(record->index) >= scene.circuit.size())
-      throw std::logic_error("circuit_excitation: no circuit entry " +
-                             std::to_string(record->index) + " in the scene");
-    excitation.waveforms[w] = circuit_waveform(scene.circuit[static_cast<size_t>(record->index)]);
-  }
-  return excitation;
+  return with_waveforms_remade(
+      model, assembled, Component::circuit, "circuit_excitation",
+      [&](const ElementRecord& record, int) {
+        if (record.index < 0 || static_cast<size_t>(record.index) >= scene.circuit.size())
+          throw std::logic_error("circuit_excitation: no circuit entry " +
+                                 std::to_string(record.index) + " in the scene");
+        return circuit_waveform(scene.circuit[static_cast<size_t>(record.index)]);
+      });
 }
 
 double drive_time_constant(const Scene& scene, std::string* which) {
