@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "equilibration.hpp"
-
 namespace emnet {
 
 namespace {
@@ -14,9 +12,9 @@ using ComplexSparse = Eigen::SparseMatrix<std::complex<double>>;
 }
 
 bool left_eigenspace(const Eigen::SparseMatrix<double>& g_matrix,
-                     const Eigen::SparseMatrix<double>& c_matrix, std::complex<double> pole,
-                     int count, Eigen::MatrixXcd& left, double& residual, std::string& why) {
-  const DiagonalScaling scaling = equilibrate_pencil(g_matrix, c_matrix);
+                     const Eigen::SparseMatrix<double>& c_matrix, const DiagonalScaling& scaling,
+                     std::complex<double> pole, int count, Eigen::MatrixXcd& left, double& residual,
+                     std::string& why) {
   const Eigen::SparseMatrix<double> g_hat = scaled(g_matrix, scaling);
   const Eigen::SparseMatrix<double> c_hat = scaled(c_matrix, scaling, scaling.frequency);
   const std::complex<double> s_hat = pole / scaling.frequency;
@@ -65,10 +63,11 @@ bool left_eigenspace(const Eigen::SparseMatrix<double>& g_matrix,
 }
 
 bool left_eigenvector(const Eigen::SparseMatrix<double>& g_matrix,
-                      const Eigen::SparseMatrix<double>& c_matrix, std::complex<double> pole,
-                      Eigen::VectorXcd& left, double& residual, std::string& why) {
+                      const Eigen::SparseMatrix<double>& c_matrix, const DiagonalScaling& scaling,
+                      std::complex<double> pole, Eigen::VectorXcd& left, double& residual,
+                      std::string& why) {
   Eigen::MatrixXcd space;
-  if (!left_eigenspace(g_matrix, c_matrix, pole, 1, space, residual, why)) return false;
+  if (!left_eigenspace(g_matrix, c_matrix, scaling, pole, 1, space, residual, why)) return false;
   left = space.col(0);
   return true;
 }

@@ -16,18 +16,24 @@
 #include <complex>
 #include <string>
 
+#include "equilibration.hpp"
+
 namespace emnet {
 
+// `scaling`: equilibrate_pencil(g_matrix, c_matrix), computed once by the caller for all the
+// poles it asks about (at large N the equilibration costs more than the inverse iteration).
 // `residual`: ‖(Ĝᵀ + conj(ŝ)Ĉᵀ)·ŷ‖ / (‖Ĝ‖₁ + |ŝ|·‖Ĉ‖₁) with ‖ŷ‖ = 1, on the equilibrated
 // pencil (unit-free). False, with `why`, when the adjoint cannot be factorised or the iteration
 // gives no finite vector.
 bool left_eigenvector(const Eigen::SparseMatrix<double>& g_matrix,
-                      const Eigen::SparseMatrix<double>& c_matrix, std::complex<double> pole,
-                      Eigen::VectorXcd& left, double& residual, std::string& why);
+                      const Eigen::SparseMatrix<double>& c_matrix, const DiagonalScaling& scaling,
+                      std::complex<double> pole, Eigen::VectorXcd& left, double& residual,
+                      std::string& why);
 // `count` such vectors (columns of `left`) from different starts, the first from ŷ = 1 (so
 // count = 1 is left_eigenvector); `residual` the worst of them.
 bool left_eigenspace(const Eigen::SparseMatrix<double>& g_matrix,
-                     const Eigen::SparseMatrix<double>& c_matrix, std::complex<double> pole,
-                     int count, Eigen::MatrixXcd& left, double& residual, std::string& why);
+                     const Eigen::SparseMatrix<double>& c_matrix, const DiagonalScaling& scaling,
+                     std::complex<double> pole, int count, Eigen::MatrixXcd& left, double& residual,
+                     std::string& why);
 
 }  // namespace emnet

@@ -194,6 +194,7 @@ Status find_poles(const System& system, const Eigen::VectorXd& operating_point,
   const int n = system.size();
   ModalOptions modal_options;
   modal_options.keep_vectors = true;
+  modal_options.error_bounds = false;  // the left vectors come from keep_group's own iteration
   modal_options.dense_limit =
       options.keep_all ? std::max(n, options.dense_limit) : options.dense_limit;
   for (int count = 4;; count *= 2) {
@@ -300,6 +301,7 @@ struct GroupContext {
   const Eigen::SparseMatrix<double>& g_matrix;
   const Eigen::SparseMatrix<Complex>& c_complex;
   const std::vector<Eigen::VectorXcd>& inputs;
+  const DiagonalScaling& scaling;  // of the pencil (g_matrix, system.C), for left vectors
 };
 
 // Keeps the group `members` of `candidates` in `result` (kept poles, β), or reports through
@@ -316,8 +318,8 @@ Status keep_group(const GroupContext& context, const std::vector<Candidate>& can
   Eigen::MatrixXcd left;
   double residual = 0.0;
   std::string why;
-  if (!left_eigenspace(context.g_matrix, context.system.C, pole, static_cast<int>(m), left,
-                       residual, why))
+  if (!left_eigenspace(context.g_matrix, context.system.C, context.scaling, pole,
+                       static_cast<int>(m), left, residual, why))
     return Status::failure("left eigenvector at " + std::to_string(std::abs(pole) / two_pi) +
                            " Hz: " + why);
   const Eigen::MatrixXcd w = left.conjugate();
@@ -482,7 +484,8 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
     return finish(series);
 
   const Eigen::SparseMatrix<Complex> c_complex = system.C.cast<Complex>();
-  const GroupContext context{system, g_matrix, c_complex, inputs};
+  const DiagonalScaling scaling = equilibrate_pencil(g_matrix, system.C);
+  const GroupContext context{system, g_matrix, c_complex, inputs, scaling};
   if (Status grouped = keep_or_truncate(context, modal, options, omega_c, omega_band, result);
       !grouped.ok())
     return finish(grouped);

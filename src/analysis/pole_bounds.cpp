@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "dense_decompositions.hpp"
 #include "left_eigenvector.hpp"
@@ -90,6 +91,7 @@ bool orthonormal(const Eigen::MatrixXcd& columns, Eigen::MatrixXcd& basis) {
 void span_repeated_poles(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& e,
                          std::vector<PoleEstimate>& poles, double group_width) {
   const Eigen::SparseMatrix<double> a_transposed = a.transpose(), e_transposed = e.transpose();
+  std::optional<DiagonalScaling> scaling;  // of the transposed pencil, once it is needed
   for (const std::vector<size_t>& group : pole_groups(poles, group_width)) {
     const Eigen::Index g = static_cast<Eigen::Index>(group.size());
     if (g < 2) continue;
@@ -100,8 +102,9 @@ void span_repeated_poles(const Eigen::SparseMatrix<double>& a, const Eigen::Spar
     std::string why;
     const Complex centre = poles[group.front()].pole;
     // Right vectors of Â + ŝÊ are left vectors of the transposed pencil at conj(ŝ), conjugated.
-    if (!left_eigenspace(a_transposed, e_transposed, std::conj(centre), static_cast<int>(g), right,
-                         residual, why) ||
+    if (!scaling) scaling = equilibrate_pencil(a_transposed, e_transposed);
+    if (!left_eigenspace(a_transposed, e_transposed, *scaling, std::conj(centre),
+                         static_cast<int>(g), right, residual, why) ||
         !orthonormal(right.conjugate(), basis))
       continue;  // left as they are: bound_poles then calls the group defective
     for (Eigen::Index j = 0; j < g; ++j) poles[group[static_cast<size_t>(j)]].right = basis.col(j);
@@ -114,6 +117,7 @@ void bound_poles(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix
   const long double rounding =
       static_cast<long double>(most_entries(a, e) + 2) * std::ldexp(1.0L, -64);
   const Eigen::SparseMatrix<Complex> e_complex = e.cast<Complex>();
+  std::optional<DiagonalScaling> scaling;  // for inverse iteration, once it is needed
   for (const std::vector<size_t>& group : pole_groups(poles, group_width)) {
     const Complex centre = poles[group.front()].pole;
     const double width = group_width * std::abs(centre);
@@ -148,9 +152,10 @@ void bound_poles(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix
     }
     std::string why;
     double iteration_residual = 0.0;
-    if (!have_left &&
-        !(left_eigenspace(a, e, centre, static_cast<int>(g), left, iteration_residual, why) &&
-          orthonormal(left, left_basis))) {
+    if (!have_left && !scaling) scaling = equilibrate_pencil(a, e);
+    if (!have_left && !(left_eigenspace(a, e, *scaling, centre, static_cast<int>(g), left,
+                                        iteration_residual, why) &&
+                        orthonormal(left, left_basis))) {
       fail(g > 1 ? "a group of " + std::to_string(g) + " equal poles with fewer independent " +
                        "left vectors (defective)" + (why.empty() ? "" : ": " + why)
                  : "no left vector (" + why + ")");

@@ -169,11 +169,13 @@ Status find_left_eigenvectors(const Linearised& nominal, SensitivityResult& resu
                               LeftEigenvectors& lefts) {
   const Eigen::SparseMatrix<std::complex<double>> c_complex =
       nominal.system.C.cast<std::complex<double>>();
+  const DiagonalScaling scaling = equilibrate_pencil(nominal.g_matrix, nominal.system.C);
   for (const Mode& mode : result.modes) {
     Eigen::VectorXcd left;
     double residual = 0.0;
     std::string why;
-    if (!left_eigenvector(nominal.g_matrix, nominal.system.C, mode.pole, left, residual, why))
+    if (!left_eigenvector(nominal.g_matrix, nominal.system.C, scaling, mode.pole, left, residual,
+                          why))
       return Status::failure(why);
     result.left_vector_residual = std::max(result.left_vector_residual, residual);
     const std::complex<double> denominator = left.dot(c_complex * mode.vector);  // yᴴ·C·x
