@@ -126,7 +126,8 @@ py::dict run_modes(const SceneHandle& handle, int count, bool dense, bool error_
 py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
                 std::optional<double> to_hz, std::optional<int> points, std::optional<bool> log,
                 const std::vector<std::string>& probe_texts, bool reduce,
-                std::optional<double> tolerance, std::optional<double> band_hz) {
+                std::optional<double> tolerance, std::optional<double> band_hz,
+                const std::string& method) {
   emnet::Stopwatch stopwatch;
   emnet::PreparedModel p;
   std::vector<emnet::Probe> probes;
@@ -148,8 +149,19 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
       throw InputError("to_hz", "to_hz", "must be above from_hz (or equal to it with points = 1)");
     if (spec.log && !(spec.from > 0.0))
       throw InputError("from_hz", "from_hz", "a log scale needs from_hz > 0");
-    if (!reduce && (tolerance || band_hz))
-      throw InputError("tolerance/band_hz", "reduce", "tolerance and band_hz need reduce=True");
+    if (method != "auto" && method != "full" && method != "reduced")
+      throw InputError("method", "method",
+                       "must be 'auto', 'full' or 'reduced', got '" + method + "'");
+    if (reduce && method == "full")
+      throw InputError("reduce", "method", "reduce=True contradicts method='full'");
+    const emnet::AcSweepMethod sweep_method = reduce || method == "reduced"
+                                                  ? emnet::AcSweepMethod::reduced
+                                              : method == "full" ? emnet::AcSweepMethod::full
+                                                                 : emnet::AcSweepMethod::automatic;
+    if (sweep_method == emnet::AcSweepMethod::full && (tolerance || band_hz))
+      throw InputError("tolerance/band_hz", "method",
+                       "tolerance and band_hz set the modal reduction, which method='full' does "
+                       "not use");
     p = prepare(handle.scene, probe_texts, false, progress);
     probes = parse_probes(p.model, probe_texts);
     emnet::require_ac_input(p.model, p.system);
@@ -157,7 +169,8 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
     options.sweep = spec;
     options.probes = probes;
     options.progress = progress;
-    if (reduce) {
+    options.method = sweep_method;
+    if (sweep_method == emnet::AcSweepMethod::reduced || tolerance || band_hz) {
       emnet::ReductionOptions reduction;
       reduction.tolerance = tolerance.value_or(p.model.scene.model.tolerance);
       reduction.band = band_hz.value_or(spec.to);
@@ -165,7 +178,9 @@ py::dict run_ac(const SceneHandle& handle, std::optional<double> from_hz,
       options.reduction = reduction;
     }
     result = emnet::run_ac_study(p.model, p.system, p.rest.operating_point, options);
-    require(result.status, reduce ? "ac (reduced): " : "ac: ");
+    require(result.status, result.failed_stage == emnet::AcStudyStage::reduction
+                               ? "ac (modal reduction): "
+                               : "ac: ");
     input = emnet::ac_input_description(p.model.scene, spec.to);
   });
   py::dict out = to_dict(emnet::to_json(result, p.model, probes, input, stopwatch.seconds()));
@@ -397,7 +412,8 @@ void bind_analyses(py::module_& m) {
         arg("error_estimate") = true, arg("shapes") = false, arg("probes") = none);
   m.def("ac", &run_ac, arg("scene"), arg("from_hz") = py::none(), arg("to_hz") = py::none(),
         arg("points") = py::none(), arg("log") = py::none(), arg("probes") = none,
-        arg("reduce") = false, arg("tolerance") = py::none(), arg("band_hz") = py::none());
+        arg("reduce") = false, arg("tolerance") = py::none(), arg("band_hz") = py::none(),
+        arg("method") = "auto");
   m.def("tran", &run_tran, arg("scene"), arg("periods") = 10.0, arg("switching_hz") = py::none(),
         arg("method") = "ida", arg("rtol") = 1e-6, arg("atol") = 0.0, arg("max_step") = 0.0,
         arg("start") = "rest", arg("points_per_period") = 100, arg("outputs") = none,

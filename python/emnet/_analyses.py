@@ -92,7 +92,7 @@ def modes(scene: SceneLike, count: Integer = 0, dense: Flag = False, error_estim
 def ac(scene: SceneLike, from_hz: Optional[Number] = None, to_hz: Optional[Number] = None,
        points: Optional[Integer] = None, log: Optional[Flag] = None,
        probes: Optional[Texts] = None, reduce: Flag = False, tolerance: Optional[Number] = None,
-       band_hz: Optional[Number] = None) -> Result:
+       band_hz: Optional[Number] = None, method: str = "auto") -> Result:
     """The small-signal frequency response (as `emnet ac`).
 
     Parameters
@@ -108,11 +108,15 @@ def ac(scene: SceneLike, from_hz: Optional[Number] = None, to_hz: Optional[Numbe
     probes : str or sequence of str, optional
         Probe names or texts (default: the scene's probes).
     reduce : bool, default False
-        By modal reduction, checked against the full model.
+        By modal reduction, checked against the full model (method "reduced").
     tolerance : float, optional
-        The reduction's tolerance [-] (default: the scene's model.tolerance); needs reduce.
+        The reduction's tolerance [-] (default: the scene's model.tolerance).
     band_hz : float, optional
-        The band the reduced model keeps [Hz] (default: to_hz); needs reduce.
+        The band the reduced model keeps [Hz] (default: to_hz).
+    method : {"auto", "full", "reduced"}, default "auto"
+        "auto": the modal reduction above 2000 unknowns for 500 frequencies or more, kept only
+        when its check against the full model meets the tolerance (a note says which); "full":
+        every frequency on the full model; "reduced": the modal reduction whatever its check.
 
     Returns
     -------
@@ -120,7 +124,8 @@ def ac(scene: SceneLike, from_hz: Optional[Number] = None, to_hz: Optional[Numbe
         frequencies_hz [Hz]; probes: name, description, unit, magnitude [the probe's unit per unit
         input] and phase_deg [deg], 2-D arrays [probe, frequency]; phasors: the complex responses
         [probe, frequency]; input (what drives it); resonances_hz [Hz]; accuracy
-        (max_relative_residual [-]); cost [s]; validity.
+        (method; max_relative_residual [-] of the full model's solves, or the reduction's
+        measured_error [-] against the full model); notes; cost [s]; validity.
         result.to_frame(): a row per frequency, <probe>_magnitude and <probe>_phase_deg;
         result.to_xarray(): magnitude, phase_deg and phasor over (output, frequency).
 
@@ -135,7 +140,7 @@ def ac(scene: SceneLike, from_hz: Optional[Number] = None, to_hz: Optional[Numbe
         as_scene(scene)._handle, maybe_number(from_hz, "from_hz"), maybe_number(to_hz, "to_hz"),
         maybe_integer(points, "points"), maybe_flag(log, "log"), texts(probes, "probes"),
         flag(reduce, "reduce"), maybe_number(tolerance, "tolerance"),
-        maybe_number(band_hz, "band_hz")))
+        maybe_number(band_hz, "band_hz"), text(method, "method")))
 
 
 def tran(scene: SceneLike, periods: Number = 10.0, switching_hz: Optional[Number] = None,

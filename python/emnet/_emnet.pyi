@@ -47,7 +47,7 @@ def modes(scene: SceneHandle, count: int = ..., dense: bool = ..., error_estimat
 def ac(scene: SceneHandle, from_hz: Optional[float] = ..., to_hz: Optional[float] = ...,
        points: Optional[int] = ..., log: Optional[bool] = ..., probes: list[str] = ...,
        reduce: bool = ..., tolerance: Optional[float] = ...,
-       band_hz: Optional[float] = ...) -> dict[str, Any]: ...
+       band_hz: Optional[float] = ..., method: str = ...) -> dict[str, Any]: ...
 def tran(scene: SceneHandle, periods: float = ..., switching_hz: Optional[float] = ...,
          method: str = ..., rtol: float = ..., atol: float = ..., max_step: float = ...,
          start: str = ..., points_per_period: int = ..., outputs: list[str] = ...,

@@ -84,6 +84,7 @@ AcReductionResult run_ac_reduced(const System& system, const Eigen::VectorXd& op
       result.ac.values[p].push_back(result.model.response(probes[p], two_pi * f));
   result.evaluate_seconds = start.seconds();
   result.ac.seconds = result.reduce_seconds + result.evaluate_seconds;
+  result.ac.method = Method::reduced;
   for (size_t p = 0; p < probes.size(); ++p)
     for (size_t f = 0; f < frequencies.size(); ++f)
       if (!std::isfinite(std::abs(result.ac.values[p][f]))) {

@@ -31,8 +31,15 @@ Json to_json(const AcStudyResult& result, const Model& model, const std::vector<
                              {"phase_deg", phase}});
   }
   out["resonances_hz"] = result.resonances_hz;
-  out["accuracy"] = {{"max_relative_residual", result.ac.max_relative_residual},
-                     {"method", method_name(result.ac.method)}};
+  if (result.reduction)  // measured against the full model (the reduced sweep has no residual)
+    out["accuracy"] = {{"method", method_name(Method::reduced)},
+                       {"measured_error", result.reduction->measured_error},
+                       {"error_estimate", result.reduction->error_estimate},
+                       {"tolerance", result.reduction->model.tolerance},
+                       {"tolerance_met", result.reduction->tolerance_met}};
+  else
+    out["accuracy"] = {{"max_relative_residual", result.ac.max_relative_residual},
+                       {"method", method_name(result.ac.method)}};
   if (result.ac.method == Method::pole_residue)
     out["accuracy"].update({{"check_points", result.ac.check_points},
                             {"check_deviation", result.ac.check_deviation},

@@ -83,6 +83,47 @@ std::optional<RotationPeak> largest_rotation_at(const Model& model, const System
   return largest_rotation(rotations, peaks);
 }
 
+// The reduction's options, as given or the scene's tolerance, a band of 0 made the sweep's top.
+// @throws OptionError when they are out of range (validate)
+ReductionOptions reduction_options(const Model& model, const AcStudyOptions& options) {
+  ReductionOptions reduction;
+  if (options.reduction)
+    reduction = *options.reduction;
+  else
+    reduction.tolerance = model.scene.model.tolerance;
+  if (reduction.band == 0.0) reduction.band = options.sweep.to;
+  validate(reduction);
+  return reduction;
+}
+
+// Whether the sweep is to be reduced (AcStudyOptions::method).
+bool reduces(const AcStudyOptions& options, const System& system, size_t points) {
+  switch (options.method) {
+    case AcSweepMethod::full:
+      return false;
+    case AcSweepMethod::reduced:
+      return true;
+    case AcSweepMethod::automatic:
+      return system.size() > kAcReductionUnknowns &&
+             points >= static_cast<size_t>(kAcReductionPoints);
+  }
+  return false;
+}
+
+// Why the automatic method solved the full model after all: the reduction failed, or its check
+// missed the tolerance.
+std::string full_model_note(const System& system, const AcReductionResult& reduction) {
+  const std::string why =
+      !reduction.status.ok()
+          ? "failed (" + reduction.status.message + ")"
+          : "measured " + format_number("%.3g", reduction.measured_error) +
+                " against the full model at its check frequencies, above its tolerance " +
+                format_number("%.3g", reduction.model.tolerance);
+  return "the modal reduction (automatic for " + std::to_string(system.size()) +
+         " unknowns, above " + std::to_string(kAcReductionUnknowns) + ") " + why +
+         ": every frequency was solved on the full model";
+}
+
 }  // namespace
 
 AcStudyResult run_ac_study(const Model& model, const System& system,
@@ -100,14 +141,26 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
     result.failed_stage = stage;
     return result;
   };
-  if (options.reduction) {
+  // Given options are checked whatever the method; the defaults only where they are used (a
+  // one-point sweep at 0 Hz has no band).
+  if (options.reduction) reduction_options(model, options);
+  std::string full_model_reason;
+  if (reduces(options, system, grid.size())) {
+    const ReductionOptions reduction = reduction_options(model, options);
     report_phase(options.progress, "modal reduction and its check");
-    result.reduction = run_ac_reduced(system, operating_point, grid, probes, *options.reduction);
-    if (!result.reduction->status.ok())
-      return fail(AcStudyStage::reduction, result.reduction->status);
-    result.ac = result.reduction->ac;
-    if (!result.ac.status.ok()) return fail(AcStudyStage::sweep, result.ac.status);
-  } else {
+    result.reduction = run_ac_reduced(system, operating_point, grid, probes, reduction);
+    const bool automatic = options.method == AcSweepMethod::automatic;
+    if (automatic && !(result.reduction->status.ok() && result.reduction->tolerance_met)) {
+      full_model_reason = full_model_note(system, *result.reduction);
+      result.reduction.reset();
+    } else {
+      if (!result.reduction->status.ok())
+        return fail(AcStudyStage::reduction, result.reduction->status);
+      result.ac = result.reduction->ac;
+      if (!result.ac.status.ok()) return fail(AcStudyStage::sweep, result.ac.status);
+    }
+  }
+  if (!result.reduction) {
     AcOptions sweep_options;
     sweep_options.progress = options.progress;
     result.ac = run_ac(system, operating_point, grid, probes, sweep_options);
@@ -161,6 +214,14 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
     }
 
   result.notes = zero_voltage_dea_notes(model, operating_point);
+  if (!full_model_reason.empty()) result.notes.push_back(full_model_reason);
+  if (result.reduction && options.method == AcSweepMethod::automatic)
+    result.notes.push_back(
+        "the sweep is the modal reduction's, chosen automatically for " +
+        std::to_string(system.size()) + " unknowns and " + std::to_string(grid.size()) +
+        " frequencies (above " + std::to_string(kAcReductionUnknowns) + " and from " +
+        std::to_string(kAcReductionPoints) + "): its error is measured against the full model at " +
+        std::to_string(result.reduction->check_frequencies.size()) + " frequencies");
   bool every_response_zero = true;
   for (const auto& values : result.ac.values)
     for (const auto& v : values) every_response_zero &= v == 0.0;

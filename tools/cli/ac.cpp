@@ -25,13 +25,28 @@ struct AcOptions {
   std::string plot;
   bool plot_script = false;
   bool reduce = false;
-  std::string tolerance, band;  // --reduce: as given, parsed and checked by reduction_options
+  std::string method;           // --method: auto, full or reduced (--reduce: reduced)
+  std::string tolerance, band;  // as given, parsed and checked by reduction_options
 };
+
+// --method and --reduce as the study's method.
+emnet::AcSweepMethod sweep_method(const AcOptions& ac_options) {
+  if (ac_options.reduce && !ac_options.method.empty() && ac_options.method != "reduced")
+    throw InputError("--reduce", "--method",
+                     "--reduce is --method reduced; it contradicts --method " + ac_options.method);
+  if (ac_options.reduce || ac_options.method == "reduced") return emnet::AcSweepMethod::reduced;
+  if (ac_options.method == "full") return emnet::AcSweepMethod::full;
+  return emnet::AcSweepMethod::automatic;
+}
 
 int run_ac_command(const CommonOptions& options, const AcOptions& ac_options) {
   const emnet::Stopwatch stopwatch;
-  if (!ac_options.reduce && (!ac_options.tolerance.empty() || !ac_options.band.empty()))
-    throw InputError("--tolerance/--band", "--reduce", "--tolerance and --band need --reduce");
+  const emnet::AcSweepMethod method = sweep_method(ac_options);
+  if (method == emnet::AcSweepMethod::full &&
+      (!ac_options.tolerance.empty() || !ac_options.band.empty()))
+    throw InputError("--tolerance/--band", "--method",
+                     "--tolerance and --band set the modal reduction, which --method full "
+                     "does not use");
   check_plot_options(ac_options.plot, ac_options.plot_script);
   emnet::Scene scene = load_scene(options);
   const emnet::AcSpec spec = checked_ac_spec(scene.ac, ac_options.from, ac_options.to,
@@ -50,15 +65,18 @@ int run_ac_command(const CommonOptions& options, const AcOptions& ac_options) {
   study_options.sweep = spec;
   study_options.probes = probes;
   study_options.progress = progress_of(options);
-  if (ac_options.reduce)
+  study_options.method = method;
+  if (method == emnet::AcSweepMethod::reduced || !ac_options.tolerance.empty() ||
+      !ac_options.band.empty())
     study_options.reduction = reduction_options(ac_options.tolerance, ac_options.band, spec.to,
                                                 p.model.scene.model.tolerance);
   const emnet::AcStudyResult result =
       emnet::run_ac_study(p.model, p.system, p.rest.operating_point, study_options);
   if (!result.status.ok())
-    throw NumericalFailure(
-        (result.failed_stage == emnet::AcStudyStage::reduction ? "ac --reduce: " : "ac: ") +
-        result.status.message);
+    throw NumericalFailure((result.failed_stage == emnet::AcStudyStage::reduction
+                                ? "ac (modal reduction): "
+                                : "ac: ") +
+                           result.status.message);
   end_progress(options);
   return report_ac({options, p, spec, probes, result, ac_options.plot, ac_options.plot_script,
                     stopwatch.seconds()});
@@ -88,10 +106,20 @@ Command add_ac_command(CLI::App& app, CommonOptions& options) {
       "the response: a magnitude panel per unit over the phase, the resonances "
       "that show as a peak (damping ratio below 1/sqrt(2)) marked; the title names the "
       "AC input");
+  sets_fields(ac_command
+                  ->add_option("--method", ac_options->method,
+                               "auto (default: the modal reduction above " +
+                                   std::to_string(emnet::kAcReductionUnknowns) + " unknowns for " +
+                                   std::to_string(emnet::kAcReductionPoints) +
+                                   " frequencies or more, kept only when its check meets "
+                                   "the tolerance; the full model otherwise), full (every "
+                                   "frequency on the full model) or reduced")
+                  ->check(CLI::IsMember({"auto", "full", "reduced"})),
+              {"method"});
   sets_fields(ac_command->add_flag("--reduce", ac_options->reduce,
-                                   "evaluate the sweep by modal reduction (modes below "
-                                   "band/sqrt(tolerance), static correction for the rest), "
-                                   "checked against the full model"),
+                                   "same as --method reduced: evaluate the sweep by modal "
+                                   "reduction (modes below band/sqrt(tolerance), static "
+                                   "correction for the rest), checked against the full model"),
               {"reduce"});
   add_reduction_tolerance_and_band(ac_command, ac_options->tolerance, ac_options->band);
 

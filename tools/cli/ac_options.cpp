@@ -101,11 +101,13 @@ std::string tolerance_warning(double measured, double tolerance) {
 void add_reduction_tolerance_and_band(CLI::App* command, std::string& tolerance,
                                       std::string& band) {
   sets_fields(command->add_option("--tolerance", tolerance,
-                                  "--reduce: relative error wanted, in (0, 1) (default: the "
+                                  "modal reduction (--reduce, or --method auto where it "
+                                  "reduces): relative error wanted, in (0, 1) (default: the "
                                   "scene's model.tolerance, 1e-3)"),
               {"tolerance", "reduction.tolerance"});
   sets_fields(command->add_option("--band", band,
-                                  "--reduce: highest frequency of interest [Hz] (default: --to)"),
+                                  "modal reduction: highest frequency of interest [Hz] "
+                                  "(default: --to)"),
               {"band", "reduction.band"});
 }
 
