@@ -47,10 +47,17 @@ struct RealEigenDecomposition {
   bool converged = false;    ///< Eigen's QR iteration converged; nothing else is set otherwise
   Eigen::VectorXcd values;   ///< λ
   Eigen::MatrixXcd vectors;  ///< V
+  /// When asked for: W with Wᵀ·m = diag(λ)·Wᵀ (column k: mᵀ·w_k = λ_k·w_k), unit columns.
+  Eigen::MatrixXcd left_vectors;
 };
 
-/// The eigen-decomposition of a real square matrix by the real Schur form (Eigen::EigenSolver).
-/// @param m  the matrix
-RealEigenDecomposition real_eigen_decomposition(const Eigen::MatrixXd& m);
+/// The eigen-decomposition of a real square matrix by the real Schur form (Eigen::EigenSolver),
+/// and, when asked, its left eigenvectors from the same Schur form m = U·T·Uᵀ: zᵀ·(T − λ·I) = 0
+/// by substitution forward from λ's diagonal block (a 2×2 block's left null vector to start,
+/// 2×2 solves across the others, pivots below ε·‖T‖ raised to it as LAPACK's trevc does), and
+/// w = U·z. That is O(n²) a vector against the second Schur form of mᵀ (~10 n³) it replaces.
+/// @param m     the matrix
+/// @param left  also the left eigenvectors
+RealEigenDecomposition real_eigen_decomposition(const Eigen::MatrixXd& m, bool left = false);
 
 }  // namespace emnet

@@ -34,9 +34,12 @@ constexpr double kRigidShift = 1e-2;
 
 // The eigenpairs of a shift-invert operator with |μ| above rounding (the pencil's infinite
 // poles map to μ = 0, perturbed by √ε for the index-2 blocks of massless nodes): dense.
-Eigenpairs dense_eigenpairs(const Eigen::MatrixXd& t, std::string& why) {
+// The eigenpairs of t with |μ| above 1e-7 of the largest; with `left`, also t's left vectors
+// (tᵀ·y = μ·y) of the same eigenvalues, from the same Schur form.
+Eigenpairs dense_eigenpairs(const Eigen::MatrixXd& t, std::string& why,
+                            Eigenpairs* left = nullptr) {
   Eigenpairs out;
-  const RealEigenDecomposition solver = real_eigen_decomposition(t);
+  const RealEigenDecomposition solver = real_eigen_decomposition(t, left != nullptr);
   if (!solver.converged) {
     why = "dense eigen-decomposition did not converge";
     return out;
@@ -47,6 +50,10 @@ Eigenpairs dense_eigenpairs(const Eigen::MatrixXd& t, std::string& why) {
     if (std::abs(values[k]) > 1e-7 * largest) {
       out.values.push_back(values[k]);
       out.vectors.push_back(solver.vectors.col(k));
+      if (left) {
+        left->values.push_back(values[k]);
+        left->vectors.push_back(solver.left_vectors.col(k));
+      }
     }
   return out;
 }
@@ -178,9 +185,19 @@ Status dense_operator_eigenpairs(const EquilibratedPencil& pencil, ShiftInvertLu
   Eigen::MatrixXd t = lu.solve(Eigen::MatrixXd(pencil.e_hat));
   if (rigid.right.cols() > 0) t -= rigid.right * (rigid.projector_left.transpose() * t);
   if (!t.allFinite()) return Status::failure("shift-invert operator is not finite");
-  right = dense_eigenpairs(t, why);
+  // The transposed pencil's operator S = (Â + σ̂Ê)⁻ᵀ·Êᵀ has the eigenvectors (Â + σ̂Ê)⁻ᵀ·y of
+  // T's left vectors y (Tᵀ·y = μ·y), which T's own Schur form gives: one decomposition for
+  // both. With a rigid-body projector S is projected apart, and decomposed itself.
+  const bool left_from_t = options.error_bounds && rigid.right.cols() == 0;
+  right = dense_eigenpairs(t, why, left_from_t ? &left : nullptr);
   if (!why.empty()) return Status::failure(why);
-  if (options.error_bounds) {
+  if (left_from_t) {
+    for (Eigen::VectorXcd& y : left.vectors) {
+      y = lu.transpose().solve(Eigen::VectorXd(y.real())).cast<Complex>() +
+          Complex(0.0, 1.0) * lu.transpose().solve(Eigen::VectorXd(y.imag())).cast<Complex>();
+      y.normalize();
+    }
+  } else if (options.error_bounds) {
     Eigen::MatrixXd s = lu.transpose().solve(Eigen::MatrixXd(pencil.e_hat.transpose()));
     if (rigid.left.cols() > 0) s -= rigid.left * (rigid.transposed_projector_left.transpose() * s);
     left = dense_eigenpairs(s, why);
