@@ -27,6 +27,11 @@ inline double modulus(std::complex<double> z) {
 inline Eigen::VectorXd moduli(const Eigen::VectorXcd& z) {
   return z.cwiseAbs2().cwiseSqrt();
 }
+// 1/z as z̄/|z|², without the library's complex division (its scaling against overflow and
+// Annex G cases, a function call per division); the same bounds on |z| as modulus.
+inline std::complex<double> reciprocal(std::complex<double> z) {
+  return std::conj(z) / std::norm(z);
+}
 
 // p(t) = offset[i] + slope[i]·h + Re Σ_k coefficient[i]_k·e^{λ_k·h}, h = t − edges[i], for
 // edges[i] ≤ t < edges[i+1]. The affine part comes from the sources' ramps (slope 0 where they

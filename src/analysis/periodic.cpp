@@ -98,12 +98,13 @@ Status periodic_starts_from_particulars(const Eigen::VectorXcd& lambda,
                                         const std::vector<bool>& fixed_at_zero,
                                         std::vector<Eigen::VectorXcd>& start_of, double& residual) {
   const size_t intervals = edges.size() - 1;
+  std::vector<Eigen::VectorXcd> propagator(intervals);  // e^{Λh} of each interval, once
+  for (size_t i = 0; i < intervals; ++i)
+    propagator[i] = (lambda * (edges[i + 1] - edges[i])).array().exp();
   auto advance = [&](const Eigen::VectorXcd& xi, size_t i) {
-    const double h = edges[i + 1] - edges[i];
     // ξ_p(h) + e^{Λh}·(ξ − ξ_p(0)).
-    return Eigen::VectorXcd(
-        particular_end[i] +
-        ((lambda * h).array().exp() * (xi - particular_start[i]).array()).matrix());
+    return Eigen::VectorXcd(particular_end[i] +
+                            (propagator[i].array() * (xi - particular_start[i]).array()).matrix());
   };
   Eigen::VectorXcd xi = Eigen::VectorXcd::Zero(lambda.size());
   for (size_t i = 0; i < intervals; ++i) xi = advance(xi, i);
@@ -113,10 +114,10 @@ Status periodic_starts_from_particulars(const Eigen::VectorXcd& lambda,
       continue;
     }
     const Complex growth = 1.0 - std::exp(lambda[k] * edges.back());
-    if (std::abs(growth) < 1e-14)
+    if (modulus(growth) < 1e-14)
       return Status::failure(
           "an undamped mode is in exact resonance with the drive: no periodic state");
-    xi[k] /= growth;
+    xi[k] *= reciprocal(growth);
   }
   start_of.assign(intervals, {});
   for (size_t i = 0; i < intervals; ++i) {
@@ -148,12 +149,16 @@ struct PeriodicSolver::Impl {
     // Poles at s = 0: the invariants of differentiated constraints (zero for every consistent
     // state), or a free body when there are more of them than hidden constraints (solve()).
     invariant.assign(static_cast<size_t>(lambda.size()), false);
+    inverse_lambda = Eigen::VectorXcd::Zero(lambda.size());
+    const double largest = lambda.cwiseAbs().maxCoeff();
     for (Eigen::Index k = 0; k < lambda.size(); ++k)
-      if ((invariant[static_cast<size_t>(k)] =
-               std::abs(lambda[k]) < 1e-9 * lambda.cwiseAbs().maxCoeff()))
+      if ((invariant[static_cast<size_t>(k)] = std::abs(lambda[k]) < 1e-9 * largest))
         ++zero_poles;
+      else
+        inverse_lambda[k] = reciprocal(lambda[k]);
   }
   std::vector<bool> invariant;
+  Eigen::VectorXcd inverse_lambda;  // 1/λ_k (0 for the invariants), for the particular states
   Eigen::Index zero_poles = 0;
   // The DEAs' forces as sources d_j·u_j² of the linear part (a cascade; empty for a linear
   // network), and V⁻¹·N·d_j as columns (made at the first solve, with the check that the
@@ -306,21 +311,21 @@ Status PeriodicSolver::Impl::particular_states(
   for (size_t i = 0; i < intervals; ++i) {
     const Eigen::VectorXcd forcing = modal_forcing(f[i].start);
     particular[i] = Eigen::VectorXcd::Zero(nd);
-    const double forcing_scale = forcing.cwiseAbs().maxCoeff();
+    const double forcing_scale = moduli(forcing).maxCoeff();
     for (Eigen::Index k = 0; k < nd; ++k) {
       if (!invariant[static_cast<size_t>(k)]) {
-        particular[i][k] = -forcing[k] / lambda[k];
+        particular[i][k] = -forcing[k] * inverse_lambda[k];
       } else if (free_body && std::abs(forcing[k]) > 1e-9 * forcing_scale) {
         return free_body_failure;
       }
     }
     if (!f[i].ramp()) continue;
     const Eigen::VectorXcd modal_slope = modal_forcing(f[i].slope);
-    const double slope_scale = modal_slope.cwiseAbs().maxCoeff();
+    const double slope_scale = moduli(modal_slope).maxCoeff();
     for (Eigen::Index k = 0; k < nd; ++k) {
       if (!invariant[static_cast<size_t>(k)]) {
-        particular_slope[i][k] = -modal_slope[k] / lambda[k];
-        particular[i][k] += particular_slope[i][k] / lambda[k];
+        particular_slope[i][k] = -modal_slope[k] * inverse_lambda[k];
+        particular[i][k] += particular_slope[i][k] * inverse_lambda[k];
       } else if (free_body && std::abs(modal_slope[k]) > 1e-9 * slope_scale) {
         return free_body_failure;
       }
