@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <complex>
 #include <limits>
+#include <vector>
 
 namespace emnet {
 
@@ -75,22 +76,35 @@ Eigen::VectorXcd schur_left_vector(const Eigen::MatrixXd& t, Eigen::Index start,
   return z;
 }
 
-// The left eigenvectors W (mᵀ·w_k = λ_k·w_k) from the real Schur form, unit columns.
+// The left eigenvectors W (mᵀ·w_k = λ_k·w_k) from the real Schur form, unit columns. A 2×2
+// block's second eigenvalue is the first's conjugate, and so is its vector (m is real); U is
+// real, so U·Z is two real products.
 Eigen::MatrixXcd left_eigenvectors(const SchurKeepingEigenSolver& solver) {
   const Eigen::MatrixXd& t = solver.schur_t();
   const Eigen::Index n = t.rows();
   const Eigen::VectorXcd& values = solver.eigenvalues();
   const double smallest_pivot =
       std::numeric_limits<double>::epsilon() * std::max(t.lpNorm<1>(), 1e-300);
-  Eigen::MatrixXcd z(n, n);
+  Eigen::MatrixXcd z = Eigen::MatrixXcd::Zero(n, n);  // a pair's second column stays 0
+  std::vector<bool> conjugate_of_previous(static_cast<size_t>(n), false);
   for (Eigen::Index k = 0; k < n;) {
     const Eigen::Index size = k + 1 < n && t(k + 1, k) != 0.0 ? 2 : 1;
-    for (Eigen::Index member = k; member < k + size; ++member)
-      z.col(member) = schur_left_vector(t, k, size, values[member], smallest_pivot);
+    z.col(k) = schur_left_vector(t, k, size, values[k], smallest_pivot);
+    if (size == 2) conjugate_of_previous[static_cast<size_t>(k + 1)] = true;
     k += size;
   }
-  Eigen::MatrixXcd w = solver.schur_u().cast<Complex>() * z;
-  for (Eigen::Index k = 0; k < n; ++k) w.col(k).normalize();
+  const Eigen::MatrixXd& u = solver.schur_u();
+  const Eigen::MatrixXd real_part = u * z.real(), imaginary_part = u * z.imag();
+  Eigen::MatrixXcd w(n, n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (conjugate_of_previous[static_cast<size_t>(k)]) {
+      w.col(k) = w.col(k - 1).conjugate();
+      continue;
+    }
+    w.col(k).real() = real_part.col(k);
+    w.col(k).imag() = imaginary_part.col(k);
+    w.col(k).normalize();
+  }
   return w;
 }
 
