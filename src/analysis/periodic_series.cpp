@@ -28,6 +28,12 @@ class SeriesEvaluator {
     pair_conjugates();
     form_curvature_terms();
     form_forced_bounds();
+    // K_i(0), which the extremes search asks for every gap: summed once.
+    widest_curvature_.assign(series_.size(), std::vector<double>(intervals_, 0.0));
+    for (size_t p = 0; p < series_.size(); ++p)
+      for (size_t i = 0; i < intervals_; ++i)
+        widest_curvature_[p][i] =
+            curvature_terms_[p][i].sum() + (has_forced(p) ? forced_curvature_[p][i].sum() : 0.0);
   }
 
   size_t intervals() const { return intervals_; }
@@ -71,9 +77,7 @@ class SeriesEvaluator {
   }
   bool has_forced(size_t p) const { return !series_[p].forced.empty(); }
   // K_i(0) of probe p: the bound on |p''| over all of interval i.
-  double widest_curvature(size_t p, size_t i) const {
-    return curvature_terms_[p][i].sum() + (has_forced(p) ? forced_curvature_[p][i].sum() : 0.0);
-  }
+  double widest_curvature(size_t p, size_t i) const { return widest_curvature_[p][i]; }
   // K_i(a) of probe p: the bound on |p''| in interval i for h ≥ a.
   double curvature_after(size_t p, size_t i, double a) const {
     double bound = curvature_terms_[p][i].dot((decay_ * a).array().exp().matrix());
@@ -216,6 +220,7 @@ class SeriesEvaluator {
   std::vector<Eigen::Index> terms_;
   std::vector<double> weights_;
   std::vector<std::vector<Eigen::VectorXd>> curvature_terms_;
+  std::vector<std::vector<double>> widest_curvature_;  // [probe][interval]: K_i(0)
   Eigen::VectorXd decay_, magnitude_;
   // Per probe and interval, per forced exponent: the bounds' factors on |p''| and |p‴|, and
   // min(Re μ, 0).
