@@ -133,6 +133,7 @@ Status append_sweep(VariantRun& run) {
   SwitchingSweepOptions sweep;
   sweep.frequencies = layout.sweep_frequencies;
   sweep.samples = run.options.sweep_samples;
+  sweep.extremes_only = true;  // the columns are extremes (left, right) and the peak
   sweep.outputs = {layout.sweep_outputs.back()};
   sweep.first_mode = false;
   const SwitchingSweepResult peak = run_switching_sweep(swept, swept.scene, sweep);

@@ -29,7 +29,8 @@ namespace {
 
 int samples_or_default(const SwitchingSweepOptions& options) {
   if (options.samples != 0) return options.samples;
-  return options.method == SwitchingSweepMethod::shooting ? 256 : 64;
+  if (options.method == SwitchingSweepMethod::shooting) return 256;
+  return options.extremes_only ? 16 : 64;
 }
 
 }  // namespace

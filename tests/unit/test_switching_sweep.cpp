@@ -112,6 +112,39 @@ TEST(SwitchingSweep, SweepPeakAtTheFirstModeAndAtAThirdOfIt) {
   }
 }
 
+// Reference: the same sweep at the default 64 samples a period. extremes_only lets the exact
+// method sample 16, and its extremes are global whatever the count (the search bounds the
+// curvature between samples and polishes by Newton to rounding): each output's left and right
+// extremes agree to 1e-11 of that output's largest |extreme| (the search's own tolerance,
+// 1e-11 of the largest value), and so does the peak frequency.
+TEST(SwitchingSweep, ExtremesOnlySamplesLessAndFindsTheSameExtremes) {
+  const Scene scene = linear_fin_scene();
+  const Model model = prepare_model(scene);
+  SwitchingSweepOptions options;
+  options.from = 2.0;
+  options.to = 8.0;
+  options.step = 0.25;
+  options.outputs = moving_probes(model);
+  options.first_mode = false;
+  const SwitchingSweepResult full = run_switching_sweep(model, scene, options);
+  options.extremes_only = true;
+  const SwitchingSweepResult lean = run_switching_sweep(model, scene, options);
+  ASSERT_TRUE(full.status.ok()) << full.status.message;
+  ASSERT_TRUE(lean.status.ok()) << lean.status.message;
+  EXPECT_EQ(lean.method, Method::exact);
+  EXPECT_EQ(lean.peak_frequency, full.peak_frequency);
+  for (size_t p = 0; p < full.outputs.size(); ++p) {
+    double largest = 0.0;
+    for (size_t k = 0; k < full.frequencies.size(); ++k)
+      largest = std::max(
+          {largest, std::abs(full.outputs[p].left[k]), std::abs(full.outputs[p].right[k])});
+    for (size_t k = 0; k < full.frequencies.size(); ++k) {
+      EXPECT_NEAR(lean.outputs[p].left[k], full.outputs[p].left[k], 1e-11 * largest);
+      EXPECT_NEAR(lean.outputs[p].right[k], full.outputs[p].right[k], 1e-11 * largest);
+    }
+  }
+}
+
 // Reference: the full exact sweep. The reduction claims `tolerance` on every sample of a period
 // relative to each output's largest |value| there (periodic_difference); a periodic extreme
 // differs from the reference's by at most the largest sample-wise difference, so each peak must
