@@ -53,19 +53,33 @@ void sinkhorn(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<do
   }
 }
 
-// exp(mean(log|entries|)) of diag(row)·m·diag(column); 0 when m has no non-zero entry.
-double geometric_mean(const Eigen::SparseMatrix<double>& m, const Eigen::VectorXd& row,
-                      const Eigen::VectorXd& column) {
-  double sum = 0.0;
-  long count = 0;
-  for (int col = 0; col < m.outerSize(); ++col)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(m, col); it; ++it)
-      if (it.value() != 0.0) {
-        sum += std::log(std::abs(it.value()) * row[it.row()] * column[col]);
-        ++count;
-      }
-  return count > 0 ? std::exp(sum / static_cast<double>(count)) : 0.0;
-}
+// What the geometric mean of diag(r)·m·diag(c)'s non-zero entries needs of m, gathered once:
+// log(|m_ij|·r_i·c_j) = log|m_ij| + log r_i + log c_j, so the mean is Σ log|m_ij| plus each
+// row's and column's count of entries times its log scale, over the count: n logarithms a
+// round instead of one per entry (the fish fin at N = 10 000: 230 000 a round, 12 rounds).
+struct LogProfile {
+  double sum = 0.0;  // Σ log|m_ij| over the non-zero entries
+  Eigen::VectorXd row_count, column_count;
+  double count = 0.0;
+
+  explicit LogProfile(const Eigen::SparseMatrix<double>& m)
+      : row_count(Eigen::VectorXd::Zero(m.rows())), column_count(Eigen::VectorXd::Zero(m.cols())) {
+    for (int col = 0; col < m.outerSize(); ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(m, col); it; ++it)
+        if (it.value() != 0.0) {
+          sum += std::log(std::abs(it.value()));
+          row_count[it.row()] += 1.0;
+          column_count[col] += 1.0;
+          count += 1.0;
+        }
+  }
+  // exp(mean(log|entries|)) of diag(row)·m·diag(column) from the scalings' logarithms; 0 when
+  // m has no non-zero entry.
+  double geometric_mean(const Eigen::VectorXd& log_row, const Eigen::VectorXd& log_column) const {
+    if (count == 0.0) return 0.0;
+    return std::exp((sum + row_count.dot(log_row) + column_count.dot(log_column)) / count);
+  }
+};
 
 void round_to_powers_of_two(DiagonalScaling& scaling) {
   for (double& value : scaling.row) value = power_of_two(value);
@@ -115,10 +129,13 @@ DiagonalScaling balance_pencil(const Eigen::SparseMatrix<double>& a,
         sum_b += std::abs(it.value());
     if (sum_a > 0.0 && sum_b > 0.0) weight = sum_a / sum_b;
   }
+  const LogProfile profile_a(a), profile_b(b);
   for (int round = 0; round < 40; ++round) {
     sinkhorn(a, &b, weight, scaling.row, scaling.column, 200);
-    const double mean_a = geometric_mean(a, scaling.row, scaling.column);
-    const double mean_b = geometric_mean(b, scaling.row, scaling.column) * weight;
+    const Eigen::VectorXd log_row = scaling.row.array().log(),
+                          log_column = scaling.column.array().log();
+    const double mean_a = profile_a.geometric_mean(log_row, log_column);
+    const double mean_b = profile_b.geometric_mean(log_row, log_column) * weight;
     if (!(mean_a > 0.0 && mean_b > 0.0)) break;
     const double ratio = mean_a / mean_b;
     weight *= ratio;
