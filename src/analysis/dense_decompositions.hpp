@@ -4,7 +4,8 @@
 // analyses instantiated JacobiSVD or EigenSolver again.
 //
 // Each function is Eigen's decomposition with Eigen's options (Eigen::ComputeThinU,
-// ComputeFullV, ...: which singular vectors to form), so the results are Eigen's, bit for bit.
+// ComputeFullV, ...: which singular vectors to form), so the results are Eigen's, bit for bit;
+// only the left eigenvectors, when asked for, are formed here from Eigen's real Schur form.
 // Singular values are in decreasing order; a vector not asked for is an empty matrix.
 #pragma once
 
