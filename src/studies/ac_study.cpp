@@ -124,52 +124,54 @@ std::string full_model_note(const System& system, const AcReductionResult& reduc
          ": every frequency was solved on the full model";
 }
 
-}  // namespace
-
-AcStudyResult run_ac_study(const Model& model, const System& system,
-                           const Eigen::VectorXd& operating_point, const AcStudyOptions& options) {
-  AcStudyResult result;
-  require_ac_input(model, system);
-  const std::vector<double> grid =
-      frequency_grid(options.sweep.from, options.sweep.to, options.sweep.points, options.sweep.log);
-  // The small-signal part of each probe (a DEA force's 2·k_F·u₀·U), as the sweep evaluates it.
-  std::vector<Probe> probes;
-  for (const Probe& probe : options.probes)
-    probes.push_back(linearised_probe(probe, operating_point));
-  auto fail = [&](AcStudyStage stage, Status status) {
-    result.status = std::move(status);
-    result.failed_stage = stage;
-    return result;
-  };
+// The sweep by the options' method into `result` (ac, reduction, a note on the automatic
+// method's choice); on failure the stage in `failed`.
+Status sweep_by_method(const Model& model, const System& system,
+                       const Eigen::VectorXd& operating_point, const std::vector<double>& grid,
+                       const std::vector<Probe>& probes, const AcStudyOptions& options,
+                       AcStudyResult& result, AcStudyStage& failed) {
   // Given options are checked whatever the method; the defaults only where they are used (a
   // one-point sweep at 0 Hz has no band).
   if (options.reduction) reduction_options(model, options);
-  std::string full_model_reason;
   if (reduces(options, system, grid.size())) {
     const ReductionOptions reduction = reduction_options(model, options);
     report_phase(options.progress, "modal reduction and its check");
     result.reduction = run_ac_reduced(system, operating_point, grid, probes, reduction);
     const bool automatic = options.method == AcSweepMethod::automatic;
     if (automatic && !(result.reduction->status.ok() && result.reduction->tolerance_met)) {
-      full_model_reason = full_model_note(system, *result.reduction);
+      result.notes.push_back(full_model_note(system, *result.reduction));
       result.reduction.reset();
     } else {
-      if (!result.reduction->status.ok())
-        return fail(AcStudyStage::reduction, result.reduction->status);
+      failed = AcStudyStage::reduction;
+      if (!result.reduction->status.ok()) return result.reduction->status;
       result.ac = result.reduction->ac;
-      if (!result.ac.status.ok()) return fail(AcStudyStage::sweep, result.ac.status);
+      failed = AcStudyStage::sweep;
+      if (!result.ac.status.ok()) return result.ac.status;
+      if (automatic)
+        result.notes.push_back(
+            "the sweep is the modal reduction's, chosen automatically for " +
+            std::to_string(system.size()) + " unknowns and " + std::to_string(grid.size()) +
+            " frequencies (above " + std::to_string(kAcReductionUnknowns) + " and from " +
+            std::to_string(kAcReductionPoints) +
+            "): its error is measured against the full model at " +
+            std::to_string(result.reduction->check_frequencies.size()) + " frequencies");
+      return Status::success();
     }
   }
-  if (!result.reduction) {
-    AcOptions sweep_options;
-    sweep_options.progress = options.progress;
-    result.ac = run_ac(system, operating_point, grid, probes, sweep_options);
-    if (!result.ac.status.ok()) return fail(AcStudyStage::sweep, result.ac.status);
-  }
+  AcOptions sweep_options;
+  sweep_options.progress = options.progress;
+  result.ac = run_ac(system, operating_point, grid, probes, sweep_options);
+  failed = AcStudyStage::sweep;
+  return result.ac.status.ok() ? Status::success() : result.ac.status;
+}
 
-  // Resonances: the reduced model's kept modes, else the full model's (a failed modal
-  // analysis only leaves the plot without markers).
-  // Each as (frequency [Hz], damping ratio −Re s/|s|).
+// The resonances as (frequency [Hz], damping ratio −Re s/|s|): the reduced model's kept modes,
+// else the pole-residue sweep's poles, else the full model's modes (a failed modal analysis only
+// leaves the plot without markers).
+std::vector<std::pair<double, double>> resonances_of(const AcStudyResult& result,
+                                                     const System& system,
+                                                     const Eigen::VectorXd& operating_point,
+                                                     const AcStudyOptions& options) {
   std::vector<std::pair<double, double>> resonances;
   if (result.reduction) {
     for (const auto& kept : result.reduction->model.kept)
@@ -207,21 +209,40 @@ AcStudyResult run_ac_study(const Model& model, const System& system,
       for (const auto& mode : modes.modes)
         resonances.emplace_back(mode.frequency_hz, mode.damping_ratio);
   }
+  return resonances;
+}
+
+}  // namespace
+
+AcStudyResult run_ac_study(const Model& model, const System& system,
+                           const Eigen::VectorXd& operating_point, const AcStudyOptions& options) {
+  AcStudyResult result;
+  require_ac_input(model, system);
+  const std::vector<double> grid =
+      frequency_grid(options.sweep.from, options.sweep.to, options.sweep.points, options.sweep.log);
+  // The small-signal part of each probe (a DEA force's 2·k_F·u₀·U), as the sweep evaluates it.
+  std::vector<Probe> probes;
+  for (const Probe& probe : options.probes)
+    probes.push_back(linearised_probe(probe, operating_point));
+  AcStudyStage failed = AcStudyStage::none;
+  if (Status swept =
+          sweep_by_method(model, system, operating_point, grid, probes, options, result, failed);
+      !swept.ok()) {
+    result.status = std::move(swept);
+    result.failed_stage = failed;
+    return result;
+  }
+  const std::vector<std::pair<double, double>> resonances =
+      resonances_of(result, system, operating_point, options);
   for (const auto& [f, zeta] : resonances)
     if (f >= options.sweep.from && f <= options.sweep.to) {
       result.resonances_hz.push_back(f);
       result.resonance_damping_ratios.push_back(zeta);
     }
 
-  result.notes = zero_voltage_dea_notes(model, operating_point);
-  if (!full_model_reason.empty()) result.notes.push_back(full_model_reason);
-  if (result.reduction && options.method == AcSweepMethod::automatic)
-    result.notes.push_back(
-        "the sweep is the modal reduction's, chosen automatically for " +
-        std::to_string(system.size()) + " unknowns and " + std::to_string(grid.size()) +
-        " frequencies (above " + std::to_string(kAcReductionUnknowns) + " and from " +
-        std::to_string(kAcReductionPoints) + "): its error is measured against the full model at " +
-        std::to_string(result.reduction->check_frequencies.size()) + " frequencies");
+  std::vector<std::string> notes = zero_voltage_dea_notes(model, operating_point);
+  notes.insert(notes.end(), result.notes.begin(), result.notes.end());  // the method's
+  result.notes = std::move(notes);
   bool every_response_zero = true;
   for (const auto& values : result.ac.values)
     for (const auto& v : values) every_response_zero &= v == 0.0;
