@@ -36,6 +36,17 @@ std::vector<Probe> moving_probes(const Model& model) {
   return probes;
 }
 
+// A sweep from `from` to `to` in steps of `step` [Hz] of the moving probes, without f1's marker.
+SwitchingSweepOptions moving_probes_sweep(const Model& model, double from, double to, double step) {
+  SwitchingSweepOptions options;
+  options.from = from;
+  options.to = to;
+  options.step = step;
+  options.outputs = moving_probes(model);
+  options.first_mode = false;
+  return options;
+}
+
 double lowest_mode_hz(const Model& model) {
   const System system = model.network.assemble();
   ModalOptions modal;
@@ -120,12 +131,7 @@ TEST(SwitchingSweep, SweepPeakAtTheFirstModeAndAtAThirdOfIt) {
 TEST(SwitchingSweep, ExtremesOnlySamplesLessAndFindsTheSameExtremes) {
   const Scene scene = linear_fin_scene();
   const Model model = prepare_model(scene);
-  SwitchingSweepOptions options;
-  options.from = 2.0;
-  options.to = 8.0;
-  options.step = 0.25;
-  options.outputs = moving_probes(model);
-  options.first_mode = false;
+  SwitchingSweepOptions options = moving_probes_sweep(model, 2.0, 8.0, 0.25);
   const SwitchingSweepResult full = run_switching_sweep(model, scene, options);
   options.extremes_only = true;
   const SwitchingSweepResult lean = run_switching_sweep(model, scene, options);
@@ -153,12 +159,7 @@ TEST(SwitchingSweep, ExtremesOnlySamplesLessAndFindsTheSameExtremes) {
 TEST(SwitchingSweep, ReducedSweepAgreesWithTheFullOneWithinItsTolerance) {
   const Scene scene = linear_fin_scene();
   const Model model = prepare_model(scene);
-  SwitchingSweepOptions options;
-  options.from = 1.0;
-  options.to = 7.0;
-  options.step = 0.25;
-  options.outputs = moving_probes(model);
-  options.first_mode = false;
+  SwitchingSweepOptions options = moving_probes_sweep(model, 1.0, 7.0, 0.25);
   const SwitchingSweepResult full = run_switching_sweep(model, scene, options);
   ASSERT_TRUE(full.status.ok()) << full.status.message;
   options.reduce = true;
