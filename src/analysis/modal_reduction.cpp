@@ -62,8 +62,22 @@ double unfound_bound(double r, int order) {
   return order == 0 ? r * r / (1.0 - r * r) : std::pow(r, order + 1) / (1.0 - r);
 }
 
-// The s¹ and s² parts A₁, A₂ of the static form's operator A(s) = A₀ + s·A₁ + s²·A₂
-// (StaticOperator::matrix is A₀): the pencil G + s·C on z, with mechanical columns multiplied by
+// The largest |s| among the poles `modal` found (modes and real poles).
+double largest_pole(const ModalResult& modal) {
+  double largest = 0.0;
+  for (const auto* list : {&modal.modes, &modal.overdamped_pairs, &modal.real_poles})
+    for (const Mode& m : *list) largest = std::max(largest, std::abs(m.pole));
+  return largest;
+}
+
+// s^e for e in {−1, 0, 1}.
+Complex power(Complex s, int e) {
+  return e == 0 ? Complex(1.0) : (e > 0 ? s : 1.0 / s);
+}
+
+}  // namespace
+
+// (static_operator.hpp) The pencil G + s·C on z, with mechanical columns multiplied by
 // s (y = s·z there) and divided rows by s (their G entries lie in mechanical columns only,
 // static.cpp). Then A₀·z_m = −A₁·z_(m−1) − A₂·z_(m−2) for z(s) = Σ z_m·s^m.
 std::pair<Eigen::SparseMatrix<double>, Eigen::SparseMatrix<double>> expansion_matrices(
@@ -95,21 +109,6 @@ std::pair<Eigen::SparseMatrix<double>, Eigen::SparseMatrix<double>> expansion_ma
   out.second.setFromTriplets(second.begin(), second.end());
   return out;
 }
-
-// The largest |s| among the poles `modal` found (modes and real poles).
-double largest_pole(const ModalResult& modal) {
-  double largest = 0.0;
-  for (const auto* list : {&modal.modes, &modal.overdamped_pairs, &modal.real_poles})
-    for (const Mode& m : *list) largest = std::max(largest, std::abs(m.pole));
-  return largest;
-}
-
-// s^e for e in {−1, 0, 1}.
-Complex power(Complex s, int e) {
-  return e == 0 ? Complex(1.0) : (e > 0 ? s : 1.0 / s);
-}
-
-}  // namespace
 
 void validate(const ReductionOptions& options) {
   if (!(options.tolerance > 0.0 && options.tolerance < 1.0))

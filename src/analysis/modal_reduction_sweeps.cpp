@@ -13,6 +13,7 @@
 #include "emnet/core/stopwatch.hpp"
 #include "emnet/core/units.hpp"
 #include "exponential_series.hpp"
+#include "reduced_periodic.hpp"
 
 namespace emnet {
 
@@ -127,10 +128,6 @@ AcReductionResult run_ac_reduced(const System& system, const Eigen::VectorXd& op
 ReducedPeriodicSolver::ReducedPeriodicSolver(const System& system,
                                              const ReductionOptions& options) {
   validate(options);
-  if (system.is_nonlinear()) {
-    reduction_.status = Status::failure("the reduced periodic method needs a linear network");
-    return;
-  }
   std::vector<Eigen::VectorXcd> inputs;
   for (const auto& term : system.excitation().source_terms) {
     auto found = std::find(waveforms_.begin(), waveforms_.end(), term.waveform);
@@ -147,9 +144,80 @@ ReducedPeriodicSolver::ReducedPeriodicSolver(const System& system,
   }
   ReductionOptions periodic = options;
   if (!(periodic.cutoff_hz > 0.0)) periodic.cutoff_hz = options.band / options.tolerance;
-  periodic.dense_limit = std::max(options.dense_limit, 600);
   periodic.series_correction = false;
+  if (system.is_nonlinear()) {
+    // Arnoldi may stop at a Kelvin–Voigt cluster: the beam's truncated part is exact but for
+    // its transients, which the solve states (truncation_estimate).
+    reduce_cascade(system, periodic, std::move(inputs));
+    return;
+  }
+  periodic.dense_limit = std::max(options.dense_limit, 600);
   reduction_ = reduce_modal(system, Eigen::VectorXd::Zero(system.size()), inputs, periodic);
+}
+
+InputPieces input_pieces(const System& system, const std::vector<int>& waveforms,
+                         const std::vector<double>& edges) {
+  const size_t intervals = edges.size() - 1, inputs = waveforms.size();
+  InputPieces pieces;
+  pieces.value.assign(intervals, std::vector<double>(inputs));
+  pieces.slope.assign(intervals, std::vector<double>(inputs, 0.0));
+  pieces.ramp.assign(intervals, false);
+  for (size_t i = 0; i < intervals; ++i) {
+    const double middle = 0.5 * (edges[i] + edges[i + 1]);
+    for (size_t j = 0; j < inputs; ++j) {
+      const Waveform& waveform = system.excitation().waveforms[static_cast<size_t>(waveforms[j])];
+      pieces.value[i][j] = waveform.value(middle);
+      pieces.slope[i][j] = waveform.slope(middle);
+      if (pieces.slope[i][j] != 0.0) {
+        pieces.value[i][j] -= (middle - edges[i]) * pieces.slope[i][j];
+        pieces.ramp[i] = true;
+      }
+    }
+  }
+  return pieces;
+}
+
+bool InputPieces::any_ramp() const {
+  return std::find(ramp.begin(), ramp.end(), true) != ramp.end();
+}
+
+void affine_particulars(const Eigen::VectorXcd& lambda, const Eigen::MatrixXcd& beta,
+                        const InputPieces& inputs, std::vector<Eigen::VectorXcd>& particular,
+                        std::vector<Eigen::VectorXcd>& slope) {
+  const size_t intervals = inputs.value.size();
+  const Eigen::Index modes = lambda.size(), count = beta.cols();
+  const Eigen::VectorXcd inverse = lambda.unaryExpr([](Complex l) { return reciprocal(l); });
+  particular.assign(intervals, Eigen::VectorXcd::Zero(modes));
+  slope.clear();
+  if (inputs.any_ramp()) slope.assign(intervals, Eigen::VectorXcd::Zero(modes));
+  for (size_t i = 0; i < intervals; ++i) {
+    const Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(inputs.value[i].data(), count);
+    particular[i] = -(beta * u.cast<Complex>()).cwiseProduct(inverse);
+    if (!inputs.ramp[i]) continue;
+    const Eigen::VectorXd rate = Eigen::Map<const Eigen::VectorXd>(inputs.slope[i].data(), count);
+    slope[i] = -(beta * rate.cast<Complex>()).cwiseProduct(inverse);
+    particular[i] += slope[i].cwiseProduct(inverse);
+  }
+}
+
+ExponentialSeries affine_series(const Eigen::VectorXcd& g, const std::vector<double>& feed,
+                                const InputPieces& inputs,
+                                const std::vector<Eigen::VectorXcd>& particular,
+                                const std::vector<Eigen::VectorXcd>& slope,
+                                const std::vector<Eigen::VectorXcd>& homogeneous) {
+  ExponentialSeries series;
+  for (size_t i = 0; i < inputs.value.size(); ++i) {
+    double value = 0.0, rate = 0.0;
+    for (size_t j = 0; j < feed.size(); ++j) {
+      value += feed[j] * inputs.value[i][j];
+      rate += feed[j] * inputs.slope[i][j];
+    }
+    series.offset.push_back(value + g.cwiseProduct(particular[i]).sum().real());
+    if (inputs.ramp[i]) rate += g.cwiseProduct(slope[i]).sum().real();
+    series.slope.push_back(rate);
+    series.coefficient.push_back(g.cwiseProduct(homogeneous[i]));
+  }
+  return series;
 }
 
 namespace {
@@ -201,7 +269,7 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& given, const std::vect
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   if (!reduction_.status.ok()) return finish(reduction_.status);
   if (Status pieces = require_piecewise_linear(system); !pieces.ok()) return finish(pieces);
-  if (system.size() != reduction_.full_unknowns || system.is_nonlinear())
+  if (system.size() != reduction_.full_unknowns || system.is_nonlinear() != (cascade_ != nullptr))
     return finish(Status::failure("the network differs from the one that was reduced"));
   for (const Probe& probe : probes)
     for (const auto& [index, coefficient] : probe.terms)
@@ -212,76 +280,42 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& given, const std::vect
   for (int w : waveforms_)
     if (w >= static_cast<int>(system.excitation().waveforms.size()))
       return finish(Status::failure("the network's sources differ from the reduced one's"));
+  if (cascade_) return solve_cascade(system, probes, period, samples);
 
   const std::vector<KeptPole>& kept = reduction_.kept;
   const size_t modes = kept.size(), inputs = waveforms_.size();
   const std::vector<double> edges = constant_intervals(system, period);
-  const size_t intervals = edges.size() - 1;
-  // Each input affine on each interval, u_j = u₀,ij + h·u₁,ij (u₁ = 0 where it is constant);
-  // each kept modal coordinate then has the affine particular state a_ik + h·b_ik with
-  // b = −q₁/λ, a = −(q₀ − b)/λ for its forcing q = Σ_j β_kj·u_j (exponential_series.hpp).
-  std::vector<std::vector<double>> u(intervals, std::vector<double>(inputs));
-  std::vector<std::vector<double>> u_slope(intervals, std::vector<double>(inputs, 0.0));
-  std::vector<Eigen::VectorXcd> particular(intervals, Eigen::VectorXcd::Zero(modes));
-  std::vector<Eigen::VectorXcd> particular_slope;
-  Eigen::VectorXcd lambda(modes);
-  for (size_t k = 0; k < modes; ++k) lambda[k] = kept[k].pole;
-  std::vector<bool> ramp(intervals, false);
-  for (size_t i = 0; i < intervals; ++i) {
-    const double middle = 0.5 * (edges[i] + edges[i + 1]);
-    for (size_t j = 0; j < inputs; ++j) {
-      const Waveform& waveform = system.excitation().waveforms[static_cast<size_t>(waveforms_[j])];
-      u[i][j] = waveform.value(middle);
-      u_slope[i][j] = waveform.slope(middle);
-      if (u_slope[i][j] != 0.0) {
-        u[i][j] -= (middle - edges[i]) * u_slope[i][j];
-        ramp[i] = true;
-      }
-    }
-    for (size_t k = 0; k < modes; ++k) {
-      Complex forcing = 0.0;
-      for (size_t j = 0; j < inputs; ++j) forcing += reduction_.beta[k][j] * u[i][j];
-      particular[i][k] = -forcing / lambda[k];
-    }
-    if (!ramp[i]) continue;
-    if (particular_slope.empty()) particular_slope.assign(intervals, Eigen::VectorXcd::Zero(modes));
-    for (size_t k = 0; k < modes; ++k) {
-      Complex forcing_slope = 0.0;
-      for (size_t j = 0; j < inputs; ++j) forcing_slope += reduction_.beta[k][j] * u_slope[i][j];
-      particular_slope[i][k] = -forcing_slope / lambda[k];
-      particular[i][k] += particular_slope[i][k] / lambda[k];
-    }
+  const InputPieces pieces = input_pieces(system, waveforms_, edges);
+  Eigen::VectorXcd lambda(static_cast<Eigen::Index>(modes));
+  Eigen::MatrixXcd beta(static_cast<Eigen::Index>(modes), static_cast<Eigen::Index>(inputs));
+  for (size_t k = 0; k < modes; ++k) {
+    lambda[static_cast<Eigen::Index>(k)] = kept[k].pole;
+    for (size_t j = 0; j < inputs; ++j)
+      beta(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) = reduction_.beta[k][j];
   }
+  std::vector<Eigen::VectorXcd> particular, particular_slope;
+  affine_particulars(lambda, beta, pieces, particular, particular_slope);
   std::vector<Eigen::VectorXcd> start_of;
   if (Status periodic = periodic_interval_starts(lambda, edges, particular, particular_slope, {},
                                                  start_of, result.periodicity_residual);
       !periodic.ok())
     return finish(periodic);
 
-  // Probe p in interval i at offset h: offset_pi + slope_pi·h + Re Σ_k a_pik·e^{λ_k h} (one pole
-  // of each conjugate pair kept, its coefficient doubled); the static correction D·u(t) follows
-  // the inputs' ramps as a feed-through.
-  std::vector<ExponentialSeries> series(probes.size());
-  for (size_t p = 0; p < probes.size(); ++p) {
-    Eigen::VectorXcd g = Eigen::VectorXcd::Zero(modes);
-    std::vector<Complex> d(inputs, 0.0);
-    for (const auto& [index, c] : probes[p].terms) {
+  // Probe p: Re Σ_k g_k·q_k over the kept poles (one of each conjugate pair, its row doubled)
+  // and the static correction D·u(t) as a feed-through that follows the inputs' ramps.
+  std::vector<Eigen::VectorXcd> homogeneous(start_of.size());
+  for (size_t i = 0; i < start_of.size(); ++i) homogeneous[i] = start_of[i] - particular[i];
+  std::vector<ExponentialSeries> series;
+  for (const Probe& probe : probes) {
+    Eigen::VectorXcd g = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(modes));
+    std::vector<double> d(inputs, 0.0);
+    for (const auto& [index, c] : probe.terms) {
       for (size_t k = 0; k < modes; ++k)
-        g[k] += c * kept[k].z_vector[index] * (kept[k].oscillatory ? 2.0 : 1.0);
-      for (size_t j = 0; j < inputs; ++j) d[j] += c * reduction_.correction[j][index];
+        g[static_cast<Eigen::Index>(k)] +=
+            c * kept[k].z_vector[index] * (kept[k].oscillatory ? 2.0 : 1.0);
+      for (size_t j = 0; j < inputs; ++j) d[j] += c * reduction_.correction[j][index].real();
     }
-    for (size_t i = 0; i < intervals; ++i) {
-      double value = 0.0;
-      for (size_t j = 0; j < inputs; ++j) value += d[j].real() * u[i][j];
-      series[p].offset.push_back(value + g.cwiseProduct(particular[i]).sum().real());
-      double slope = 0.0;
-      if (ramp[i]) {
-        for (size_t j = 0; j < inputs; ++j) slope += d[j].real() * u_slope[i][j];
-        slope += g.cwiseProduct(particular_slope[i]).sum().real();
-      }
-      series[p].slope.push_back(slope);
-      series[p].coefficient.push_back(g.cwiseProduct(start_of[i] - particular[i]));
-    }
+    series.push_back(affine_series(g, d, pieces, particular, particular_slope, homogeneous));
   }
   sample_periodic_series(lambda, edges, series, samples, result);
   return finish(Status::success());

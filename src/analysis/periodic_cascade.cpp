@@ -159,6 +159,7 @@ Status forced_modal_response(
     const Eigen::MatrixXcd& f = forcing[i];
     Eigen::MatrixXcd q = Eigen::MatrixXcd::Zero(n, 3 * terms);
     Eigen::VectorXcd start = Eigen::VectorXcd::Zero(n), end = Eigen::VectorXcd::Zero(n);
+    const Eigen::VectorXcd growth = (exponents.mu * h).array().exp();  // e^{μ_m h}, once
     for (Eigen::Index k = 0; k < n; ++k) {
       const bool invariant =
           static_cast<size_t>(k) < fixed_at_zero.size() && fixed_at_zero[static_cast<size_t>(k)];
@@ -189,7 +190,7 @@ Status forced_modal_response(
         q(k, 3 * m + 1) = q1;
         q(k, 3 * m + 2) = q2;
         start[k] += q0;
-        end[k] += (q0 + h * (q1 + h * q2)) * std::exp(exponents.mu[m] * h);
+        end[k] += (q0 + h * (q1 + h * q2)) * growth[m];
       }
     }
     response.coefficients.push_back(std::move(q));

@@ -8,6 +8,7 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "emnet/network/network.hpp"
@@ -34,5 +35,12 @@ class StaticOperator {
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
   bool factorised_ = false;
 };
+
+// The s¹ and s² parts A₁, A₂ of the static form's operator A(s) = A₀ + s·A₁ + s²·A₂
+// (A₀ = StaticOperator::matrix, on the same unknowns z): the modal reduction's Taylor series and
+// the reduced cascade's exponents (modal_reduction.cpp).
+std::pair<Eigen::SparseMatrix<double>, Eigen::SparseMatrix<double>> expansion_matrices(
+    const System& system, const Eigen::SparseMatrix<double>& g_matrix,
+    const StaticOperator& static_operator);
 
 }  // namespace emnet

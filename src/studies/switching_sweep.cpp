@@ -209,9 +209,10 @@ class SwitchingSweepRun {
     assemble_once_and_check_the_sweep_fits();
     if (const std::optional<Status> stopped = solve_every_frequency()) return stopped_by(*stopped);
     result_.solver = solver_;
+    result_.reduced_solver = reduced_;
     find_the_sweep_peak();
     check_validity_of_the_deflection_peaks();
-    if (check_ && !result_.frequencies.empty())
+    if (check_ && options_.check_reduction && !result_.frequencies.empty())
       if (const std::optional<Status> stopped = check_the_reduction()) return stopped_by(*stopped);
     if (options_.shape_instants > 0 && !result_.frequencies.empty())
       if (const std::optional<Status> stopped = find_the_deformed_shape())
@@ -305,10 +306,11 @@ class SwitchingSweepRun {
   }
   std::optional<PeriodicResult> reduced_solution_at(const System& system, double f,
                                                     const std::vector<Probe>& probes, int samples) {
+    if (!reduced_ && options_.reduced_solver) reduced_ = options_.reduced_solver;
     if (!reduced_) {
       phase("modal reduction (" + std::to_string(system.size()) + " unknowns)");
       const Stopwatch build_stopwatch;
-      reduced_ = std::make_unique<ReducedPeriodicSolver>(system, options_.reduction);
+      reduced_ = std::make_shared<const ReducedPeriodicSolver>(system, options_.reduction);
       check_->build_seconds = build_stopwatch.seconds();
       result_.decomposition_seconds += check_->build_seconds;
     }
@@ -584,7 +586,7 @@ class SwitchingSweepRun {
   bool circuit_switched_ = false;  // periodic [[circuit]] sources switched with the sweep
   System swept_;
   std::shared_ptr<const PeriodicSolver> solver_;
-  std::unique_ptr<ReducedPeriodicSolver> reduced_;
+  std::shared_ptr<const ReducedPeriodicSolver> reduced_;
   std::optional<SwitchingSweepReductionCheck> check_;
   std::string reduction_failure_;
   std::vector<double> solve_seconds_at_;  // per frequency, for the reduction check

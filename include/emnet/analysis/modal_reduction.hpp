@@ -81,6 +81,7 @@
 
 #include <Eigen/Core>
 #include <complex>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -207,12 +208,34 @@ std::vector<double> check_frequencies(const std::vector<double>& grid,
 
 // ---- periodic ----------------------------------------------------------------------------
 
-/// The reduced counterpart of PeriodicSolver (linear network, piecewise-linear sources).
+/// The reduced counterpart of PeriodicSolver (piecewise-linear sources): for a linear network,
+/// and for an exact cascade (periodic_cascade.hpp: the DEAs' force k_F·u² the only
+/// nonlinearity, their voltages set by the circuit alone).
+///
+/// The reduced cascade. The DEA voltages u_j come from the kept poles and the static
+/// correction of the sources' inputs, as any probe of a linear network; their squares are
+/// sums Σ_m P_m(h)·e^{μ_m h} over exponents μ fixed by the voltages' poles (0, λ_k, λ_k + λ_l),
+/// whatever the switching frequency. The beam's response to them is the kept poles' particular
+/// and periodic homogeneous states (exact, as the full cascade's) plus the truncated poles'
+/// particular state, also exact: for P(h)·e^{μh} it is (z(μ)·P + z'(μ)·P' + z''(μ)/2·P'')·e^{μh}
+/// with z(s) the full model's response to the DEA's direction less the kept terms
+/// Σ R_k/(s − λ_k), from one sparse LU of the static form's operator A(μ) = A₀ + μ·A₁ + μ²·A₂
+/// per exponent (over the unknowns the force reaches, which the circuit's poles are not). No
+/// static correction is assumed for the beam, so a Kelvin–Voigt cluster of relaxations close to
+/// the squares' exponents (the tweezer jaw's: −1/τ = −4712 1/s against −2296 1/s) costs no
+/// accuracy. Only the truncated poles' homogeneous transients are left out: each starts at a
+/// switching edge from the jump of their particular state there (the square's slope changes,
+/// its value does not) and decays with their own damping; `truncation_estimate` of the result
+/// is the largest such start relative to each probe's largest |value|.
 class ReducedPeriodicSolver {
  public:
-  /// Reduces `system` for its drive's waveforms, one input per waveform.
+  /// Reduces `system` for its drive's waveforms, one input per waveform, and for a cascade one
+  /// more per DEA (its force's direction).
   /// @throws OptionError when `options` is out of range (validate)
   ReducedPeriodicSolver(const System& system, const ReductionOptions& options);
+  /// A cascade's squared sources and their exponents' feed-through (defined and used in the
+  /// library only).
+  struct Cascade;
   /// The reduced model.
   const ModalReduction& reduction() const { return reduction_; }
   /// As PeriodicSolver::solve, and with the same sampling and global extremes
@@ -230,8 +253,15 @@ class ReducedPeriodicSolver {
                              const std::vector<double>& scale) const;
 
  private:
+  // The cascade's reduction: `inputs` (the waveforms') and one per DEA, reduced with
+  // `periodic`, then the feed-through of every exponent (reduced_cascade.cpp).
+  void reduce_cascade(const System& system, const ReductionOptions& periodic,
+                      std::vector<Eigen::VectorXcd> inputs);
+  PeriodicResult solve_cascade(const System& system, const std::vector<Probe>& probes,
+                               double period, int samples) const;
   ModalReduction reduction_;
   std::vector<int> waveforms_;  // input j ↔ system.excitation().waveforms[waveforms_[j]]
+  std::shared_ptr<const Cascade> cascade_;  // null for a linear network
 };
 
 /// max over probes of max over samples |reduced − full| / max over samples |full|; both solved

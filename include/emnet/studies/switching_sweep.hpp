@@ -63,6 +63,13 @@ struct SwitchingSweepOptions {
   double rtol = 1e-9;  // shooting: IDA's relative tolerance
   bool reduce = false;
   ReductionOptions reduction;  // with `reduce`
+  // With `reduce`: check the reduction against the full exact method (or a wider reduction) at
+  // a few frequencies (result.reduction). False where the caller has checked it on a like
+  // network (a design study's nominal scene, its variants unchecked).
+  bool check_reduction = true;
+  // With `reduce`: a reduction already made for the model's network (a design study's variant,
+  // its two sweeps), as `solver`; made here when null.
+  std::shared_ptr<const ReducedPeriodicSolver> reduced_solver;
   // The outputs whose peaks are swept; at least one. With `reduce`, deflections and rotations.
   std::vector<Probe> outputs;
   bool first_mode = true;  // compute f1 (the lowest mode), for a plot marker
@@ -141,6 +148,8 @@ struct SwitchingSweepResult {
   std::optional<DeformedShape> shape;
   // The exact method's solver (made here or given), for another sweep of the same network.
   std::shared_ptr<const PeriodicSolver> solver;
+  // With `reduce`: the reduction (made here or given), for another sweep of the same network.
+  std::shared_ptr<const ReducedPeriodicSolver> reduced_solver;
   Validity validity;  // of the deflection peaks over the sweep and the drive's voltages
   // Accuracy: the largest periodicity residual of the periodic solves.
   double worst_periodicity_residual = 0.0;

@@ -1,0 +1,499 @@
+// The reduced cascade: ReducedPeriodicSolver for a network whose only nonlinearity is the DEAs'
+// force d_j·u_j² (include/emnet/analysis/modal_reduction.hpp; the exact cascade's stages,
+// periodic_cascade.hpp, on the kept poles, with the truncated poles' particular state exact
+// through the full model's response at each exponent).
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+
+#include "core/timed.hpp"
+#include "emnet/analysis/modal_reduction.hpp"
+#include "emnet/core/stopwatch.hpp"
+#include "emnet/core/units.hpp"
+#include "exponential_series.hpp"
+#include "periodic_cascade.hpp"
+#include "reduced_periodic.hpp"
+#include "static_operator.hpp"
+
+namespace emnet {
+
+Eigen::SparseMatrix<double> linearised_g(const System& system, const Eigen::VectorXd& y);
+
+namespace {
+
+using Complex = std::complex<double>;
+
+// A pole a voltage carries: its weight max |g|·|β|/|λ| above this fraction of the largest
+// (as square_exponents' 1e-12 of a voltage's scale).
+constexpr double kCarried = 1e-12;
+// A pole a DEA's force reaches: |β|·‖z‖/|λ| above this fraction of the largest (as the
+// reduction's drop_unreached_poles).
+constexpr double kReached = 1e-12;
+// A pole that carries a voltage and is reached by a force couples the stages (as the exact
+// cascade's 1e-9 of the product of the largest of each).
+constexpr double kCoupled = 1e-9;
+
+}  // namespace
+
+struct ReducedPeriodicSolver::Cascade {
+  struct Source {
+    std::string name;
+    LinearTerms voltage_terms, direction_terms;  // as the DEA gives them
+    Probe voltage;                               // u_j on the static form's unknowns
+  };
+  std::vector<Source> sources;
+  size_t first_input = 0;       // the sources' inputs follow the waveforms'
+  Eigen::VectorXcd lambda;      // the kept poles, then the conjugates of the oscillatory ones
+  std::vector<size_t> kept_of;  // [pole] → reduction.kept
+  std::vector<bool> conjugate;  // [pole]
+  Eigen::MatrixXcd beta;        // [pole][input]
+  SquareExponents exponents;    // over lambda; kept: the poles the voltages carry
+  // feed[j][m]: the truncated part's z(μ_m), z'(μ_m), z''(μ_m)/2 for source j's direction.
+  std::vector<std::vector<std::array<Eigen::VectorXcd, 3>>> feed;
+
+  // The probe's row of the modal coordinates: g_k = Σ c·v^z_k[index].
+  Eigen::VectorXcd row(const ModalReduction& reduction, const Probe& probe) const {
+    Eigen::VectorXcd g = Eigen::VectorXcd::Zero(lambda.size());
+    for (const auto& [index, c] : probe.terms)
+      for (Eigen::Index k = 0; k < lambda.size(); ++k) {
+        const Complex v = reduction.kept[kept_of[static_cast<size_t>(k)]].z_vector[index];
+        g[k] += c * (conjugate[static_cast<size_t>(k)] ? std::conj(v) : v);
+      }
+    return g;
+  }
+  // The probe's static correction of each waveform input.
+  std::vector<double> feed_of_inputs(const ModalReduction& reduction, const Probe& probe) const {
+    std::vector<double> d(first_input, 0.0);
+    for (const auto& [index, c] : probe.terms)
+      for (size_t j = 0; j < first_input; ++j) d[j] += c * reduction.correction[j][index].real();
+    return d;
+  }
+};
+
+namespace {
+
+using Cascade = ReducedPeriodicSolver::Cascade;
+
+// The DEAs' squared sources of `system`, each one more input (its direction); a failed Status
+// saying why the network is not such a cascade.
+Status squared_sources(const System& system, std::vector<Cascade::Source>& sources,
+                       std::vector<Eigen::VectorXcd>& inputs) {
+  for (const auto& element : system.nonlinear_elements) {
+    Cascade::Source source;
+    if (!element->squared_source(source.voltage_terms, source.direction_terms))
+      return Status::failure(
+          "element '" + element->name() + "' (" + element->kind() +
+          ") is nonlinear otherwise than by a DEA's force k_F·u² without back-coupling, the "
+          "only nonlinearity the reduced cascade takes");
+    source.name = element->name();
+    source.voltage.name = "\x01u(" + element->name() + ")";
+    source.voltage.quantity = ProbeQuantity::dea_voltage;
+    source.voltage.unit = "V";
+    for (const auto& [node, coefficient] : source.voltage_terms)
+      source.voltage.terms.emplace_back(node, coefficient);
+    Eigen::VectorXcd direction = Eigen::VectorXcd::Zero(system.size());
+    for (const auto& [row, value] : source.direction_terms) direction[row] += value;
+    inputs.push_back(std::move(direction));
+    sources.push_back(std::move(source));
+  }
+  return Status::success();
+}
+
+// The kept poles with the conjugates of the oscillatory ones, and their β.
+void expand_poles(const ModalReduction& reduction, Cascade& cascade) {
+  std::vector<Complex> poles;
+  for (size_t k = 0; k < reduction.kept.size(); ++k) {
+    poles.push_back(reduction.kept[k].pole);
+    cascade.kept_of.push_back(k);
+    cascade.conjugate.push_back(false);
+  }
+  for (size_t k = 0; k < reduction.kept.size(); ++k)
+    if (reduction.kept[k].oscillatory) {
+      poles.push_back(std::conj(reduction.kept[k].pole));
+      cascade.kept_of.push_back(k);
+      cascade.conjugate.push_back(true);
+    }
+  const auto count = static_cast<Eigen::Index>(poles.size());
+  const auto inputs = static_cast<Eigen::Index>(reduction.inputs.size());
+  cascade.lambda = Eigen::Map<const Eigen::VectorXcd>(poles.data(), count);
+  cascade.beta.resize(count, inputs);
+  for (Eigen::Index k = 0; k < count; ++k)
+    for (Eigen::Index j = 0; j < inputs; ++j) {
+      const Complex b =
+          reduction.beta[cascade.kept_of[static_cast<size_t>(k)]][static_cast<size_t>(j)];
+      cascade.beta(k, j) = cascade.conjugate[static_cast<size_t>(k)] ? std::conj(b) : b;
+    }
+}
+
+// The poles the voltages carry (the exponents of their squares), after checking that none of
+// them is reached by a DEA's force (the stages apart).
+Status carried_poles(const ModalReduction& reduction, Cascade& cascade) {
+  const Eigen::Index count = cascade.lambda.size();
+  const auto waveforms = static_cast<Eigen::Index>(cascade.first_input);
+  const auto forces = cascade.beta.cols() - waveforms;
+  Eigen::VectorXd carried = Eigen::VectorXd::Zero(count), reached = Eigen::VectorXd::Zero(count);
+  for (const Cascade::Source& source : cascade.sources) {
+    const Eigen::VectorXd g = cascade.row(reduction, source.voltage).cwiseAbs();
+    for (Eigen::Index k = 0; k < count; ++k) {
+      const double inverse = 1.0 / std::abs(cascade.lambda[k]);
+      if (waveforms > 0)
+        carried[k] = std::max(
+            carried[k], g[k] * cascade.beta.row(k).head(waveforms).cwiseAbs().maxCoeff() * inverse);
+      const double z = reduction.kept[cascade.kept_of[static_cast<size_t>(k)]].z_vector.norm();
+      reached[k] = std::max(reached[k],
+                            cascade.beta.row(k).tail(forces).cwiseAbs().maxCoeff() * z * inverse);
+    }
+  }
+  const double carried_scale = carried.maxCoeff(), reached_scale = reached.maxCoeff();
+  for (Eigen::Index k = 0; k < count; ++k) {
+    if (!(carried[k] > kCarried * carried_scale)) continue;
+    if (reached[k] > kCoupled * reached_scale)
+      return Status::failure(
+          "a pole that carries a DEA's voltage is also moved by the DEAs' forces (s = " +
+          format_number("%.6g", cascade.lambda[k].real()) + " + " +
+          format_number("%.6g", cascade.lambda[k].imag()) +
+          "j 1/s): the stages of the cascade are coupled; the shooting method serves it");
+    cascade.exponents.kept.push_back(k);
+  }
+  const auto kept = static_cast<Eigen::Index>(cascade.exponents.kept.size());
+  cascade.exponents.mu.resize(1 + kept + kept * (kept + 1) / 2);
+  Eigen::Index m = 0;
+  cascade.exponents.mu[m++] = 0.0;
+  for (Eigen::Index k : cascade.exponents.kept) cascade.exponents.mu[m++] = cascade.lambda[k];
+  for (Eigen::Index p = 0; p < kept; ++p)
+    for (Eigen::Index q = p; q < kept; ++q)
+      cascade.exponents.mu[m++] = cascade.lambda[cascade.exponents.kept[static_cast<size_t>(p)]] +
+                                  cascade.lambda[cascade.exponents.kept[static_cast<size_t>(q)]];
+  return Status::success();
+}
+
+// The unknowns in the parts of the operator's sparsity graph (A₀ + A₁ + A₂) that the forces'
+// directions touch: the beam and what is linearly tied to it, where the circuit's poles are not.
+std::vector<Eigen::Index> reached_unknowns(const Eigen::SparseMatrix<double>& pattern,
+                                           const std::vector<Eigen::VectorXcd>& directions) {
+  const Eigen::Index n = pattern.rows();
+  std::vector<Eigen::Index> parent(static_cast<size_t>(n));
+  std::iota(parent.begin(), parent.end(), Eigen::Index{0});
+  auto root = [&](Eigen::Index i) {
+    while (parent[static_cast<size_t>(i)] != i)
+      i = parent[static_cast<size_t>(i)] =
+          parent[static_cast<size_t>(parent[static_cast<size_t>(i)])];
+    return i;
+  };
+  for (Eigen::Index col = 0; col < pattern.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(pattern, col); it; ++it)
+      parent[static_cast<size_t>(root(it.row()))] = root(col);
+  std::vector<bool> touched(static_cast<size_t>(n), false);
+  for (const Eigen::VectorXcd& d : directions)
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (d[i] != 0.0) touched[static_cast<size_t>(root(i))] = true;
+  std::vector<Eigen::Index> reached;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (touched[static_cast<size_t>(root(i))]) reached.push_back(i);
+  return reached;
+}
+
+// `matrix` restricted to the rows and columns `index`.
+Eigen::SparseMatrix<Complex> restricted(const Eigen::SparseMatrix<Complex>& matrix,
+                                        const std::vector<Eigen::Index>& index) {
+  std::vector<Eigen::Index> position(static_cast<size_t>(matrix.rows()), -1);
+  for (size_t i = 0; i < index.size(); ++i)
+    position[static_cast<size_t>(index[i])] = static_cast<Eigen::Index>(i);
+  std::vector<Eigen::Triplet<Complex>> entries;
+  for (Eigen::Index col = 0; col < matrix.outerSize(); ++col)
+    for (Eigen::SparseMatrix<Complex>::InnerIterator it(matrix, col); it; ++it) {
+      const Eigen::Index r = position[static_cast<size_t>(it.row())],
+                         c = position[static_cast<size_t>(col)];
+      if (r >= 0 && c >= 0) entries.emplace_back(r, c, it.value());
+    }
+  const auto size = static_cast<Eigen::Index>(index.size());
+  Eigen::SparseMatrix<Complex> out(size, size);
+  out.setFromTriplets(entries.begin(), entries.end());
+  return out;
+}
+
+// The full model's Taylor coefficients z(μ), z'(μ), z''(μ)/2 of the response to each direction,
+// from A(μ)·z₀ = b, A·z₁ = −A'·z₀, A·z₂ = −A'·z₁ − A₂·z₀ on the reached unknowns (zero elsewhere).
+Status full_response_at(Complex mu, const std::array<Eigen::SparseMatrix<Complex>, 3>& a,
+                        const std::vector<Eigen::Index>& reached,
+                        const std::vector<Eigen::VectorXcd>& directions, Eigen::Index n,
+                        std::vector<std::array<Eigen::VectorXcd, 3>>& taylor) {
+  const Eigen::SparseMatrix<Complex> at = restricted(a[0] + mu * a[1] + (mu * mu) * a[2], reached);
+  const Eigen::SparseMatrix<Complex> slope = restricted(a[1] + (2.0 * mu) * a[2], reached);
+  const Eigen::SparseMatrix<Complex> curvature = restricted(a[2], reached);
+  Eigen::SparseLU<Eigen::SparseMatrix<Complex>> lu;
+  lu.compute(at);
+  if (lu.info() != Eigen::Success)
+    return Status::failure(
+        "the squared voltages' exponent s = " + format_number("%.6g", mu.real()) + " + " +
+        format_number("%.6g", mu.imag()) +
+        "j 1/s is a pole of the beam: its response there has no particular "
+        "state (the shooting method serves it)");
+  taylor.clear();
+  for (const Eigen::VectorXcd& direction : directions) {
+    Eigen::VectorXcd b(static_cast<Eigen::Index>(reached.size()));
+    for (size_t i = 0; i < reached.size(); ++i)
+      b[static_cast<Eigen::Index>(i)] = direction[reached[i]];
+    const Eigen::VectorXcd z0 = lu.solve(b);
+    const Eigen::VectorXcd z1 = lu.solve(-(slope * z0));
+    const Eigen::VectorXcd z2 = lu.solve(-(slope * z1) - curvature * z0);
+    std::array<Eigen::VectorXcd, 3> full;
+    const std::array<const Eigen::VectorXcd*, 3> parts{&z0, &z1, &z2};
+    for (int r = 0; r < 3; ++r) {
+      full[static_cast<size_t>(r)] = Eigen::VectorXcd::Zero(n);
+      for (size_t i = 0; i < reached.size(); ++i)
+        full[static_cast<size_t>(r)][reached[i]] =
+            (*parts[static_cast<size_t>(r)])[static_cast<Eigen::Index>(i)];
+      if (!full[static_cast<size_t>(r)].allFinite())
+        return Status::failure("the full model's response at the squared voltages' exponent s = " +
+                               format_number("%.6g", mu.real()) + " 1/s is not finite");
+    }
+    taylor.push_back(std::move(full));
+  }
+  return Status::success();
+}
+
+// feed[j][m]: the full model's Taylor coefficients at μ_m less the kept poles' (R/(s − λ) →
+// R·g, −R·g², R·g³ with g = 1/(μ − λ)); a kept pole the force does not reach is left out (its
+// β is the decomposition's rounding, and μ may be that very pole: a voltage's).
+Status truncated_feed(const System& system, const ModalReduction& reduction, Cascade& cascade) {
+  const Eigen::SparseMatrix<double> g_matrix =
+      linearised_g(system, Eigen::VectorXd::Zero(system.size()));
+  const StaticOperator static_operator(system, g_matrix);
+  const auto [a1, a2] = expansion_matrices(system, g_matrix, static_operator);
+  const std::array<Eigen::SparseMatrix<Complex>, 3> a{static_operator.matrix().cast<Complex>(),
+                                                      a1.cast<Complex>(), a2.cast<Complex>()};
+  // The pattern of the entries that are not zero (the DEAs' Jacobians at u = 0 are stored zeros).
+  Eigen::SparseMatrix<double> pattern =
+      static_operator.matrix().cwiseAbs() + a1.cwiseAbs() + a2.cwiseAbs();
+  pattern.prune([](Eigen::Index, Eigen::Index, double value) { return value != 0.0; });
+  std::vector<Eigen::VectorXcd> directions(
+      reduction.inputs.begin() + static_cast<std::ptrdiff_t>(cascade.first_input),
+      reduction.inputs.end());
+  const std::vector<Eigen::Index> reached = reached_unknowns(pattern, directions);
+  for (const Cascade::Source& source : cascade.sources)
+    for (const auto& [index, c] : source.voltage.terms)
+      if (std::binary_search(reached.begin(), reached.end(), index))
+        return Status::failure("DEA " + source.name +
+                               "'s voltage is linearly tied to the beam: the reduced cascade "
+                               "needs the circuit apart from it");
+  const Eigen::Index n = system.size(), poles = cascade.lambda.size();
+  std::vector<double> weight(static_cast<size_t>(poles), 0.0);
+  cascade.feed.assign(directions.size(), {});
+  for (Eigen::Index m = 0; m < cascade.exponents.mu.size(); ++m) {
+    const Complex mu = cascade.exponents.mu[m];
+    std::vector<std::array<Eigen::VectorXcd, 3>> taylor;
+    if (Status full = full_response_at(mu, a, reached, directions, n, taylor); !full.ok())
+      return full;
+    for (size_t j = 0; j < directions.size(); ++j) {
+      const auto input = static_cast<Eigen::Index>(cascade.first_input + j);
+      double largest = 0.0;
+      for (Eigen::Index k = 0; k < poles; ++k) {
+        const KeptPole& pole = reduction.kept[cascade.kept_of[static_cast<size_t>(k)]];
+        weight[static_cast<size_t>(k)] =
+            std::abs(cascade.beta(k, input)) * pole.z_vector.norm() / std::abs(pole.pole);
+        largest = std::max(largest, weight[static_cast<size_t>(k)]);
+      }
+      for (Eigen::Index k = 0; k < poles; ++k) {
+        if (!(weight[static_cast<size_t>(k)] > kReached * largest)) continue;
+        const KeptPole& pole = reduction.kept[cascade.kept_of[static_cast<size_t>(k)]];
+        const bool conjugate = cascade.conjugate[static_cast<size_t>(k)];
+        const Eigen::VectorXcd residue =
+            (conjugate ? Eigen::VectorXcd(pole.z_vector.conjugate()) : pole.z_vector) *
+            cascade.beta(k, input);
+        const Complex g = reciprocal(mu - cascade.lambda[k]);
+        taylor[j][0] -= residue * g;
+        taylor[j][1] += residue * (g * g);
+        taylor[j][2] -= residue * (g * g * g);
+      }
+      cascade.feed[j].push_back(taylor[j]);
+    }
+  }
+  return Status::success();
+}
+
+}  // namespace
+
+void ReducedPeriodicSolver::reduce_cascade(const System& system, const ReductionOptions& periodic,
+                                           std::vector<Eigen::VectorXcd> inputs) {
+  auto cascade = std::make_shared<Cascade>();
+  cascade->first_input = inputs.size();
+  if (Status sources = squared_sources(system, cascade->sources, inputs); !sources.ok()) {
+    reduction_.status = sources;
+    return;
+  }
+  reduction_ = reduce_modal(system, Eigen::VectorXd::Zero(system.size()), inputs, periodic);
+  if (!reduction_.status.ok()) return;
+  const Stopwatch stopwatch;
+  for (const Cascade::Source& source : cascade->sources)
+    for (const auto& [node, coefficient] : source.voltage.terms)
+      if (reduction_.mechanical[static_cast<size_t>(node)]) {
+        reduction_.status = Status::failure("element '" + source.name +
+                                            "' squares a mechanical quantity: the cascade "
+                                            "squares voltages only");
+        return;
+      }
+  expand_poles(reduction_, *cascade);
+  Status prepared = carried_poles(reduction_, *cascade);
+  if (prepared.ok()) prepared = truncated_feed(system, reduction_, *cascade);
+  reduction_.seconds += stopwatch.seconds();
+  if (!prepared.ok()) {
+    reduction_.status = prepared;
+    return;
+  }
+  cascade_ = std::move(cascade);
+}
+
+namespace {
+
+// Whether `system`'s DEAs are the reduced one's (the same nodes, directions and constants).
+bool same_sources(const System& system, const Cascade& cascade) {
+  if (system.nonlinear_elements.size() != cascade.sources.size()) return false;
+  for (size_t e = 0; e < cascade.sources.size(); ++e) {
+    LinearTerms voltage, direction;
+    if (!system.nonlinear_elements[e]->squared_source(voltage, direction) ||
+        voltage != cascade.sources[e].voltage_terms ||
+        direction != cascade.sources[e].direction_terms)
+      return false;
+  }
+  return true;
+}
+
+// The probe's truncated feed-through on interval i: Σ_j the response to u_j²'s terms P(h)·e^{μh},
+// (t₀·P + t₁·P' + t₂·P'') with t_r = probe·feed[j][m][r] (`rows`: [j·M + m][r]).
+ExponentialSeries::ForcedTerms truncated_terms(
+    const Eigen::MatrixXcd& rows,
+    const std::vector<std::vector<ExponentialSeries::ForcedTerms>>& squares, size_t i,
+    Eigen::Index terms) {
+  ExponentialSeries::ForcedTerms out = ExponentialSeries::ForcedTerms::Zero(terms, 3);
+  for (size_t j = 0; j < squares.size(); ++j)
+    for (Eigen::Index m = 0; m < terms; ++m) {
+      const auto& p = squares[j][i];
+      const Eigen::Index row = static_cast<Eigen::Index>(j) * terms + m;
+      const Complex t0 = rows(row, 0), t1 = rows(row, 1), t2 = rows(row, 2);
+      out(m, 0) += t0 * p(m, 0) + t1 * p(m, 1) + 2.0 * t2 * p(m, 2);
+      out(m, 1) += t0 * p(m, 1) + 2.0 * t1 * p(m, 2);
+      out(m, 2) += t0 * p(m, 2);
+    }
+  return out;
+}
+
+// Re Σ_m (c₀ + c₁·h + c₂·h²)_m·e^{μ_m h}.
+double forced_value(const ExponentialSeries::ForcedTerms& c, const Eigen::VectorXcd& mu, double h) {
+  Complex sum = 0.0;
+  for (Eigen::Index m = 0; m < mu.size(); ++m)
+    sum += (c(m, 0) + h * (c(m, 1) + h * c(m, 2))) * std::exp(mu[m] * h);
+  return sum.real();
+}
+
+}  // namespace
+
+PeriodicResult ReducedPeriodicSolver::solve_cascade(const System& system,
+                                                    const std::vector<Probe>& probes, double period,
+                                                    int samples) const {
+  Timed<PeriodicResult> timed;
+  PeriodicResult& result = timed.result;
+  result.method = Method::reduced;
+  result.period = period;
+  auto finish = [&](Status status) { return timed.finish(std::move(status)); };
+  const Cascade& cascade = *cascade_;
+  if (!same_sources(system, cascade))
+    return finish(Status::failure("the network's DEAs differ from the reduced one's"));
+  const std::vector<double> edges = constant_intervals(system, period);
+  const size_t intervals = edges.size() - 1;
+  const InputPieces pieces = input_pieces(system, waveforms_, edges);
+  const auto waveforms = static_cast<Eigen::Index>(cascade.first_input);
+  const Eigen::Index forces = cascade.beta.cols() - waveforms, terms = cascade.exponents.mu.size();
+
+  // The first stage: the linear network's periodic state under the sources, the DEA voltages
+  // and their squares.
+  std::vector<Eigen::VectorXcd> particular, slope, linear_start;
+  affine_particulars(cascade.lambda, cascade.beta.leftCols(waveforms), pieces, particular, slope);
+  if (Status periodic = periodic_interval_starts(cascade.lambda, edges, particular, slope, {},
+                                                 linear_start, result.periodicity_residual);
+      !periodic.ok())
+    return finish(periodic);
+  std::vector<Eigen::VectorXcd> homogeneous(intervals);
+  for (size_t i = 0; i < intervals; ++i) homogeneous[i] = linear_start[i] - particular[i];
+  std::vector<std::vector<ExponentialSeries::ForcedTerms>> squares;
+  for (const Cascade::Source& source : cascade.sources)
+    squares.push_back(
+        squared_terms(affine_series(cascade.row(reduction_, source.voltage),
+                                    cascade.feed_of_inputs(reduction_, source.voltage), pieces,
+                                    particular, slope, homogeneous),
+                      cascade.exponents));
+
+  // The second: the kept poles under the squares, periodic with the first stage's states.
+  ForcedModalResponse response;
+  if (Status forced =
+          forced_modal_response(cascade.lambda, edges, cascade.exponents,
+                                cascade.beta.rightCols(forces), squares, {}, false, response);
+      !forced.ok())
+    return finish(forced);
+  std::vector<Eigen::VectorXcd> particular_start(intervals), particular_end(intervals), start_of;
+  for (size_t i = 0; i < intervals; ++i) {
+    const double h = edges[i + 1] - edges[i];
+    particular_start[i] = particular[i] + response.start[i];
+    particular_end[i] = particular[i] + response.end[i];
+    if (!slope.empty()) particular_end[i] += h * slope[i];
+  }
+  if (Status periodic =
+          periodic_starts_from_particulars(cascade.lambda, edges, particular_start, particular_end,
+                                           {}, start_of, result.periodicity_residual);
+      !periodic.ok())
+    return finish(periodic);
+  for (size_t i = 0; i < intervals; ++i)
+    homogeneous[i] = start_of[i] - response.start[i] - particular[i];
+
+  // Each probe: the linear part, the kept poles' forced part and the truncated feed-through;
+  // the latter's jump at each edge (with the inputs' static correction's) is where the
+  // truncated transients start.
+  std::vector<ExponentialSeries> series;
+  std::vector<double> jump(probes.size(), 0.0);
+  for (size_t p = 0; p < probes.size(); ++p) {
+    const Eigen::VectorXcd g = cascade.row(reduction_, probes[p]);
+    const std::vector<double> d = cascade.feed_of_inputs(reduction_, probes[p]);
+    ExponentialSeries s = affine_series(g, d, pieces, particular, slope, homogeneous);
+    Eigen::MatrixXcd rows(forces * terms, 3);
+    for (Eigen::Index j = 0; j < forces; ++j)
+      for (Eigen::Index m = 0; m < terms; ++m)
+        for (int r = 0; r < 3; ++r) {
+          Complex t = 0.0;
+          for (const auto& [index, c] : probes[p].terms)
+            t += c * cascade.feed[static_cast<size_t>(j)][static_cast<size_t>(m)]
+                                 [static_cast<size_t>(r)][index];
+          rows(j * terms + m, r) = t;
+        }
+    std::vector<double> truncated_start(intervals), truncated_end(intervals);
+    for (size_t i = 0; i < intervals; ++i) {
+      const double h = edges[i + 1] - edges[i];
+      const ExponentialSeries::ForcedTerms truncated = truncated_terms(rows, squares, i, terms);
+      truncated_start[i] = forced_value(truncated, cascade.exponents.mu, 0.0);
+      truncated_end[i] = forced_value(truncated, cascade.exponents.mu, h);
+      for (size_t w = 0; w < d.size(); ++w) {
+        truncated_start[i] += d[w] * pieces.value[i][w];
+        truncated_end[i] += d[w] * (pieces.value[i][w] + h * pieces.slope[i][w]);
+      }
+      const Eigen::RowVectorXcd through_modes = g.transpose() * response.coefficients[i];
+      ExponentialSeries::ForcedTerms kept(terms, 3);
+      for (Eigen::Index m = 0; m < terms; ++m)
+        for (int r = 0; r < 3; ++r) kept(m, r) = through_modes[3 * m + r];
+      s.forced.push_back(kept + truncated);
+    }
+    for (size_t i = 0; i < intervals; ++i)
+      jump[p] = std::max(
+          jump[p], std::abs(truncated_start[i] - truncated_end[(i + intervals - 1) % intervals]));
+    series.push_back(std::move(s));
+  }
+  sample_periodic_series(cascade.lambda, edges, series, samples, result, cascade.exponents.mu);
+  for (size_t p = 0; p < probes.size(); ++p) {
+    const double scale = std::max(std::abs(result.minimum[p]), std::abs(result.maximum[p]));
+    if (scale > 0.0)
+      result.truncation_estimate = std::max(result.truncation_estimate, jump[p] / scale);
+  }
+  return finish(Status::success());
+}
+
+}  // namespace emnet
