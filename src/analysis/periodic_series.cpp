@@ -99,7 +99,9 @@ class SeriesEvaluator {
   void add_forced(size_t p, size_t i, double h, double& sum, double& first, double& second) const {
     const ExponentialSeries::ForcedTerms& c = series_[p].forced[i];
     for (Eigen::Index m = 0; m < mu_.size(); ++m) {
-      const Complex mu = mu_[m], e = std::exp(mu * h);
+      // A real exponent (an RC loop's) needs no sine and cosine.
+      const Complex mu = mu_[m],
+                    e = mu.imag() == 0.0 ? Complex(std::exp(mu.real() * h)) : std::exp(mu * h);
       const Complex poly = c(m, 0) + h * (c(m, 1) + h * c(m, 2));
       const Complex slope = c(m, 1) + 2.0 * h * c(m, 2), curvature = 2.0 * c(m, 2);
       sum += (poly * e).real();

@@ -196,64 +196,113 @@ std::vector<Eigen::Index> reached_unknowns(const Eigen::SparseMatrix<double>& pa
 }
 
 // `matrix` restricted to the rows and columns `index`.
-Eigen::SparseMatrix<Complex> restricted(const Eigen::SparseMatrix<Complex>& matrix,
-                                        const std::vector<Eigen::Index>& index) {
+Eigen::SparseMatrix<double> restricted(const Eigen::SparseMatrix<double>& matrix,
+                                       const std::vector<Eigen::Index>& index) {
   std::vector<Eigen::Index> position(static_cast<size_t>(matrix.rows()), -1);
   for (size_t i = 0; i < index.size(); ++i)
     position[static_cast<size_t>(index[i])] = static_cast<Eigen::Index>(i);
-  std::vector<Eigen::Triplet<Complex>> entries;
+  std::vector<Eigen::Triplet<double>> entries;
   for (Eigen::Index col = 0; col < matrix.outerSize(); ++col)
-    for (Eigen::SparseMatrix<Complex>::InnerIterator it(matrix, col); it; ++it) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(matrix, col); it; ++it) {
       const Eigen::Index r = position[static_cast<size_t>(it.row())],
                          c = position[static_cast<size_t>(col)];
       if (r >= 0 && c >= 0) entries.emplace_back(r, c, it.value());
     }
   const auto size = static_cast<Eigen::Index>(index.size());
-  Eigen::SparseMatrix<Complex> out(size, size);
+  Eigen::SparseMatrix<double> out(size, size);
   out.setFromTriplets(entries.begin(), entries.end());
   return out;
 }
 
-// The full model's Taylor coefficients z(μ), z'(μ), z''(μ)/2 of the response to each direction,
-// from A(μ)·z₀ = b, A·z₁ = −A'·z₀, A·z₂ = −A'·z₁ − A₂·z₀ on the reached unknowns (zero elsewhere).
-Status full_response_at(Complex mu, const std::array<Eigen::SparseMatrix<Complex>, 3>& a,
-                        const std::vector<Eigen::Index>& reached,
-                        const std::vector<Eigen::VectorXcd>& directions, Eigen::Index n,
+// The full model's operator A(μ) = A₀ + μ·A₁ + μ²·A₂ on the reached unknowns, factorised per
+// exponent: in real arithmetic where μ is real (an RC loop's), its pattern analysed once.
+class ReachedOperator {
+ public:
+  ReachedOperator(const std::array<Eigen::SparseMatrix<double>, 3>& a,
+                  const std::vector<Eigen::Index>& reached)
+      : reached_(reached) {
+    for (size_t r = 0; r < 3; ++r) a_[r] = restricted(a[r], reached);
+    real_lu_.analyzePattern(Eigen::SparseMatrix<double>(a_[0] + a_[1] + a_[2]));
+  }
+
+  // z(μ), z'(μ), z''(μ)/2 of the response to each direction, from A(μ)·z₀ = b, A·z₁ = −A'·z₀,
+  // A·z₂ = −A'·z₁ − A₂·z₀ (zero outside the reached unknowns).
+  Status taylor_at(Complex mu, const std::vector<Eigen::VectorXcd>& directions, Eigen::Index n,
+                   std::vector<std::array<Eigen::VectorXcd, 3>>& taylor) {
+    taylor.clear();
+    if (mu.imag() == 0.0) return real_taylor_at(mu.real(), directions, n, taylor);
+    const Eigen::SparseMatrix<Complex> a0 = a_[0].cast<Complex>(), a1 = a_[1].cast<Complex>(),
+                                       a2 = a_[2].cast<Complex>();
+    const Eigen::SparseMatrix<Complex> slope = a1 + (2.0 * mu) * a2;
+    Eigen::SparseLU<Eigen::SparseMatrix<Complex>> lu;
+    lu.compute(a0 + mu * a1 + (mu * mu) * a2);
+    if (lu.info() != Eigen::Success) return singular_at(mu);
+    for (const Eigen::VectorXcd& d : directions) {
+      const Eigen::VectorXcd z0 = lu.solve(restrict(d));
+      const Eigen::VectorXcd z1 = lu.solve(-(slope * z0));
+      const Eigen::VectorXcd z2 = lu.solve(-(slope * z1) - a2 * z0);
+      if (Status expanded = expand({z0, z1, z2}, mu, n, taylor); !expanded.ok()) return expanded;
+    }
+    return Status::success();
+  }
+
+ private:
+  // The same for a real μ, the real and imaginary parts of each direction apart.
+  Status real_taylor_at(double s, const std::vector<Eigen::VectorXcd>& directions, Eigen::Index n,
                         std::vector<std::array<Eigen::VectorXcd, 3>>& taylor) {
-  const Eigen::SparseMatrix<Complex> at = restricted(a[0] + mu * a[1] + (mu * mu) * a[2], reached);
-  const Eigen::SparseMatrix<Complex> slope = restricted(a[1] + (2.0 * mu) * a[2], reached);
-  const Eigen::SparseMatrix<Complex> curvature = restricted(a[2], reached);
-  Eigen::SparseLU<Eigen::SparseMatrix<Complex>> lu;
-  lu.compute(at);
-  if (lu.info() != Eigen::Success)
-    return Status::failure(
-        "the squared voltages' exponent s = " + format_number("%.6g", mu.real()) + " + " +
-        format_number("%.6g", mu.imag()) +
-        "j 1/s is a pole of the beam: its response there has no particular "
-        "state (the shooting method serves it)");
-  taylor.clear();
-  for (const Eigen::VectorXcd& direction : directions) {
-    Eigen::VectorXcd b(static_cast<Eigen::Index>(reached.size()));
-    for (size_t i = 0; i < reached.size(); ++i)
-      b[static_cast<Eigen::Index>(i)] = direction[reached[i]];
-    const Eigen::VectorXcd z0 = lu.solve(b);
-    const Eigen::VectorXcd z1 = lu.solve(-(slope * z0));
-    const Eigen::VectorXcd z2 = lu.solve(-(slope * z1) - curvature * z0);
+    real_lu_.factorize(Eigen::SparseMatrix<double>(a_[0] + s * a_[1] + (s * s) * a_[2]));
+    if (real_lu_.info() != Eigen::Success) return singular_at(s);
+    const Eigen::SparseMatrix<double> slope = a_[1] + (2.0 * s) * a_[2];
+    for (const Eigen::VectorXcd& d : directions) {
+      const Eigen::VectorXcd b = restrict(d);
+      std::array<Eigen::VectorXcd, 3> parts;
+      for (int part = 0; part < 2; ++part) {
+        const Eigen::VectorXd rhs = part == 0 ? Eigen::VectorXd(b.real()) : Eigen::VectorXd(b.imag());
+        const Eigen::VectorXd z0 = real_lu_.solve(rhs);
+        const Eigen::VectorXd z1 = real_lu_.solve(-(slope * z0));
+        const Eigen::VectorXd z2 = real_lu_.solve(-(slope * z1) - a_[2] * z0);
+        const std::array<const Eigen::VectorXd*, 3> z{&z0, &z1, &z2};
+        for (size_t r = 0; r < 3; ++r)
+          parts[r] = part == 0 ? Eigen::VectorXcd(z[r]->cast<Complex>())
+                               : Eigen::VectorXcd(parts[r] + Complex(0.0, 1.0) * z[r]->cast<Complex>());
+      }
+      if (Status expanded = expand(parts, s, n, taylor); !expanded.ok()) return expanded;
+    }
+    return Status::success();
+  }
+  Eigen::VectorXcd restrict(const Eigen::VectorXcd& full) const {
+    Eigen::VectorXcd b(static_cast<Eigen::Index>(reached_.size()));
+    for (size_t i = 0; i < reached_.size(); ++i)
+      b[static_cast<Eigen::Index>(i)] = full[reached_[i]];
+    return b;
+  }
+  // The parts on the reached unknowns as full vectors, appended to `taylor`.
+  Status expand(const std::array<Eigen::VectorXcd, 3>& parts, Complex mu, Eigen::Index n,
+                std::vector<std::array<Eigen::VectorXcd, 3>>& taylor) const {
     std::array<Eigen::VectorXcd, 3> full;
-    const std::array<const Eigen::VectorXcd*, 3> parts{&z0, &z1, &z2};
-    for (int r = 0; r < 3; ++r) {
-      full[static_cast<size_t>(r)] = Eigen::VectorXcd::Zero(n);
-      for (size_t i = 0; i < reached.size(); ++i)
-        full[static_cast<size_t>(r)][reached[i]] =
-            (*parts[static_cast<size_t>(r)])[static_cast<Eigen::Index>(i)];
-      if (!full[static_cast<size_t>(r)].allFinite())
+    for (size_t r = 0; r < 3; ++r) {
+      if (!parts[r].allFinite())
         return Status::failure("the full model's response at the squared voltages' exponent s = " +
                                format_number("%.6g", mu.real()) + " 1/s is not finite");
+      full[r] = Eigen::VectorXcd::Zero(n);
+      for (size_t i = 0; i < reached_.size(); ++i)
+        full[r][reached_[i]] = parts[r][static_cast<Eigen::Index>(i)];
     }
     taylor.push_back(std::move(full));
+    return Status::success();
   }
-  return Status::success();
-}
+  static Status singular_at(Complex mu) {
+    return Status::failure("the squared voltages' exponent s = " +
+                           format_number("%.6g", mu.real()) + " + " +
+                           format_number("%.6g", mu.imag()) +
+                           "j 1/s is a pole of the beam: its response there has no particular "
+                           "state (the shooting method serves it)");
+  }
+
+  std::vector<Eigen::Index> reached_;
+  std::array<Eigen::SparseMatrix<double>, 3> a_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> real_lu_;
+};
 
 // feed[j][m]: the full model's Taylor coefficients at μ_m less the kept poles' (R/(s − λ) →
 // R·g, −R·g², R·g³ with g = 1/(μ − λ)); a kept pole the force does not reach is left out (its
@@ -263,8 +312,6 @@ Status truncated_feed(const System& system, const ModalReduction& reduction, Cas
       linearised_g(system, Eigen::VectorXd::Zero(system.size()));
   const StaticOperator static_operator(system, g_matrix);
   const auto [a1, a2] = expansion_matrices(system, g_matrix, static_operator);
-  const std::array<Eigen::SparseMatrix<Complex>, 3> a{static_operator.matrix().cast<Complex>(),
-                                                      a1.cast<Complex>(), a2.cast<Complex>()};
   // The pattern of the entries that are not zero (the DEAs' Jacobians at u = 0 are stored zeros).
   Eigen::SparseMatrix<double> pattern =
       static_operator.matrix().cwiseAbs() + a1.cwiseAbs() + a2.cwiseAbs();
@@ -273,6 +320,7 @@ Status truncated_feed(const System& system, const ModalReduction& reduction, Cas
       reduction.inputs.begin() + static_cast<std::ptrdiff_t>(cascade.first_input),
       reduction.inputs.end());
   const std::vector<Eigen::Index> reached = reached_unknowns(pattern, directions);
+  ReachedOperator reached_operator({static_operator.matrix(), a1, a2}, reached);
   for (const Cascade::Source& source : cascade.sources)
     for (const auto& [index, c] : source.voltage.terms)
       if (std::binary_search(reached.begin(), reached.end(), index))
@@ -285,7 +333,7 @@ Status truncated_feed(const System& system, const ModalReduction& reduction, Cas
   for (Eigen::Index m = 0; m < cascade.exponents.mu.size(); ++m) {
     const Complex mu = cascade.exponents.mu[m];
     std::vector<std::array<Eigen::VectorXcd, 3>> taylor;
-    if (Status full = full_response_at(mu, a, reached, directions, n, taylor); !full.ok())
+    if (Status full = reached_operator.taylor_at(mu, directions, n, taylor); !full.ok())
       return full;
     for (size_t j = 0; j < directions.size(); ++j) {
       const auto input = static_cast<Eigen::Index>(cascade.first_input + j);
