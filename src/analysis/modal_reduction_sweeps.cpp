@@ -321,6 +321,20 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& given, const std::vect
   return finish(Status::success());
 }
 
+double extremes_difference(const PeriodicResult& reduced, const PeriodicResult& full) {
+  if (reduced.minimum.size() != full.minimum.size() || full.values.size() != full.minimum.size())
+    return -1.0;
+  double worst = 0.0;
+  for (size_t p = 0; p < full.minimum.size(); ++p) {
+    double largest = 0.0;
+    for (double v : full.values[p]) largest = std::max(largest, std::abs(v));
+    const double difference = std::max(std::abs(reduced.minimum[p] - full.minimum[p]),
+                                       std::abs(reduced.maximum[p] - full.maximum[p]));
+    worst = std::max(worst, largest > 0.0 ? difference / largest : difference);
+  }
+  return worst;
+}
+
 double periodic_difference(const PeriodicResult& reduced, const PeriodicResult& full) {
   if (reduced.values.size() != full.values.size()) return -1.0;
   double worst = 0.0;

@@ -257,14 +257,16 @@ class ReachedOperator {
       const Eigen::VectorXcd b = restrict(d);
       std::array<Eigen::VectorXcd, 3> parts;
       for (int part = 0; part < 2; ++part) {
-        const Eigen::VectorXd rhs = part == 0 ? Eigen::VectorXd(b.real()) : Eigen::VectorXd(b.imag());
+        const Eigen::VectorXd rhs =
+            part == 0 ? Eigen::VectorXd(b.real()) : Eigen::VectorXd(b.imag());
         const Eigen::VectorXd z0 = real_lu_.solve(rhs);
         const Eigen::VectorXd z1 = real_lu_.solve(-(slope * z0));
         const Eigen::VectorXd z2 = real_lu_.solve(-(slope * z1) - a_[2] * z0);
         const std::array<const Eigen::VectorXd*, 3> z{&z0, &z1, &z2};
         for (size_t r = 0; r < 3; ++r)
-          parts[r] = part == 0 ? Eigen::VectorXcd(z[r]->cast<Complex>())
-                               : Eigen::VectorXcd(parts[r] + Complex(0.0, 1.0) * z[r]->cast<Complex>());
+          parts[r] = part == 0
+                         ? Eigen::VectorXcd(z[r]->cast<Complex>())
+                         : Eigen::VectorXcd(parts[r] + Complex(0.0, 1.0) * z[r]->cast<Complex>());
       }
       if (Status expanded = expand(parts, s, n, taylor); !expanded.ok()) return expanded;
     }
@@ -292,11 +294,11 @@ class ReachedOperator {
     return Status::success();
   }
   static Status singular_at(Complex mu) {
-    return Status::failure("the squared voltages' exponent s = " +
-                           format_number("%.6g", mu.real()) + " + " +
-                           format_number("%.6g", mu.imag()) +
-                           "j 1/s is a pole of the beam: its response there has no particular "
-                           "state (the shooting method serves it)");
+    return Status::failure(
+        "the squared voltages' exponent s = " + format_number("%.6g", mu.real()) + " + " +
+        format_number("%.6g", mu.imag()) +
+        "j 1/s is a pole of the beam: its response there has no particular "
+        "state (the shooting method serves it)");
   }
 
   std::vector<Eigen::Index> reached_;

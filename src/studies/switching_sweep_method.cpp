@@ -44,6 +44,15 @@ Status exact_cascade_serves(const System& system, SwitchingSweepOptions& options
   return Status::success();
 }
 
+// An automatic reduction's band (the sweep's highest frequency) and tolerance (model.tolerance),
+// unless given.
+void set_reduction_band(const Model& model, SwitchingSweepOptions& options) {
+  if (options.reduction.band > 0.0) return;
+  const std::vector<double> frequencies = switching_frequencies(options);
+  options.reduction.band = *std::max_element(frequencies.begin(), frequencies.end());
+  options.reduction.tolerance = model.scene.model.tolerance;
+}
+
 }  // namespace
 
 SwitchingSweepOptions resolve_sweep_method(const Model& model, const SwitchingSweepOptions& given,
@@ -72,6 +81,20 @@ SwitchingSweepOptions resolve_sweep_method(const Model& model, const SwitchingSw
           "response to them, each in closed form");
       return options;
     }
+    if (!large && system.size() > options.dense_limit && exact_periodic_applies(system).ok()) {
+      options.method = SwitchingSweepMethod::exact;
+      options.reduce = true;
+      set_reduction_band(model, options);
+      notes.push_back(
+          "method: reduced cascade, since the network's only nonlinearity is the "
+          "DEAs' force k_F·u² (" +
+          why + ") and its " + std::to_string(system.size()) + " unknowns are more than the " +
+          std::to_string(options.dense_limit) +
+          " up to which the exact cascade decomposes it densely; the modes below f_c, "
+          "the beam's truncated part exact at the squared voltages' exponents but for "
+          "its transients after each edge, checked below");
+      return options;
+    }
     options.method = SwitchingSweepMethod::shooting;
     notes.push_back("method: shooting, since the network is nonlinear (" + why +
                     (large ? "); the exact method needs a linear one, or a cascade"
@@ -81,11 +104,7 @@ SwitchingSweepOptions resolve_sweep_method(const Model& model, const SwitchingSw
   options.method = SwitchingSweepMethod::exact;
   if (options.reduce || system.size() <= options.dense_limit) return options;
   options.reduce = true;
-  if (!(options.reduction.band > 0.0)) {
-    const std::vector<double> frequencies = switching_frequencies(options);
-    options.reduction.band = *std::max_element(frequencies.begin(), frequencies.end());
-    options.reduction.tolerance = model.scene.model.tolerance;
-  }
+  set_reduction_band(model, options);
   notes.push_back(
       "method: reduced, since the network's " + std::to_string(system.size()) +
       " unknowns are more than the " + std::to_string(options.dense_limit) +

@@ -20,31 +20,22 @@
 #include "emnet/elements/voltage_source.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene_reader.hpp"
+#include "emnet/studies/design_study.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "emnet/studies/switching_sweep.hpp"
 
 namespace emnet {
 namespace {
 
-// The largest |difference| of the extremes, relative to the exact swing of each probe.
-double extremes_difference(const PeriodicResult& reduced, const PeriodicResult& exact) {
-  double worst = 0.0;
-  for (size_t p = 0; p < exact.minimum.size(); ++p) {
-    const double swing = exact.maximum[p] - exact.minimum[p];
-    worst = std::max({worst, std::abs(reduced.minimum[p] - exact.minimum[p]) / swing,
-                      std::abs(reduced.maximum[p] - exact.maximum[p]) / swing});
-  }
-  return worst;
-}
-
 // The tweezer jaw (35 segments, 222 unknowns: two DEAs behind 4.7 MOhm, a Kelvin–Voigt cluster of
 // about 65 real poles at −1/τ = −4712 1/s). Arnoldi stops at the cluster and keeps 5 modes and
 // the two RC poles; the beam's truncated part is exact but for its transients after each edge.
 // The tip and body-end extremes sit where those have decayed (e^{−4712·h}, h ≥ 10 ms), so they
-// agree with the exact cascade to the two decompositions' rounding (measured 3e-12 of the swing;
-// 1e-9 leaves room for it). The samples differ right after the edges by the transients left out:
-// the stated estimate (their start) covers the measured difference within a factor 2 (the
-// cluster's transient decays monotonically from its start; the factor is for the fast poles').
+// agree with the exact cascade to the two decompositions' rounding (extremes_difference, relative
+// to each probe's largest |value|: measured 5e-12; 1e-9 leaves room for it). The samples differ
+// right after the edges by the transients left out: the stated estimate (their start) covers the
+// measured difference within a factor 2 (the cluster's transient decays monotonically from its
+// start; the factor is for the fast poles').
 TEST(ReducedCascade, TweezerJawExtremesAgreeWithTheExactCascade) {
   for (const char* hz : {"8 Hz", "5.5 Hz", "1 Hz"}) {
     const std::string at(hz);
@@ -160,6 +151,132 @@ TEST(ReducedCascade, RefusesABackCoupledDea) {
   x.terms = {{velocity, 1.0}};
   x.integrations = 1;
   EXPECT_FALSE(reduced.solve(system, {x}, 0.2).status.ok());
+}
+
+Scene tweezer_jaw() {
+  return read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/tweezer-jaw.toml", {});
+}
+
+// A sweep of the scene's outputs at `frequencies`, without the first mode and the rotation.
+SwitchingSweepOptions sweep_at(const Model& model, const std::vector<double>& frequencies) {
+  SwitchingSweepOptions options;
+  options.frequencies = frequencies;
+  options.outputs = switching_sweep_outputs(model, {});
+  options.first_mode = false;
+  options.largest_rotation = false;
+  return options;
+}
+
+// The jaw's sweep by the exact cascade at a few frequencies: the reference of the sweeps below.
+SwitchingSweepResult exact_sweep(const Model& model, const std::vector<double>& frequencies) {
+  SwitchingSweepOptions options = sweep_at(model, frequencies);
+  options.method = SwitchingSweepMethod::exact;
+  return run_switching_sweep(model, model.scene, options);
+}
+
+// The largest |difference| of two sweeps' peaks, relative to each output's largest |peak|.
+double peaks_difference(const SwitchingSweepResult& a, const SwitchingSweepResult& b) {
+  double worst = 0.0;
+  for (size_t p = 0; p < b.outputs.size(); ++p) {
+    double largest = 0.0, difference = 0.0;
+    for (size_t k = 0; k < b.frequencies.size(); ++k) {
+      largest =
+          std::max({largest, std::abs(b.outputs[p].left[k]), std::abs(b.outputs[p].right[k])});
+      difference = std::max({difference, std::abs(a.outputs[p].left[k] - b.outputs[p].left[k]),
+                             std::abs(a.outputs[p].right[k] - b.outputs[p].right[k])});
+    }
+    worst = std::max(worst, difference / largest);
+  }
+  return worst;
+}
+
+// `sweep-switching --reduce` on the jaw: its check against the full exact cascade states the
+// error of the peaks it prints (to rounding: 1e-9, as above) apart from the samples' (the
+// transients after the edges, above 1e-4), and judges the tolerance on the peaks.
+TEST(ReducedCascade, TheSweepsCheckStatesTheErrorOfThePeaksItPrints) {
+  const Model model = prepare_model(tweezer_jaw());
+  const std::vector<double> frequencies{1.0, 3.0, 5.5, 7.0};
+  SwitchingSweepOptions options = sweep_at(model, frequencies);
+  options.reduce = true;
+  options.reduction.band = 7.0;
+  const SwitchingSweepResult reduced = run_switching_sweep(model, model.scene, options);
+  ASSERT_TRUE(reduced.status.ok()) << reduced.status.message;
+  EXPECT_EQ(reduced.method, Method::reduced);
+  ASSERT_TRUE(reduced.reduction.has_value());
+  const SwitchingSweepReductionCheck& check = *reduced.reduction;
+  EXPECT_TRUE(check.cascade);
+  EXPECT_TRUE(check.against_full);
+  EXPECT_LT(check.measured_extremes_error, 1e-9);
+  EXPECT_GT(check.measured_error, 1e-4);
+  EXPECT_TRUE(check.tolerance_met);
+  const SwitchingSweepResult exact = exact_sweep(model, frequencies);
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+  EXPECT_LT(peaks_difference(reduced, exact), 1e-9);
+}
+
+// Above the dense limit (lowered to 100 unknowns for the jaw's 222) the automatic method takes
+// the reduced cascade, not shooting, and says so; its check against a wider reduction (which
+// stops at the same cluster) states at least the truncated transients' estimate, which is above
+// the peaks' actual error against the exact cascade.
+TEST(ReducedCascade, AutomaticAboveTheDenseLimitStatesItsEstimate) {
+  const Model model = prepare_model(tweezer_jaw());
+  const std::vector<double> frequencies{2.0, 6.0};
+  SwitchingSweepOptions options = sweep_at(model, frequencies);
+  options.dense_limit = 100;
+  const SwitchingSweepResult reduced = run_switching_sweep(model, model.scene, options);
+  ASSERT_TRUE(reduced.status.ok()) << reduced.status.message;
+  EXPECT_EQ(reduced.method, Method::reduced);
+  bool said = false;
+  for (const std::string& note : reduced.notes)
+    said |= note.find("method: reduced cascade") != std::string::npos;
+  EXPECT_TRUE(said);
+  ASSERT_TRUE(reduced.reduction.has_value());
+  EXPECT_FALSE(reduced.reduction->against_full);
+  EXPECT_TRUE(reduced.reduction->cascade);
+  const SwitchingSweepResult exact = exact_sweep(model, frequencies);
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+  const double actual = peaks_difference(reduced, exact);
+  EXPECT_LT(actual, 1e-9);
+  EXPECT_GT(reduced.reduction->stated_error(), 1e-4);  // the transients' start
+  EXPECT_GE(reduced.reduction->stated_error(), actual);
+}
+
+// A design study of the jaw (a cascade above 150 unknowns) sweeps every variant by the reduced
+// cascade after checking it on the nominal scene, and says so; each variant's columns are its
+// exact cascade's to 1e-9 of the largest peak (rounding, as above).
+TEST(ReducedCascade, ADesignStudyOfTheJawReducesEachVariantsSweep) {
+  const Scene jaw = tweezer_jaw();
+  VariantTable table;
+  table.keys = {"circuit.R_A.value"};
+  table.rows = {{4.0e6}, {5.5e6}};
+  DesignStudyOptions options;
+  options.analyses = {StudyAnalysis::switching_sweep};
+  options.sweep_frequencies = {2.0, 4.0, 6.0};
+  options.report_frequencies = {4.0};
+  options.threads = 1;
+  const DesignStudyResult study = run_design_study(jaw, table, options);
+  ASSERT_TRUE(study.status.ok()) << study.status.message;
+  bool said = false;
+  for (const std::string& note : study.notes)
+    said |= note.find("the reduced cascade for every variant") != std::string::npos;
+  EXPECT_TRUE(said);
+  for (size_t v = 0; v < table.rows.size(); ++v) {
+    ASSERT_TRUE(study.rows[v].status.ok()) << study.rows[v].status.message;
+    const Model model =
+        prepare_model(read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/tweezer-jaw.toml",
+                                 {"circuit.R_A.value=" + std::to_string(table.rows[v][0])}));
+    const SwitchingSweepResult exact = exact_sweep(model, {4.0});
+    ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+    // Columns: sweep.peak_hz, then each output's min and max at 4 Hz.
+    const std::vector<double>& values = study.rows[v].values;
+    ASSERT_EQ(values.size(), 1 + 2 * exact.outputs.size());
+    for (size_t p = 0; p < exact.outputs.size(); ++p) {
+      const double scale =
+          std::max(std::abs(exact.outputs[p].left[0]), std::abs(exact.outputs[p].right[0]));
+      EXPECT_NEAR(values[1 + 2 * p], exact.outputs[p].left[0], 1e-9 * scale);
+      EXPECT_NEAR(values[2 + 2 * p], exact.outputs[p].right[0], 1e-9 * scale);
+    }
+  }
 }
 
 }  // namespace

@@ -238,6 +238,8 @@ class ReducedPeriodicSolver {
   struct Cascade;
   /// The reduced model.
   const ModalReduction& reduction() const { return reduction_; }
+  /// Whether the network is a cascade (the reduced cascade, above).
+  bool cascade() const { return cascade_ != nullptr; }
   /// As PeriodicSolver::solve, and with the same sampling and global extremes
   /// (src/analysis/exponential_series.hpp): samples at t = T·s/samples.
   PeriodicResult solve(const System& system, const std::vector<Probe>& probes, double period,
@@ -267,5 +269,9 @@ class ReducedPeriodicSolver {
 /// max over probes of max over samples |reduced − full| / max over samples |full|; both solved
 /// with the same samples. −1 when they do not match.
 double periodic_difference(const PeriodicResult& reduced, const PeriodicResult& full);
+
+/// max over probes of the larger |difference| of the periodic minimum and maximum, relative to
+/// max over samples |full| (the basis of periodic_difference). −1 when they do not match.
+double extremes_difference(const PeriodicResult& reduced, const PeriodicResult& full);
 
 }  // namespace emnet
