@@ -438,6 +438,85 @@ double forced_value(const ExponentialSeries::ForcedTerms& c, const Eigen::Vector
   return sum.real();
 }
 
+// The first stage's pieces a probe's series is made of (solve_cascade).
+struct LinearStage {
+  const std::vector<double>& edges;
+  const InputPieces& pieces;
+  const std::vector<Eigen::VectorXcd>&particular, &slope, &homogeneous;
+};
+
+// A probe's series: the linear part, the kept poles' forced part and the truncated
+// feed-through; `jumps` gets the latter's jump at each interval's start (with the inputs'
+// static correction's), where the truncated transients start.
+ExponentialSeries cascade_probe_series(
+    const Cascade& cascade, const ModalReduction& reduction, const Probe& probe,
+    const LinearStage& stage, const ForcedModalResponse& response,
+    const std::vector<std::vector<ExponentialSeries::ForcedTerms>>& squares,
+    std::vector<double>& jumps) {
+  const std::vector<double>& edges = stage.edges;
+  const InputPieces& pieces = stage.pieces;
+  const size_t intervals = edges.size() - 1;
+  const Eigen::Index forces = static_cast<Eigen::Index>(cascade.sources.size()),
+                     terms = cascade.exponents.mu.size();
+  const Eigen::VectorXcd g = cascade.row(reduction, probe);
+  const std::vector<double> d = cascade.feed_of_inputs(reduction, probe);
+  ExponentialSeries s =
+      affine_series(g, d, pieces, stage.particular, stage.slope, stage.homogeneous);
+  Eigen::MatrixXcd rows(forces * terms, 3);  // [j·M + m][r]: probe·feed[j][m][r]
+  for (Eigen::Index j = 0; j < forces; ++j)
+    for (Eigen::Index m = 0; m < terms; ++m)
+      for (int r = 0; r < 3; ++r) {
+        Complex t = 0.0;
+        for (const auto& [index, c] : probe.terms)
+          t += c * cascade.feed[static_cast<size_t>(j)][static_cast<size_t>(m)]
+                               [static_cast<size_t>(r)][index];
+        rows(j * terms + m, r) = t;
+      }
+  std::vector<double> truncated_start(intervals), truncated_end(intervals);
+  for (size_t i = 0; i < intervals; ++i) {
+    const double h = edges[i + 1] - edges[i];
+    const ExponentialSeries::ForcedTerms truncated = truncated_terms(rows, squares, i, terms);
+    truncated_start[i] = forced_value(truncated, cascade.exponents.mu, 0.0);
+    truncated_end[i] = forced_value(truncated, cascade.exponents.mu, h);
+    for (size_t w = 0; w < d.size(); ++w) {
+      truncated_start[i] += d[w] * pieces.value[i][w];
+      truncated_end[i] += d[w] * (pieces.value[i][w] + h * pieces.slope[i][w]);
+    }
+    const Eigen::RowVectorXcd through_modes = g.transpose() * response.coefficients[i];
+    ExponentialSeries::ForcedTerms kept(terms, 3);
+    for (Eigen::Index m = 0; m < terms; ++m)
+      for (int r = 0; r < 3; ++r) kept(m, r) = through_modes[3 * m + r];
+    s.forced.push_back(kept + truncated);
+  }
+  jumps.clear();
+  for (size_t i = 0; i < intervals; ++i)
+    jumps.push_back(std::abs(truncated_start[i] - truncated_end[(i + intervals - 1) % intervals]));
+  return s;
+}
+
+// The truncated poles' transients left out, at the interval start where they add up most:
+// Σ_j |δ_j|·e^{−r·(t_i − t_j)} over the edges j of a period (δ_j: the jump there), the periods
+// before through 1/(1 − e^{−r·T}), r the largest kept |pole|. Every truncated pole is at least
+// as large, so a real one decays at least this fast from its start, its largest value; an
+// oscillatory one with less damping than that may ring longer (an estimate then).
+double transients_left_out(const std::vector<double>& edges, const std::vector<double>& jumps,
+                           double rate) {
+  const double period = edges.back();
+  const double per_period = std::exp(-rate * period);
+  const double earlier = per_period < 0.999 ? 1.0 / (1.0 - per_period) : 1000.0;
+  double worst = 0.0;
+  for (size_t i = 0; i < jumps.size(); ++i) {
+    double sum = 0.0;
+    for (size_t j = 0; j < jumps.size(); ++j) {
+      double gap = edges[i] - edges[j];
+      if (gap < 0.0) gap += period;
+      sum += jumps[j] * std::exp(-rate * gap);
+    }
+    worst = std::max(worst, sum * earlier);
+  }
+  return worst;
+}
+
 }  // namespace
 
 PeriodicResult ReducedPeriodicSolver::solve_cascade(const System& system,
@@ -455,7 +534,7 @@ PeriodicResult ReducedPeriodicSolver::solve_cascade(const System& system,
   const size_t intervals = edges.size() - 1;
   const InputPieces pieces = input_pieces(system, waveforms_, edges);
   const auto waveforms = static_cast<Eigen::Index>(cascade.first_input);
-  const Eigen::Index forces = cascade.beta.cols() - waveforms, terms = cascade.exponents.mu.size();
+  const Eigen::Index forces = cascade.beta.cols() - waveforms;
 
   // The first stage: the linear network's periodic state under the sources, the DEA voltages
   // and their squares.
@@ -497,51 +576,19 @@ PeriodicResult ReducedPeriodicSolver::solve_cascade(const System& system,
   for (size_t i = 0; i < intervals; ++i)
     homogeneous[i] = start_of[i] - response.start[i] - particular[i];
 
-  // Each probe: the linear part, the kept poles' forced part and the truncated feed-through;
-  // the latter's jump at each edge (with the inputs' static correction's) is where the
-  // truncated transients start.
   std::vector<ExponentialSeries> series;
-  std::vector<double> jump(probes.size(), 0.0);
-  for (size_t p = 0; p < probes.size(); ++p) {
-    const Eigen::VectorXcd g = cascade.row(reduction_, probes[p]);
-    const std::vector<double> d = cascade.feed_of_inputs(reduction_, probes[p]);
-    ExponentialSeries s = affine_series(g, d, pieces, particular, slope, homogeneous);
-    Eigen::MatrixXcd rows(forces * terms, 3);
-    for (Eigen::Index j = 0; j < forces; ++j)
-      for (Eigen::Index m = 0; m < terms; ++m)
-        for (int r = 0; r < 3; ++r) {
-          Complex t = 0.0;
-          for (const auto& [index, c] : probes[p].terms)
-            t += c * cascade.feed[static_cast<size_t>(j)][static_cast<size_t>(m)]
-                                 [static_cast<size_t>(r)][index];
-          rows(j * terms + m, r) = t;
-        }
-    std::vector<double> truncated_start(intervals), truncated_end(intervals);
-    for (size_t i = 0; i < intervals; ++i) {
-      const double h = edges[i + 1] - edges[i];
-      const ExponentialSeries::ForcedTerms truncated = truncated_terms(rows, squares, i, terms);
-      truncated_start[i] = forced_value(truncated, cascade.exponents.mu, 0.0);
-      truncated_end[i] = forced_value(truncated, cascade.exponents.mu, h);
-      for (size_t w = 0; w < d.size(); ++w) {
-        truncated_start[i] += d[w] * pieces.value[i][w];
-        truncated_end[i] += d[w] * (pieces.value[i][w] + h * pieces.slope[i][w]);
-      }
-      const Eigen::RowVectorXcd through_modes = g.transpose() * response.coefficients[i];
-      ExponentialSeries::ForcedTerms kept(terms, 3);
-      for (Eigen::Index m = 0; m < terms; ++m)
-        for (int r = 0; r < 3; ++r) kept(m, r) = through_modes[3 * m + r];
-      s.forced.push_back(kept + truncated);
-    }
-    for (size_t i = 0; i < intervals; ++i)
-      jump[p] = std::max(
-          jump[p], std::abs(truncated_start[i] - truncated_end[(i + intervals - 1) % intervals]));
-    series.push_back(std::move(s));
-  }
+  std::vector<std::vector<double>> jumps(probes.size());
+  for (size_t p = 0; p < probes.size(); ++p)
+    series.push_back(cascade_probe_series(cascade, reduction_, probes[p],
+                                          {edges, pieces, particular, slope, homogeneous}, response,
+                                          squares, jumps[p]));
   sample_periodic_series(cascade.lambda, edges, series, samples, result, cascade.exponents.mu);
+  const double rate = moduli(cascade.lambda).maxCoeff();
   for (size_t p = 0; p < probes.size(); ++p) {
     const double scale = std::max(std::abs(result.minimum[p]), std::abs(result.maximum[p]));
     if (scale > 0.0)
-      result.truncation_estimate = std::max(result.truncation_estimate, jump[p] / scale);
+      result.truncation_estimate =
+          std::max(result.truncation_estimate, transients_left_out(edges, jumps[p], rate) / scale);
   }
   return finish(Status::success());
 }

@@ -19,6 +19,7 @@
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/switching_sweep.hpp"
+#include "small_cascade.hpp"
 
 namespace emnet {
 namespace {
@@ -113,42 +114,8 @@ TEST(PeriodicCascade, TweezerAgreesWithASettledTransient) {
   EXPECT_LT(difference, 1e-7);
 }
 
-// One DEA behind a resistor, pushing a mass on a spring and a damper: a square source with
-// ramps (rise and fall 1/50 of the period) at 5 Hz through R·C = `tau`; the mechanical poles at
-// −a and −b (m = 1 kg, c = a + b, k = a·b), so either can be placed on an exponent of u².
-struct SmallCascade {
-  Network network;
-  NodeId electrode = ground, velocity = ground;
-};
-
-std::unique_ptr<SmallCascade> small_cascade(double tau, double a, double b,
-                                            bool back_coupling = false) {
-  auto made = std::make_unique<SmallCascade>();
-  Network& network = made->network;
-  const double capacitance = 1e-9, resistance = tau / capacitance;
-  const NodeId in = network.add_node("in", Domain::electrical, "source");
-  made->electrode = network.add_node("e", Domain::electrical, "electrode");
-  made->velocity = network.add_node("v", Domain::translational, "mass velocity");
-  network.add<VoltageSource>("V", in, ground, Waveform::square(0.0, 1000.0, 5.0, 0.5, 0.0, 0.004),
-                             Domain::electrical);
-  network.add<Conductance>("R", in, made->electrode, 1.0 / resistance);
-  network.add<Dea>("D", made->electrode, ground, capacitance, 1e-6,
-                   std::vector<Dea::Coupling>{{made->velocity, 1.0}}, back_coupling);
-  network.add<Capacitor>("m", made->velocity, ground, 1.0);
-  network.add<Conductance>("c", made->velocity, ground, a + b);
-  network.add<Inductor>("k", made->velocity, ground, 1.0 / (a * b), Domain::translational);
-  return made;
-}
-
-// The displacement of the mass (the velocity integrated once).
-Probe displacement(NodeId velocity) {
-  Probe probe;
-  probe.name = "x";
-  probe.unit = "m";
-  probe.terms = {{velocity, 1.0}};
-  probe.integrations = 1;
-  return probe;
-}
+using testing::displacement;
+using testing::small_cascade;
 
 // The small network with ramps in its source (the squares' polynomial factors): the cascade's
 // 256 samples and its extremes against shooting at rtol 1e-11 and 8192 samples. The mass's

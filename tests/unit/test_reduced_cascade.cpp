@@ -13,16 +13,12 @@
 
 #include "emnet/analysis/modal_reduction.hpp"
 #include "emnet/analysis/periodic.hpp"
-#include "emnet/elements/capacitor.hpp"
-#include "emnet/elements/conductance.hpp"
-#include "emnet/elements/dea.hpp"
-#include "emnet/elements/inductor.hpp"
-#include "emnet/elements/voltage_source.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/design_study.hpp"
 #include "emnet/studies/resolve.hpp"
 #include "emnet/studies/switching_sweep.hpp"
+#include "small_cascade.hpp"
 
 namespace emnet {
 namespace {
@@ -68,48 +64,35 @@ TEST(ReducedCascade, TweezerJawExtremesAgreeWithTheExactCascade) {
   }
 }
 
-// One DEA behind a resistor (τ = 10 ms) pushing a mass on a spring and a damper with real poles
-// −30 and −300 1/s, a square source with ramps (rise and fall 4 ms: the squares' polynomial
-// factors). With the cut-off between the poles, the −300 pole is truncated: its particular
-// state is exact (the feed-through at the exponents 0, −100, −200), its transient after each
-// edge left out. That transient is one real exponential decaying from its start, so the stated
-// estimate (the start) bounds the difference from the exact cascade at every sample; 1e-12 of
-// the swing is rounding. With every pole kept the reduced cascade is the exact one to rounding.
-TEST(ReducedCascade, ATruncatedPoleLeavesOnlyItsTransientWithRamps) {
-  Network network;
-  const double capacitance = 1e-9, tau = 0.01, a = 30.0, b = 300.0;
-  const NodeId in = network.add_node("in", Domain::electrical, "source");
-  const NodeId electrode = network.add_node("e", Domain::electrical, "electrode");
-  const NodeId velocity = network.add_node("v", Domain::translational, "mass velocity");
-  network.add<VoltageSource>("V", in, ground, Waveform::square(0.0, 1000.0, 5.0, 0.5, 0.0, 0.004),
-                             Domain::electrical);
-  network.add<Conductance>("R", in, electrode, capacitance / tau);
-  network.add<Dea>("D", electrode, ground, capacitance, 1e-6,
-                   std::vector<Dea::Coupling>{{velocity, 1.0}}, false);
-  network.add<Capacitor>("m", velocity, ground, 1.0);
-  network.add<Conductance>("c", velocity, ground, a + b);
-  network.add<Inductor>("k", velocity, ground, 1.0 / (a * b), Domain::translational);
-  const System system = network.assemble();
-  Probe x;
-  x.name = "x";
-  x.unit = "m";
-  x.terms = {{velocity, 1.0}};
-  x.integrations = 1;
-  const PeriodicResult exact = PeriodicSolver(system).solve(system, {x}, 0.2, 256);
+using testing::displacement;
+using testing::small_cascade;
+
+// The small cascade against the exact cascade, with the −300 1/s pole truncated (the cut-off
+// between the circuit's poles and it) and with every pole kept. Truncated, its particular state
+// is exact (the feed-through at the squares' exponents), its transient after each edge left out:
+// one real exponential decaying from its start, so the stated estimate (the start) bounds the
+// difference at every sample; 1e-12 of the largest value is rounding. With every pole kept the
+// reduced cascade is the exact one to rounding (1e-10). `inductance` 0: the RC pole −100 1/s
+// (real exponents 0, −100, −200); 1e5 H: the RLC pair −50 ± 86.6j 1/s (complex exponents, the
+// complex factorisation).
+void check_the_small_cascade(double inductance, double cutoff_hz, size_t kept) {
+  const auto made = small_cascade(0.01, 30.0, 300.0, false, inductance);
+  const System system = made->network.assemble();
+  const std::vector<Probe> probes{displacement(made->velocity)};
+  const PeriodicResult exact = PeriodicSolver(system).solve(system, probes, 0.2, 256);
   ASSERT_TRUE(exact.status.ok()) << exact.status.message;
-  const double swing = exact.maximum[0] - exact.minimum[0];
 
   ReductionOptions truncating;
   truncating.band = 5.0;
-  truncating.cutoff_hz = 200.0 / (2.0 * M_PI);  // between |−100| (the RC pole) and |−300|
+  truncating.cutoff_hz = cutoff_hz;
   const ReducedPeriodicSolver reduced(system, truncating);
   ASSERT_TRUE(reduced.reduction().status.ok()) << reduced.reduction().status.message;
-  EXPECT_EQ(reduced.reduction().kept.size(), 2u);  // −30 and the RC pole
-  const PeriodicResult solved = reduced.solve(system, {x}, 0.2, 256);
+  EXPECT_EQ(reduced.reduction().kept.size(), kept);
+  const PeriodicResult solved = reduced.solve(system, probes, 0.2, 256);
   ASSERT_TRUE(solved.status.ok()) << solved.status.message;
   const double samples = periodic_difference(solved, exact);
-  std::printf("one pole truncated: samples %.3e, estimate %.3e, extremes %.3e\n", samples,
-              solved.truncation_estimate, extremes_difference(solved, exact));
+  std::printf("L = %g H, one pole truncated: samples %.3e, estimate %.3e, extremes %.3e\n",
+              inductance, samples, solved.truncation_estimate, extremes_difference(solved, exact));
   EXPECT_GT(samples, 1e-9);  // the transient is there to be left out
   EXPECT_LE(samples, solved.truncation_estimate + 1e-12);
 
@@ -118,39 +101,33 @@ TEST(ReducedCascade, ATruncatedPoleLeavesOnlyItsTransientWithRamps) {
   all.cutoff_hz = 1e6;
   const ReducedPeriodicSolver whole(system, all);
   ASSERT_TRUE(whole.reduction().status.ok()) << whole.reduction().status.message;
-  const PeriodicResult complete = whole.solve(system, {x}, 0.2, 256);
+  const PeriodicResult complete = whole.solve(system, probes, 0.2, 256);
   ASSERT_TRUE(complete.status.ok()) << complete.status.message;
   EXPECT_LT(periodic_difference(complete, exact), 1e-10);
   EXPECT_LT(complete.truncation_estimate, 1e-10);
-  (void)swing;
+}
+
+TEST(ReducedCascade, ATruncatedPoleLeavesOnlyItsTransientWithRamps) {
+  // Cut-off 200/2π Hz: keeps −30 and the RC pole −100.
+  check_the_small_cascade(0.0, 200.0 / (2.0 * M_PI), 2);
+}
+
+TEST(ReducedCascade, ComplexCircuitPolesGiveComplexExponents) {
+  // Cut-off 200/2π Hz: keeps −30 and the pair −50 ± 86.6j (|s| = 100), as one kept pole.
+  check_the_small_cascade(1e5, 200.0 / (2.0 * M_PI), 2);
 }
 
 // A DEA with its back-coupling is not a cascade: the reduction says so and every solve fails.
 TEST(ReducedCascade, RefusesABackCoupledDea) {
-  Network network;
-  const NodeId in = network.add_node("in", Domain::electrical, "source");
-  const NodeId electrode = network.add_node("e", Domain::electrical, "electrode");
-  const NodeId velocity = network.add_node("v", Domain::translational, "mass velocity");
-  network.add<VoltageSource>("V", in, ground, Waveform::square(0.0, 1000.0, 5.0, 0.5, 0.0, 0.0),
-                             Domain::electrical);
-  network.add<Conductance>("R", in, electrode, 1e-7);
-  network.add<Dea>("D", electrode, ground, 1e-9, 1e-6, std::vector<Dea::Coupling>{{velocity, 1.0}},
-                   true);
-  network.add<Capacitor>("m", velocity, ground, 1.0);
-  network.add<Conductance>("c", velocity, ground, 330.0);
-  network.add<Inductor>("k", velocity, ground, 1.0 / 9000.0, Domain::translational);
-  const System system = network.assemble();
+  const auto made = small_cascade(0.01, 30.0, 300.0, true);
+  const System system = made->network.assemble();
   ReductionOptions options;
   options.band = 5.0;
   const ReducedPeriodicSolver reduced(system, options);
   EXPECT_FALSE(reduced.reduction().status.ok());
   EXPECT_NE(reduced.reduction().status.message.find("back-coupling"), std::string::npos)
       << reduced.reduction().status.message;
-  Probe x;
-  x.name = "x";
-  x.terms = {{velocity, 1.0}};
-  x.integrations = 1;
-  EXPECT_FALSE(reduced.solve(system, {x}, 0.2).status.ok());
+  EXPECT_FALSE(reduced.solve(system, {displacement(made->velocity)}, 0.2).status.ok());
 }
 
 Scene tweezer_jaw() {

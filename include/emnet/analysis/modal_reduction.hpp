@@ -226,7 +226,11 @@ std::vector<double> check_frequencies(const std::vector<double>& grid,
 /// accuracy. Only the truncated poles' homogeneous transients are left out: each starts at a
 /// switching edge from the jump of their particular state there (the square's slope changes,
 /// its value does not) and decays with their own damping; `truncation_estimate` of the result
-/// is the largest such start relative to each probe's largest |value|.
+/// sums them where they add up most, each decaying at the largest kept |pole| (a bound for real
+/// truncated poles, all at least that large; an estimate for a lightly damped truncated pair),
+/// relative to each probe's largest |value|. Measured on the tweezer jaw: 9e-4 to 4e-3 on the
+/// samples right after an edge, its extremes exact to 1e-11 (the transients decay within
+/// 1 ms, where a deflection's extremes do not lie).
 class ReducedPeriodicSolver {
  public:
   /// Reduces `system` for its drive's waveforms, one input per waveform, and for a cascade one

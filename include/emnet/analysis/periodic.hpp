@@ -45,8 +45,9 @@ struct PeriodicResult {
   std::vector<double> times;                       ///< samples over one period
   std::vector<std::vector<double>> values;         ///< [probe][sample]
   double periodicity_residual = 0.0;  ///< ‖x(T) − x(0)‖ / ‖x(0)‖; above 1e-8: failed
-  /// Reduced cascade (ReducedPeriodicSolver): the truncated poles' transients left out, at
-  /// their start (a switching edge), relative to each probe's largest |value|; 0 otherwise.
+  /// Reduced cascade (ReducedPeriodicSolver): the truncated poles' transients left out, where
+  /// they add up most (each from its start at a switching edge, decaying at least at the
+  /// largest kept |pole|), relative to each probe's largest |value|; 0 otherwise.
   double truncation_estimate = 0.0;
   int newton_iterations = 0;  ///< shooting
   /// Shooting: the one-period IDA runs it took (halved steps, finite differences and the last,
