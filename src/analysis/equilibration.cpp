@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <vector>
 
 namespace emnet {
 
@@ -22,19 +23,56 @@ double power_of_two(double value) {
 void sinkhorn(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>* b,
               double weight, Eigen::VectorXd& row, Eigen::VectorXd& column, int sweeps) {
   const Eigen::Index rows = a.rows(), columns = a.cols();
+  // |a_ij| and |b_ij|·weight once, visited through the compressed arrays: each sum takes the
+  // same products in the same order as entry by entry through the iterators, so the same values,
+  // at a fraction of the time (the fish fin at N = 10 000: hundreds of sweeps).
+  struct Magnitudes {
+    const Eigen::SparseMatrix<double>* m;
+    Eigen::VectorXd values;
+  };
+  std::vector<Magnitudes> parts;
+  auto magnitudes = [&](const Eigen::SparseMatrix<double>& m, double factor) {
+    if (!m.isCompressed()) {
+      parts.push_back({&m, Eigen::VectorXd()});  // visited by its iterators
+      return;
+    }
+    Eigen::VectorXd values(m.nonZeros());
+    for (Eigen::Index k = 0; k < m.nonZeros(); ++k) values[k] = std::abs(m.valuePtr()[k]) * factor;
+    parts.push_back({&m, std::move(values)});
+  };
+  magnitudes(a, 1.0);
+  if (b) magnitudes(*b, weight);
+  const double factor_of[2] = {1.0, weight};
+  Eigen::VectorXd row_sum(rows), column_sum(columns);  // made once, cleared each sweep
   for (int sweep = 0; sweep <= sweeps; ++sweep) {
-    Eigen::VectorXd row_sum = Eigen::VectorXd::Zero(rows),
-                    column_sum = Eigen::VectorXd::Zero(columns);
-    auto visit = [&](const Eigen::SparseMatrix<double>& m, double factor) {
-      for (int col = 0; col < m.outerSize(); ++col)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(m, col); it; ++it) {
-          const double value = std::abs(it.value()) * factor * row[it.row()] * column[col];
-          row_sum[it.row()] += value;
-          column_sum[col] += value;
+    row_sum.setZero();
+    column_sum.setZero();
+    for (size_t part = 0; part < parts.size(); ++part) {
+      const Eigen::SparseMatrix<double>& m = *parts[part].m;
+      if (parts[part].values.size() == 0 && m.nonZeros() > 0) {
+        for (int col = 0; col < m.outerSize(); ++col)
+          for (Eigen::SparseMatrix<double>::InnerIterator it(m, col); it; ++it) {
+            const double value =
+                std::abs(it.value()) * factor_of[part] * row[it.row()] * column[col];
+            row_sum[it.row()] += value;
+            column_sum[col] += value;
+          }
+        continue;
+      }
+      const int* outer = m.outerIndexPtr();
+      const int* inner = m.innerIndexPtr();
+      const double* magnitude = parts[part].values.data();
+      for (Eigen::Index col = 0; col < m.outerSize(); ++col) {
+        const double scale = column[col];
+        double sum = column_sum[col];
+        for (int k = outer[col]; k < outer[col + 1]; ++k) {
+          const double value = magnitude[k] * row[inner[k]] * scale;
+          row_sum[inner[k]] += value;
+          sum += value;
         }
-    };
-    visit(a, 1.0);
-    if (b) visit(*b, weight);
+        column_sum[col] = sum;
+      }
+    }
     // Every non-zero sum s within 2 %: |log s| < 0.02, tested without a logarithm.
     static const double low = std::exp(-0.02), high = std::exp(0.02);
     auto balanced = [](const Eigen::VectorXd& sums) {
