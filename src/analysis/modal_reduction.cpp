@@ -118,6 +118,7 @@ void validate(const ReductionOptions& options) {
     throw OptionError("band",
                       "must be a finite frequency > 0 Hz, got " + std::to_string(options.band));
   if (options.dense_limit < 0) throw OptionError("dense_limit", "must be >= 0");
+  if (options.last_request < 0) throw OptionError("last_request", "must be >= 0");
   if (!(options.cutoff_hz >= 0.0) || !std::isfinite(options.cutoff_hz))
     throw OptionError("cutoff_hz", "must be a finite frequency >= 0 Hz");
 }
@@ -196,19 +197,29 @@ Status find_poles(const System& system, const Eigen::VectorXd& operating_point,
   modal_options.error_bounds = false;  // the left vectors come from keep_group's own iteration
   modal_options.dense_limit =
       options.keep_all ? std::max(n, options.dense_limit) : options.dense_limit;
+  size_t found_before = 0;
   for (int count = 4;; count *= 2) {
     modal_options.count = count;
     modal = run_modes(system, operating_point, modal_options);
     if (!modal.status.ok()) return modal.status.with_context("modes: ");
-    if (modal.complete) break;
     const double largest = largest_pole(modal);
+    const size_t found =
+        modal.modes.size() + modal.overdamped_pairs.size() + modal.real_poles.size();
+    if (modal.method == Method::arnoldi && found > found_before) result.useful_request = count;
+    found_before = std::max(found_before, found);
+    if (modal.complete) break;
     if (largest >= omega_c) break;
     // A request that did not converge has reached a cluster; a larger one would not either.
-    if (!modal.note.empty() || 2 * count > n / 4) {
+    // (Nor, by the caller's word, one beyond options.last_request.)
+    const bool last = options.last_request > 0 && 2 * count > options.last_request;
+    if (!modal.note.empty() || 2 * count > n / 4 || last) {
       result.all_found = false;
       result.note = "poles found up to " + hertz(largest / two_pi) +
                     " of f_c = " + hertz(result.cutoff_hz) +
                     (modal.note.empty() ? "" : " (" + modal.note + ")") +
+                    (last && modal.note.empty()
+                         ? " (no request beyond " + std::to_string(count) + " modes, as asked)"
+                         : "") +
                     "; the static correction carries the rest";
       break;
     }

@@ -50,6 +50,7 @@ struct ColumnLayout {
   // The sweep by the reduced cascade, checked on the nominal scene (choose_the_sweep_method).
   bool sweep_reduced = false;
   double sweep_tolerance = 0.0;  // model.tolerance of the nominal scene
+  int sweep_last_request = 0;    // the nominal reduction's useful request, where it hit a cluster
 };
 
 // A cascade (the DEAs driven through a [[circuit]]) with more unknowns than this has its sweep
@@ -64,6 +65,7 @@ ReductionOptions study_sweep_reduction(const ColumnLayout& layout) {
   ReductionOptions reduction;
   reduction.band = layout.sweep_frequencies.back();
   reduction.tolerance = layout.sweep_tolerance;
+  reduction.last_request = layout.sweep_last_request;
   return reduction;
 }
 
@@ -406,11 +408,19 @@ void choose_the_sweep_method(const Model& nominal, const DesignStudyOptions& opt
   }
   layout.sweep_reduced = true;
   const ModalReduction& model = reduced.reduced_solver->reduction();
+  // Where the nominal's pole search ran into a cluster, the variants ask no more than the request
+  // that found its last pole.
+  if (!model.all_found) layout.sweep_last_request = model.useful_request;
   result.notes.push_back(
       "sweep-switching: the reduced cascade for every variant (" + size + ": " +
       std::to_string(model.kept_modes) + " modes and " + std::to_string(model.kept_real_poles) +
       " real poles kept, the rest exact but for its transients after each edge): " + measured +
-      "; the variants' reductions are not checked one by one");
+      "; the variants' reductions are not checked one by one" +
+      (layout.sweep_last_request > 0
+           ? ", and their pole search stops at the request that found the nominal's last pole (" +
+                 std::to_string(layout.sweep_last_request) +
+                 " modes; a larger one ran into a cluster)"
+           : ""));
 }
 
 ColumnLayout lay_out_the_columns(const Scene& nominal, const DesignStudyOptions& options,

@@ -13,6 +13,7 @@
 
 #include "emnet/analysis/modal_reduction.hpp"
 #include "emnet/analysis/periodic.hpp"
+#include "emnet/core/option_error.hpp"
 #include "emnet/model/model.hpp"
 #include "emnet/scene/scene_reader.hpp"
 #include "emnet/studies/design_study.hpp"
@@ -66,6 +67,49 @@ TEST(ReducedCascade, TweezerJawExtremesAgreeWithTheExactCascade) {
 
 using testing::displacement;
 using testing::small_cascade;
+
+Scene tweezer_jaw() {
+  return read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/tweezer-jaw.toml", {});
+}
+
+// The jaw's pole search: the request for 4 modes finds the 12 poles below the Kelvin–Voigt
+// cluster, the request for 8 runs into the cluster and finds none more (useful_request 4). With
+// last_request 4 (a design study's variants) the search stops there and keeps the same poles;
+// the periodic state is then the same to rounding (1e-12 of each probe's largest value).
+TEST(ReducedCascade, ALastRequestKeepsThePolesWithoutTheClusterRun) {
+  const Model model = prepare_model(tweezer_jaw());
+  const System system = model.network.assemble();
+  const std::vector<Probe> outputs = switching_sweep_outputs(model, {"tip", "body_end"});
+  ReductionOptions options;
+  options.band = 8.0;
+  options.dense_limit = 200;
+  const ReducedPeriodicSolver searched(system, options);
+  ASSERT_TRUE(searched.reduction().status.ok()) << searched.reduction().status.message;
+  EXPECT_FALSE(searched.reduction().all_found);
+  EXPECT_EQ(searched.reduction().useful_request, 4);
+  options.last_request = searched.reduction().useful_request;
+  const ReducedPeriodicSolver stopped(system, options);
+  ASSERT_TRUE(stopped.reduction().status.ok()) << stopped.reduction().status.message;
+  EXPECT_FALSE(stopped.reduction().all_found);
+  EXPECT_NE(stopped.reduction().note.find("no request beyond 4 modes"), std::string::npos)
+      << stopped.reduction().note;
+  ASSERT_EQ(stopped.reduction().kept.size(), searched.reduction().kept.size());
+  for (size_t k = 0; k < stopped.reduction().kept.size(); ++k)
+    EXPECT_LT(std::abs(stopped.reduction().kept[k].pole - searched.reduction().kept[k].pole),
+              1e-9 * std::abs(searched.reduction().kept[k].pole));
+  const PeriodicResult a = searched.solve(system, outputs, 1.0 / 8.0, 64);
+  const PeriodicResult b = stopped.solve(system, outputs, 1.0 / 8.0, 64);
+  ASSERT_TRUE(a.status.ok() && b.status.ok());
+  EXPECT_LT(periodic_difference(b, a), 1e-12);
+  EXPECT_THROW(
+      [] {
+        ReductionOptions bad;
+        bad.band = 1.0;
+        bad.last_request = -1;
+        validate(bad);
+      }(),
+      OptionError);
+}
 
 // The small cascade against the exact cascade, with the −300 1/s pole truncated (the cut-off
 // between the circuit's poles and it) and with every pole kept. Truncated, its particular state
@@ -128,10 +172,6 @@ TEST(ReducedCascade, RefusesABackCoupledDea) {
   EXPECT_NE(reduced.reduction().status.message.find("back-coupling"), std::string::npos)
       << reduced.reduction().status.message;
   EXPECT_FALSE(reduced.solve(system, {displacement(made->velocity)}, 0.2).status.ok());
-}
-
-Scene tweezer_jaw() {
-  return read_scene(std::string(EMNET_SOURCE_DIR) + "/netlists/tweezer-jaw.toml", {});
 }
 
 // A sweep of the scene's outputs at `frequencies`, without the first mode and the rotation.

@@ -109,6 +109,12 @@ struct ReductionOptions {
   /// see above). AC only: ReducedPeriodicSolver turns it off (its feed-through cannot carry
   /// derivatives of a square wave).
   bool series_correction = true;
+  /// > 0: no Arnoldi request (modes asked, doubled from 4) beyond this one; the poles it found
+  /// are kept as if the next had stopped at a cluster (`all_found` false). A design study sets
+  /// it for its variants to the nominal reduction's `useful_request` where a larger request
+  /// only ran into a cluster (ten restarts without a new pole: two thirds of the tweezer jaw's
+  /// pole search).
+  int last_request = 0;
 };
 
 /// The checks of ReductionOptions.
@@ -140,6 +146,8 @@ struct ModalReduction {
   int unreached_poles = 0;  ///< below f_c, but the inputs do not reach them (dropped)
   int clustered_poles = 0;  ///< in groups repeated to rounding (kept as a group, or truncated)
   bool all_found = true;    ///< every pole below f_c was computed
+  /// The last Arnoldi request (modes asked) that found a pole the one before had not; 0 dense.
+  int useful_request = 0;
   /// ρ_max(f_band) of the truncated poles found ((f_band/f_c)² when none were found).
   double truncation_factor = 0.0;
   std::vector<std::pair<std::complex<double>, bool>> truncated;  ///< (pole, oscillatory)
