@@ -30,7 +30,7 @@ namespace {
 int samples_or_default(const SwitchingSweepOptions& options) {
   if (options.samples != 0) return options.samples;
   if (options.method == SwitchingSweepMethod::shooting) return 256;
-  return options.extremes_only ? 16 : 64;
+  return options.extremes_only ? 32 : 64;
 }
 
 }  // namespace

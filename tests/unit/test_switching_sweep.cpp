@@ -124,7 +124,7 @@ TEST(SwitchingSweep, SweepPeakAtTheFirstModeAndAtAThirdOfIt) {
 }
 
 // Reference: the same sweep at the default 64 samples a period. extremes_only lets the exact
-// method sample 16, and its extremes are global whatever the count (the search bounds the
+// method sample 32, and its extremes are global whatever the count (the search bounds the
 // curvature between samples and polishes by Newton to rounding): each output's left and right
 // extremes agree to 1e-11 of that output's largest |extreme| (the search's own tolerance,
 // 1e-11 of the largest value), and so does the peak frequency.
