@@ -385,6 +385,13 @@ void ReducedPeriodicSolver::reduce_cascade(const System& system, const Reduction
                                             "squares voltages only");
         return;
       }
+  if (reduction_.kept.empty()) {
+    reduction_.status = Status::failure(
+        "the reduction keeps no pole below f_c = " + format_number("%.4g", reduction_.cutoff_hz) +
+        " Hz, where the reduced cascade needs at least the circuit's: raise the cut-off (band, "
+        "tolerance) or use the exact cascade");
+    return;
+  }
   expand_poles(reduction_, *cascade);
   Status prepared = carried_poles(reduction_, *cascade);
   if (prepared.ok()) prepared = truncated_feed(system, reduction_, *cascade);

@@ -161,6 +161,21 @@ TEST(ReducedCascade, ComplexCircuitPolesGiveComplexExponents) {
   check_the_small_cascade(1e5, 200.0 / (2.0 * M_PI), 2);
 }
 
+// A cut-off below every pole keeps none: the reduced cascade needs the circuit's poles, and says
+// so rather than solving on the static correction alone.
+TEST(ReducedCascade, RefusesACutOffBelowEveryPole) {
+  const auto made = small_cascade(0.01, 30.0, 300.0);
+  const System system = made->network.assemble();
+  ReductionOptions options;
+  options.band = 5.0;
+  options.cutoff_hz = 1.0;  // 6.3 1/s, below −30
+  const ReducedPeriodicSolver reduced(system, options);
+  EXPECT_FALSE(reduced.reduction().status.ok());
+  EXPECT_NE(reduced.reduction().status.message.find("keeps no pole"), std::string::npos)
+      << reduced.reduction().status.message;
+  EXPECT_FALSE(reduced.solve(system, {displacement(made->velocity)}, 0.2).status.ok());
+}
+
 // A DEA with its back-coupling is not a cascade: the reduction says so and every solve fails.
 TEST(ReducedCascade, RefusesABackCoupledDea) {
   const auto made = small_cascade(0.01, 30.0, 300.0, true);
