@@ -285,7 +285,7 @@ Status exact_periodic_applies(const System& system) {
 Status PeriodicSolver::Impl::check(const System& given) const {
   if (Status pieces = require_piecewise_linear(given); !pieces.ok()) return pieces;
   if (given.size() != system.size() || given.is_nonlinear() != system.is_nonlinear() ||
-      (system.is_nonlinear() && !same_cascade(given, system)))
+      (system.is_nonlinear() && !same_cascade(given.nonlinear_elements, system.nonlinear_elements)))
     return Status::failure("the network differs from the one the solver decomposed");
   if (!squared.empty()) return prepare_cascade();
   return Status::success();

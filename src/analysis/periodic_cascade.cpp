@@ -30,23 +30,15 @@ Status cascade_sources(const System& system, const DisplacementForm& form,
   for (const auto& element : system.nonlinear_elements) {
     LinearTerms voltage, direction;
     if (!element->squared_source(voltage, direction))
-      return Status::failure(
-          "element '" + element->name() + "' (" + element->kind() +
-          ") is nonlinear otherwise than by a DEA's force k_F·u² without back-coupling "
-          "(dea[].back_coupling; beam.kinematics = \"large\"), the only nonlinearity the exact "
-          "cascade takes");
+      return not_a_squared_source(*element, "the exact cascade");
     SquaredSource source;
     source.name = element->name();
-    source.voltage.name = "\x01u(" + element->name() + ")";  // not a name a scene can give
-    source.voltage.quantity = ProbeQuantity::dea_voltage;
-    source.voltage.unit = "V";
-    for (const auto& [node, coefficient] : voltage) {
+    source.voltage = squared_voltage_probe(element->name(), voltage);
+    for (const auto& [node, coefficient] : voltage)
       if (form.mechanical(node))
         return Status::failure("element '" + element->name() +
                                "' squares a mechanical quantity: the exact cascade squares "
                                "voltages only");
-      source.voltage.terms.emplace_back(node, coefficient);
-    }
     source.direction = Eigen::VectorXd::Zero(form.size());
     for (const auto& [row, value] : direction) source.direction[row] += value;
     sources.push_back(std::move(source));
@@ -54,14 +46,32 @@ Status cascade_sources(const System& system, const DisplacementForm& form,
   return Status::success();
 }
 
-bool same_cascade(const System& a, const System& b) {
-  if (a.nonlinear_elements.size() != b.nonlinear_elements.size()) return false;
-  for (size_t e = 0; e < a.nonlinear_elements.size(); ++e) {
-    if (a.nonlinear_elements[e] == b.nonlinear_elements[e]) continue;
+Status not_a_squared_source(const Element& element, const std::string& method) {
+  return Status::failure("element '" + element.name() + "' (" + element.kind() +
+                         ") is nonlinear otherwise than by a DEA's force k_F·u² without "
+                         "back-coupling (dea[].back_coupling; beam.kinematics = \"large\"), the "
+                         "only nonlinearity " +
+                         method + " takes");
+}
+
+Probe squared_voltage_probe(const std::string& element_name, const LinearTerms& voltage) {
+  Probe probe;
+  probe.name = "\x01u(" + element_name + ")";  // not a name a scene can give
+  probe.quantity = ProbeQuantity::dea_voltage;
+  probe.unit = "V";
+  for (const auto& [node, coefficient] : voltage) probe.terms.emplace_back(node, coefficient);
+  return probe;
+}
+
+bool same_cascade(const std::vector<std::shared_ptr<const Element>>& a,
+                  const std::vector<std::shared_ptr<const Element>>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t e = 0; e < a.size(); ++e) {
+    if (a[e] == b[e]) continue;
     LinearTerms a_voltage, a_direction, b_voltage, b_direction;
-    if (!a.nonlinear_elements[e]->squared_source(a_voltage, a_direction) ||
-        !b.nonlinear_elements[e]->squared_source(b_voltage, b_direction) ||
-        a_voltage != b_voltage || a_direction != b_direction)
+    if (!a[e]->squared_source(a_voltage, a_direction) ||
+        !b[e]->squared_source(b_voltage, b_direction) || a_voltage != b_voltage ||
+        a_direction != b_direction)
       return false;
   }
   return true;

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -47,8 +48,18 @@ struct SquaredSource {
 Status cascade_sources(const System& system, const DisplacementForm& form,
                        std::vector<SquaredSource>& sources);
 
-// Whether two systems have the same squared sources (the same DEAs, nodes and constants).
-bool same_cascade(const System& a, const System& b);
+// Whether two systems' nonlinear elements are the same squared sources (the same DEAs, nodes and
+// constants).
+bool same_cascade(const std::vector<std::shared_ptr<const Element>>& a,
+                  const std::vector<std::shared_ptr<const Element>>& b);
+
+// Why `element` is not a squared source: nonlinear otherwise than by a DEA's force k_F·u²
+// without back-coupling, the only nonlinearity `method` ("the exact cascade") takes.
+Status not_a_squared_source(const Element& element, const std::string& method);
+
+// A squared source's voltage u (element->squared_source's `voltage` terms) as a probe, under a
+// name no scene can give.
+Probe squared_voltage_probe(const std::string& element_name, const LinearTerms& voltage);
 
 // The exponents of the squares: 0, then λ_k for each kept pole k, then λ_k + λ_l (k ≤ l).
 struct SquareExponents {

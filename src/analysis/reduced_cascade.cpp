@@ -40,10 +40,10 @@ constexpr double kCoupled = 1e-9;
 struct ReducedPeriodicSolver::Cascade {
   struct Source {
     std::string name;
-    LinearTerms voltage_terms, direction_terms;  // as the DEA gives them
-    Probe voltage;                               // u_j on the static form's unknowns
+    Probe voltage;  // u_j on the static form's unknowns
   };
   std::vector<Source> sources;
+  std::vector<std::shared_ptr<const Element>> elements;  // the DEAs (same_cascade)
   size_t first_input = 0;       // the sources' inputs follow the waveforms'
   Eigen::VectorXcd lambda;      // the kept poles, then the conjugates of the oscillatory ones
   std::vector<size_t> kept_of;  // [pole] → reduction.kept
@@ -78,26 +78,18 @@ using Cascade = ReducedPeriodicSolver::Cascade;
 
 // The DEAs' squared sources of `system`, each one more input (its direction); a failed Status
 // saying why the network is not such a cascade.
-Status squared_sources(const System& system, std::vector<Cascade::Source>& sources,
+Status squared_sources(const System& system, Cascade& cascade,
                        std::vector<Eigen::VectorXcd>& inputs) {
   for (const auto& element : system.nonlinear_elements) {
-    Cascade::Source source;
-    if (!element->squared_source(source.voltage_terms, source.direction_terms))
-      return Status::failure(
-          "element '" + element->name() + "' (" + element->kind() +
-          ") is nonlinear otherwise than by a DEA's force k_F·u² without back-coupling, the "
-          "only nonlinearity the reduced cascade takes");
-    source.name = element->name();
-    source.voltage.name = "\x01u(" + element->name() + ")";
-    source.voltage.quantity = ProbeQuantity::dea_voltage;
-    source.voltage.unit = "V";
-    for (const auto& [node, coefficient] : source.voltage_terms)
-      source.voltage.terms.emplace_back(node, coefficient);
+    LinearTerms voltage, direction_terms;
+    if (!element->squared_source(voltage, direction_terms))
+      return not_a_squared_source(*element, "the reduced cascade");
+    cascade.sources.push_back({element->name(), squared_voltage_probe(element->name(), voltage)});
     Eigen::VectorXcd direction = Eigen::VectorXcd::Zero(system.size());
-    for (const auto& [row, value] : source.direction_terms) direction[row] += value;
+    for (const auto& [row, value] : direction_terms) direction[row] += value;
     inputs.push_back(std::move(direction));
-    sources.push_back(std::move(source));
   }
+  cascade.elements = system.nonlinear_elements;
   return Status::success();
 }
 
@@ -370,7 +362,7 @@ void ReducedPeriodicSolver::reduce_cascade(const System& system, const Reduction
                                            std::vector<Eigen::VectorXcd> inputs) {
   auto cascade = std::make_shared<Cascade>();
   cascade->first_input = inputs.size();
-  if (Status sources = squared_sources(system, cascade->sources, inputs); !sources.ok()) {
+  if (Status sources = squared_sources(system, *cascade, inputs); !sources.ok()) {
     reduction_.status = sources;
     return;
   }
@@ -404,19 +396,6 @@ void ReducedPeriodicSolver::reduce_cascade(const System& system, const Reduction
 }
 
 namespace {
-
-// Whether `system`'s DEAs are the reduced one's (the same nodes, directions and constants).
-bool same_sources(const System& system, const Cascade& cascade) {
-  if (system.nonlinear_elements.size() != cascade.sources.size()) return false;
-  for (size_t e = 0; e < cascade.sources.size(); ++e) {
-    LinearTerms voltage, direction;
-    if (!system.nonlinear_elements[e]->squared_source(voltage, direction) ||
-        voltage != cascade.sources[e].voltage_terms ||
-        direction != cascade.sources[e].direction_terms)
-      return false;
-  }
-  return true;
-}
 
 // The probe's truncated feed-through on interval i: Σ_j the response to u_j²'s terms P(h)·e^{μh},
 // (t₀·P + t₁·P' + t₂·P'') with t_r = probe·feed[j][m][r] (`rows`: [j·M + m][r]).
@@ -535,7 +514,7 @@ PeriodicResult ReducedPeriodicSolver::solve_cascade(const System& system,
   result.period = period;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
   const Cascade& cascade = *cascade_;
-  if (!same_sources(system, cascade))
+  if (!same_cascade(system.nonlinear_elements, cascade.elements))
     return finish(Status::failure("the network's DEAs differ from the reduced one's"));
   const std::vector<double> edges = constant_intervals(system, period);
   const size_t intervals = edges.size() - 1;
