@@ -345,23 +345,6 @@ Scene prepare_the_nominal_scene(const Scene& scene, const VariantTable& table,
   return nominal;
 }
 
-// The largest |difference| of the reduced sweep's extremes from the exact one's, relative to each
-// output's largest |extreme| over the sweep.
-double extremes_difference(const SwitchingSweepResult& reduced, const SwitchingSweepResult& exact) {
-  double worst = 0.0;
-  for (std::size_t p = 0; p < exact.outputs.size(); ++p) {
-    const SwitchingSweepOutput &e = exact.outputs[p], &r = reduced.outputs[p];
-    double largest = 0.0, difference = 0.0;
-    for (std::size_t k = 0; k < e.left.size(); ++k) {
-      largest = std::max({largest, std::abs(e.left[k]), std::abs(e.right[k])});
-      difference = std::max(
-          {difference, std::abs(r.left[k] - e.left[k]), std::abs(r.right[k] - e.right[k])});
-    }
-    worst = std::max(worst, largest > 0.0 ? difference / largest : difference);
-  }
-  return worst;
-}
-
 // Whether the variants' sweep is the reduced cascade: for a cascade above
 // kStudyReducedCascadeUnknowns whose reduced sweep's extremes (the study's columns) meet the
 // tolerance against the exact cascade's on the nominal scene, at every sweep frequency.
@@ -383,11 +366,11 @@ void choose_the_sweep_method(const Model& nominal, const DesignStudyOptions& opt
   sweep.first_mode = false;
   sweep.largest_rotation = false;
   const SwitchingSweepResult exact = run_switching_sweep(nominal, nominal.scene, sweep);
+  if (!exact.status.ok() || exact.method != Method::exact) return;
   sweep.reduce = true;
   sweep.reduction = study_sweep_reduction(layout);
   sweep.check_reduction = false;
   const SwitchingSweepResult reduced = run_switching_sweep(nominal, nominal.scene, sweep);
-  if (!exact.status.ok() || exact.method != Method::exact) return;
   const std::string size = std::to_string(system.size()) + " unknowns";
   if (!reduced.status.ok()) {
     result.notes.push_back(

@@ -652,4 +652,20 @@ std::vector<Probe> switching_sweep_outputs(const Model& model,
   return outputs;
 }
 
+double extremes_difference(const SwitchingSweepResult& swept,
+                           const SwitchingSweepResult& reference) {
+  double worst = 0.0;
+  for (std::size_t p = 0; p < reference.outputs.size(); ++p) {
+    const SwitchingSweepOutput &e = reference.outputs[p], &r = swept.outputs[p];
+    double largest = 0.0, difference = 0.0;
+    for (std::size_t k = 0; k < e.left.size(); ++k) {
+      largest = std::max({largest, std::abs(e.left[k]), std::abs(e.right[k])});
+      difference = std::max(
+          {difference, std::abs(r.left[k] - e.left[k]), std::abs(r.right[k] - e.right[k])});
+    }
+    worst = std::max(worst, largest > 0.0 ? difference / largest : difference);
+  }
+  return worst;
+}
+
 }  // namespace emnet

@@ -206,22 +206,6 @@ SwitchingSweepResult exact_sweep(const Model& model, const std::vector<double>& 
   return run_switching_sweep(model, model.scene, options);
 }
 
-// The largest |difference| of two sweeps' peaks, relative to each output's largest |peak|.
-double peaks_difference(const SwitchingSweepResult& a, const SwitchingSweepResult& b) {
-  double worst = 0.0;
-  for (size_t p = 0; p < b.outputs.size(); ++p) {
-    double largest = 0.0, difference = 0.0;
-    for (size_t k = 0; k < b.frequencies.size(); ++k) {
-      largest =
-          std::max({largest, std::abs(b.outputs[p].left[k]), std::abs(b.outputs[p].right[k])});
-      difference = std::max({difference, std::abs(a.outputs[p].left[k] - b.outputs[p].left[k]),
-                             std::abs(a.outputs[p].right[k] - b.outputs[p].right[k])});
-    }
-    worst = std::max(worst, difference / largest);
-  }
-  return worst;
-}
-
 // `sweep-switching --reduce` on the jaw: its check against the full exact cascade states the
 // error of the peaks it prints (to rounding: 1e-9, as above) apart from the samples' (the
 // transients after the edges, above 1e-4), and judges the tolerance on the peaks.
@@ -243,7 +227,7 @@ TEST(ReducedCascade, TheSweepsCheckStatesTheErrorOfThePeaksItPrints) {
   EXPECT_TRUE(check.tolerance_met);
   const SwitchingSweepResult exact = exact_sweep(model, frequencies);
   ASSERT_TRUE(exact.status.ok()) << exact.status.message;
-  EXPECT_LT(peaks_difference(reduced, exact), 1e-9);
+  EXPECT_LT(extremes_difference(reduced, exact), 1e-9);
 }
 
 // Above the dense limit (lowered to 100 unknowns for the jaw's 222) the automatic method takes
@@ -267,7 +251,7 @@ TEST(ReducedCascade, AutomaticAboveTheDenseLimitStatesItsEstimate) {
   EXPECT_TRUE(reduced.reduction->cascade);
   const SwitchingSweepResult exact = exact_sweep(model, frequencies);
   ASSERT_TRUE(exact.status.ok()) << exact.status.message;
-  const double actual = peaks_difference(reduced, exact);
+  const double actual = extremes_difference(reduced, exact);
   EXPECT_LT(actual, 1e-9);
   EXPECT_GT(reduced.reduction->stated_error(), 1e-4);  // the transients' start
   EXPECT_GE(reduced.reduction->stated_error(), actual);

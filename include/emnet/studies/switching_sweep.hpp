@@ -226,4 +226,11 @@ SwitchingSweepResult run_switching_sweep(const Model& model, const Scene& scene,
 // The same with scene = model.scene.
 SwitchingSweepResult run_switching_sweep(const Model& model, const SwitchingSweepOptions& options);
 
+// max over outputs of the largest |difference| of `swept`'s peaks (left, right) from
+// `reference`'s over the frequencies, relative to that output's largest |peak| in `reference`:
+// how a reduced sweep's printed numbers compare with the exact one's (same frequencies and
+// outputs).
+double extremes_difference(const SwitchingSweepResult& swept,
+                           const SwitchingSweepResult& reference);
+
 }  // namespace emnet
