@@ -200,6 +200,13 @@ void affine_particulars(const Eigen::VectorXcd& lambda, const Eigen::MatrixXcd& 
   }
 }
 
+std::vector<double> input_feed(const ModalReduction& reduction, const Probe& probe, size_t inputs) {
+  std::vector<double> d(inputs, 0.0);
+  for (const auto& [index, c] : probe.terms)
+    for (size_t j = 0; j < inputs; ++j) d[j] += c * reduction.correction[j][index].real();
+  return d;
+}
+
 ExponentialSeries affine_series(const Eigen::VectorXcd& g, const std::vector<double>& feed,
                                 const InputPieces& inputs,
                                 const std::vector<Eigen::VectorXcd>& particular,
@@ -308,14 +315,12 @@ PeriodicResult ReducedPeriodicSolver::solve(const System& given, const std::vect
   std::vector<ExponentialSeries> series;
   for (const Probe& probe : probes) {
     Eigen::VectorXcd g = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(modes));
-    std::vector<double> d(inputs, 0.0);
-    for (const auto& [index, c] : probe.terms) {
+    for (const auto& [index, c] : probe.terms)
       for (size_t k = 0; k < modes; ++k)
         g[static_cast<Eigen::Index>(k)] +=
             c * kept[k].z_vector[index] * (kept[k].oscillatory ? 2.0 : 1.0);
-      for (size_t j = 0; j < inputs; ++j) d[j] += c * reduction_.correction[j][index].real();
-    }
-    series.push_back(affine_series(g, d, pieces, particular, particular_slope, homogeneous));
+    series.push_back(affine_series(g, input_feed(reduction_, probe, inputs), pieces, particular,
+                                   particular_slope, homogeneous));
   }
   sample_periodic_series(lambda, edges, series, samples, result);
   return finish(Status::success());

@@ -63,13 +63,6 @@ struct ReducedPeriodicSolver::Cascade {
       }
     return g;
   }
-  // The probe's static correction of each waveform input.
-  std::vector<double> feed_of_inputs(const ModalReduction& reduction, const Probe& probe) const {
-    std::vector<double> d(first_input, 0.0);
-    for (const auto& [index, c] : probe.terms)
-      for (size_t j = 0; j < first_input; ++j) d[j] += c * reduction.correction[j][index].real();
-    return d;
-  }
 };
 
 namespace {
@@ -445,7 +438,7 @@ ExponentialSeries cascade_probe_series(
   const Eigen::Index forces = static_cast<Eigen::Index>(cascade.sources.size()),
                      terms = cascade.exponents.mu.size();
   const Eigen::VectorXcd g = cascade.row(reduction, probe);
-  const std::vector<double> d = cascade.feed_of_inputs(reduction, probe);
+  const std::vector<double> d = input_feed(reduction, probe, cascade.first_input);
   ExponentialSeries s =
       affine_series(g, d, pieces, stage.particular, stage.slope, stage.homogeneous);
   Eigen::MatrixXcd rows(forces * terms, 3);  // [j·M + m][r]: probe·feed[j][m][r]
@@ -536,8 +529,8 @@ PeriodicResult ReducedPeriodicSolver::solve_cascade(const System& system,
   for (const Cascade::Source& source : cascade.sources)
     squares.push_back(
         squared_terms(affine_series(cascade.row(reduction_, source.voltage),
-                                    cascade.feed_of_inputs(reduction_, source.voltage), pieces,
-                                    particular, slope, homogeneous),
+                                    input_feed(reduction_, source.voltage, cascade.first_input),
+                                    pieces, particular, slope, homogeneous),
                       cascade.exponents));
 
   // The second: the kept poles under the squares, periodic with the first stage's states.

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
+#include "emnet/analysis/modal_reduction.hpp"
 #include "emnet/network/network.hpp"
 #include "exponential_series.hpp"
 
@@ -27,6 +28,10 @@ InputPieces input_pieces(const System& system, const std::vector<int>& waveforms
 void affine_particulars(const Eigen::VectorXcd& lambda, const Eigen::MatrixXcd& beta,
                         const InputPieces& inputs, std::vector<Eigen::VectorXcd>& particular,
                         std::vector<Eigen::VectorXcd>& slope);
+
+// A probe's static correction of each of the first `inputs` inputs of `reduction`: Σ c·D_j[index]
+// over its terms (real: the inputs are real sources).
+std::vector<double> input_feed(const ModalReduction& reduction, const Probe& probe, size_t inputs);
 
 // A probe p(h) = Σ_j feed_j·u_j(h) + Re Σ_k g_k·(a_ik + h·b_ik) + Re Σ_k g_k·c_ik·e^{λ_k h}, with
 // c = homogeneous[i]: its series on every interval (`g` the probe's row of the modal

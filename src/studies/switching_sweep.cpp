@@ -523,8 +523,7 @@ class SwitchingSweepRun {
       const double extremes = extremes_difference(*again, exact_there);
       check.extreme_errors.push_back(extremes);
       check.measured_extremes_error = std::max(check.measured_extremes_error, extremes);
-    }
-    if (!check.against_full) {  // and what neither reduction keeps: the edge estimate
+    } else {  // and what neither reduction keeps: the edge estimate
       // A reduced cascade's own estimate of its truncated transients (both reductions stop at
       // the same cluster, so their difference does not see them).
       const double edge = std::max(
