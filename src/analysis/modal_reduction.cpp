@@ -77,7 +77,7 @@ Complex power(Complex s, int e) {
 
 }  // namespace
 
-// (static_operator.hpp) The pencil G + s·C on z, with mechanical columns multiplied by
+// A₁ and A₂ of static_operator.hpp: the pencil G + s·C on z, with mechanical columns multiplied by
 // s (y = s·z there) and divided rows by s (their G entries lie in mechanical columns only,
 // static.cpp). Then A₀·z_m = −A₁·z_(m−1) − A₂·z_(m−2) for z(s) = Σ z_m·s^m.
 std::pair<Eigen::SparseMatrix<double>, Eigen::SparseMatrix<double>> expansion_matrices(
