@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <utility>
 
 #include "exponential_series.hpp"
@@ -26,14 +27,19 @@ class SeriesEvaluator {
         intervals_(edges.size() - 1) {
     find_cutoffs();
     pair_conjugates();
-    form_curvature_terms();
+    form_bound_terms();
     form_forced_bounds();
-    // K_i(0), which the extremes search asks for every gap: summed once.
+    form_end_rows();
+    // K_i(0) and M_i(0), which the extremes search asks for every gap: summed once.
     widest_curvature_.assign(series_.size(), std::vector<double>(intervals_, 0.0));
+    widest_size_.assign(series_.size(), std::vector<double>(intervals_, 0.0));
     for (size_t p = 0; p < series_.size(); ++p)
-      for (size_t i = 0; i < intervals_; ++i)
+      for (size_t i = 0; i < intervals_; ++i) {
         widest_curvature_[p][i] =
             curvature_terms_[p][i].sum() + (has_forced(p) ? forced_curvature_[p][i].sum() : 0.0);
+        widest_size_[p][i] =
+            size_terms_[p][i].sum() + (has_forced(p) ? forced_size_[p][i].sum() : 0.0);
+      }
   }
 
   size_t intervals() const { return intervals_; }
@@ -51,39 +57,90 @@ class SeriesEvaluator {
   double slope_of(size_t p, size_t i) const {
     return series_[p].slope.empty() ? 0.0 : series_[p].slope[i];
   }
-  // Value and two derivatives of probe p at offset h into interval i.
-  double evaluate(size_t p, size_t i, double h, double* d1, double* d2) const {
+  // The length of a row of exponentials at one offset h: e^{λ_j·h} for each of `terms`, then
+  // e^{μ_m·h} for each forced exponent.
+  size_t row_width() const { return terms_.size() + static_cast<size_t>(mu_.size()); }
+  // The row at h, from n complex exponentials (a real exponent's without sine and cosine).
+  void fill_row(double h, Complex* row) const {
+    for (size_t j = 0; j < terms_.size(); ++j) row[j] = std::exp(lambda_[terms_[j]] * h);
+    for (Eigen::Index m = 0; m < mu_.size(); ++m) {
+      const Complex mu = mu_[m];
+      row[terms_.size() + static_cast<size_t>(m)] =
+          mu.imag() == 0.0 ? Complex(std::exp(mu.real() * h)) : std::exp(mu * h);
+    }
+  }
+  // The row at h + Δ from the rows at h and at Δ: e^{λ(h+Δ)} = e^{λh}·e^{λΔ}, n products.
+  void step_row(const Complex* at, const Complex* by, Complex* row) const {
+    for (size_t k = 0; k < row_width(); ++k) row[k] = at[k] * by[k];
+  }
+  // Value and two derivatives (each may be null) of probe p at offset h into interval i, with
+  // `row` the exponentials at h.
+  double evaluate(size_t p, size_t i, double h, const Complex* row, double* d1, double* d2) const {
+    double sum = 0.0, first = 0.0, second = 0.0;
     const Eigen::VectorXcd& a = series_[p].coefficient[i];
     const Eigen::VectorXd& after = cutoff_[p][i];
-    double sum = 0.0, first = 0.0, second = 0.0;
+    const bool derivatives = d1 || d2;
     for (size_t j = 0; j < terms_.size(); ++j) {
       const Eigen::Index k = terms_[j];
       if (h > after[k] && (weights_[j] == 1.0 || h > after[k + 1])) continue;
-      const Complex term = weights_[j] * a[k] * std::exp(lambda_[k] * h);
+      const Complex term = weights_[j] * a[k] * row[j];
       sum += term.real();
+      if (!derivatives) continue;
       first += (term * lambda_[k]).real();
       second += (term * lambda_[k] * lambda_[k]).real();
     }
-    if (has_forced(p)) add_forced(p, i, h, sum, first, second);
+    if (has_forced(p)) add_forced(p, i, h, row + terms_.size(), sum, first, second, derivatives);
     if (d1) *d1 = first + slope_of(p, i);
     if (d2) *d2 = second;
     return series_[p].offset[i] + slope_of(p, i) * h + sum;
   }
-  // The forced part of probe p at offset h into interval i (no derivatives).
-  double forced_value(size_t p, size_t i, double h) const {
+  // The same from the exponentials at h formed here.
+  double evaluate(size_t p, size_t i, double h, double* d1, double* d2) const {
+    scratch_row_.resize(row_width());
+    fill_row(h, scratch_row_.data());
+    return evaluate(p, i, h, scratch_row_.data(), d1, d2);
+  }
+  // The rows at the start (all 1) and the end of interval i.
+  const Complex* start_row() const { return ones_.data(); }
+  const Complex* end_row(size_t i) const { return end_rows_.data() + i * row_width(); }
+  // The forced part of probe p at offset h into interval i (no derivatives), `forced` its
+  // exponentials e^{μ_m·h}.
+  double forced_value(size_t p, size_t i, double h, const Complex* forced) const {
     double sum = 0.0, first = 0.0, second = 0.0;
-    if (has_forced(p)) add_forced(p, i, h, sum, first, second);
+    if (has_forced(p)) add_forced(p, i, h, forced, sum, first, second, false);
     return sum;
   }
   bool has_forced(size_t p) const { return !series_[p].forced.empty(); }
   // K_i(0) of probe p: the bound on |p''| over all of interval i.
   double widest_curvature(size_t p, size_t i) const { return widest_curvature_[p][i]; }
-  // K_i(a) of probe p: the bound on |p''| in interval i for h ≥ a.
-  double curvature_after(size_t p, size_t i, double a) const {
-    double bound = curvature_terms_[p][i].dot((decay_ * a).array().exp().matrix());
+  // The bound of rise_after over all of interval i, whole terms only: every term by its
+  // curvature or every term by its size, whichever is smaller (no exponentials).
+  double widest_rise(size_t p, size_t i, double width) const {
+    return std::min(widest_curvature_[p][i] * width * width / 8.0, 2.0 * widest_size_[p][i]);
+  }
+  // How far probe p can rise, on a gap [a, a + width] of interval i, above the larger of its
+  // values at the gap's ends: each term either by its curvature bound (|term''|·width²/8) or by
+  // twice its size (its share of the ends' values and of the value inside), whichever is
+  // smaller. Also K_i(a) into `curvature`. The fast modes a switching edge excites have large
+  // curvature and small size, so near an edge this bound is far below K_i(a)·width²/8.
+  // `row`: the exponentials at a, whose moduli are the decays e^{Re λ·a} (a forced exponent
+  // with Re μ > 0, bounded at the interval's end, is taken as 1).
+  double rise_after(size_t p, size_t i, const Complex* row, double width, double& curvature) const {
+    const double square = width * width / 8.0;
+    double rise = 0.0;
+    curvature = 0.0;
+    const auto add = [&](const Eigen::VectorXd& curvatures, const Eigen::VectorXd& sizes,
+                         const Complex* exponentials, const Eigen::VectorXd& decay) {
+      for (Eigen::Index j = 0; j < curvatures.size(); ++j) {
+        const double decayed = decay[j] < 0.0 ? modulus(exponentials[j]) : 1.0;
+        curvature += curvatures[j] * decayed;
+        rise += std::min(curvatures[j] * square, 2.0 * sizes[j]) * decayed;
+      }
+    };
+    add(curvature_terms_[p][i], size_terms_[p][i], row, decay_);
     if (has_forced(p))
-      bound += forced_curvature_[p][i].dot((forced_decay_ * a).array().exp().matrix());
-    return bound;
+      add(forced_curvature_[p][i], forced_size_[p][i], row + terms_.size(), forced_decay_);
+    return rise;
   }
   // J_i(a) of probe p: the bound on |p‴| in interval i for h ≥ a.
   double third_derivative_after(size_t p, size_t i, double a) const {
@@ -94,29 +151,40 @@ class SeriesEvaluator {
   }
 
  private:
-  // The forced terms' value and two derivatives at h, added to sum, first and second:
-  // (C·e^{μh})' = (C' + μ·C)·e^{μh}, (C·e^{μh})'' = (C'' + 2μ·C' + μ²·C)·e^{μh}.
-  void add_forced(size_t p, size_t i, double h, double& sum, double& first, double& second) const {
+  // The rows at each interval's start (all 1) and end.
+  void form_end_rows() {
+    ones_.assign(row_width(), Complex(1.0));
+    end_rows_.resize(intervals_ * row_width());
+    for (size_t i = 0; i < intervals_; ++i)
+      fill_row(edges_[i + 1] - edges_[i], end_rows_.data() + i * row_width());
+  }
+
+  // The forced terms' value and two derivatives at h, added to sum, first and second, from
+  // their exponentials e^{μ_m·h} (`forced`): (C·e^{μh})' = (C' + μ·C)·e^{μh},
+  // (C·e^{μh})'' = (C'' + 2μ·C' + μ²·C)·e^{μh}.
+  void add_forced(size_t p, size_t i, double h, const Complex* forced, double& sum, double& first,
+                  double& second, bool derivatives = true) const {
     const ExponentialSeries::ForcedTerms& c = series_[p].forced[i];
     for (Eigen::Index m = 0; m < mu_.size(); ++m) {
-      // A real exponent (an RC loop's) needs no sine and cosine.
-      const Complex mu = mu_[m],
-                    e = mu.imag() == 0.0 ? Complex(std::exp(mu.real() * h)) : std::exp(mu * h);
+      const Complex mu = mu_[m], e = forced[m];
       const Complex poly = c(m, 0) + h * (c(m, 1) + h * c(m, 2));
-      const Complex slope = c(m, 1) + 2.0 * h * c(m, 2), curvature = 2.0 * c(m, 2);
       sum += (poly * e).real();
+      if (!derivatives) continue;
+      const Complex slope = c(m, 1) + 2.0 * h * c(m, 2), curvature = 2.0 * c(m, 2);
       first += ((slope + mu * poly) * e).real();
       second += ((curvature + 2.0 * mu * slope + mu * mu * poly) * e).real();
     }
   }
 
-  // Bounds on the forced terms' second and third derivatives for h ≥ a in an interval of length
-  // H: with |C^(j)(h)| ≤ Σ_{k≥j} k!/(k−j)!·|c_k|·H^{k−j} = C̄_j, |(C·e^{μh})''| ≤ (C̄₂ + 2|μ|·C̄₁
-  // + |μ|²·C̄₀)·e^{Re μ·a} and |(C·e^{μh})‴| ≤ (3|μ|·C̄₂ + 3|μ|²·C̄₁ + |μ|³·C̄₀)·e^{Re μ·a}
-  // (C‴ = 0). An exponent with Re μ > 0 (rounding of a sum of stable poles) is bounded at h = H.
+  // Bounds on the forced terms' size, second and third derivatives for h ≥ a in an interval of
+  // length H: with |C^(j)(h)| ≤ Σ_{k≥j} k!/(k−j)!·|c_k|·H^{k−j} = C̄_j, |C·e^{μh}| ≤
+  // C̄₀·e^{Re μ·a}, |(C·e^{μh})''| ≤ (C̄₂ + 2|μ|·C̄₁ + |μ|²·C̄₀)·e^{Re μ·a} and |(C·e^{μh})‴| ≤
+  // (3|μ|·C̄₂ + 3|μ|²·C̄₁ + |μ|³·C̄₀)·e^{Re μ·a} (C‴ = 0). An exponent with Re μ > 0 (rounding of
+  // a sum of stable poles) is bounded at h = H.
   void form_forced_bounds() {
     forced_decay_ = Eigen::VectorXd::Zero(mu_.size());
     for (Eigen::Index m = 0; m < mu_.size(); ++m) forced_decay_[m] = std::min(mu_[m].real(), 0.0);
+    forced_size_.assign(series_.size(), {});
     forced_curvature_.assign(series_.size(), {});
     forced_third_.assign(series_.size(), {});
     for (size_t p = 0; p < series_.size(); ++p) {
@@ -124,16 +192,18 @@ class SeriesEvaluator {
       for (size_t i = 0; i < intervals_; ++i) {
         const double length = edges_[i + 1] - edges_[i];
         const ExponentialSeries::ForcedTerms& c = series_[p].forced[i];
-        Eigen::VectorXd second(mu_.size()), third(mu_.size());
+        Eigen::VectorXd size(mu_.size()), second(mu_.size()), third(mu_.size());
         for (Eigen::Index m = 0; m < mu_.size(); ++m) {
           const double c0 = std::abs(c(m, 0)), c1 = std::abs(c(m, 1)), c2 = std::abs(c(m, 2));
           const double bar0 = c0 + c1 * length + c2 * length * length;
           const double bar1 = c1 + 2.0 * c2 * length, bar2 = 2.0 * c2;
           const double r = std::abs(mu_[m]);
           const double growth = std::exp(std::max(mu_[m].real(), 0.0) * length);
+          size[m] = bar0 * growth;
           second[m] = (bar2 + 2.0 * r * bar1 + r * r * bar0) * growth;
           third[m] = (3.0 * r * bar2 + 3.0 * r * r * bar1 + r * r * r * bar0) * growth;
         }
+        forced_size_[p].push_back(std::move(size));
         forced_curvature_[p].push_back(std::move(second));
         forced_third_[p].push_back(std::move(third));
       }
@@ -191,9 +261,11 @@ class SeriesEvaluator {
         terms_, weights_);
   }
 
-  // The curvature bound's terms |a_ik|·|λ_k|², one per term of `terms_` (a pair's two added:
-  // they share Re λ, so one exponential e^{Re λ·a} serves both), with those decay rates and |λ|.
-  void form_curvature_terms() {
+  // The bounds' terms: |a_ik| (size) and |a_ik|·|λ_k|² (curvature), one per term of `terms_`
+  // (a pair's two added: they share Re λ, so one exponential e^{Re λ·a} serves both), with
+  // those decay rates and |λ|.
+  void form_bound_terms() {
+    size_terms_.assign(series_.size(), {});
     curvature_terms_.assign(series_.size(), {});
     decay_.resize(static_cast<Eigen::Index>(terms_.size()));
     magnitude_.resize(static_cast<Eigen::Index>(terms_.size()));
@@ -203,13 +275,17 @@ class SeriesEvaluator {
     }
     for (size_t p = 0; p < series_.size(); ++p)
       for (size_t i = 0; i < intervals_; ++i) {
-        const Eigen::VectorXd all =
-            moduli(series_[p].coefficient[i]).cwiseProduct(lambda_.cwiseAbs2());
-        Eigen::VectorXd merged(static_cast<Eigen::Index>(terms_.size()));
-        for (size_t j = 0; j < terms_.size(); ++j)
-          merged[static_cast<Eigen::Index>(j)] =
-              all[terms_[j]] + (weights_[j] == 2.0 ? all[terms_[j] + 1] : 0.0);
-        curvature_terms_[p].push_back(std::move(merged));
+        const Eigen::VectorXd size = moduli(series_[p].coefficient[i]);
+        const Eigen::VectorXd curvature = size.cwiseProduct(lambda_.cwiseAbs2());
+        const auto merged = [&](const Eigen::VectorXd& all) {
+          Eigen::VectorXd one_per_term(static_cast<Eigen::Index>(terms_.size()));
+          for (size_t j = 0; j < terms_.size(); ++j)
+            one_per_term[static_cast<Eigen::Index>(j)] =
+                all[terms_[j]] + (weights_[j] == 2.0 ? all[terms_[j] + 1] : 0.0);
+          return one_per_term;
+        };
+        size_terms_[p].push_back(merged(size));
+        curvature_terms_[p].push_back(merged(curvature));
       }
   }
 
@@ -221,33 +297,75 @@ class SeriesEvaluator {
   std::vector<std::vector<Eigen::VectorXd>> cutoff_;
   std::vector<Eigen::Index> terms_;
   std::vector<double> weights_;
-  std::vector<std::vector<Eigen::VectorXd>> curvature_terms_;
-  std::vector<std::vector<double>> widest_curvature_;  // [probe][interval]: K_i(0)
+  std::vector<std::vector<Eigen::VectorXd>> size_terms_, curvature_terms_;
+  std::vector<std::vector<double>> widest_curvature_, widest_size_;  // [probe][interval] at 0
   Eigen::VectorXd decay_, magnitude_;
-  // Per probe and interval, per forced exponent: the bounds' factors on |p''| and |p‴|, and
-  // min(Re μ, 0).
-  std::vector<std::vector<Eigen::VectorXd>> forced_curvature_, forced_third_;
+  std::vector<Complex> ones_, end_rows_;      // the rows at h = 0 and each interval's end
+  mutable std::vector<Complex> scratch_row_;  // evaluate's own row
+  // Per probe and interval, per forced exponent: the bounds' factors on |p|, |p''| and |p‴|,
+  // and min(Re μ, 0).
+  std::vector<std::vector<Eigen::VectorXd>> forced_size_, forced_curvature_, forced_third_;
   Eigen::VectorXd forced_decay_;
+};
+
+// Rows of exponentials (SeriesEvaluator::row_width long) handed out by pointer and kept while
+// the pool lives: blocks of 64 rows, so that a row stays where it is as more are added.
+class RowPool {
+ public:
+  explicit RowPool(size_t width) : width_(std::max<size_t>(width, 1)) {}
+  Complex* add() {
+    if (used_ == kRowsPerBlock) {
+      blocks_.push_back(std::make_unique<Complex[]>(width_ * kRowsPerBlock));
+      used_ = 0;
+    }
+    return blocks_.back().get() + width_ * used_++;
+  }
+
+ private:
+  static constexpr size_t kRowsPerBlock = 64;
+  size_t width_, used_ = kRowsPerBlock;
+  std::vector<std::unique_ptr<Complex[]>> blocks_;
+};
+
+// The rows of one periodic solve: one per sample, and the steps e^{λΔ} by which the extremes
+// search reaches a gap's middle from its left end (found by Δ to 1e-9 of it, and shared by
+// every probe's search: the gaps of the sample grid halve alike).
+class SolveRows {
+ public:
+  explicit SolveRows(const SeriesEvaluator& evaluator)
+      : evaluator_(evaluator), pool_(evaluator.row_width()) {}
+  RowPool& pool() { return pool_; }
+  std::vector<const Complex*>& samples() { return samples_; }
+  const std::vector<const Complex*>& samples() const { return samples_; }
+  // The row e^{λΔ} of a step Δ within 1e-9·step of `step`, and that Δ.
+  std::pair<const Complex*, double> step(double step) {
+    for (const auto& [delta, row] : steps_)
+      if (std::abs(delta - step) <= 1e-9 * step) return {row, delta};
+    Complex* row = pool_.add();
+    evaluator_.fill_row(step, row);
+    steps_.emplace_back(step, row);
+    return {row, step};
+  }
+
+ private:
+  const SeriesEvaluator& evaluator_;
+  RowPool pool_;
+  std::vector<const Complex*> samples_;
+  std::vector<std::pair<double, const Complex*>> steps_;
 };
 
 // Uniform samples: inside an interval e^{λ(h+Δ)} = e^{λh}·e^{λΔ}, one exponential per
 // interval and per sample step instead of one per sample and probe (relative rounding grows
-// like the number of samples, ~1e-14 for 256). Over the evaluator's terms (one pole of each
-// conjugate pair, factor 2), and only the real part of each product: a quarter of the
-// arithmetic of the full complex sum.
-void sample_uniformly(const SeriesEvaluator& evaluator, const Eigen::VectorXcd& lambda,
+// like the number of samples, ~1e-14 for 256); the rows are kept for the extremes search. Over
+// the evaluator's terms (one pole of each conjugate pair, factor 2), and only the real part of
+// each product: a quarter of the arithmetic of the full complex sum.
+void sample_uniformly(const SeriesEvaluator& evaluator,
                       const std::vector<ExponentialSeries>& series, int samples,
-                      PeriodicResult& result) {
+                      PeriodicResult& result, SolveRows& rows) {
   const std::vector<double>& edges = evaluator.edges();
   const double period = edges.back();
   const std::vector<Eigen::Index>& terms = evaluator.terms();
   const Eigen::Index count = static_cast<Eigen::Index>(terms.size());
-  Eigen::VectorXcd half_lambda(count);
-  Eigen::VectorXd factor(count);
-  for (Eigen::Index j = 0; j < count; ++j) {
-    half_lambda[j] = lambda[terms[static_cast<size_t>(j)]];
-    factor[j] = evaluator.weights()[static_cast<size_t>(j)];
-  }
   // Per probe and interval: factor·Re a and −factor·Im a of each term, so that a sample is
   // Re Σ factor·a·e = Σ (factor·Re a)·Re e + (−factor·Im a)·Im e.
   std::vector<std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>>> parts(series.size());
@@ -255,37 +373,43 @@ void sample_uniformly(const SeriesEvaluator& evaluator, const Eigen::VectorXcd& 
     for (size_t i = 0; i < evaluator.intervals(); ++i) {
       Eigen::VectorXd real(count), imaginary(count);
       for (Eigen::Index j = 0; j < count; ++j) {
+        const double factor = evaluator.weights()[static_cast<size_t>(j)];
         const Complex a = series[p].coefficient[i][terms[static_cast<size_t>(j)]];
-        real[j] = factor[j] * a.real();
-        imaginary[j] = -factor[j] * a.imag();
+        real[j] = factor * a.real();
+        imaginary[j] = -factor * a.imag();
       }
       parts[p].emplace_back(std::move(real), std::move(imaginary));
     }
   result.values.assign(series.size(), {});
   for (std::vector<double>& values : result.values) values.reserve(static_cast<size_t>(samples));
   result.times.reserve(static_cast<size_t>(samples));
+  rows.samples().reserve(static_cast<size_t>(samples));
   const double sample_step = period / samples;
-  const Eigen::VectorXcd step_factor = (half_lambda * sample_step).array().exp();
-  Eigen::VectorXcd e;
+  Complex* step_row = rows.pool().add();
+  evaluator.fill_row(sample_step, step_row);
+  const Complex* previous = nullptr;
   size_t current = evaluator.intervals();  // none yet
   double current_h = 0.0;
   for (int s = 0; s < samples; ++s) {
     const double t = period * s / samples;
     const size_t i = evaluator.locate(t);
     const double h = t - edges[i];
-    if (i != current || std::abs(h - (current_h + sample_step)) > 1e-9 * sample_step) {
-      e = (half_lambda * h).array().exp();
-    } else {
-      e = e.cwiseProduct(step_factor);
-    }
+    Complex* row = rows.pool().add();
+    if (i != current || std::abs(h - (current_h + sample_step)) > 1e-9 * sample_step)
+      evaluator.fill_row(h, row);
+    else
+      evaluator.step_row(previous, step_row, row);
+    previous = row;
+    rows.samples().push_back(row);
     current = i;
     current_h = h;
     result.times.push_back(t);
+    const Eigen::Map<const Eigen::VectorXcd> e(row, count);
     for (size_t p = 0; p < series.size(); ++p) {
       const auto& [real, imaginary] = parts[p][i];
       result.values[p].push_back(series[p].offset[i] + evaluator.slope_of(p, i) * h +
                                  real.dot(e.real()) + imaginary.dot(e.imag()) +
-                                 evaluator.forced_value(p, i, h));
+                                 evaluator.forced_value(p, i, h, row + count));
     }
   }
 }
@@ -293,20 +417,25 @@ void sample_uniformly(const SeriesEvaluator& evaluator, const Eigen::VectorXcd& 
 // The global extreme of one probe, not only the sampled one. Inside interval i, for h ≥ a (the
 // affine part of a ramp has no curvature, so the bound is the exponentials' alone),
 // |p''(h)| ≤ K_i(a) = Σ_k |a_ik|·|λ_k|²·e^{Re λ_k·a} (Re λ_k ≤ 0), so on a gap [a, b] p exceeds
-// max(p(a), p(b)) by at most K_i(a)·(b − a)²/8. Gaps whose bound passes the best value found
-// are halved until it does not (to 1e-11 of the largest |p|), and the best point is then
-// polished by Newton on p'(t) = 0 to rounding. K_i(a) shrinks quickly away from a switching
-// edge, where the fast modes it excites have decayed. Measured: on the fish fin near its
-// resonance (ζ1 ≈ 0.015) Newton from the largest of 256 samples alone found a local maximum
-// 1.2e-5 below the global one, hidden between samples by a second mode's ripple.
+// max(p(a), p(b)) by at most K_i(a)·(b − a)²/8. Split p into terms S bounded so and terms F
+// bounded by their size M_F(a) = Σ_F |a_ik|·e^{Re λ_k·a}: p = s + f exceeds max(p(a), p(b)) by
+// at most K_S(a)·(b − a)²/8 + 2·M_F(a) (f shifts the ends' values by M_F at most, and the value
+// inside by M_F again). Each term goes where its share is smaller (rise_after): right after a
+// switching edge the fast modes it excites curve hard but are small, and K_i(a)·(b − a)²/8
+// alone would halve the gaps there until they decay. Gaps whose bound passes the best value
+// found are halved until it does not (to 1e-11 of the largest |p|), and the best point is then
+// polished by Newton on p'(t) = 0 to rounding. Measured: on the fish fin near its resonance
+// (ζ1 ≈ 0.015) Newton from the largest of 256 samples alone found a local maximum 1.2e-5 below
+// the global one, hidden between samples by a second mode's ripple.
 class ExtremeSearch {
  public:
   // The maximum (`maximum`) or minimum of probe p, from its sampled extreme `sample`; the
   // samples `sample_step` apart.
-  ExtremeSearch(const SeriesEvaluator& evaluator, const PeriodicResult& result, size_t p,
-                size_t sample, bool maximum, double sample_step)
+  ExtremeSearch(const SeriesEvaluator& evaluator, const PeriodicResult& result, SolveRows& rows,
+                size_t p, size_t sample, bool maximum, double sample_step)
       : evaluator_(evaluator),
         result_(result),
+        rows_(rows),
         p_(p),
         sign_(maximum ? 1.0 : -1.0),
         period_(evaluator.edges().back()),
@@ -332,10 +461,16 @@ class ExtremeSearch {
  private:
   struct Point {
     double h, value, curvature;  // offset into the interval, sign·p and K_i there (or −1)
+    const Complex* row;          // the exponentials at h
   };
+  // `rise`: a bound on sign·p above the ends' larger value, from rise_after on this gap or on
+  // one holding it (a narrower gap further from the edge has a smaller bound); `own`: made for
+  // this gap itself, so that halving rather than forming it again is what can lower it.
   struct Gap {
     size_t interval;
     Point left, right;
+    double rise = std::numeric_limits<double>::infinity();
+    bool own = false;
   };
   // Where sign·p is concave around a local maximum found by polish: its only maximum there.
   struct Window {
@@ -353,14 +488,18 @@ class ExtremeSearch {
     const std::vector<double>& times = result_.times;
     const std::vector<double>& values = result_.values[p_];
     gaps_.reserve(times.size() + 2 * evaluator_.intervals() + 64);
+    std::vector<Point> points;
+    points.reserve(times.size() + 2);
     for (size_t i = 0; i < evaluator_.intervals(); ++i) {
       const double length = edges[i + 1] - edges[i];
-      std::vector<Point> points{{0.0, sign_ * evaluator_.evaluate(p_, i, 0.0, nullptr, nullptr),
-                                 evaluator_.widest_curvature(p_, i)}};
+      const Complex *start = evaluator_.start_row(), *end = evaluator_.end_row(i);
+      points.assign({{0.0, sign_ * evaluator_.evaluate(p_, i, 0.0, start, nullptr, nullptr),
+                      evaluator_.widest_curvature(p_, i), start}});
       for (size_t s = 0; s < times.size(); ++s)
         if (times[s] > edges[i] && times[s] < edges[i + 1])
-          points.push_back({times[s] - edges[i], sign_ * values[s], -1.0});
-      points.push_back({length, sign_ * evaluator_.evaluate(p_, i, length, nullptr, nullptr), 0.0});
+          points.push_back({times[s] - edges[i], sign_ * values[s], -1.0, rows_.samples()[s]});
+      points.push_back(
+          {length, sign_ * evaluator_.evaluate(p_, i, length, end, nullptr, nullptr), 0.0, end});
       for (size_t k = 0; k + 1 < points.size(); ++k) gaps_.push_back({i, points[k], points[k + 1]});
       for (const Point& point : points)
         if (point.value > best_) best_ = point.value, best_interval_ = i, best_h_ = point.h;
@@ -399,29 +538,40 @@ class ExtremeSearch {
       const double width = gap.right.h - gap.left.h;
       const double higher = std::max(gap.left.value, gap.right.value);
       if (width <= 1e-15 * period_) continue;
-      // K_i(0) first; K_i(a) (n exponentials) only when that bound does not settle the gap.
-      const double widest = evaluator_.widest_curvature(p_, gap.interval);
-      if (higher + widest * width * width / 8.0 <= best_ + tolerance_) continue;
+      // The bounds at h = 0 first, then the cached ones, then rise_after at the gap's left end
+      // only when none settles the gap.
+      const double room = best_ + tolerance_ - higher;
+      if (evaluator_.widest_rise(p_, gap.interval, width) <= room) continue;
       bool inside = false;
       for (const Window& w : concave_)
         inside |= w.interval == gap.interval && w.low <= gap.left.h && gap.right.h <= w.high;
       if (inside) continue;
-      if (gap.left.curvature < 0.0)
-        gap.left.curvature = evaluator_.curvature_after(p_, gap.interval, gap.left.h);
-      if (higher + gap.left.curvature * width * width / 8.0 <= best_ + tolerance_) continue;
-      // K_i(a) decreases with a: the left end's bound holds on both halves.
-      const double h = 0.5 * (gap.left.h + gap.right.h);
-      const Point middle{h, sign_ * evaluator_.evaluate(p_, gap.interval, h, nullptr, nullptr),
-                         gap.left.curvature};
+      const double square = width * width / 8.0;
+      if (gap.rise <= room || (gap.left.curvature >= 0.0 && gap.left.curvature * square <= room))
+        continue;
+      if (!gap.own) {
+        gap.rise = evaluator_.rise_after(p_, gap.interval, gap.left.row, width, gap.left.curvature);
+        gap.own = true;
+        if (gap.rise <= room) continue;
+      }
+      // K_i(a) and the rise decrease with a and with the width: both halves keep them. The
+      // middle's exponentials from the left end's, by a step shared with other gaps.
+      const auto [step_row, step] = rows_.step(0.5 * width);
+      const double h = gap.left.h + step;
+      Complex* row = rows_.pool().add();
+      evaluator_.step_row(gap.left.row, step_row, row);
+      const Point middle{h, sign_ * evaluator_.evaluate(p_, gap.interval, h, row, nullptr, nullptr),
+                         gap.left.curvature, row};
       if (middle.value > best_ + tolerance_) polish(gap.interval, h);
       improve(middle.value, gap.interval, h);
-      gaps_.push_back({gap.interval, gap.left, middle});
-      gaps_.push_back({gap.interval, middle, gap.right});
+      gaps_.push_back({gap.interval, gap.left, middle, gap.rise, false});
+      gaps_.push_back({gap.interval, middle, gap.right, gap.rise, false});
     }
   }
 
   const SeriesEvaluator& evaluator_;
   const PeriodicResult& result_;
+  SolveRows& rows_;
   size_t p_;
   double sign_, period_, sample_step_, tolerance_ = 0.0;
   double best_ = 0.0;
@@ -447,10 +597,11 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
                             const std::vector<ExponentialSeries>& series, int samples,
                             PeriodicResult& result, const Eigen::VectorXcd& forced_exponents) {
   const SeriesEvaluator evaluator(lambda, edges, series, forced_exponents);
-  sample_uniformly(evaluator, lambda, series, samples, result);
+  SolveRows rows(evaluator);
+  sample_uniformly(evaluator, series, samples, result, rows);
   const double sample_step = edges.back() / samples;
   fill_extremes(result, [&](size_t p, size_t sample, bool maximum) {
-    return ExtremeSearch(evaluator, result, p, sample, maximum, sample_step).find();
+    return ExtremeSearch(evaluator, result, rows, p, sample, maximum, sample_step).find();
   });
 }
 
