@@ -116,7 +116,9 @@ Status grown_right_eigenpairs(ShiftInvertOperator& op, bool has_rigid_space, dou
       // last conjugate pair is missing: the pair stands for itself, poles_of).
       if (converged < nev && (resonant + 1) / 2 < wanted_modes)
         result.note = std::to_string(converged) + " of the " + std::to_string(nev) +
-                      " poles requested converged";
+                      " poles requested converged: poles beyond a cluster of nearly equal real "
+                      "poles, such as Kelvin-Voigt relaxations near -1/tau, are not reached (the "
+                      "dense method computes every pole)";
       return Status::success();
     }
     nev = std::min(n - 3, std::max(2 * nev, others + 2 * wanted_modes));

@@ -57,15 +57,7 @@ void print_what_the_modes_are(const emnet::ModesStudyResult& study,
                     ? std::string()
                     : ", " + std::to_string(result.overdamped_pairs.size()) + " overdamped pair(s)")
             << (rigid_names.empty() ? "" : ", rigid-body motion: " + rigid_names.front()) << "\n"
-            << (result.note.empty()
-                    ? ""
-                    : "note: " + result.note +
-                          (result.method == emnet::Method::arnoldi
-                               ? " (poles beyond a cluster of nearly equal real poles, such "
-                                 "as Kelvin-Voigt relaxations near -1/tau, are not reached; "
-                                 "--dense computes every pole)"
-                               : "") +
-                          "\n")
+            << (result.note.empty() ? "" : "note: " + result.note + "\n")
             << "rule: " << emnet::kModeRule << "\n"
             << "accuracy: 'rounding' bounds each frequency's error from the computation "
                "(first order: residual in extended precision times the pole's condition); "
