@@ -74,8 +74,10 @@ Scene tweezer_jaw() {
 
 // The jaw's pole search: the request for 4 modes finds the 12 poles below the Kelvin–Voigt
 // cluster, the request for 8 runs into the cluster and finds none more (useful_request 4). With
-// last_request 4 (a design study's variants) the search stops there and keeps the same poles;
-// the periodic state is then the same to rounding (1e-12 of each probe's largest value).
+// last_request 4 (a design study's variants) the search stops there and keeps the same poles,
+// from the request for 4 where the full search keeps the request for 8's: two Arnoldi runs, whose
+// poles agree to 1e-9 (checked), so the periodic states agree to that order too (measured
+// 3e-12 of each probe's largest value; the tolerance is the poles' own).
 TEST(ReducedCascade, ALastRequestKeepsThePolesWithoutTheClusterRun) {
   const Model model = prepare_model(tweezer_jaw());
   const System system = model.network.assemble();
@@ -100,7 +102,7 @@ TEST(ReducedCascade, ALastRequestKeepsThePolesWithoutTheClusterRun) {
   const PeriodicResult a = searched.solve(system, outputs, 1.0 / 8.0, 64);
   const PeriodicResult b = stopped.solve(system, outputs, 1.0 / 8.0, 64);
   ASSERT_TRUE(a.status.ok() && b.status.ok());
-  EXPECT_LT(periodic_difference(b, a), 1e-12);
+  EXPECT_LT(periodic_difference(b, a), 1e-9);
   EXPECT_THROW(
       [] {
         ReductionOptions bad;
