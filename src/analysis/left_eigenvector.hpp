@@ -13,12 +13,35 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
+#include <Eigen/SparseLU>
 #include <complex>
 #include <string>
 
 #include "equilibration.hpp"
 
 namespace emnet {
+
+// The equilibrated adjoint pencil Ĝᵀ + conj(ŝ)·Ĉᵀ of one network, for left vectors at many
+// poles: its pattern is the same at every pole, so the sparse LU's ordering is found once and
+// each pole costs a numeric factorisation only (the results are those of left_eigenspace).
+class LeftEigenSolver {
+ public:
+  // As left_eigenspace's arguments; the matrices are copied (scaled, transposed, complex).
+  LeftEigenSolver(const Eigen::SparseMatrix<double>& g_matrix,
+                  const Eigen::SparseMatrix<double>& c_matrix, const DiagonalScaling& scaling);
+  // left_eigenspace at `pole` (1/s).
+  bool space(std::complex<double> pole, int count, Eigen::MatrixXcd& left, double& residual,
+             std::string& why);
+
+ private:
+  using ComplexSparse = Eigen::SparseMatrix<std::complex<double>>;
+  ComplexSparse adjoint_at(std::complex<double> s_hat) const;
+  DiagonalScaling scaling_;
+  ComplexSparse g_adjoint_, c_adjoint_;
+  double scale_g_ = 0.0, scale_c_ = 0.0;  // ‖Ĝ‖₁, ‖Ĉ‖₁
+  Eigen::SparseLU<ComplexSparse> lu_;
+  bool analysed_ = false;
+};
 
 // `scaling`: equilibrate_pencil(g_matrix, c_matrix), computed once by the caller for all the
 // poles it asks about (at large N the equilibration costs more than the inverse iteration).

@@ -311,7 +311,7 @@ struct GroupContext {
   const Eigen::SparseMatrix<double>& g_matrix;
   const Eigen::SparseMatrix<Complex>& c_complex;
   const std::vector<Eigen::VectorXcd>& inputs;
-  const DiagonalScaling& scaling;  // of the pencil (g_matrix, system.C), for left vectors
+  LeftEigenSolver& left_vectors;  // on the pencil (g_matrix, system.C)
 };
 
 // Keeps the group `members` of `candidates` in `result` (kept poles, β), or reports through
@@ -328,8 +328,7 @@ Status keep_group(const GroupContext& context, const std::vector<Candidate>& can
   Eigen::MatrixXcd left;
   double residual = 0.0;
   std::string why;
-  if (!left_eigenspace(context.g_matrix, context.system.C, context.scaling, pole,
-                       static_cast<int>(m), left, residual, why))
+  if (!context.left_vectors.space(pole, static_cast<int>(m), left, residual, why))
     return Status::failure("left eigenvector at " + std::to_string(std::abs(pole) / two_pi) +
                            " Hz: " + why);
   const Eigen::MatrixXcd w = left.conjugate();
@@ -494,8 +493,8 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
     return finish(series);
 
   const Eigen::SparseMatrix<Complex> c_complex = system.C.cast<Complex>();
-  const DiagonalScaling scaling = equilibrate_pencil(g_matrix, system.C);
-  const GroupContext context{system, g_matrix, c_complex, inputs, scaling};
+  LeftEigenSolver left_vectors(g_matrix, system.C, equilibrate_pencil(g_matrix, system.C));
+  const GroupContext context{system, g_matrix, c_complex, inputs, left_vectors};
   if (Status grouped = keep_or_truncate(context, modal, options, omega_c, omega_band, result);
       !grouped.ok())
     return finish(grouped);
