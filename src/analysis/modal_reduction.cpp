@@ -13,6 +13,7 @@
 #include "emnet/core/units.hpp"
 #include "exponential_series.hpp"
 #include "left_eigenvector.hpp"
+#include "reduced_periodic.hpp"
 #include "static_operator.hpp"
 
 namespace emnet {
@@ -462,6 +463,17 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
                             const std::vector<Eigen::VectorXcd>& inputs,
                             const ReductionOptions& options) {
   validate(options);
+  const Eigen::SparseMatrix<double> g_matrix = linearised_g(system, operating_point);
+  const StaticOperator static_operator(system, g_matrix);
+  return reduce_modal(system, operating_point, g_matrix, static_operator, inputs, options);
+}
+
+ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operating_point,
+                            const Eigen::SparseMatrix<double>& g_matrix,
+                            const StaticOperator& static_operator,
+                            const std::vector<Eigen::VectorXcd>& inputs,
+                            const ReductionOptions& options) {
+  validate(options);
   Timed<ModalReduction> timed;
   ModalReduction& result = timed.result;
   auto finish = [&](Status status) { return timed.finish(std::move(status)); };
@@ -473,8 +485,6 @@ ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operati
   const double omega_c = two_pi * result.cutoff_hz;
   const double omega_band = two_pi * options.band;
 
-  const Eigen::SparseMatrix<double> g_matrix = linearised_g(system, operating_point);
-  const StaticOperator static_operator(system, g_matrix);
   result.mechanical = static_operator.mechanical();
   std::vector<Eigen::VectorXcd> statics;
   if (Status solved = static_states(static_operator, inputs, statics); !solved.ok())

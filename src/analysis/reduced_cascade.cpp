@@ -294,10 +294,10 @@ class ReachedOperator {
 // feed[j][m]: the full model's Taylor coefficients at μ_m less the kept poles' (R/(s − λ) →
 // R·g, −R·g², R·g³ with g = 1/(μ − λ)); a kept pole the force does not reach is left out (its
 // β is the decomposition's rounding, and μ may be that very pole: a voltage's).
-Status truncated_feed(const System& system, const ModalReduction& reduction, Cascade& cascade) {
-  const Eigen::SparseMatrix<double> g_matrix =
-      linearised_g(system, Eigen::VectorXd::Zero(system.size()));
-  const StaticOperator static_operator(system, g_matrix);
+// `g_matrix`, `static_operator`: at rest, as the reduction's.
+Status truncated_feed(const System& system, const Eigen::SparseMatrix<double>& g_matrix,
+                      const StaticOperator& static_operator, const ModalReduction& reduction,
+                      Cascade& cascade) {
   const auto [a1, a2] = expansion_matrices(system, g_matrix, static_operator);
   // The pattern of the entries that are not zero (the DEAs' Jacobians at u = 0 are stored zeros).
   Eigen::SparseMatrix<double> pattern =
@@ -359,7 +359,10 @@ void ReducedPeriodicSolver::reduce_cascade(const System& system, const Reduction
     reduction_.status = sources;
     return;
   }
-  reduction_ = reduce_modal(system, Eigen::VectorXd::Zero(system.size()), inputs, periodic);
+  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(system.size());
+  const Eigen::SparseMatrix<double> g_matrix = linearised_g(system, rest);
+  const StaticOperator static_operator(system, g_matrix);
+  reduction_ = reduce_modal(system, rest, g_matrix, static_operator, inputs, periodic);
   if (!reduction_.status.ok()) return;
   const Stopwatch stopwatch;
   for (const Cascade::Source& source : cascade->sources)
@@ -379,7 +382,8 @@ void ReducedPeriodicSolver::reduce_cascade(const System& system, const Reduction
   }
   expand_poles(reduction_, *cascade);
   Status prepared = carried_poles(reduction_, *cascade);
-  if (prepared.ok()) prepared = truncated_feed(system, reduction_, *cascade);
+  if (prepared.ok())
+    prepared = truncated_feed(system, g_matrix, static_operator, reduction_, *cascade);
   reduction_.seconds += stopwatch.seconds();
   if (!prepared.ok()) {
     reduction_.status = prepared;

@@ -9,8 +9,17 @@
 #include "emnet/analysis/modal_reduction.hpp"
 #include "emnet/network/network.hpp"
 #include "exponential_series.hpp"
+#include "static_operator.hpp"
 
 namespace emnet {
+
+// reduce_modal with the linearised G at `operating_point` and its StaticOperator made by the
+// caller, who needs them again (the reduced cascade's truncated part).
+ModalReduction reduce_modal(const System& system, const Eigen::VectorXd& operating_point,
+                            const Eigen::SparseMatrix<double>& g_matrix,
+                            const StaticOperator& static_operator,
+                            const std::vector<Eigen::VectorXcd>& inputs,
+                            const ReductionOptions& options);
 
 // Each input (a waveform of the system's excitation) affine on each interval between `edges`:
 // u_j = value[i][j] + h·slope[i][j] (slope 0 where it is constant; ramp[i]: some input ramps).
