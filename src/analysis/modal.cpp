@@ -13,6 +13,7 @@
 #include "dense_decompositions.hpp"
 #include "displacement_form.hpp"
 #include "emnet/analysis/analysis.hpp"
+#include "emnet/core/option_error.hpp"
 #include "equilibration.hpp"
 #include "modal_eigenpairs.hpp"
 #include "pole_bounds.hpp"
@@ -370,8 +371,15 @@ ModalResult compute_modes(const System& system, const Eigen::VectorXd& operating
 
 }  // namespace
 
+void validate(const ModalOptions& options) {
+  if (options.count < 0) throw OptionError("count", "must be >= 0");
+  if (options.dense_limit < 0) throw OptionError("dense_limit", "must be >= 0");
+  if (options.first_request < 0) throw OptionError("first_request", "must be >= 0");
+}
+
 ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,
                       const ModalOptions& options) {
+  validate(options);
   // An eigen-solver that gives up (Eigen's or Spectra's "Schur decomposition failed", on a
   // pencil whose values span hundreds of orders of magnitude, e.g. a 1e300 kg mass) is a
   // numerical failure with its reason, not an internal error.

@@ -139,7 +139,9 @@ Status arnoldi_eigenpairs(ShiftInvertLu& lu, const Eigen::SparseMatrix<double>& 
   // grows by as many. Well separated poles converge in 1–3 restarts; the budget is 10.
   const int wanted_modes = options.count > 0 ? options.count : 10;
   const int n = static_cast<int>(e_hat.rows());
-  int nev = std::min(2 * std::min(wanted_modes, 3), n - 3);  // grows by doubling
+  int nev =
+      std::min(options.first_request > 0 ? options.first_request : 2 * std::min(wanted_modes, 3),
+               n - 3);  // grows by doubling
   const bool has_rigid_space = rigid.right.cols() > 0;
   try {
     ShiftInvertOperator op(lu, e_hat, rigid.right, rigid.projector_left, false, options.progress);
@@ -147,6 +149,7 @@ Status arnoldi_eigenpairs(ShiftInvertLu& lu, const Eigen::SparseMatrix<double>& 
                                               right, result);
         !grown.ok())
       return grown;
+    result.last_request = nev;
     if (options.error_bounds) {
       ShiftInvertOperator transposed(lu, e_hat, rigid.left, rigid.transposed_projector_left, true,
                                      options.progress);

@@ -120,6 +120,7 @@ void validate(const ReductionOptions& options) {
                       "must be a finite frequency > 0 Hz, got " + std::to_string(options.band));
   if (options.dense_limit < 0) throw OptionError("dense_limit", "must be >= 0");
   if (options.last_request < 0) throw OptionError("last_request", "must be >= 0");
+  if (options.arnoldi_request < 0) throw OptionError("arnoldi_request", "must be >= 0");
   if (!(options.cutoff_hz >= 0.0) || !std::isfinite(options.cutoff_hz))
     throw OptionError("cutoff_hz", "must be a finite frequency >= 0 Hz");
 }
@@ -201,12 +202,16 @@ Status find_poles(const System& system, const Eigen::VectorXd& operating_point,
   size_t found_before = 0;
   for (int count = 4;; count *= 2) {
     modal_options.count = count;
+    modal_options.first_request = count == options.last_request ? options.arnoldi_request : 0;
     modal = run_modes(system, operating_point, modal_options);
     if (!modal.status.ok()) return modal.status.with_context("modes: ");
     const double largest = largest_pole(modal);
     const size_t found =
         modal.modes.size() + modal.overdamped_pairs.size() + modal.real_poles.size();
-    if (modal.method == Method::arnoldi && found > found_before) result.useful_request = count;
+    if (modal.method == Method::arnoldi && found > found_before) {
+      result.useful_request = count;
+      result.useful_arnoldi_request = modal.last_request;
+    }
     found_before = std::max(found_before, found);
     if (modal.complete) break;
     if (largest >= omega_c) break;

@@ -49,8 +49,9 @@ struct ColumnLayout {
   std::vector<std::size_t> report_indices;  // into sweep_frequencies
   // The sweep by the reduced cascade, checked on the nominal scene (choose_the_sweep_method).
   bool sweep_reduced = false;
-  double sweep_tolerance = 0.0;  // model.tolerance of the nominal scene
-  int sweep_last_request = 0;    // the nominal reduction's useful request, where it hit a cluster
+  double sweep_tolerance = 0.0;   // model.tolerance of the nominal scene
+  int sweep_last_request = 0;     // the nominal reduction's useful request, where it hit a cluster
+  int sweep_arnoldi_request = 0;  // and the Arnoldi run's own request there
 };
 
 // A cascade (the DEAs driven through a [[circuit]]) with more unknowns than this has its sweep
@@ -66,6 +67,7 @@ ReductionOptions study_sweep_reduction(const ColumnLayout& layout) {
   reduction.band = layout.sweep_frequencies.back();
   reduction.tolerance = layout.sweep_tolerance;
   reduction.last_request = layout.sweep_last_request;
+  reduction.arnoldi_request = layout.sweep_arnoldi_request;
   return reduction;
 }
 
@@ -393,7 +395,10 @@ void choose_the_sweep_method(const Model& nominal, const DesignStudyOptions& opt
   const ModalReduction& model = reduced.reduced_solver->reduction();
   // Where the nominal's pole search ran into a cluster, the variants ask no more than the request
   // that found its last pole.
-  if (!model.all_found) layout.sweep_last_request = model.useful_request;
+  if (!model.all_found) {
+    layout.sweep_last_request = model.useful_request;
+    layout.sweep_arnoldi_request = model.useful_arnoldi_request;
+  }
   result.notes.push_back(
       "sweep-switching: the reduced cascade for every variant (" + size + ": " +
       std::to_string(model.kept_modes) + " modes and " + std::to_string(model.kept_real_poles) +
@@ -402,7 +407,8 @@ void choose_the_sweep_method(const Model& nominal, const DesignStudyOptions& opt
       (layout.sweep_last_request > 0
            ? ", and their pole search stops at the request that found the nominal's last pole (" +
                  std::to_string(layout.sweep_last_request) +
-                 " modes; a larger one ran into a cluster)"
+                 " modes; a larger one ran into a cluster), its Arnoldi run asking for the " +
+                 std::to_string(layout.sweep_arnoldi_request) + " poles the nominal's ended with"
            : ""));
 }
 

@@ -220,6 +220,10 @@ struct ModalOptions {
   int dense_limit = 80;
   bool keep_vectors = true;  ///< fill Mode::vector
   bool error_bounds = true;  ///< compute each pole's error bound (from the transposed pencil)
+  /// Arnoldi: > 0, the request (poles) of the first run, in place of twice the wanted modes (at
+  /// most 6), grown as that one would be. A design study's variants start from their nominal's
+  /// ModalResult::last_request: the runs the nominal outgrew would be thrown away again.
+  int first_request = 0;
   /// Reports each phase (equilibration, factorisation, rigid-body space, eigenvalues, left
   /// vectors, bounds) and, inside the Arnoldi iterations, the operator applications; cancelled,
   /// the analysis stops at the next phase or application with cancelled_status().
@@ -261,10 +265,17 @@ struct ModalResult {
   double bound_seconds = 0.0;  ///< of that, the error bounds
   bool complete = false;       ///< true when every finite pole was computed
   std::string note;            ///< e.g. how many of the requested poles converged
+  int last_request = 0;        ///< Arnoldi: the request (poles) of the run kept; 0 dense
   long iterations = 0;         ///< Arnoldi restarts over all attempts (0 for dense)
 };
 
+/// The checks of ModalOptions.
+/// @throws OptionError naming the field ("count", "dense_limit", "first_request") for a negative
+///         value
+void validate(const ModalOptions& options);
+
 /// `operating_point`: y at rest (velocities zero) to linearise about; empty means zero.
+/// @throws OptionError as validate(options)
 ModalResult run_modes(const System& system, const Eigen::VectorXd& operating_point,
                       const ModalOptions& options = {});
 

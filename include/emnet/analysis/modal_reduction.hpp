@@ -115,11 +115,15 @@ struct ReductionOptions {
   /// only ran into a cluster (ten restarts without a new pole: two thirds of the tweezer jaw's
   /// pole search).
   int last_request = 0;
+  /// > 0: at that last request, the Arnoldi run's request (poles) to start from
+  /// (ModalOptions::first_request): a design study's variants take the nominal reduction's
+  /// `useful_arnoldi_request` (the tweezer jaw's first run of 6 poles was outgrown every time).
+  int arnoldi_request = 0;
 };
 
 /// The checks of ReductionOptions.
-/// @throws OptionError naming the field ("band", "tolerance", "dense_limit", "cutoff_hz") for
-///         values outside the ranges
+/// @throws OptionError naming the field ("band", "tolerance", "dense_limit", "cutoff_hz",
+///         "last_request", "arnoldi_request") for values outside the ranges
 void validate(const ReductionOptions& options);
 /// f_c = f_band / √tol, or options.cutoff_hz when set.
 double cutoff_frequency(const ReductionOptions& options);
@@ -148,6 +152,8 @@ struct ModalReduction {
   bool all_found = true;    ///< every pole below f_c was computed
   /// The last Arnoldi request (modes asked) that found a pole the one before had not; 0 dense.
   int useful_request = 0;
+  /// The Arnoldi run's own request (poles) at useful_request (ModalResult::last_request).
+  int useful_arnoldi_request = 0;
   /// ρ_max(f_band) of the truncated poles found ((f_band/f_c)² when none were found).
   double truncation_factor = 0.0;
   std::vector<std::pair<std::complex<double>, bool>> truncated;  ///< (pole, oscillatory)
