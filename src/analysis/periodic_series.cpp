@@ -63,11 +63,8 @@ class SeriesEvaluator {
   // The row at h, from n complex exponentials (a real exponent's without sine and cosine).
   void fill_row(double h, Complex* row) const {
     for (size_t j = 0; j < terms_.size(); ++j) row[j] = std::exp(lambda_[terms_[j]] * h);
-    for (Eigen::Index m = 0; m < mu_.size(); ++m) {
-      const Complex mu = mu_[m];
-      row[terms_.size() + static_cast<size_t>(m)] =
-          mu.imag() == 0.0 ? Complex(std::exp(mu.real() * h)) : std::exp(mu * h);
-    }
+    for (Eigen::Index m = 0; m < mu_.size(); ++m)
+      row[terms_.size() + static_cast<size_t>(m)] = forced_exponential(m, h);
   }
   // The row at h + Δ from the rows at h and at Δ: e^{λ(h+Δ)} = e^{λh}·e^{λΔ}, n products.
   void step_row(const Complex* at, const Complex* by, Complex* row) const {
@@ -76,29 +73,16 @@ class SeriesEvaluator {
   // Value and two derivatives (each may be null) of probe p at offset h into interval i, with
   // `row` the exponentials at h.
   double evaluate(size_t p, size_t i, double h, const Complex* row, double* d1, double* d2) const {
-    double sum = 0.0, first = 0.0, second = 0.0;
-    const Eigen::VectorXcd& a = series_[p].coefficient[i];
-    const Eigen::VectorXd& after = cutoff_[p][i];
-    const bool derivatives = d1 || d2;
-    for (size_t j = 0; j < terms_.size(); ++j) {
-      const Eigen::Index k = terms_[j];
-      if (h > after[k] && (weights_[j] == 1.0 || h > after[k + 1])) continue;
-      const Complex term = weights_[j] * a[k] * row[j];
-      sum += term.real();
-      if (!derivatives) continue;
-      first += (term * lambda_[k]).real();
-      second += (term * lambda_[k] * lambda_[k]).real();
-    }
-    if (has_forced(p)) add_forced(p, i, h, row + terms_.size(), sum, first, second, derivatives);
-    if (d1) *d1 = first + slope_of(p, i);
-    if (d2) *d2 = second;
-    return series_[p].offset[i] + slope_of(p, i) * h + sum;
+    const size_t forced = terms_.size();
+    return evaluate_with(
+        p, i, h, [row](size_t j) { return row[j]; },
+        [row, forced](Eigen::Index m) { return row[forced + static_cast<size_t>(m)]; }, d1, d2);
   }
-  // The same from the exponentials at h formed here.
+  // The same with the exponentials formed here, only for the terms that have not decayed.
   double evaluate(size_t p, size_t i, double h, double* d1, double* d2) const {
-    scratch_row_.resize(row_width());
-    fill_row(h, scratch_row_.data());
-    return evaluate(p, i, h, scratch_row_.data(), d1, d2);
+    return evaluate_with(
+        p, i, h, [&](size_t j) { return std::exp(lambda_[terms_[j]] * h); },
+        [&](Eigen::Index m) { return forced_exponential(m, h); }, d1, d2);
   }
   // The rows at the start (all 1) and the end of interval i.
   const Complex* start_row() const { return ones_.data(); }
@@ -107,7 +91,9 @@ class SeriesEvaluator {
   // exponentials e^{μ_m·h}.
   double forced_value(size_t p, size_t i, double h, const Complex* forced) const {
     double sum = 0.0, first = 0.0, second = 0.0;
-    if (has_forced(p)) add_forced(p, i, h, forced, sum, first, second, false);
+    if (has_forced(p))
+      add_forced(
+          p, i, h, [forced](Eigen::Index m) { return forced[m]; }, sum, first, second, false);
     return sum;
   }
   bool has_forced(size_t p) const { return !series_[p].forced.empty(); }
@@ -151,6 +137,36 @@ class SeriesEvaluator {
   }
 
  private:
+  // evaluate with e^{λ_j·h} from exponential(j) (j over `terms`) and e^{μ_m·h} from
+  // forced_exponential(m), each asked only for a term that has not decayed below rounding.
+  template <class Exponential, class ForcedExponential>
+  double evaluate_with(size_t p, size_t i, double h, const Exponential& exponential,
+                       const ForcedExponential& forced_exponential, double* d1, double* d2) const {
+    double sum = 0.0, first = 0.0, second = 0.0;
+    const Eigen::VectorXcd& a = series_[p].coefficient[i];
+    const Eigen::VectorXd& after = cutoff_[p][i];
+    const bool derivatives = d1 || d2;
+    for (size_t j = 0; j < terms_.size(); ++j) {
+      const Eigen::Index k = terms_[j];
+      if (h > after[k] && (weights_[j] == 1.0 || h > after[k + 1])) continue;
+      const Complex term = weights_[j] * a[k] * exponential(j);
+      sum += term.real();
+      if (!derivatives) continue;
+      first += (term * lambda_[k]).real();
+      second += (term * lambda_[k] * lambda_[k]).real();
+    }
+    if (has_forced(p)) add_forced(p, i, h, forced_exponential, sum, first, second, derivatives);
+    if (d1) *d1 = first + slope_of(p, i);
+    if (d2) *d2 = second;
+    return series_[p].offset[i] + slope_of(p, i) * h + sum;
+  }
+
+  // e^{μ_m·h}; a real exponent (an RC loop's) needs no sine and cosine.
+  Complex forced_exponential(Eigen::Index m, double h) const {
+    const Complex mu = mu_[m];
+    return mu.imag() == 0.0 ? Complex(std::exp(mu.real() * h)) : std::exp(mu * h);
+  }
+
   // The rows at each interval's start (all 1) and end.
   void form_end_rows() {
     ones_.assign(row_width(), Complex(1.0));
@@ -162,11 +178,12 @@ class SeriesEvaluator {
   // The forced terms' value and two derivatives at h, added to sum, first and second, from
   // their exponentials e^{μ_m·h} (`forced`): (C·e^{μh})' = (C' + μ·C)·e^{μh},
   // (C·e^{μh})'' = (C'' + 2μ·C' + μ²·C)·e^{μh}.
-  void add_forced(size_t p, size_t i, double h, const Complex* forced, double& sum, double& first,
-                  double& second, bool derivatives = true) const {
+  template <class ForcedExponential>
+  void add_forced(size_t p, size_t i, double h, const ForcedExponential& forced, double& sum,
+                  double& first, double& second, bool derivatives = true) const {
     const ExponentialSeries::ForcedTerms& c = series_[p].forced[i];
     for (Eigen::Index m = 0; m < mu_.size(); ++m) {
-      const Complex mu = mu_[m], e = forced[m];
+      const Complex mu = mu_[m], e = forced(m);
       const Complex poly = c(m, 0) + h * (c(m, 1) + h * c(m, 2));
       sum += (poly * e).real();
       if (!derivatives) continue;
@@ -300,8 +317,7 @@ class SeriesEvaluator {
   std::vector<std::vector<Eigen::VectorXd>> size_terms_, curvature_terms_;
   std::vector<std::vector<double>> widest_curvature_, widest_size_;  // [probe][interval] at 0
   Eigen::VectorXd decay_, magnitude_;
-  std::vector<Complex> ones_, end_rows_;      // the rows at h = 0 and each interval's end
-  mutable std::vector<Complex> scratch_row_;  // evaluate's own row
+  std::vector<Complex> ones_, end_rows_;  // the rows at h = 0 and each interval's end
   // Per probe and interval, per forced exponent: the bounds' factors on |p|, |p''| and |p‴|,
   // and min(Re μ, 0).
   std::vector<std::vector<Eigen::VectorXd>> forced_size_, forced_curvature_, forced_third_;
