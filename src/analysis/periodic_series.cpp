@@ -1,5 +1,6 @@
 // Sampling and extremes of the periodic state's exponential series: see exponential_series.hpp.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -430,72 +431,94 @@ void sample_uniformly(const SeriesEvaluator& evaluator,
   }
 }
 
-// The global extreme of one probe, not only the sampled one. Inside interval i, for h ≥ a (the
-// affine part of a ramp has no curvature, so the bound is the exponentials' alone),
+// The global extremes of one probe, not only the sampled ones. Inside interval i, for h ≥ a
+// (the affine part of a ramp has no curvature, so the bound is the exponentials' alone),
 // |p''(h)| ≤ K_i(a) = Σ_k |a_ik|·|λ_k|²·e^{Re λ_k·a} (Re λ_k ≤ 0), so on a gap [a, b] p exceeds
 // max(p(a), p(b)) by at most K_i(a)·(b − a)²/8. Split p into terms S bounded so and terms F
 // bounded by their size M_F(a) = Σ_F |a_ik|·e^{Re λ_k·a}: p = s + f exceeds max(p(a), p(b)) by
 // at most K_S(a)·(b − a)²/8 + 2·M_F(a) (f shifts the ends' values by M_F at most, and the value
 // inside by M_F again). Each term goes where its share is smaller (rise_after): right after a
 // switching edge the fast modes it excites curve hard but are small, and K_i(a)·(b − a)²/8
-// alone would halve the gaps there until they decay. Gaps whose bound passes the best value
-// found are halved until it does not (to 1e-11 of the largest |p|), and the best point is then
-// polished by Newton on p'(t) = 0 to rounding. Measured: on the fish fin near its resonance
-// (ζ1 ≈ 0.015) Newton from the largest of 256 samples alone found a local maximum 1.2e-5 below
-// the global one, hidden between samples by a second mode's ripple.
-class ExtremeSearch {
+// alone would halve the gaps there until they decay. The same bound holds for −p, so the
+// maximum and the minimum are searched together, on one set of gaps: a gap is halved while its
+// bound could hide a value past either best value found (to 1e-11 of the largest |p|), and each
+// best point is polished by Newton on p'(t) = 0 to rounding. Measured: on the fish fin near its
+// resonance (ζ1 ≈ 0.015) Newton from the largest of 256 samples alone found a local maximum
+// 1.2e-5 below the global one, hidden between samples by a second mode's ripple.
+class ExtremesSearch {
  public:
-  // The maximum (`maximum`) or minimum of probe p, from its sampled extreme `sample`; the
-  // samples `sample_step` apart.
-  ExtremeSearch(const SeriesEvaluator& evaluator, const PeriodicResult& result, SolveRows& rows,
-                size_t p, size_t sample, bool maximum, double sample_step)
+  // The extremes of probe p, from its sampled minimum and maximum (sample indices); the samples
+  // `sample_step` apart.
+  ExtremesSearch(const SeriesEvaluator& evaluator, const PeriodicResult& result, SolveRows& rows,
+                 size_t p, size_t lowest, size_t highest, double sample_step)
       : evaluator_(evaluator),
         result_(result),
         rows_(rows),
         p_(p),
-        sign_(maximum ? 1.0 : -1.0),
         period_(evaluator.edges().back()),
         sample_step_(sample_step) {
     double largest = 0.0;
     for (double v : result.values[p]) largest = std::max(largest, std::abs(v));
     tolerance_ = 1e-11 * largest;
-    best_ = sign_ * result.values[p][sample];
-    best_interval_ = evaluator.locate(result.times[sample]);
-    best_h_ = result.times[sample] - evaluator.edges()[best_interval_];
+    sides_[0].sign = -1.0;
+    for (Side& side : sides_) {
+      const size_t sample = side.sign > 0.0 ? highest : lowest;
+      side.best = side.sign * result.values[p][sample];
+      side.interval = evaluator.locate(result.times[sample]);
+      side.h = result.times[sample] - evaluator.edges()[side.interval];
+    }
   }
 
-  // (time, value) of the extreme.
-  std::pair<double, double> find() {
+  // (time, value) of the minimum and of the maximum.
+  std::array<std::pair<double, double>, 2> find() {
     seed_gaps();
-    polish(best_interval_, best_h_);
+    for (size_t s = 0; s < 2; ++s) polish(s, sides_[s].interval, sides_[s].h);
     halve_gaps();
-    double t = evaluator_.edges()[best_interval_] + best_h_;
-    if (t >= period_) t -= period_;
-    return {t, sign_ * best_};
+    std::array<std::pair<double, double>, 2> out;
+    for (size_t s = 0; s < 2; ++s) {
+      const Side& side = sides_[s];
+      double t = evaluator_.edges()[side.interval] + side.h;
+      if (t >= period_) t -= period_;
+      out[s] = {t, side.sign * side.best};
+    }
+    return out;
   }
 
  private:
-  struct Point {
-    double h, value, curvature;  // offset into the interval, sign·p and K_i there (or −1)
-    const Complex* row;          // the exponentials at h
-  };
-  // `rise`: a bound on sign·p above the ends' larger value, from rise_after on this gap or on
-  // one holding it (a narrower gap further from the edge has a smaller bound); `own`: made for
-  // this gap itself, so that halving rather than forming it again is what can lower it.
-  struct Gap {
-    size_t interval;
-    Point left, right;
-    double rise = std::numeric_limits<double>::infinity();
-    bool own = false;
-  };
   // Where sign·p is concave around a local maximum found by polish: its only maximum there.
   struct Window {
     size_t interval;
     double low, high;
   };
+  // The minimum (sign −1: the maximum of −p) or the maximum: the best sign·p found and where.
+  struct Side {
+    double sign = 1.0;
+    double best = 0.0;
+    size_t interval = 0;
+    double h = 0.0;
+    std::vector<Window> concave;
+  };
+  struct Point {
+    double h, value, curvature;  // offset into the interval, p and K_i there (or −1)
+    const Complex* row;          // the exponentials at h
+  };
+  // `rise`: a bound on |p| past the ends' values, from rise_after on this gap or on one holding
+  // it (a narrower gap further from the edge has a smaller bound); `own`: made for this gap
+  // itself, so that halving rather than forming it again is what can lower it. `open`: the
+  // sides (bit 0 the minimum, bit 1 the maximum) whose bound this gap has yet to settle.
+  struct Gap {
+    size_t interval;
+    Point left, right;
+    double rise = std::numeric_limits<double>::infinity();
+    bool own = false;
+    unsigned open = 3;
+  };
 
+  // A value of p found at h in interval i, for both sides.
   void improve(double value, size_t interval, double h) {
-    if (value > best_) best_ = value, best_interval_ = interval, best_h_ = h;
+    for (Side& side : sides_)
+      if (side.sign * value > side.best)
+        side.best = side.sign * value, side.interval = interval, side.h = h;
   }
 
   // The gaps between the interval ends and the samples inside each interval.
@@ -504,28 +527,31 @@ class ExtremeSearch {
     const std::vector<double>& times = result_.times;
     const std::vector<double>& values = result_.values[p_];
     gaps_.reserve(times.size() + 2 * evaluator_.intervals() + 64);
-    std::vector<Point> points;
-    points.reserve(times.size() + 2);
+    size_t sample = 0;  // the samples are in time order
     for (size_t i = 0; i < evaluator_.intervals(); ++i) {
       const double length = edges[i + 1] - edges[i];
-      const Complex *start = evaluator_.start_row(), *end = evaluator_.end_row(i);
-      points.assign({{0.0, sign_ * evaluator_.evaluate(p_, i, 0.0, start, nullptr, nullptr),
-                      evaluator_.widest_curvature(p_, i), start}});
-      for (size_t s = 0; s < times.size(); ++s)
-        if (times[s] > edges[i] && times[s] < edges[i + 1])
-          points.push_back({times[s] - edges[i], sign_ * values[s], -1.0, rows_.samples()[s]});
-      points.push_back(
-          {length, sign_ * evaluator_.evaluate(p_, i, length, end, nullptr, nullptr), 0.0, end});
-      for (size_t k = 0; k + 1 < points.size(); ++k) gaps_.push_back({i, points[k], points[k + 1]});
-      for (const Point& point : points)
-        if (point.value > best_) best_ = point.value, best_interval_ = i, best_h_ = point.h;
+      const Complex* start = evaluator_.start_row();
+      Point left{0.0, evaluator_.evaluate(p_, i, 0.0, start, nullptr, nullptr),
+                 evaluator_.widest_curvature(p_, i), start};
+      improve(left.value, i, 0.0);
+      while (sample < times.size() && times[sample] <= edges[i]) ++sample;
+      for (; sample < times.size() && times[sample] < edges[i + 1]; ++sample) {
+        const Point point{times[sample] - edges[i], values[sample], -1.0, rows_.samples()[sample]};
+        gaps_.push_back({i, left, point});
+        left = point;
+      }
+      const Complex* end = evaluator_.end_row(i);
+      const Point right{length, evaluator_.evaluate(p_, i, length, end, nullptr, nullptr), 0.0,
+                        end};
+      improve(right.value, i, length);
+      gaps_.push_back({i, left, right});
     }
   }
 
-  // Newton on p'(h) = 0 from h in interval i. A local maximum of sign·p found inside the
-  // interval also gives the window around it where p is concave (|p‴| ≤ J_i(a) =
-  // Σ_k |a_ik|·|λ_k|³·e^{Re λ_k·a} for h ≥ a), in which it is the only maximum.
-  void polish(size_t i, double h) {
+  // Newton on p'(h) = 0 from h in interval i, for side s. A local maximum of sign·p found
+  // inside the interval also gives the window around it where sign·p is concave (|p‴| ≤
+  // J_i(a) = Σ_k |a_ik|·|λ_k|³·e^{Re λ_k·a} for h ≥ a), in which it is the only maximum.
+  void polish(size_t s, size_t i, double h) {
     const std::vector<double>& edges = evaluator_.edges();
     const double length = edges[i + 1] - edges[i];
     double d1 = 0.0, d2 = 0.0;
@@ -536,52 +562,73 @@ class ExtremeSearch {
       if (std::abs(next - h) <= 1e-15 * length) break;
       h = next;
     }
-    const double value = sign_ * evaluator_.evaluate(p_, i, h, &d1, &d2);
+    const double value = evaluator_.evaluate(p_, i, h, &d1, &d2);
     improve(value, i, h);
-    if (h > 0.0 && h < length && sign_ * d2 < 0.0) {
+    Side& side = sides_[s];
+    if (h > 0.0 && h < length && side.sign * d2 < 0.0) {
       const double from = std::max(0.0, h - sample_step_);
       const double third = evaluator_.third_derivative_after(p_, i, from);
-      const double radius = std::min(-sign_ * d2 / third, h - from);
-      if (radius > 0.0) concave_.push_back({i, h - radius, std::min(h + radius, length)});
+      const double radius = std::min(-side.sign * d2 / third, h - from);
+      if (radius > 0.0) side.concave.push_back({i, h - radius, std::min(h + radius, length)});
     }
   }
 
-  // Halves every gap whose curvature bound could hide a value above the best one.
+  // The sides of `gap` its bounds settle: with `rise` the bound on p past the ends' values.
+  unsigned settled(const Gap& gap, double rise) const {
+    unsigned done = 0;
+    for (unsigned s = 0; s < 2; ++s) {
+      if (!(gap.open & (1u << s))) continue;
+      const Side& side = sides_[s];
+      const double higher = std::max(side.sign * gap.left.value, side.sign * gap.right.value);
+      if (rise <= side.best + tolerance_ - higher) done |= 1u << s;
+    }
+    return done;
+  }
+
+  // Whether side s's concave windows hold the gap.
+  bool in_a_window(const Gap& gap, size_t s) const {
+    for (const Window& w : sides_[s].concave)
+      if (w.interval == gap.interval && w.low <= gap.left.h && gap.right.h <= w.high) return true;
+    return false;
+  }
+
+  // Halves every gap whose bound could hide a value past either best one.
   void halve_gaps() {
     for (int evaluations = 0; !gaps_.empty() && evaluations < 100000; ++evaluations) {
       Gap gap = gaps_.back();
       gaps_.pop_back();
       const double width = gap.right.h - gap.left.h;
-      const double higher = std::max(gap.left.value, gap.right.value);
       if (width <= 1e-15 * period_) continue;
-      // The bounds at h = 0 first, then the cached ones, then rise_after at the gap's left end
-      // only when none settles the gap.
-      const double room = best_ + tolerance_ - higher;
-      if (evaluator_.widest_rise(p_, gap.interval, width) <= room) continue;
-      bool inside = false;
-      for (const Window& w : concave_)
-        inside |= w.interval == gap.interval && w.low <= gap.left.h && gap.right.h <= w.high;
-      if (inside) continue;
-      const double square = width * width / 8.0;
-      if (gap.rise <= room || (gap.left.curvature >= 0.0 && gap.left.curvature * square <= room))
-        continue;
-      if (!gap.own) {
+      // The bounds at h = 0 first, the concave windows, then the cached bounds, then
+      // rise_after at the gap's left end only when none settles the gap.
+      gap.open &= ~settled(gap, evaluator_.widest_rise(p_, gap.interval, width));
+      for (unsigned s = 0; s < 2; ++s)
+        if ((gap.open & (1u << s)) && in_a_window(gap, s)) gap.open &= ~(1u << s);
+      if (!gap.open) continue;
+      const double curvature_rise = gap.left.curvature >= 0.0
+                                        ? gap.left.curvature * width * width / 8.0
+                                        : std::numeric_limits<double>::infinity();
+      gap.open &= ~settled(gap, std::min(gap.rise, curvature_rise));
+      if (gap.open && !gap.own) {
         gap.rise = evaluator_.rise_after(p_, gap.interval, gap.left.row, width, gap.left.curvature);
         gap.own = true;
-        if (gap.rise <= room) continue;
+        gap.open &= ~settled(gap, gap.rise);
       }
+      if (!gap.open) continue;
       // K_i(a) and the rise decrease with a and with the width: both halves keep them. The
       // middle's exponentials from the left end's, by a step shared with other gaps.
       const auto [step_row, step] = rows_.step(0.5 * width);
       const double h = gap.left.h + step;
       Complex* row = rows_.pool().add();
       evaluator_.step_row(gap.left.row, step_row, row);
-      const Point middle{h, sign_ * evaluator_.evaluate(p_, gap.interval, h, row, nullptr, nullptr),
+      const Point middle{h, evaluator_.evaluate(p_, gap.interval, h, row, nullptr, nullptr),
                          gap.left.curvature, row};
-      if (middle.value > best_ + tolerance_) polish(gap.interval, h);
+      for (size_t s = 0; s < 2; ++s)
+        if ((gap.open & (1u << s)) && sides_[s].sign * middle.value > sides_[s].best + tolerance_)
+          polish(s, gap.interval, h);
       improve(middle.value, gap.interval, h);
-      gaps_.push_back({gap.interval, gap.left, middle, gap.rise, false});
-      gaps_.push_back({gap.interval, middle, gap.right, gap.rise, false});
+      gaps_.push_back({gap.interval, gap.left, middle, gap.rise, false, gap.open});
+      gaps_.push_back({gap.interval, middle, gap.right, gap.rise, false, gap.open});
     }
   }
 
@@ -589,12 +636,9 @@ class ExtremeSearch {
   const PeriodicResult& result_;
   SolveRows& rows_;
   size_t p_;
-  double sign_, period_, sample_step_, tolerance_ = 0.0;
-  double best_ = 0.0;
-  size_t best_interval_ = 0;
-  double best_h_ = 0.0;
+  double period_, sample_step_, tolerance_ = 0.0;
+  std::array<Side, 2> sides_;
   std::vector<Gap> gaps_;
-  std::vector<Window> concave_;
 };
 
 }  // namespace
@@ -616,9 +660,22 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
   SolveRows rows(evaluator);
   sample_uniformly(evaluator, series, samples, result, rows);
   const double sample_step = edges.back() / samples;
-  fill_extremes(result, [&](size_t p, size_t sample, bool maximum) {
-    return ExtremeSearch(evaluator, result, rows, p, sample, maximum, sample_step).find();
-  });
+  const size_t probes = result.values.size();
+  result.minimum.assign(probes, 0.0);
+  result.maximum.assign(probes, 0.0);
+  result.minimum_time.assign(probes, 0.0);
+  result.maximum_time.assign(probes, 0.0);
+  for (size_t p = 0; p < probes; ++p) {
+    const std::vector<double>& v = result.values[p];
+    if (v.empty()) continue;
+    const auto [low, high] = std::minmax_element(v.begin(), v.end());
+    const auto extremes =
+        ExtremesSearch(evaluator, result, rows, p, static_cast<size_t>(low - v.begin()),
+                       static_cast<size_t>(high - v.begin()), sample_step)
+            .find();
+    std::tie(result.minimum_time[p], result.minimum[p]) = extremes[0];
+    std::tie(result.maximum_time[p], result.maximum[p]) = extremes[1];
+  }
 }
 
 }  // namespace emnet
