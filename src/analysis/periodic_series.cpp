@@ -383,20 +383,23 @@ void sample_uniformly(const SeriesEvaluator& evaluator,
   const double period = edges.back();
   const std::vector<Eigen::Index>& terms = evaluator.terms();
   const Eigen::Index count = static_cast<Eigen::Index>(terms.size());
-  // Per probe and interval: factor·Re a and −factor·Im a of each term, so that a sample is
-  // Re Σ factor·a·e = Σ (factor·Re a)·Re e + (−factor·Im a)·Im e.
-  std::vector<std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>>> parts(series.size());
-  for (size_t p = 0; p < series.size(); ++p)
-    for (size_t i = 0; i < evaluator.intervals(); ++i) {
-      Eigen::VectorXd real(count), imaginary(count);
+  const Eigen::Index probes = static_cast<Eigen::Index>(series.size());
+  // Per interval, a row per probe: factor·Re a and −factor·Im a of each term, so that the
+  // samples of every probe are Re Σ factor·a·e = real·Re e + imaginary·Im e, two
+  // matrix-vector products.
+  std::vector<std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> parts;
+  for (size_t i = 0; i < evaluator.intervals(); ++i) {
+    Eigen::MatrixXd real(probes, count), imaginary(probes, count);
+    for (Eigen::Index p = 0; p < probes; ++p)
       for (Eigen::Index j = 0; j < count; ++j) {
         const double factor = evaluator.weights()[static_cast<size_t>(j)];
-        const Complex a = series[p].coefficient[i][terms[static_cast<size_t>(j)]];
-        real[j] = factor * a.real();
-        imaginary[j] = -factor * a.imag();
+        const Complex a =
+            series[static_cast<size_t>(p)].coefficient[i][terms[static_cast<size_t>(j)]];
+        real(p, j) = factor * a.real();
+        imaginary(p, j) = -factor * a.imag();
       }
-      parts[p].emplace_back(std::move(real), std::move(imaginary));
-    }
+    parts.emplace_back(std::move(real), std::move(imaginary));
+  }
   result.values.assign(series.size(), {});
   for (std::vector<double>& values : result.values) values.reserve(static_cast<size_t>(samples));
   result.times.reserve(static_cast<size_t>(samples));
@@ -407,6 +410,7 @@ void sample_uniformly(const SeriesEvaluator& evaluator,
   const Complex* previous = nullptr;
   size_t current = evaluator.intervals();  // none yet
   double current_h = 0.0;
+  Eigen::VectorXd real_e(count), imaginary_e(count), sums(probes);
   for (int s = 0; s < samples; ++s) {
     const double t = period * s / samples;
     const size_t i = evaluator.locate(t);
@@ -421,13 +425,16 @@ void sample_uniformly(const SeriesEvaluator& evaluator,
     current = i;
     current_h = h;
     result.times.push_back(t);
-    const Eigen::Map<const Eigen::VectorXcd> e(row, count);
-    for (size_t p = 0; p < series.size(); ++p) {
-      const auto& [real, imaginary] = parts[p][i];
-      result.values[p].push_back(series[p].offset[i] + evaluator.slope_of(p, i) * h +
-                                 real.dot(e.real()) + imaginary.dot(e.imag()) +
-                                 evaluator.forced_value(p, i, h, row + count));
+    for (Eigen::Index j = 0; j < count; ++j) {
+      real_e[j] = row[j].real();
+      imaginary_e[j] = row[j].imag();
     }
+    sums.noalias() = parts[i].first * real_e;
+    sums.noalias() += parts[i].second * imaginary_e;
+    for (size_t p = 0; p < series.size(); ++p)
+      result.values[p].push_back(series[p].offset[i] + evaluator.slope_of(p, i) * h +
+                                 sums[static_cast<Eigen::Index>(p)] +
+                                 evaluator.forced_value(p, i, h, row + count));
   }
 }
 
