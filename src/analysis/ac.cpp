@@ -194,9 +194,11 @@ AcResult run_ac(const System& system, const Eigen::VectorXd& operating_point,
         pole_residue_sweep(system, operating_point, direct->g_matrix(), frequencies, probes);
     if (sweep.applies) {
       // Checked against the direct solve where its rounding is largest.
-      std::vector<double> peak(probes.size(), 0.0);
-      for (size_t p = 0; p < probes.size(); ++p)
-        for (const auto& v : sweep.values[p]) peak[p] = std::max(peak[p], std::abs(v));
+      std::vector<double> peak(probes.size(), 0.0);  // the largest |v|, from the largest |v|²
+      for (size_t p = 0; p < probes.size(); ++p) {
+        for (const auto& v : sweep.values[p]) peak[p] = std::max(peak[p], std::norm(v));
+        peak[p] = std::sqrt(peak[p]);
+      }
       double deviation = 0.0;
       const std::vector<size_t> points = pole_residue_check_points(sweep, frequencies);
       for (size_t index : points) {
