@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <optional>
@@ -105,8 +106,9 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
                             PeriodicResult& result,
                             const Eigen::VectorXcd& forced_exponents = Eigen::VectorXcd());
 
-// Extremes of every probe over one period from samples (times, values), with the sampled
-// extreme refined by `refine(probe, sample index, is_maximum)` → (time, value).
+// Extremes of every probe over one period from samples (times, values), the sampled ones
+// refined by `refine(probe, lowest sample, highest sample)` → {(time, value) of the minimum,
+// (time, value) of the maximum}.
 template <class Refine>
 void fill_extremes(PeriodicResult& result, const Refine& refine) {
   const size_t probes = result.values.size();
@@ -119,8 +121,9 @@ void fill_extremes(PeriodicResult& result, const Refine& refine) {
     if (v.empty()) continue;
     const size_t low = static_cast<size_t>(std::min_element(v.begin(), v.end()) - v.begin());
     const size_t high = static_cast<size_t>(std::max_element(v.begin(), v.end()) - v.begin());
-    std::tie(result.minimum_time[p], result.minimum[p]) = refine(p, low, false);
-    std::tie(result.maximum_time[p], result.maximum[p]) = refine(p, high, true);
+    const std::array<std::pair<double, double>, 2> extremes = refine(p, low, high);
+    std::tie(result.minimum_time[p], result.minimum[p]) = extremes[0];
+    std::tie(result.maximum_time[p], result.maximum[p]) = extremes[1];
   }
 }
 

@@ -667,22 +667,9 @@ void sample_periodic_series(const Eigen::VectorXcd& lambda, const std::vector<do
   SolveRows rows(evaluator);
   sample_uniformly(evaluator, series, samples, result, rows);
   const double sample_step = edges.back() / samples;
-  const size_t probes = result.values.size();
-  result.minimum.assign(probes, 0.0);
-  result.maximum.assign(probes, 0.0);
-  result.minimum_time.assign(probes, 0.0);
-  result.maximum_time.assign(probes, 0.0);
-  for (size_t p = 0; p < probes; ++p) {
-    const std::vector<double>& v = result.values[p];
-    if (v.empty()) continue;
-    const auto [low, high] = std::minmax_element(v.begin(), v.end());
-    const auto extremes =
-        ExtremesSearch(evaluator, result, rows, p, static_cast<size_t>(low - v.begin()),
-                       static_cast<size_t>(high - v.begin()), sample_step)
-            .find();
-    std::tie(result.minimum_time[p], result.minimum[p]) = extremes[0];
-    std::tie(result.maximum_time[p], result.maximum[p]) = extremes[1];
-  }
+  fill_extremes(result, [&](size_t p, size_t low, size_t high) {
+    return ExtremesSearch(evaluator, result, rows, p, low, high, sample_step).find();
+  });
 }
 
 }  // namespace emnet

@@ -258,15 +258,18 @@ class ShootingCoordinates {
 
 // Sampled extremes refined by a parabola through the neighbouring samples (`step` apart).
 void fill_sampled_extremes(PeriodicResult& result, double step) {
-  fill_extremes(result, [&](size_t p, size_t s, bool) {
+  fill_extremes(result, [&](size_t p, size_t low, size_t high) {
     const auto& v = result.values[p];
     const size_t n = v.size();
-    const double left = v[(s + n - 1) % n], middle = v[s], right = v[(s + 1) % n];
-    const double curvature = left - 2 * middle + right;
-    if (curvature == 0.0) return std::pair<double, double>(result.times[s], middle);
-    const double offset = 0.5 * (left - right) / curvature;
-    return std::pair<double, double>(result.times[s] + offset * step,
-                                     middle - 0.25 * (left - right) * offset);
+    const auto parabola = [&](size_t s) {
+      const double left = v[(s + n - 1) % n], middle = v[s], right = v[(s + 1) % n];
+      const double curvature = left - 2 * middle + right;
+      if (curvature == 0.0) return std::pair<double, double>(result.times[s], middle);
+      const double offset = 0.5 * (left - right) / curvature;
+      return std::pair<double, double>(result.times[s] + offset * step,
+                                       middle - 0.25 * (left - right) * offset);
+    };
+    return std::array<std::pair<double, double>, 2>{parabola(low), parabola(high)};
   });
 }
 
