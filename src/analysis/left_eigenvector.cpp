@@ -69,21 +69,4 @@ bool LeftEigenSolver::space(std::complex<double> pole, int count, Eigen::MatrixX
   return true;
 }
 
-bool left_eigenspace(const Eigen::SparseMatrix<double>& g_matrix,
-                     const Eigen::SparseMatrix<double>& c_matrix, const DiagonalScaling& scaling,
-                     std::complex<double> pole, int count, Eigen::MatrixXcd& left, double& residual,
-                     std::string& why) {
-  return LeftEigenSolver(g_matrix, c_matrix, scaling).space(pole, count, left, residual, why);
-}
-
-bool left_eigenvector(const Eigen::SparseMatrix<double>& g_matrix,
-                      const Eigen::SparseMatrix<double>& c_matrix, const DiagonalScaling& scaling,
-                      std::complex<double> pole, Eigen::VectorXcd& left, double& residual,
-                      std::string& why) {
-  Eigen::MatrixXcd space;
-  if (!left_eigenspace(g_matrix, c_matrix, scaling, pole, 1, space, residual, why)) return false;
-  left = space.col(0);
-  return true;
-}
-
 }  // namespace emnet

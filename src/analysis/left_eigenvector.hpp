@@ -5,7 +5,7 @@
 // (equilibration.hpp) (Ĝᵀ + conj(ŝ)·Ĉᵀ)·ŷ = ŷ_previous, from ŷ = 1, mapped back to physical
 // rows: y = diag(r)·ŷ. The pole is exact to rounding, so the adjoint is singular to rounding and
 // one step already amplifies the wanted direction by ~1/ε; the second cleans up. A pole
-// repeated to rounding (a cluster of m poles) has no unique left vector: left_eigenspace gives
+// repeated to rounding (a cluster of m poles) has no unique left vector: LeftEigenSolver gives
 // m vectors from m different starts with one factorisation, which span the cluster's left
 // space (to the cluster's width over its distance to the next pole), not the individual left
 // vectors; a caller combines them by the bi-orthogonality matrix Wᵀ·C·V.
@@ -23,13 +23,19 @@ namespace emnet {
 
 // The equilibrated adjoint pencil Ĝᵀ + conj(ŝ)·Ĉᵀ of one network, for left vectors at many
 // poles: its pattern is the same at every pole, so the sparse LU's ordering is found once and
-// each pole costs a numeric factorisation only (the results are those of left_eigenspace).
+// each pole costs a numeric factorisation only.
 class LeftEigenSolver {
  public:
-  // As left_eigenspace's arguments; the matrices are copied (scaled, transposed, complex).
+  // `scaling`: equilibrate_pencil(g_matrix, c_matrix), once for all the poles asked about (at
+  // large N the equilibration costs more than the inverse iteration). The matrices are copied
+  // (scaled, transposed, complex).
   LeftEigenSolver(const Eigen::SparseMatrix<double>& g_matrix,
                   const Eigen::SparseMatrix<double>& c_matrix, const DiagonalScaling& scaling);
-  // left_eigenspace at `pole` (1/s).
+  // `count` left vectors at `pole` (1/s) as the columns of `left`, from different starts, the
+  // first from ŷ = 1 (a simple pole's left vector for count = 1). `residual`: the worst
+  // ‖(Ĝᵀ + conj(ŝ)Ĉᵀ)·ŷ‖ / (‖Ĝ‖₁ + |ŝ|·‖Ĉ‖₁) with ‖ŷ‖ = 1, on the equilibrated pencil
+  // (unit-free). False, with `why`, when the adjoint cannot be factorised or the iteration gives
+  // no finite vector.
   bool space(std::complex<double> pole, int count, Eigen::MatrixXcd& left, double& residual,
              std::string& why);
 
@@ -42,21 +48,5 @@ class LeftEigenSolver {
   Eigen::SparseLU<ComplexSparse> lu_;
   bool analysed_ = false;
 };
-
-// `scaling`: equilibrate_pencil(g_matrix, c_matrix), computed once by the caller for all the
-// poles it asks about (at large N the equilibration costs more than the inverse iteration).
-// `residual`: ‖(Ĝᵀ + conj(ŝ)Ĉᵀ)·ŷ‖ / (‖Ĝ‖₁ + |ŝ|·‖Ĉ‖₁) with ‖ŷ‖ = 1, on the equilibrated
-// pencil (unit-free). False, with `why`, when the adjoint cannot be factorised or the iteration
-// gives no finite vector.
-bool left_eigenvector(const Eigen::SparseMatrix<double>& g_matrix,
-                      const Eigen::SparseMatrix<double>& c_matrix, const DiagonalScaling& scaling,
-                      std::complex<double> pole, Eigen::VectorXcd& left, double& residual,
-                      std::string& why);
-// `count` such vectors (columns of `left`) from different starts, the first from ŷ = 1 (so
-// count = 1 is left_eigenvector); `residual` the worst of them.
-bool left_eigenspace(const Eigen::SparseMatrix<double>& g_matrix,
-                     const Eigen::SparseMatrix<double>& c_matrix, const DiagonalScaling& scaling,
-                     std::complex<double> pole, int count, Eigen::MatrixXcd& left, double& residual,
-                     std::string& why);
 
 }  // namespace emnet

@@ -91,7 +91,8 @@ bool orthonormal(const Eigen::MatrixXcd& columns, Eigen::MatrixXcd& basis) {
 void span_repeated_poles(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& e,
                          std::vector<PoleEstimate>& poles, double group_width) {
   const Eigen::SparseMatrix<double> a_transposed = a.transpose(), e_transposed = e.transpose();
-  std::optional<DiagonalScaling> scaling;  // of the transposed pencil, once it is needed
+  // On the transposed pencil, once it is needed: one ordering for every group.
+  std::optional<LeftEigenSolver> transposed_left;
   for (const std::vector<size_t>& group : pole_groups(poles, group_width)) {
     const Eigen::Index g = static_cast<Eigen::Index>(group.size());
     if (g < 2) continue;
@@ -102,9 +103,10 @@ void span_repeated_poles(const Eigen::SparseMatrix<double>& a, const Eigen::Spar
     std::string why;
     const Complex centre = poles[group.front()].pole;
     // Right vectors of Â + ŝÊ are left vectors of the transposed pencil at conj(ŝ), conjugated.
-    if (!scaling) scaling = equilibrate_pencil(a_transposed, e_transposed);
-    if (!left_eigenspace(a_transposed, e_transposed, *scaling, std::conj(centre),
-                         static_cast<int>(g), right, residual, why) ||
+    if (!transposed_left)
+      transposed_left.emplace(a_transposed, e_transposed,
+                              equilibrate_pencil(a_transposed, e_transposed));
+    if (!transposed_left->space(std::conj(centre), static_cast<int>(g), right, residual, why) ||
         !orthonormal(right.conjugate(), basis))
       continue;  // left as they are: bound_poles then calls the group defective
     for (Eigen::Index j = 0; j < g; ++j) poles[group[static_cast<size_t>(j)]].right = basis.col(j);
@@ -117,7 +119,7 @@ void bound_poles(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix
   const long double rounding =
       static_cast<long double>(most_entries(a, e) + 2) * std::ldexp(1.0L, -64);
   const Eigen::SparseMatrix<Complex> e_complex = e.cast<Complex>();
-  std::optional<DiagonalScaling> scaling;  // for inverse iteration, once it is needed
+  std::optional<LeftEigenSolver> inverse_iteration;  // once it is needed, for every group
   for (const std::vector<size_t>& group : pole_groups(poles, group_width)) {
     const Complex centre = poles[group.front()].pole;
     const double width = group_width * std::abs(centre);
@@ -131,7 +133,7 @@ void bound_poles(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix
     // Orthonormal bases of the group's right and left spaces (span_repeated_poles has made the
     // right vectors of a repeated pole independent where it could). Left vectors come from the
     // transposed pencil's eigenvectors at these poles, else from inverse iteration at the
-    // group's first pole ŝ_c (left_eigenspace). Residuals are taken at ŝ_c, so that each exact
+    // group's first pole ŝ_c (LeftEigenSolver). Residuals are taken at ŝ_c, so that each exact
     // pole of the group lies within the bound of ŝ_c (Bauer–Fike on the projected pencil); a
     // member's own bound adds its distance to ŝ_c.
     Eigen::MatrixXcd right(a.rows(), g), right_basis;
@@ -152,10 +154,10 @@ void bound_poles(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix
     }
     std::string why;
     double iteration_residual = 0.0;
-    if (!have_left && !scaling) scaling = equilibrate_pencil(a, e);
-    if (!have_left && !(left_eigenspace(a, e, *scaling, centre, static_cast<int>(g), left,
-                                        iteration_residual, why) &&
-                        orthonormal(left, left_basis))) {
+    if (!have_left && !inverse_iteration) inverse_iteration.emplace(a, e, equilibrate_pencil(a, e));
+    if (!have_left &&
+        !(inverse_iteration->space(centre, static_cast<int>(g), left, iteration_residual, why) &&
+          orthonormal(left, left_basis))) {
       fail(g > 1 ? "a group of " + std::to_string(g) + " equal poles with fewer independent " +
                        "left vectors (defective)" + (why.empty() ? "" : ": " + why)
                  : "no left vector (" + why + ")");

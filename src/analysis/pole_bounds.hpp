@@ -52,7 +52,7 @@ struct TransposedEigenpair {
 // vectors of the fish fin's seven equal Kelvin–Voigt relaxations at −1/τ span fewer dimensions):
 // for each group of poles within `group_width` whose right vectors are not independent, they
 // are replaced by an orthonormal basis of the group's right space from inverse iteration at the
-// group's first pole (left_eigenspace on the transposed pencil; one complex LU per such group).
+// group's first pole (LeftEigenSolver on the transposed pencil; one complex LU per such group).
 void span_repeated_poles(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& e,
                          std::vector<PoleEstimate>& poles, double group_width = 1e-6);
 

@@ -169,14 +169,14 @@ Status find_left_eigenvectors(const Linearised& nominal, SensitivityResult& resu
                               LeftEigenvectors& lefts) {
   const Eigen::SparseMatrix<std::complex<double>> c_complex =
       nominal.system.C.cast<std::complex<double>>();
-  const DiagonalScaling scaling = equilibrate_pencil(nominal.g_matrix, nominal.system.C);
+  LeftEigenSolver solver(nominal.g_matrix, nominal.system.C,
+                         equilibrate_pencil(nominal.g_matrix, nominal.system.C));
   for (const Mode& mode : result.modes) {
-    Eigen::VectorXcd left;
+    Eigen::MatrixXcd space;
     double residual = 0.0;
     std::string why;
-    if (!left_eigenvector(nominal.g_matrix, nominal.system.C, scaling, mode.pole, left, residual,
-                          why))
-      return Status::failure(why);
+    if (!solver.space(mode.pole, 1, space, residual, why)) return Status::failure(why);
+    Eigen::VectorXcd left = space.col(0);
     result.left_vector_residual = std::max(result.left_vector_residual, residual);
     const std::complex<double> denominator = left.dot(c_complex * mode.vector);  // yᴴ·C·x
     if (!(std::abs(denominator) > 0.0) || !std::isfinite(std::abs(denominator)))
