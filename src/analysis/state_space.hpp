@@ -1,11 +1,14 @@
 // The linear displacement form E·u' + A·u = f as an explicit state equation, for exact
 // solutions under piecewise-linear sources (transient and periodic).
 //
-// With E = U·S·Vᵀ (rank r), u = V·w and Â = Uᵀ·A·V, f̂ = Uᵀ·f, index 1 means Â₂₂ is invertible:
+// With E = U·[T 0; 0 0]·Vᵀ (U and V orthogonal, T r × r upper triangular and nonsingular, r the
+// rank), u = V·w and Â = Uᵀ·A·V, f̂ = Uᵀ·f, index 1 means Â₂₂ is invertible:
 //   w₂ = Â₂₂⁻¹·(f̂₂ − Â₂₁·w₁),   x' = M·x + N·f  for the state x = w₁,
-//   M = S₁⁻¹·(Â₁₂·Â₂₂⁻¹·Â₂₁ − Â₁₁),   N·f = S₁⁻¹·(f̂₁ − Â₁₂·Â₂₂⁻¹·f̂₂),
+//   M = T⁻¹·(Â₁₂·Â₂₂⁻¹·Â₂₁ − Â₁₁),   N·f = T⁻¹·(f̂₁ − Â₁₂·Â₂₂⁻¹·f̂₂),
 // and, differentiating the algebraic part, w₂' = Â₂₂⁻¹·(f̂₂' − Â₂₁·x'): on a ramp of the sources
-// the algebraic unknowns' rates carry the sources' slope (full_state).
+// the algebraic unknowns' rates carry the sources' slope (full_state). T comes from a QR of E
+// where E has full column rank on its nonzero columns (V then a permutation: the state is those
+// unknowns themselves), else from the SVD (T = S, the nonzero singular values).
 // Over an interval of constant f and length h: x(t+h) = x(t) + Γ(h)·(M·x(t) + N·f), with
 // Γ = ∫₀ʰ e^{Ms} ds = h·φ₁(M·h) (so Φ = e^{Mh} = I + Γ·M) from one exponential of
 // [[M, I], [0, 0]]·h (Van Loan). Written as an increment, a state at equilibrium (M·x + N·f = 0)
@@ -70,9 +73,12 @@ class LinearStateSpace {
   LinearStateSpace(const DisplacementForm& form, double angular_frequency);
   // The same for the pencil E·u' + A·u of a linearisation (DisplacementForm::linearised about
   // an operating point): nonlinear networks are accepted, the matrices describe the small
-  // signal. Throws when the pencil is not of index 1.
+  // signal. Throws when the pencil is not of index 1. `split`: how E's leading block T is
+  // found (the header comment); singular_values forces the SVD, which tests compare against.
+  enum class Split { automatic, singular_values };
   LinearStateSpace(const DisplacementForm& form, const Eigen::SparseMatrix<double>& a,
-                   const Eigen::SparseMatrix<double>& e, double angular_frequency);
+                   const Eigen::SparseMatrix<double>& e, double angular_frequency,
+                   Split split = Split::automatic);
 
   Eigen::Index state_size() const { return m_.rows(); }
   const Eigen::MatrixXd& m() const { return m_; }
@@ -164,7 +170,9 @@ class LinearStateSpace {
   // Eigen-decomposition of M for modal_basis(), made on first use.
   mutable int modes_state_ = 0;  // 0 not tried, 1 usable, −1 ill-conditioned
   mutable ModalBasis basis_;
-  Eigen::VectorXd sigma_inv_;  // of Ê, times ω₀: the reduced equations in physical time
+  Eigen::MatrixXd leading_;  // T of Ê = L·[T 0; 0 0]·Rᵀ, upper triangular
+  // ω₀·T⁻¹·x: the scaled equations' leading block solved, in physical time.
+  Eigen::MatrixXd leading_solve(const Eigen::MatrixXd& x) const;
   Eigen::FullPivLU<Eigen::MatrixXd> a22_lu_;
 };
 
