@@ -222,7 +222,7 @@ LinearStateSpace::LinearStateSpace(const DisplacementForm& form,
   if (na_ > 0 && !a22_lu_.isInvertible())
     throw std::runtime_error("the network's DAE has index > 1 or no unique solution");
   a22_inv_a21_ = na_ > 0 ? Eigen::MatrixXd(a22_lu_.solve(a21)) : Eigen::MatrixXd(0, nd_);
-  m_ = leading_solve(a12_ * a22_inv_a21_ - a11);
+  m_ = leading_solve(Eigen::MatrixXd(a12_ * a22_inv_a21_ - a11));
   if (!m_.allFinite()) throw std::runtime_error("the reduced state matrix is not finite");
   balance(m_, balance_, balanced_m_);
   // Hidden constraints H·u = 0 (differentiated levers, displacement_form.hpp) are invariants of
@@ -240,18 +240,29 @@ LinearStateSpace::LinearStateSpace(const DisplacementForm& form,
   }
 }
 
-Eigen::MatrixXd LinearStateSpace::leading_solve(const Eigen::MatrixXd& x) const {
+Eigen::MatrixXd LinearStateSpace::leading_solve(Eigen::MatrixXd x) const {
   // d/dt = ω₀·d/dt̂: the physical-time state equation is ω₀ times the scaled one.
-  return time_scale_ * leading_.triangularView<Eigen::Upper>().solve(x);
+  leading_.triangularView<Eigen::Upper>().solveInPlace(x);
+  return time_scale_ * x;
+}
+
+Eigen::VectorXd LinearStateSpace::leading_solve(Eigen::VectorXd x) const {
+  leading_.triangularView<Eigen::Upper>().solveInPlace(x);  // as a vector: no blocked kernel
+  return time_scale_ * x;
 }
 
 void LinearStateSpace::prepare_projection() const {
   projection_prepared_ = true;
   const Eigen::Index k = constraint_.rows();
   if (k == 0) return;
-  // V alone: the null vectors are its last columns (U would double the cost and is not used).
-  const Eigen::MatrixXd v = divide_and_conquer_svd(balanced_m_, Eigen::ComputeFullV).v;
-  null_vectors_ = balance_.asDiagonal() * completed_basis(v.leftCols(nd_ - k)).rightCols(k);
+  // The null space of the balanced M is the orthogonal complement of its rows' span: the last k
+  // columns of Q in a column-pivoted (rank-revealing) QR of its transpose. The null space is
+  // exactly k-dimensional (one per hidden constraint), so the rank gap is structural; the
+  // constraint_lu_ check below catches a basis that is not it. On the fish fin it takes a
+  // third of the SVD's instructions.
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(balanced_m_.transpose());
+  null_vectors_ = balance_.asDiagonal() *
+                  (qr.householderQ() * Eigen::MatrixXd::Identity(nd_, nd_).rightCols(k));
   Eigen::VectorXd u, up;
   Eigen::MatrixXd h_null(k, k);
   const Eigen::VectorXd no_force = Eigen::VectorXd::Zero(n_);
@@ -274,9 +285,9 @@ Eigen::VectorXd LinearStateSpace::project(const Eigen::VectorXd& x,
 
 Eigen::VectorXd LinearStateSpace::forcing(const Eigen::VectorXd& f) const {
   const Eigen::VectorXd f_hat = left_.transpose() * row_scale_.cwiseProduct(f);
-  if (na_ == 0) return leading_solve(f_hat.head(nd_));
+  if (na_ == 0) return leading_solve(Eigen::VectorXd(f_hat.head(nd_)));
   const Eigen::VectorXd a22_inv_f2 = a22_lu_.solve(f_hat.tail(na_));
-  return leading_solve(f_hat.head(nd_) - a12_ * a22_inv_f2);
+  return leading_solve(Eigen::VectorXd(f_hat.head(nd_) - a12_ * a22_inv_f2));
 }
 
 Eigen::MatrixXd LinearStateSpace::hidden_constraints_on_state() const {

@@ -172,7 +172,8 @@ class LinearStateSpace {
   mutable ModalBasis basis_;
   Eigen::MatrixXd leading_;  // T of Ê = L·[T 0; 0 0]·Rᵀ, upper triangular
   // ω₀·T⁻¹·x: the scaled equations' leading block solved, in physical time.
-  Eigen::MatrixXd leading_solve(const Eigen::MatrixXd& x) const;
+  Eigen::MatrixXd leading_solve(Eigen::MatrixXd x) const;
+  Eigen::VectorXd leading_solve(Eigen::VectorXd x) const;
   Eigen::FullPivLU<Eigen::MatrixXd> a22_lu_;
 };
 
