@@ -22,6 +22,7 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cli/common.hpp"
@@ -89,6 +90,37 @@ void add_examples_and_keys_read_to_the_help(const std::vector<Command>& commands
         command.app->footer((usage.example.empty() ? "" : "Example:\n  " + usage.example + "\n") +
                             wrapped_at_90_columns("Reads: " + usage.reads + ".") + "\n\n" +
                             command.app->get_footer());
+}
+
+// The commands in the order of the help, each with the function that adds it.
+struct CommandMaker {
+  std::string_view name;
+  Command (*add)(CLI::App&, CommonOptions&);
+};
+const CommandMaker kCommandMakers[] = {
+    {"static", add_static_command},
+    {"modes", add_modes_command},
+    {"ac", add_ac_command},
+    {"tran", add_tran_command},
+    {"sweep-switching", add_sweep_switching_command},
+    {"identify", add_identify_command},
+    {"sensitivity", add_sensitivity_command},
+    {"mismatch", add_mismatch_command},
+    {"netlist", add_netlist_command},
+    {"crosscheck", add_crosscheck_command},
+    {"study", add_study_command},
+    {"schema", [](CLI::App& app, CommonOptions&) { return add_schema_command(app); }}};
+
+// Where argv[1] names a command, that command alone; else every command (for emnet --help, the
+// version, an unknown command's list). Adding every command's options was a third of the
+// instructions of `emnet --help`, paid by every run.
+std::vector<Command> added_commands(CLI::App& app, CommonOptions& options, int argc, char** argv) {
+  const auto named = [&](const CommandMaker& maker) { return argc >= 2 && maker.name == argv[1]; };
+  const bool one = std::any_of(std::begin(kCommandMakers), std::end(kCommandMakers), named);
+  std::vector<Command> commands;
+  for (const CommandMaker& maker : kCommandMakers)
+    if (!one || named(maker)) commands.push_back(maker.add(app, options));
+  return commands;
 }
 
 // An unknown command would otherwise be taken for a scene file ("A subcommand is required").
@@ -209,19 +241,10 @@ int main(int argc, char** argv) {
       "model.deflection_limit of the beam length, default 10 %, or a DEA's field V/d above\n"
       "dea[].breakdown_field): printed with a WARNING and \"validity\" in --json.");
   CommonOptions options;
-  const std::vector<Command> commands = {add_static_command(app, options),
-                                         add_modes_command(app, options),
-                                         add_ac_command(app, options),
-                                         add_tran_command(app, options),
-                                         add_sweep_switching_command(app, options),
-                                         add_identify_command(app, options),
-                                         add_sensitivity_command(app, options),
-                                         add_mismatch_command(app, options),
-                                         add_netlist_command(app, options),
-                                         add_crosscheck_command(app, options),
-                                         add_study_command(app, options),
-                                         add_schema_command(app)};
-  const CLI::App* crosscheck_command = app.get_subcommand("crosscheck");
+  const std::vector<Command> commands = added_commands(app, options, argc, argv);
+  const CLI::App* crosscheck_command = nullptr;
+  for (const Command& command : commands)
+    if (command.app->get_name() == "crosscheck") crosscheck_command = command.app;
   add_examples_and_keys_read_to_the_help(commands);
   if (refused_as_no_known_command(app, argc, argv)) return 2;
   if (const std::optional<int> status = status_if_parsing_ends_the_program(app, argc, argv))
@@ -231,7 +254,8 @@ int main(int argc, char** argv) {
   // poll; SIGTERM, SIGHUP and a second Ctrl-C remove the temporaries and end the program.
   // `crosscheck` polls none (ngspice runs on its own), so Ctrl-C ends it at once, its
   // temporaries removed (an output file is renamed into place only when complete).
-  const InterruptHandler signal_handling(/*interrupt_cancels=*/!*crosscheck_command);
+  const InterruptHandler signal_handling(
+      /*interrupt_cancels=*/!(crosscheck_command && *crosscheck_command));
   using Mode = TerminalProgress::Mode;
   TerminalProgress reporter("emnet " + app.get_subcommands().front()->get_name(),
                             options.quiet      ? Mode::quiet
