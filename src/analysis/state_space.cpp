@@ -272,6 +272,23 @@ void LinearStateSpace::prepare_projection() const {
   }
   constraint_lu_.compute(h_null);
   if (constraint_lu_.rcond() < 1e-12) constraint_.resize(0, 0);  // not the invariants
+  if (constraint_.size() > 0) constraint_on_state_ = constraint_ * u_of_state();
+}
+
+Eigen::VectorXd LinearStateSpace::sources_in_constraints(const Eigen::VectorXd& f) const {
+  if (!projection_prepared_) prepare_projection();
+  if (constraint_.size() == 0) return Eigen::VectorXd();
+  Eigen::VectorXd u, up;
+  full_state(Eigen::VectorXd::Zero(nd_), f, u, up);
+  return constraint_ * u;
+}
+
+Eigen::VectorXd LinearStateSpace::project_with(
+    const Eigen::VectorXd& x, const Eigen::VectorXd& sources_in_constraints) const {
+  if (!projection_prepared_) prepare_projection();
+  if (constraint_.size() == 0) return x;
+  return x -
+         null_vectors_ * constraint_lu_.solve(constraint_on_state_ * x + sources_in_constraints);
 }
 
 Eigen::VectorXd LinearStateSpace::project(const Eigen::VectorXd& x,

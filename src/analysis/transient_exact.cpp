@@ -60,19 +60,6 @@ Status check_finite_outputs(const TransientResult& result, const std::vector<Pro
 
 namespace {
 
-// The sources on one interval [t, stop] and what the outputs and the state's advance over it
-// need: f₀ + (τ − t)·f₁ (f₁ = 0 on a constant interval), N·f₀ and N·f₁; in the modal form
-// r = V⁻¹·(M·x + N·f₀) and q = V⁻¹·N·f₁ on the half poles, and where outputs fall inside, each
-// probe's value at the start, c(f₁) and its weights on the poles.
-struct IntervalForcing {
-  AffinePiece f;
-  bool ramp = false;
-  Eigen::VectorXd nf, nf_slope;
-  Eigen::VectorXcd rate, ramp_rate;  // [half pole]: V⁻¹·(M·x + N·f₀), V⁻¹·N·f₁
-  Eigen::VectorXd start_values, ramp_values;  // [probe]
-  Eigen::MatrixXcd weights, ramp_weights;     // [probe][half pole]
-};
-
 // values += Re(weights·v), without a temporary: per output a handful of probes times the half
 // poles, where Eigen's general complex matrix–vector product cost four times as much.
 void add_real_products(const Eigen::MatrixXcd& weights, const Eigen::VectorXcd& v,
@@ -83,6 +70,32 @@ void add_real_products(const Eigen::MatrixXcd& weights, const Eigen::VectorXcd& 
       values[k] += weights(k, j).real() * v_real - weights(k, j).imag() * v_imag;
   }
 }
+
+// What an interval's sources give, the same on every interval with the same sources (a square
+// wave's levels and edges repeat each period), so made once per distinct piece: N·f₀ and N·f₁;
+// in the modal form q = V⁻¹·N·f₁ on the half poles, each probe's part of its value at the
+// interval's start that the sources make (c(f₀) + d(f₁)), c(f₁) and the weights of q.
+struct PieceTerms {
+  Eigen::VectorXd start, slope;  // f₀ and f₁, the piece's key
+  Eigen::VectorXd nf, nf_slope;
+  // H·u of the sources f₀ and f₁ alone (LinearStateSpace::sources_in_constraints)
+  Eigen::VectorXd constraints_start, constraints_slope;
+  Eigen::VectorXcd ramp_rate;                  // [half pole]
+  Eigen::VectorXd source_values, ramp_values;  // [probe]
+  Eigen::MatrixXcd ramp_weights;               // [probe][half pole]
+};
+
+// The sources on one interval [t, stop] (f₀ + (τ − t)·f₁, f₁ = 0 on a constant interval), its
+// piece's terms, and in the modal form r = V⁻¹·(M·x + N·f₀) on the half poles and, where
+// outputs fall inside, each probe's value at the start and its weights on the poles.
+struct IntervalForcing {
+  AffinePiece f;
+  bool ramp = false;
+  const PieceTerms* piece = nullptr;
+  Eigen::VectorXcd rate;         // [half pole]
+  Eigen::VectorXd start_values;  // [probe]
+  Eigen::MatrixXcd weights;      // [probe][half pole]
+};
 
 // One exact transient (run_transient_exact): the state equation, the modal form of the outputs
 // where M's eigen-basis is well conditioned, and the state x between breakpoints. Its
@@ -111,7 +124,8 @@ class ExactRun {
   Status run() {
     const std::vector<double> stops = interval_ends(system_, options_.end_time);
     outputs_ = options_.output_times;
-    std::sort(outputs_.begin(), outputs_.end());
+    if (!std::is_sorted(outputs_.begin(), outputs_.end()))
+      std::sort(outputs_.begin(), outputs_.end());
     result_.times.reserve(outputs_.size());
     for (auto& series : result_.values) series.reserve(outputs_.size());
     prepare_modal_outputs();
@@ -150,8 +164,10 @@ class ExactRun {
     Eigen::RowVectorXd on_u, on_up;
     // u' of a state under zero sources is u_x·M·x.
     const Eigen::MatrixXd up_x = u_x * space_.m();
+    output_rows_.clear();
     for (size_t k = 0; k < probes_.size(); ++k) {
       form_.probe_rows(probes_[k], on_u, on_up);
+      output_rows_.push_back(space_.output_rows(on_u, on_up));
       const Eigen::RowVectorXd g = on_u * u_x + on_up * up_x;
       const Eigen::RowVectorXcd modes = g.cast<std::complex<double>>() * basis_->vectors;
       for (Eigen::Index j = 0; j < half; ++j)
@@ -163,13 +179,59 @@ class ExactRun {
     for (Eigen::Index j = 0; j < half; ++j)
       half_vectors_.col(j) =
           basis_->vectors.col(basis_->half[static_cast<size_t>(j)]) * basis_->half_factor[j];
+    // V⁻¹'s rows of the half poles, by real and imaginary part: V⁻¹·r of a real r on the half
+    // poles is two real products, where an LU solve gave every pole of a complex r.
+    const Eigen::MatrixXcd inverse = basis_->vectors_lu.inverse();
+    half_inverse_real_.resize(half, inverse.cols());
+    half_inverse_imaginary_.resize(half, inverse.cols());
+    for (Eigen::Index j = 0; j < half; ++j) {
+      half_inverse_real_.row(j) = inverse.row(basis_->half[static_cast<size_t>(j)]).real();
+      half_inverse_imaginary_.row(j) = inverse.row(basis_->half[static_cast<size_t>(j)]).imag();
+    }
   }
 
-  Eigen::VectorXcd half_of(const Eigen::VectorXcd& full) const {
-    Eigen::VectorXcd out(static_cast<Eigen::Index>(basis_->half.size()));
-    for (size_t j = 0; j < basis_->half.size(); ++j)
-      out[static_cast<Eigen::Index>(j)] = full[basis_->half[j]];
+  // V⁻¹·r on the half poles.
+  Eigen::VectorXcd half_modal(const Eigen::VectorXd& r) const {
+    Eigen::VectorXcd out(half_inverse_real_.rows());
+    out.real() = half_inverse_real_ * r;
+    out.imag() = half_inverse_imaginary_ * r;
     return out;
+  }
+
+  // The terms of the piece with sources f (made on its first interval; kept for the last
+  // kPieces distinct pieces).
+  const PieceTerms& piece_terms(const AffinePiece& f, bool ramp) {
+    for (const PieceTerms& piece : pieces_)
+      if (piece.start == f.start && piece.slope == f.slope) return piece;
+    PieceTerms piece;
+    piece.start = f.start;
+    piece.slope = f.slope;
+    piece.nf = space_.forcing(f.start);
+    if (ramp) piece.nf_slope = space_.forcing(f.slope);
+    if (basis_) {
+      piece.constraints_start = space_.sources_in_constraints(f.start);
+      if (ramp) piece.constraints_slope = space_.sources_in_constraints(f.slope);
+      const Eigen::Index probes = static_cast<Eigen::Index>(probes_.size());
+      piece.source_values.resize(probes);
+      piece.ramp_values = Eigen::VectorXd::Zero(probes);
+      for (Eigen::Index k = 0; k < probes; ++k) {
+        const LinearStateSpace::OutputRows& rows = output_rows_[static_cast<size_t>(k)];
+        piece.source_values[k] = rows.source.dot(f.start) + (ramp ? rows.slope.dot(f.slope) : 0.0);
+        if (ramp) piece.ramp_values[k] = rows.source.dot(f.slope);  // c(f₁)
+      }
+      if (ramp) {
+        piece.ramp_rate = half_modal(piece.nf_slope);
+        piece.ramp_weights = probe_modes_ * piece.ramp_rate.asDiagonal();
+      }
+    }
+    if (pieces_.size() < kPieces) {
+      pieces_.push_back(std::move(piece));
+      return pieces_.back();
+    }
+    PieceTerms& slot = pieces_[next_piece_];
+    next_piece_ = (next_piece_ + 1) % kPieces;
+    slot = std::move(piece);
+    return slot;
   }
 
   // Every probe's value at (u, up_).
@@ -184,27 +246,17 @@ class ExactRun {
     IntervalForcing in;
     in.f = affine_piece(system_, form_.size(), t, stop);
     in.ramp = in.f.ramp();
-    in.nf = space_.forcing(in.f.start);
-    if (in.ramp) in.nf_slope = space_.forcing(in.f.slope);
+    in.piece = &piece_terms(in.f, in.ramp);
     if (!basis_) return in;
-    in.rate =
-        half_of(basis_->vectors_lu.solve((space_.m() * x_ + in.nf).cast<std::complex<double>>()));
-    if (in.ramp)
-      in.ramp_rate = half_of(basis_->vectors_lu.solve(in.nf_slope.cast<std::complex<double>>()));
+    in.rate = half_modal(space_.m() * x_ + in.piece->nf);
     clock_->restart(in.ramp);
     const bool outputs_here = next_output_ < outputs_.size() && outputs_[next_output_] <= stop;
     if (!outputs_here) return in;
-    if (in.ramp)
-      space_.full_state(x_, in.f.start, in.f.slope, u_, up_);
-    else
-      space_.full_state(x_, in.f.start, u_, up_);
-    in.start_values = probe_values();
+    // Each probe at the start, p = state·x + c(f₀) + d(f₁) (LinearStateSpace::output_rows).
+    in.start_values = in.piece->source_values;
+    for (size_t k = 0; k < probes_.size(); ++k)
+      in.start_values[static_cast<Eigen::Index>(k)] += output_rows_[k].state.dot(x_);
     in.weights = probe_modes_ * in.rate.asDiagonal();
-    if (in.ramp) {
-      space_.full_state(Eigen::VectorXd::Zero(space_.state_size()), in.f.slope, u_, up_);  // c(f₁)
-      in.ramp_values = probe_values();
-      in.ramp_weights = probe_modes_ * in.ramp_rate.asDiagonal();
-    }
     return in;
   }
 
@@ -220,18 +272,20 @@ class ExactRun {
           values = in.start_values;
           add_real_products(in.weights, clock_->integral(), values);
           if (in.ramp) {
-            add_real_products(in.ramp_weights, clock_->ramp_integral(), values);
-            values += h * in.ramp_values;
+            add_real_products(in.piece->ramp_weights, clock_->ramp_integral(), values);
+            values += h * in.piece->ramp_values;
           }
         } else if (!in.ramp) {
-          space_.full_state(space_.project(space_.advance(cache_.get(h), x_, in.nf), in.f.start),
-                            in.f.start, u_, up_);
+          space_.full_state(
+              space_.project(space_.advance(cache_.get(h), x_, in.piece->nf), in.f.start),
+              in.f.start, u_, up_);
           values = probe_values();
         } else {
           const Eigen::VectorXd f_h = in.f.at(h);
           space_.full_state(
-              space_.project(space_.advance(cache_.get_ramp(h), x_, in.nf, in.nf_slope), f_h), f_h,
-              in.f.slope, u_, up_);
+              space_.project(
+                  space_.advance(cache_.get_ramp(h), x_, in.piece->nf, in.piece->nf_slope), f_h),
+              f_h, in.f.slope, u_, up_);
           values = probe_values();
         }
         for (size_t k = 0; k < probes_.size(); ++k)
@@ -252,14 +306,19 @@ class ExactRun {
       // of each pair (factor 2 for a pair) — no exponential of M.
       clock_->advance_to(length);
       Eigen::VectorXcd modal = in.rate.cwiseProduct(clock_->integral());
-      if (in.ramp) modal += in.ramp_rate.cwiseProduct(clock_->ramp_integral());
-      x_ = space_.project(x_ + (half_vectors_ * modal).real(),
-                          in.ramp ? in.f.at(length) : in.f.start);
+      if (in.ramp) modal += in.piece->ramp_rate.cwiseProduct(clock_->ramp_integral());
+      // The sources at the end, f₀ + length·f₁, in the constraints by linearity.
+      const PieceTerms& piece = *in.piece;
+      x_ = space_.project_with(
+          x_ + (half_vectors_ * modal).real(),
+          in.ramp ? Eigen::VectorXd(piece.constraints_start + length * piece.constraints_slope)
+                  : piece.constraints_start);
     } else if (!in.ramp) {
-      x_ = space_.project(space_.advance(cache_.get(length), x_, in.nf), in.f.start);
+      x_ = space_.project(space_.advance(cache_.get(length), x_, in.piece->nf), in.f.start);
     } else {
-      x_ = space_.project(space_.advance(cache_.get_ramp(length), x_, in.nf, in.nf_slope),
-                          in.f.at(length));
+      x_ = space_.project(
+          space_.advance(cache_.get_ramp(length), x_, in.piece->nf, in.piece->nf_slope),
+          in.f.at(length));
     }
   }
 
@@ -277,6 +336,11 @@ class ExactRun {
   Eigen::MatrixXcd probe_modes_;  // [probe][half pole]: (gᵀV)_k·factor_k
   std::unique_ptr<ModalClock> clock_;
   Eigen::MatrixXcd half_vectors_;  // V's columns of ModalBasis::half, times their factor
+  Eigen::MatrixXd half_inverse_real_, half_inverse_imaginary_;  // V⁻¹'s rows of the half poles
+  std::vector<LinearStateSpace::OutputRows> output_rows_;       // [probe]
+  static constexpr size_t kPieces = 16;
+  std::vector<PieceTerms> pieces_;
+  size_t next_piece_ = 0;
 };
 
 }  // namespace
