@@ -106,8 +106,10 @@ Json to_json(const ModesStudyResult& result, const std::vector<Probe>& probes,
     }
     if (!probes.empty()) {
       Json at = Json::array();
-      for (const auto& probe : probes) {
-        const auto value = mode_probe_value(model, m, probe);
+      const std::vector<std::complex<double>> values = mode_probe_values(model, m, probes);
+      for (size_t k = 0; k < probes.size(); ++k) {
+        const Probe& probe = probes[k];
+        const std::complex<double> value = values[k];
         at.push_back({{"name", probe.name},
                       {"description", probe.description},
                       {"value", value.real()},

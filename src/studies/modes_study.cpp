@@ -106,15 +106,26 @@ ModeShape mode_shape(const Model& model, const Mode& mode) {
   return shape;
 }
 
-std::complex<double> mode_probe_value(const Model& model, const Mode& mode, const Probe& probe) {
-  if (!is_linear(probe))
-    throw std::invalid_argument("mode_probe_value: probe '" + probe.name +
-                                "' has squares; pass linearised_probe(probe, operating point)");
+std::vector<std::complex<double>> mode_probe_values(const Model& model, const Mode& mode,
+                                                    const std::vector<Probe>& probes) {
+  for (const Probe& probe : probes)
+    if (!is_linear(probe))
+      throw std::invalid_argument("mode_probe_value: probe '" + probe.name +
+                                  "' has squares; pass linearised_probe(probe, operating point)");
+  std::vector<std::complex<double>> values;
+  if (probes.empty()) return values;
   const std::complex<double> divisor = mode_shape(model, mode).divisor;
-  std::complex<double> value = 0.0;
-  for (const auto& [index, c] : probe.terms) value += c * mode.vector[index];
-  for (int k = 0; k < probe.integrations; ++k) value /= mode.pole;
-  return value / divisor;
+  for (const Probe& probe : probes) {
+    std::complex<double> value = 0.0;
+    for (const auto& [index, c] : probe.terms) value += c * mode.vector[index];
+    for (int k = 0; k < probe.integrations; ++k) value /= mode.pole;
+    values.push_back(value / divisor);
+  }
+  return values;
+}
+
+std::complex<double> mode_probe_value(const Model& model, const Mode& mode, const Probe& probe) {
+  return mode_probe_values(model, mode, {probe}).front();
 }
 
 std::string rigid_body_motion_name(const Model& model, const Eigen::VectorXd& motion) {

@@ -135,13 +135,17 @@ void print_the_mode_shapes(const emnet::ModesStudyResult& study,
   if (probes.empty()) return;
   std::cout << "\nmode shape at the probes (per unit largest nodal deflection; real and "
                "imaginary part):\n";
-  for (size_t k = 0; k < study.modes.size(); ++k)
-    for (const auto& probe : probes) {
-      const auto value = emnet::mode_probe_value(study.model, study.modes[k].mode, probe);
+  for (size_t k = 0; k < study.modes.size(); ++k) {
+    const std::vector<std::complex<double>> values =
+        emnet::mode_probe_values(study.model, study.modes[k].mode, probes);
+    for (size_t j = 0; j < probes.size(); ++j) {
+      const emnet::Probe& probe = probes[j];
+      const std::complex<double> value = values[j];
       std::printf("  mode %zu  %-10s %-36s %+.6g %+.6g %s\n", k + 1, shown(probe.name).c_str(),
                   shown(probe.description).c_str(), value.real(), value.imag(),
                   shown(probe.unit).c_str());
     }
+  }
 }
 
 // Refused after the result is printed, before any output file is written.

@@ -105,6 +105,10 @@ ModeShape mode_shape(const Model& model, const Mode& mode);
 // A probe's value in a mode, relative to the mode's largest nodal deflection: the quantity's
 // phasor Σ c·y / s^integrations (a deflection is the velocity over s) over the divisor.
 std::complex<double> mode_probe_value(const Model& model, const Mode& mode, const Probe& probe);
+// The same for several probes, the mode's shape (its divisor) found once: the shape is the
+// deflection at every node, and finding it per probe was most of the modes JSON's time.
+std::vector<std::complex<double>> mode_probe_values(const Model& model, const Mode& mode,
+                                                    const std::vector<Probe>& probes);
 
 // A rigid-body motion in words: its deflection w(x) = a + b·x along the beam is a translation
 // (|b|·L ≤ 1e-9·max|w| at the ends), or a rotation about the point where w = 0.
