@@ -101,7 +101,8 @@ void add_square_force(Model& model, double x, double low, double high, double fr
 // the peak (its own error, see ExactMethodHoldsTheStaticStateAt35Segments), so IDA at rtol 1e-6
 // must be within 2e-5 of the peak: its global error is a few rtol of the peak (5.5e-6
 // measured), times a safety factor of ~4. The exact method is not used at N = 500: it is dense
-// (SVD of E, matrix exponentials of twice the state size): 1.5 s at N = 35, 20 s at N = 100.
+// (a dense split of E, matrix exponentials of twice the state size): 1.5 s at N = 35, 20 s at
+// N = 100.
 TEST(HardStiff, IdaMatchesExactOnTheFishFinAt21Segments) {
   const Scene scene = fishfin({"beam.segments=21", "drive.electrical_dynamics=false"});
   const Model model = build_model(scene);

@@ -366,7 +366,7 @@ LimitRow exact_transient_limit_row(const LimitInputs& in) {
           .median;
   row.note = "with 51 outputs " + time_text(sparse) + ": the outputs cost " +
              time_text((row.emnet - sparse) / 4950.0) +
-             " each; the fixed part is the state equation (equilibration and the SVD of E, " +
+             " each; the fixed part is the state equation (equilibration and the QR of E, " +
              std::to_string(system.size()) + " unknowns) and its " +
              std::to_string(in.ac.poles.size()) + "-pole eigen-decomposition, then " +
              "per interval the modal start and end (ngspice: default options)";
