@@ -17,6 +17,7 @@
 #include <system_error>
 
 #include "emnet/core/terminal_text.hpp"
+#include "fixed_precision.hpp"
 
 namespace emnet {
 
@@ -447,12 +448,17 @@ std::string short_number(double value, int digits) {
 
 void append_number(std::string& out, double value, char conversion, int precision, int width) {
   char buffer[400];  // the longest: "%.<precision>f" of 1e308
-  const std::chars_format format = conversion == 'e'   ? std::chars_format::scientific
-                                   : conversion == 'f' ? std::chars_format::fixed
-                                                       : std::chars_format::general;
-  const std::to_chars_result written =
-      std::to_chars(buffer, buffer + sizeof buffer, value, format, precision);
-  const size_t length = written.ec == std::errc() ? static_cast<size_t>(written.ptr - buffer) : 0;
+  // The table rows' numbers by the exact double-arithmetic path where it applies (its own file
+  // says where; the same characters), else by std::to_chars.
+  size_t length = fixed_precision_digits(value, conversion, precision, buffer);
+  if (length == 0) {
+    const std::chars_format format = conversion == 'e'   ? std::chars_format::scientific
+                                     : conversion == 'f' ? std::chars_format::fixed
+                                                         : std::chars_format::general;
+    const std::to_chars_result written =
+        std::to_chars(buffer, buffer + sizeof buffer, value, format, precision);
+    length = written.ec == std::errc() ? static_cast<size_t>(written.ptr - buffer) : 0;
+  }
   if (length == 0) {  // too long for the buffer (never for the formats used): printf's own
     const std::string pattern =
         "%" + std::to_string(width) + "." + std::to_string(precision) + std::string(1, conversion);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/fixed_precision.hpp"
 #include "emnet/core/units.hpp"
 
 namespace emnet {
@@ -175,6 +176,45 @@ TEST(Units, AppendNumberWritesWhatPrintfWrites) {
       EXPECT_EQ(written, expected) << pattern << " of " << value;
     }
   }
+}
+
+// The exact double-arithmetic path of append_number (core/fixed_precision.hpp) against glibc's
+// printf where the rounding is hardest: values within a few ulps of a decimal half-way point
+// (the rounded product lands on the wrong side there unless corrected), exact binary ties
+// (printf rounds them to even), every precision 0–15, both conversions, both signs. Equal
+// texts, not close ones; and the path must apply to the table's values (else nothing is fast).
+TEST(Units, FixedPrecisionDigitsRoundLikePrintfAtHalfWayPoints) {
+  std::mt19937_64 random(11);
+  std::vector<double> values = {0.125, 0.375, 2.5,  3.5, 1234.5, -0.5, 0.0625, -2.5e-5,
+                                1e-5,  0.0,   -0.0, 9.5, 99.5,   0.95, 1e15};
+  for (int k = 0; k < 4000; ++k) {
+    const int decimals = std::uniform_int_distribution<int>(0, 18)(random);
+    const double n = std::floor(std::uniform_real_distribution<double>(0.0, 1e7)(random));
+    double x = (n + 0.5) / std::pow(10.0, decimals);
+    const int ulps = std::uniform_int_distribution<int>(-3, 3)(random);
+    for (int u = 0; u < std::abs(ulps); ++u) x = std::nextafter(x, ulps > 0 ? INFINITY : 0.0);
+    values.push_back(k % 2 ? x : -x);
+  }
+  int fast = 0, checked = 0;
+  for (const char conversion : {'e', 'f'})
+    for (int precision = 0; precision <= 15; ++precision)
+      for (double value : values) {
+        char digits[64];
+        const size_t length = fixed_precision_digits(value, conversion, precision, digits);
+        if (length == 0) continue;
+        ++fast;
+        const std::string pattern = "%." + std::to_string(precision) + conversion;
+        char expected[512];
+        std::snprintf(expected, sizeof expected, pattern.c_str(), value);
+        EXPECT_EQ(std::string(digits, length), expected) << pattern << " of " << value;
+        ++checked;
+      }
+  EXPECT_GT(fast, 50000);  // most of the 128 000 cases take the path
+  // The AC table's numbers take it: a deflection magnitude and a phase.
+  char digits[64];
+  EXPECT_GT(fixed_precision_digits(4.231438e-04, 'e', 6, digits), 0u);
+  EXPECT_GT(fixed_precision_digits(-179.99951, 'f', 3, digits), 0u);
+  EXPECT_EQ(checked, fast);
 }
 
 }  // namespace
