@@ -69,7 +69,8 @@ UsedPart used_part(const Eigen::MatrixXd& e) {
   return used;
 }
 
-// Ê = L·[T 0; 0 0]·Rᵀ with L and R orthogonal and T (r × r, r = rank Ê) upper triangular.
+// Ê = U·[T 0; 0 0]·Vᵀ with U (left) and V (right) orthogonal and T (r × r, r = rank Ê) upper
+// triangular.
 struct DescriptorSplit {
   Eigen::MatrixXd left, right, leading;
 };
@@ -227,7 +228,7 @@ LinearStateSpace::LinearStateSpace(const DisplacementForm& form,
   balance(m_, balance_, balanced_m_);
   // Hidden constraints H·u = 0 (differentiated levers, displacement_form.hpp) are invariants of
   // the state equation: M has a zero eigenvalue for each, and rounding in M·x + N·f would
-  // let the state drift along them (a lever slowly violating its kinematics). project()
+  // let the state drift along them (a lever slowly violating its kinematics). project_with()
   // removes that drift along M's null vectors.
   const std::vector<int>& hidden = form.hidden_constraints();
   const Eigen::Index k = static_cast<Eigen::Index>(hidden.size());
@@ -235,7 +236,7 @@ LinearStateSpace::LinearStateSpace(const DisplacementForm& form,
     Eigen::MatrixXd h(k, n_);
     const Eigen::SparseMatrix<double, Eigen::RowMajor> e_rows = e_matrix;
     for (Eigen::Index i = 0; i < k; ++i) h.row(i) = Eigen::RowVectorXd(e_rows.row(hidden[i]));
-    constraint_ = h;  // its null vectors are found on the first project()
+    constraint_ = h;  // its null vectors are found on the first project_with()
     hidden_rows_ = h;
   }
 }
@@ -289,15 +290,6 @@ Eigen::VectorXd LinearStateSpace::project_with(
   if (constraint_.size() == 0) return x;
   return x -
          null_vectors_ * constraint_lu_.solve(constraint_on_state_ * x + sources_in_constraints);
-}
-
-Eigen::VectorXd LinearStateSpace::project(const Eigen::VectorXd& x,
-                                          const Eigen::VectorXd& f) const {
-  if (!projection_prepared_) prepare_projection();
-  if (constraint_.size() == 0) return x;
-  Eigen::VectorXd u, up;
-  full_state(x, f, u, up);
-  return x - null_vectors_ * constraint_lu_.solve(constraint_ * u);
 }
 
 Eigen::VectorXd LinearStateSpace::forcing(const Eigen::VectorXd& f) const {

@@ -130,11 +130,10 @@ class LinearStateSpace {
   // left null vector of M (a pole at 0 that no consistent state excites), and the null space
   // of these rows is invariant under M.
   Eigen::MatrixXd hidden_constraints_on_state() const;
-  // x moved along M's null vectors until the hidden constraints hold (no-op without them).
-  Eigen::VectorXd project(const Eigen::VectorXd& x, const Eigen::VectorXd& f) const;
-  // The same in two parts, for a caller that meets the same sources again: H·u(x, f) is
-  // H·u_of_state()·x plus H·u of the sources alone, which sources_in_constraints(f) gives once
-  // (empty without hidden constraints) and project_with takes, at O(k·n) instead of O(n²).
+  // x moved along M's null vectors until the hidden constraints hold under sources f (no-op
+  // without them), in two parts: H·u(x, f) is H·u_of_state()·x plus H·u of the sources alone,
+  // which sources_in_constraints(f) gives (empty without hidden constraints) and project_with
+  // takes, at O(k·n): a caller meeting the same sources again forms the second part once.
   Eigen::VectorXd sources_in_constraints(const Eigen::VectorXd& f) const;
   Eigen::VectorXd project_with(const Eigen::VectorXd& x,
                                const Eigen::VectorXd& sources_in_constraints) const;
@@ -166,7 +165,7 @@ class LinearStateSpace {
   Eigen::VectorXd balance_;  // D of the balanced D⁻¹·M·D
   Eigen::MatrixXd balanced_m_;
   // H (hidden constraints); M's null vectors and the LU of H·(u of them), made on the first
-  // project() (a QR of Mᵀ that only the exact transient needs). Like modal_basis(), a lazy
+  // projection (a QR of Mᵀ that only the exact transient needs). Like modal_basis(), a lazy
   // member: one LinearStateSpace is not shared between threads.
   Eigen::MatrixXd hidden_rows_;  // H (k × n), as given by the form
   mutable Eigen::MatrixXd constraint_, null_vectors_;
@@ -177,7 +176,7 @@ class LinearStateSpace {
   // Eigen-decomposition of M for modal_basis(), made on first use.
   mutable int modes_state_ = 0;  // 0 not tried, 1 usable, −1 ill-conditioned
   mutable ModalBasis basis_;
-  Eigen::MatrixXd leading_;  // T of Ê = L·[T 0; 0 0]·Rᵀ, upper triangular
+  Eigen::MatrixXd leading_;  // T of Ê = U·[T 0; 0 0]·Vᵀ, upper triangular
   // ω₀·T⁻¹·x: the scaled equations' leading block solved, in physical time.
   Eigen::MatrixXd leading_solve(Eigen::MatrixXd x) const;
   Eigen::VectorXd leading_solve(Eigen::VectorXd x) const;

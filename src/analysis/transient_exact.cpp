@@ -80,6 +80,11 @@ struct PieceTerms {
   Eigen::VectorXd nf, nf_slope;
   // H·u of the sources f₀ and f₁ alone (LinearStateSpace::sources_in_constraints)
   Eigen::VectorXd constraints_start, constraints_slope;
+  // H·u of the sources at `offset` into the interval, f₀ + offset·f₁, by linearity.
+  Eigen::VectorXd constraints_at(double offset) const {
+    if (constraints_slope.size() == 0) return constraints_start;
+    return constraints_start + offset * constraints_slope;
+  }
   Eigen::VectorXcd ramp_rate;                  // [half pole]
   Eigen::VectorXd source_values, ramp_values;  // [probe]
   Eigen::MatrixXcd ramp_weights;               // [probe][half pole]
@@ -160,15 +165,13 @@ class ExactRun {
     if (!basis_) return;
     const Eigen::Index half = static_cast<Eigen::Index>(basis_->half.size());
     probe_modes_.resize(static_cast<Eigen::Index>(probes_.size()), half);
-    const Eigen::MatrixXd u_x = space_.u_of_state();
     Eigen::RowVectorXd on_u, on_up;
-    // u' of a state under zero sources is u_x·M·x.
-    const Eigen::MatrixXd up_x = u_x * space_.m();
     output_rows_.clear();
     for (size_t k = 0; k < probes_.size(); ++k) {
       form_.probe_rows(probes_[k], on_u, on_up);
       output_rows_.push_back(space_.output_rows(on_u, on_up));
-      const Eigen::RowVectorXd g = on_u * u_x + on_up * up_x;
+      // gᵀ: the probe's row on the state (u and u' = u_x·M·x of a state under zero sources).
+      const Eigen::RowVectorXd& g = output_rows_.back().state;
       const Eigen::RowVectorXcd modes = g.cast<std::complex<double>>() * basis_->vectors;
       for (Eigen::Index j = 0; j < half; ++j)
         probe_modes_(static_cast<Eigen::Index>(k), j) =
@@ -208,9 +211,9 @@ class ExactRun {
     piece.slope = f.slope;
     piece.nf = space_.forcing(f.start);
     if (ramp) piece.nf_slope = space_.forcing(f.slope);
+    piece.constraints_start = space_.sources_in_constraints(f.start);
+    if (ramp) piece.constraints_slope = space_.sources_in_constraints(f.slope);
     if (basis_) {
-      piece.constraints_start = space_.sources_in_constraints(f.start);
-      if (ramp) piece.constraints_slope = space_.sources_in_constraints(f.slope);
       const Eigen::Index probes = static_cast<Eigen::Index>(probes_.size());
       piece.source_values.resize(probes);
       piece.ramp_values = Eigen::VectorXd::Zero(probes);
@@ -276,16 +279,15 @@ class ExactRun {
             values += h * in.piece->ramp_values;
           }
         } else if (!in.ramp) {
-          space_.full_state(
-              space_.project(space_.advance(cache_.get(h), x_, in.piece->nf), in.f.start),
-              in.f.start, u_, up_);
+          space_.full_state(space_.project_with(space_.advance(cache_.get(h), x_, in.piece->nf),
+                                                in.piece->constraints_start),
+                            in.f.start, u_, up_);
           values = probe_values();
         } else {
-          const Eigen::VectorXd f_h = in.f.at(h);
-          space_.full_state(
-              space_.project(
-                  space_.advance(cache_.get_ramp(h), x_, in.piece->nf, in.piece->nf_slope), f_h),
-              f_h, in.f.slope, u_, up_);
+          space_.full_state(space_.project_with(space_.advance(cache_.get_ramp(h), x_, in.piece->nf,
+                                                               in.piece->nf_slope),
+                                                in.piece->constraints_at(h)),
+                            in.f.at(h), in.f.slope, u_, up_);
           values = probe_values();
         }
         for (size_t k = 0; k < probes_.size(); ++k)
@@ -307,18 +309,15 @@ class ExactRun {
       clock_->advance_to(length);
       Eigen::VectorXcd modal = in.rate.cwiseProduct(clock_->integral());
       if (in.ramp) modal += in.piece->ramp_rate.cwiseProduct(clock_->ramp_integral());
-      // The sources at the end, f₀ + length·f₁, in the constraints by linearity.
-      const PieceTerms& piece = *in.piece;
-      x_ = space_.project_with(
-          x_ + (half_vectors_ * modal).real(),
-          in.ramp ? Eigen::VectorXd(piece.constraints_start + length * piece.constraints_slope)
-                  : piece.constraints_start);
+      x_ = space_.project_with(x_ + (half_vectors_ * modal).real(),
+                               in.piece->constraints_at(length));
     } else if (!in.ramp) {
-      x_ = space_.project(space_.advance(cache_.get(length), x_, in.piece->nf), in.f.start);
+      x_ = space_.project_with(space_.advance(cache_.get(length), x_, in.piece->nf),
+                               in.piece->constraints_start);
     } else {
-      x_ = space_.project(
+      x_ = space_.project_with(
           space_.advance(cache_.get_ramp(length), x_, in.piece->nf, in.piece->nf_slope),
-          in.f.at(length));
+          in.piece->constraints_at(length));
     }
   }
 
