@@ -110,7 +110,7 @@ std::vector<std::complex<double>> mode_probe_values(const Model& model, const Mo
                                                     const std::vector<Probe>& probes) {
   for (const Probe& probe : probes)
     if (!is_linear(probe))
-      throw std::invalid_argument("mode_probe_value: probe '" + probe.name +
+      throw std::invalid_argument("mode_probe_values: probe '" + probe.name +
                                   "' has squares; pass linearised_probe(probe, operating point)");
   std::vector<std::complex<double>> values;
   if (probes.empty()) return values;
@@ -122,10 +122,6 @@ std::vector<std::complex<double>> mode_probe_values(const Model& model, const Mo
     values.push_back(value / divisor);
   }
   return values;
-}
-
-std::complex<double> mode_probe_value(const Model& model, const Mode& mode, const Probe& probe) {
-  return mode_probe_values(model, mode, {probe}).front();
 }
 
 std::string rigid_body_motion_name(const Model& model, const Eigen::VectorXd& motion) {

@@ -102,11 +102,9 @@ ModesStudyResult run_modes_study(const Scene& scene, const ModesStudyOptions& op
 // A mode's shape along the beam (see above).
 ModeShape mode_shape(const Model& model, const Mode& mode);
 
-// A probe's value in a mode, relative to the mode's largest nodal deflection: the quantity's
-// phasor Σ c·y / s^integrations (a deflection is the velocity over s) over the divisor.
-std::complex<double> mode_probe_value(const Model& model, const Mode& mode, const Probe& probe);
-// The same for several probes, the mode's shape (its divisor) found once: the shape is the
-// deflection at every node, and finding it per probe was most of the modes JSON's time.
+// Each probe's value in a mode, relative to the mode's largest nodal deflection: the
+// quantity's phasor Σ c·y / s^integrations (a deflection is the velocity over s) over the
+// divisor. The mode's shape (its divisor) is found once for all the probes.
 std::vector<std::complex<double>> mode_probe_values(const Model& model, const Mode& mode,
                                                     const std::vector<Probe>& probes);
 
