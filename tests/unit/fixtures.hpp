@@ -65,20 +65,34 @@ inline Scene tip_mass_cantilever(int segments, double alpha) {
   return scene;
 }
 
-// One mass m on a spring k and a damper c to ground, driven by a force of AC magnitude 1:
-// X(s) = 1/(m·s² + c·s + k). `velocity` is the mass's node.
+// A force of AC magnitude 1 and no time function: the default drive of one_mass_spring_damper.
+inline Waveform unit_ac_force() {
+  Waveform force = Waveform::constant(0.0);
+  force.ac_magnitude = 1.0;
+  return force;
+}
+
+// One mass m on a spring k and a damper c to ground, driven by `force` (by default of AC
+// magnitude 1: X(s) = 1/(m·s² + c·s + k)). `velocity` is the mass's node; displacement() the
+// probe of its displacement x (the velocity integrated once).
 struct OneMass {
   Network network;
   NodeId velocity = ground;
+  Probe displacement() const {
+    Probe x;
+    x.name = "x";
+    x.terms = {{velocity, 1.0}};
+    x.integrations = 1;
+    return x;
+  }
 };
-inline OneMass one_mass_spring_damper(double mass, double stiffness, double damping) {
+inline OneMass one_mass_spring_damper(double mass, double stiffness, double damping,
+                                      const Waveform& force = unit_ac_force()) {
   OneMass one;
   one.velocity = one.network.add_node("v", Domain::translational, "mass velocity");
   one.network.add<Capacitor>("m", one.velocity, ground, mass);
   one.network.add<Inductor>("k", one.velocity, ground, 1.0 / stiffness, Domain::translational);
   one.network.add<Conductance>("c", one.velocity, ground, damping);
-  Waveform force = Waveform::constant(0.0);
-  force.ac_magnitude = 1.0;
   one.network.add<CurrentSource>("F", ground, one.velocity, force);
   return one;
 }

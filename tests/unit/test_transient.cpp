@@ -35,17 +35,9 @@ std::vector<double> uniform_times(double end, int count) {
 // is a small multiple of rtol over these 20 periods).
 TEST(Transient, StepResponseOfOneMassMatchesClosedForm) {
   const double m = 0.2, k = 50.0, c = 0.3, force = 2.0;
-  Network network;
-  const NodeId v = network.add_node("v", Domain::translational, "mass velocity");
-  network.add<Capacitor>("m", v, ground, m);
-  network.add<Inductor>("k", v, ground, 1.0 / k, Domain::translational);
-  network.add<Conductance>("c", v, ground, c);
-  network.add<CurrentSource>("F", ground, v, Waveform::constant(force));
-  const System system = network.assemble();
-  Probe x;
-  x.name = "x";
-  x.terms = {{v, 1.0}};
-  x.integrations = 1;
+  const testing::OneMass one = testing::one_mass_spring_damper(m, k, c, Waveform::constant(force));
+  const System system = one.network.assemble();
+  const Probe x = one.displacement();
   const double omega = std::sqrt(k / m), zeta = c / (2 * std::sqrt(k * m));
   const double omega_d = omega * std::sqrt(1 - zeta * zeta);
   TransientOptions options;
@@ -66,6 +58,41 @@ TEST(Transient, StepResponseOfOneMassMatchesClosedForm) {
                  (std::cos(omega_d * t) + zeta * omega / omega_d * std::sin(omega_d * t)));
     EXPECT_NEAR(exact.values[0][i], reference, 1e-12 * force / k) << t;
     EXPECT_NEAR(ida.values[0][i], reference, 1e-6 * force / k) << t;
+  }
+}
+
+// The same mass critically damped (c = 2·√(k·m)): a double pole at −ω, whose computed
+// eigenvectors are nearly parallel, so the exact method leaves the modal form for matrix
+// exponentials (the only test of that path: one ramp interval, one constant one; without a
+// lever there is nothing to project). The force ramps from 0 to F over T, then holds (pwl):
+// with r(t) = (t − 2/ω + (t + 2/ω)·e^{−ωt})/k the response to a unit ramp of force (partial
+// fractions of 1/(m·s²·(s + ω)²)),
+//   x(t) = F/T·(r(t) − r(t − T)),  r = 0 before 0.
+// Reference: closed form. Tolerance 1e-13 of F/k: rounding in the 2×2 state's block
+// exponentials (Van Loan's, 4×4 and 6×6) over two intervals, a few ε of their norm each
+// (measured 2.4e-15); a wrong block, slope term or interval would be O(1).
+TEST(Transient, CriticallyDampedMassUnderARampTakesTheExponentialsAndMatchesClosedForm) {
+  const double m = 0.2, k = 50.0, c = 2.0 * std::sqrt(k * m), force = 2.0;
+  const double omega = std::sqrt(k / m), ramp = 0.3;
+  Waveform pwl;
+  pwl.shape = Waveform::Shape::pwl;
+  pwl.points = {{0.0, 0.0}, {ramp, force}};
+  const testing::OneMass one = testing::one_mass_spring_damper(m, k, c, pwl);
+  const System system = one.network.assemble();
+  const Probe x = one.displacement();
+  TransientOptions options;
+  options.end_time = 2.0;
+  options.output_times = uniform_times(options.end_time, 200);
+  const TransientResult exact = run_transient_exact(system, {x}, options);
+  ASSERT_TRUE(exact.status.ok()) << exact.status.message;
+  ASSERT_EQ(exact.times.size(), options.output_times.size());
+  const auto unit_ramp = [&](double t) {
+    return t <= 0.0 ? 0.0 : (t - 2.0 / omega + (t + 2.0 / omega) * std::exp(-omega * t)) / k;
+  };
+  for (size_t i = 0; i < exact.times.size(); ++i) {
+    const double t = exact.times[i];
+    const double reference = force / ramp * (unit_ramp(t) - unit_ramp(t - ramp));
+    EXPECT_NEAR(exact.values[0][i], reference, 1e-13 * force / k) << t;
   }
 }
 
